@@ -1,0 +1,61 @@
+"""bras-kit: describe, check, move and show a robot arm with no ROS install.
+
+The library API used by notebooks and the CLI. Every name is imported on first use, so
+``import bras_kit`` (and ``bras-kit --help``) stays light.
+"""
+
+from __future__ import annotations
+
+import importlib
+from typing import Any
+
+__version__ = "0.1.0"
+
+# name -> module providing it, imported on first access (keeps `import bras_kit` fast)
+_LAZY = {
+    "arm": "bras_kit.authoring",
+    "arm_urdf": "bras_kit.authoring",
+    "load": "bras_kit.authoring",
+    "template_parameters": "bras_kit.authoring",
+    "expand_xacro": "bras_kit.xacrotools",
+    "fk": "bras_kit.kinematics",
+    "fk_batch": "bras_kit.kinematics",
+    "relative_transform": "bras_kit.kinematics",
+    "tf_tree": "bras_kit.kinematics",
+    "Robot": "bras_kit.model",
+    "Link": "bras_kit.model",
+    "Joint": "bras_kit.model",
+    "BrasKitError": "bras_kit.errors",
+    "ModelError": "bras_kit.errors",
+    "ParameterError": "bras_kit.errors",
+    "XacroError": "bras_kit.errors",
+    "XMLSafetyError": "bras_kit.errors",
+    "XMLSyntaxError": "bras_kit.errors",
+    "validate": "bras_kit.validate",
+    "scaffold_package": "bras_kit.scaffold",
+    "Motion": "bras_kit.motion",
+    "tutorial_motion": "bras_kit.motion",
+    "render_pose": "bras_kit.render",
+    "render_motion": "bras_kit.render",
+    "save_gif": "bras_kit.render",
+    "save_mp4": "bras_kit.render",
+    "frame_diagram": "bras_kit.diagrams",
+    "plot_motion": "bras_kit.diagrams",
+    "solve_ik": "bras_kit.ik",
+    "ik_2r": "bras_kit.ik",
+    "jacobian": "bras_kit.ik",
+}
+
+
+def __getattr__(name: str) -> Any:
+    module = _LAZY.get(name)
+    if module is None:
+        raise AttributeError(f"module 'bras_kit' has no attribute '{name}'")
+    return getattr(importlib.import_module(module), name)
+
+
+__all__ = ["__version__", *_LAZY]
+
+
+def __dir__() -> list[str]:
+    return __all__

@@ -1,0 +1,96 @@
+"""Options and helpers shared by several commands."""
+
+from __future__ import annotations
+
+import argparse
+import os
+import sys
+from collections.abc import Iterable, Mapping
+
+from ..errors import OutputExistsError, ParameterError
+
+
+def add_model_arguments(parser: argparse.ArgumentParser, *, variants: bool = True) -> None:
+    """FILE (optional: the tutorial arm), xacro args and package paths, and the arm's variants."""
+    parser.add_argument("file", nargs="?", metavar="FILE",
+                        help="a .urdf or .xacro file (default: the built-in tutorial arm)")
+    parser.add_argument("--package-path", action="append", default=[], metavar="DIR",
+                        help="folder holding ROS packages, for $(find pkg) and package:// (repeatable)")
+    parser.add_argument("--xacro-arg", action="append", default=[], metavar="NAME:=VALUE",
+                        help="xacro argument when FILE is a .xacro (repeatable)")
+    if variants:
+        parser.add_argument("--wrist", action="store_true",
+                            help="built-in arm: add the wrist joint 'poignet' (the tutorial's exercise)")
+        parser.add_argument("--inertials", action="store_true",
+                            help="built-in arm: add <inertial> mass and inertia to every link")
+        parser.add_argument("--param", action="append", default=[], metavar="NAME=VALUE",
+                            help="built-in arm: change a template parameter (e.g. bras_length=0.8)")
+
+
+def xacro_mappings(items: Iterable[str]) -> dict[str, str]:
+    out = {}
+    for item in items:
+        name, sep, value = item.partition(":=")
+        if not sep or not name:
+            raise ParameterError(f"'{item}' is not NAME:=VALUE", hint="write xacro arguments as name:=value")
+        out[name] = value
+    return out
+
+
+def load_model(args: argparse.Namespace):  # type: ignore[no-untyped-def]
+    """The robot named by the model arguments (the tutorial arm when FILE is absent)."""
+    from ..authoring import arm, load, parse_assignments
+
+    if args.file is None:
+        return arm(wrist=getattr(args, "wrist", False), inertials=getattr(args, "inertials", False),
+                   params=parse_assignments(getattr(args, "param", [])))
+    if getattr(args, "wrist", False) or getattr(args, "inertials", False) or getattr(args, "param", []):
+        raise ParameterError("--wrist, --inertials and --param apply to the built-in arm only",
+                             hint="drop FILE to use the built-in arm, or edit your file")
+    return load(args.file, mappings=xacro_mappings(args.xacro_arg), package_paths=args.package_path)
+
+
+def joint_values(items: Iterable[str]) -> dict[str, float]:
+    """``["epaule=0.5"]`` -> ``{"epaule": 0.5}``, with a clear error for a bad value."""
+    from ..authoring import parse_assignments
+
+    values = {}
+    for name, text in parse_assignments(items, "joint value").items():
+        try:
+            values[name] = float(text)
+        except ValueError:
+            raise ParameterError(f"{name}={text!r}: the joint value is not a number",
+                                 hint="give radians for revolute joints and metres for prismatic ones") from None
+    return values
+
+
+def add_force_argument(parser: argparse.ArgumentParser) -> None:
+    parser.add_argument("--force", action="store_true", help="overwrite files that already exist")
+
+
+def check_writable(path: str, force: bool) -> None:
+    """Refuse to overwrite an existing file unless ``force``."""
+    if os.path.exists(path) and not force:
+        raise OutputExistsError(f"{path} already exists", hint="pass --force to overwrite it, or choose another -o")
+
+
+def write_text(path: str | None, text: str, force: bool) -> None:
+    """Write ``text`` to ``path`` (stdout when None), refusing to overwrite without ``force``."""
+    if path is None or path == "-":
+        sys.stdout.write(text if text.endswith("\n") else text + "\n")
+        return
+    check_writable(path, force)
+    folder = os.path.dirname(path)
+    if folder:
+        os.makedirs(folder, exist_ok=True)
+    with open(path, "w", encoding="utf-8") as handle:
+        handle.write(text)
+    print(f"wrote {path}", file=sys.stderr)
+
+
+def warn(message: str) -> None:
+    print(f"warning: {message}", file=sys.stderr)
+
+
+def format_config(config: Mapping[str, float]) -> str:
+    return ", ".join(f"{k}={v:g}" for k, v in config.items()) or "zero pose"

@@ -1,0 +1,29 @@
+"""bras-kit urdf: the tutorial arm's URDF from the xacro template."""
+
+from __future__ import annotations
+
+import argparse
+
+from ._common import add_force_argument, write_text
+
+
+def configure(parser: argparse.ArgumentParser) -> None:
+    parser.add_argument("--wrist", action="store_true", help="add the wrist link and joint 'poignet'")
+    parser.add_argument("--inertials", action="store_true", help="add mass and inertia to every link")
+    parser.add_argument("--set", dest="params", action="append", default=[], metavar="NAME=VALUE",
+                        help="change a template parameter (repeatable); --list-params shows them")
+    parser.add_argument("--list-params", action="store_true", help="list the template parameters and exit")
+    parser.add_argument("-o", "--output", metavar="FILE", help="write to FILE instead of printing")
+    add_force_argument(parser)
+
+
+def run(args: argparse.Namespace) -> int:
+    from ..authoring import arm_urdf, parse_assignments, template_parameters
+
+    if args.list_params:
+        for p in template_parameters().values():
+            print(f"{p.name:20s} {p.kind:7s} default {p.default}")
+        return 0
+    text = arm_urdf(wrist=args.wrist, inertials=args.inertials, params=parse_assignments(args.params))
+    write_text(args.output, text, args.force)
+    return 0
