@@ -288,46 +288,74 @@ def _driver(robot: Robot, joint: Joint, dof_index: dict[str, int]) -> tuple[int,
 # ---------------------------------------------------------------- forward kinematics
 
 
+def _skew(axis: np.ndarray) -> np.ndarray:
+    x, y, z = axis
+    return np.array([[0.0, -z, y], [z, 0.0, -x], [-y, x, 0.0]])
+
+
 def fk_batch(tree: TFTree, q: np.ndarray) -> np.ndarray:
     """World transforms of every link for every configuration.
 
     ``q`` has shape (N, len(tree.dof)) (or (len(dof),) for one pose); the result has shape
     (N, L, 4, 4) (or (L, 4, 4)), links in ``tree.links`` order, relative to the root.
+
+    A rotation about a unit axis ``a`` by angle v is ``cos v (I - a a^T) + sin v K + a a^T``
+    (Rodrigues), so a joint's rotation, pre-multiplied by anything constant, is a weighted sum
+    of three fixed matrices: elementwise work, plus one batched product when the parent moves.
     """
     q = np.asarray(q, dtype=float)
     single = q.ndim == 1
     if single:
         q = q[None, :]
-    if q.shape[-1] != len(tree.dof):
+    if q.ndim != 2 or q.shape[-1] != len(tree.dof):
         raise ParameterError(f"expected {len(tree.dof)} joint values ({', '.join(tree.dof)}), got {q.shape[-1]}")
-    n = q.shape[0]
-    count = len(tree.links)
-    # World rotation/translation per link; constant links keep shape (3,3)/(3,) and broadcast.
-    rot: list[np.ndarray] = [np.eye(3)] * count
-    pos: list[np.ndarray] = [np.zeros(3)] * count
-    for i in range(1, count):
-        p = tree.parent[i]
-        origin = tree._origin[i]
-        o_rot, o_pos = origin[:3, :3], origin[:3, 3]
-        parent_rot, parent_pos = rot[p], pos[p]
-        base_rot = parent_rot @ o_rot
-        base_pos = parent_pos + parent_rot @ o_pos
-        kind = tree._kind[i]
-        if kind == _REVOLUTE:
-            value = q[:, tree._source[i]] * tree._gain[i] + tree._offset[i]
-            rot[i] = base_rot @ axis_angle_matrices(tree._axis[i], value)
-            pos[i] = base_pos
-        elif kind == _PRISMATIC:
-            value = q[:, tree._source[i]] * tree._gain[i] + tree._offset[i]
-            rot[i] = base_rot
-            pos[i] = base_pos + value[:, None] * (base_rot @ tree._axis[i])
-        else:
-            rot[i], pos[i] = base_rot, base_pos
-    out = np.zeros((n, count, 4, 4))
+    n, count = q.shape[0], len(tree.links)
+    out = np.empty((n, count, 4, 4))
+    out[:, :, 3, :3] = 0.0
     out[:, :, 3, 3] = 1.0
-    for i in range(count):
-        out[:, i, :3, :3] = rot[i]
-        out[:, i, :3, 3] = pos[i]
+    # World transform of links that no joint value moves (4x4), else None (then read from `out`).
+    constant: list[np.ndarray | None] = [np.eye(4)] + [None] * (count - 1)
+    out[:, 0, :3, :] = np.eye(4)[:3]
+    for i in range(1, count):
+        p, origin, kind = tree.parent[i], tree._origin[i], tree._kind[i]
+        parent_const = constant[p]
+        if kind not in (_REVOLUTE, _PRISMATIC):
+            if parent_const is not None:
+                constant[i] = parent_const @ origin
+                out[:, i, :3, :] = constant[i][:3]
+            else:
+                np.matmul(out[:, p], origin, out=out[:, i])
+            continue
+        value = q[:, tree._source[i]] * tree._gain[i] + tree._offset[i]
+        axis = tree._axis[i]
+        rot_out, pos_out = out[:, i, :3, :3], out[:, i, :3, 3]
+        # `pre` is the constant factor in front of the joint motion: the origin, and the
+        # parent's world transform too when the parent does not move.
+        pre = parent_const @ origin if parent_const is not None else origin
+        pre_rot = pre[:3, :3]
+        if kind == _REVOLUTE:
+            along = pre_rot @ np.outer(axis, axis)
+            c, s = np.cos(value)[:, None, None], np.sin(value)[:, None, None]
+            local = c * (pre_rot - along)
+            local += s * (pre_rot @ _skew(axis))
+            local += along
+            if parent_const is not None:
+                rot_out[...] = local
+                pos_out[...] = pre[:3, 3]
+            else:
+                parent_rot = out[:, p, :3, :3]
+                np.matmul(parent_rot, local, out=rot_out)
+                np.matmul(parent_rot, pre[:3, 3], out=pos_out)
+                pos_out += out[:, p, :3, 3]
+        else:
+            slide = value[:, None] * (pre_rot @ axis) + pre[:3, 3]
+            if parent_const is not None:
+                rot_out[...] = pre_rot
+                pos_out[...] = slide
+            else:
+                parent_rot = out[:, p, :3, :3]
+                np.matmul(parent_rot, pre_rot, out=rot_out)
+                pos_out[...] = np.einsum("nij,nj->ni", parent_rot, slide) + out[:, p, :3, 3]
     return out[0] if single else out
 
 
@@ -346,8 +374,11 @@ def relative_transform(tree: TFTree, config: Mapping[str, float] | None, source:
 
 def describe_transform(matrix: np.ndarray) -> dict[str, list[float]]:
     """Translation, quaternion (x y z w) and roll-pitch-yaw of a transform, as plain lists."""
+    def clean(values: Sequence[float]) -> list[float]:
+        return [float(v) + 0.0 for v in values]  # + 0.0 turns -0.0 into 0.0
+
     return {
-        "xyz": [float(v) for v in matrix[:3, 3]],
-        "quat_xyzw": [float(v) for v in matrix_to_quat_xyzw(matrix)],
-        "rpy": [float(v) for v in matrix_to_rpy(matrix)],
+        "xyz": clean(matrix[:3, 3]),
+        "quat_xyzw": clean(matrix_to_quat_xyzw(matrix)),
+        "rpy": clean(matrix_to_rpy(matrix)),
     }

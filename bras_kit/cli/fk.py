@@ -1,0 +1,68 @@
+"""bras-kit fk: each link's pose for a joint configuration, like tf2_echo."""
+
+from __future__ import annotations
+
+import argparse
+import json
+import math
+
+from ._common import add_model_arguments, joint_values, warn
+
+
+def configure(parser: argparse.ArgumentParser) -> None:
+    add_model_arguments(parser)
+    parser.add_argument("--set", dest="values", action="append", default=[], metavar="JOINT=VALUE",
+                        help="a joint value in rad (revolute) or m (prismatic); repeatable; others are 0")
+    parser.add_argument("--link", help="print only this link (relative to the root)")
+    parser.add_argument("--from", dest="source", metavar="A", help="with --to: the pose of B in the frame of A")
+    parser.add_argument("--to", dest="target", metavar="B", help="with --from: the pose of B in the frame of A")
+    parser.add_argument("--format", choices=("text", "json"), default="text")
+
+
+def _text_block(title: str, pose: dict[str, list[float]]) -> str:
+    x, y, z = pose["xyz"]
+    qx, qy, qz, qw = pose["quat_xyzw"]
+    r, p, yaw = pose["rpy"]
+    return (
+        f"{title}\n"
+        f"- Translation: [{x:.6f}, {y:.6f}, {z:.6f}]\n"
+        f"- Rotation: in Quaternion (xyzw) [{qx:.6f}, {qy:.6f}, {qz:.6f}, {qw:.6f}]\n"
+        f"            in RPY (radian) [{r:.6f}, {p:.6f}, {yaw:.6f}]\n"
+        f"            in RPY (degree) [{math.degrees(r):.6f}, {math.degrees(p):.6f}, {math.degrees(yaw):.6f}]"
+    )
+
+
+def run(args: argparse.Namespace) -> int:
+    from ..errors import ParameterError
+    from ..kinematics import describe_transform, fk, relative_transform, tf_tree
+    from ._common import load_model
+
+    if (args.source is None) != (args.target is None):
+        raise ParameterError("--from and --to go together", hint="e.g. --from base --to avant_bras")
+    robot = load_model(args)
+    tree = tf_tree(robot)
+    config = joint_values(args.values)
+    tree.config_vector(config)  # unknown joint names fail here, before any output
+    for name, value, lower, upper in tree.out_of_limits(config):
+        side = f"above its upper limit {upper:g} by {value - upper:.4g}" if value > upper else \
+            f"below its lower limit {lower:g} by {lower - value:.4g}"
+        warn(f"{name}={value:g} is {side}")
+    for name in tree.unsupported_joints:
+        warn(f"joint '{name}' is floating or planar: its child is shown at the joint origin, not moved")
+    full = {name: float(config.get(name, 0.0)) for name in tree.dof}
+    if args.source is not None:
+        pose = describe_transform(relative_transform(tree, config, args.source, args.target))
+        if args.format == "json":
+            print(json.dumps({"from": args.source, "to": args.target, "config": full, **pose}, indent=2))
+            return 0
+        print(_text_block(f"At {args.source} -> {args.target}", pose))
+        return 0
+    transforms = fk(tree, config)
+    names = [tree.links[tree.index(args.link)]] if args.link else list(tree.links)
+    poses = {name: describe_transform(transforms[name]) for name in names}
+    if args.format == "json":
+        print(json.dumps({"root": tree.root, "config": full, "links": poses}, indent=2))
+        return 0
+    for name, pose in poses.items():
+        print(_text_block(f"At {tree.root} -> {name}", pose))
+    return 0

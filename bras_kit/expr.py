@@ -1,0 +1,373 @@
+"""A small, safe evaluator for joint formulas such as ``0.8*sin(t)``.
+
+A formula is parsed with :mod:`ast` and checked against a whitelist: numbers, the time ``t``,
+the constants ``pi``, ``e`` and ``tau``, the operators ``+ - * / ** %``, parentheses, and a fixed
+set of numpy functions. Anything else (names, attributes, subscripts, calls of other functions,
+lambdas, comprehensions, strings, comparisons) is refused before anything runs. The accepted
+tree is turned into nested numpy closures, never into Python code: nothing is ``eval``-ed.
+
+Each compiled node returns the value and its exact time derivative together (forward-mode
+differentiation), so a motion's velocities agree with its positions without finite differences.
+"""
+
+from __future__ import annotations
+
+import ast
+import builtins
+import difflib
+import math
+from collections.abc import Callable
+from dataclasses import dataclass
+
+import numpy as np
+
+from .errors import ParameterError, UnsafeExpressionError
+
+MAX_LENGTH = 1000  # characters of a formula
+MAX_DEPTH = 64  # nesting of operations
+MAX_EXPONENT = 100.0  # largest constant exponent of **
+
+CONSTANTS = {"pi": math.pi, "e": math.e, "tau": math.tau}
+VARIABLE = "t"
+
+# Value and derivative arrays (or plain floats for parts that do not depend on t).
+_Pair = tuple  # (value, derivative)
+_Node = Callable[[np.ndarray], _Pair]
+
+
+def _unary(value: Callable, slope: Callable) -> Callable[[_Pair], _Pair]:
+    """A one-argument function and its derivative rule d f(u) = slope(u, f(u)) * du."""
+
+    def apply(arg: _Pair) -> _Pair:
+        u, du = arg
+        out = value(u)
+        if isinstance(du, float) and du == 0.0:  # constant argument: avoid 0 * inf
+            return out, 0.0
+        return out, slope(u, out) * du
+
+    return apply
+
+
+def _minimum(*args: _Pair) -> _Pair:
+    value, slope = args[0]
+    for u, du in args[1:]:
+        pick = u < value
+        value, slope = np.where(pick, u, value), np.where(pick, du, slope)
+    return value, slope
+
+
+def _maximum(*args: _Pair) -> _Pair:
+    value, slope = args[0]
+    for u, du in args[1:]:
+        pick = u > value
+        value, slope = np.where(pick, u, value), np.where(pick, du, slope)
+    return value, slope
+
+
+def _clip(x: _Pair, low: _Pair, high: _Pair) -> _Pair:
+    return _minimum(_maximum(x, low), high)
+
+
+def _atan2(y: _Pair, x: _Pair) -> _Pair:
+    (u, du), (v, dv) = y, x
+    return np.arctan2(u, v), (v * du - u * dv) / (u * u + v * v)
+
+
+def _deg(arg: _Pair) -> _Pair:
+    u, du = arg
+    return u * (math.pi / 180.0), du * (math.pi / 180.0)
+
+
+def _step(function: Callable) -> Callable[[_Pair], _Pair]:
+    """floor and ceil: flat between the jumps."""
+    return lambda arg: (function(arg[0]), 0.0)
+
+
+# name -> (smallest and largest number of arguments, rule on (value, derivative) pairs)
+FUNCTIONS: dict[str, tuple[int, int, Callable[..., _Pair]]] = {
+    "sin": (1, 1, _unary(np.sin, lambda u, f: np.cos(u))),
+    "cos": (1, 1, _unary(np.cos, lambda u, f: -np.sin(u))),
+    "tan": (1, 1, _unary(np.tan, lambda u, f: 1.0 + f * f)),
+    "asin": (1, 1, _unary(np.arcsin, lambda u, f: 1.0 / np.sqrt(1.0 - u * u))),
+    "acos": (1, 1, _unary(np.arccos, lambda u, f: -1.0 / np.sqrt(1.0 - u * u))),
+    "atan": (1, 1, _unary(np.arctan, lambda u, f: 1.0 / (1.0 + u * u))),
+    "atan2": (2, 2, _atan2),
+    "sqrt": (1, 1, _unary(np.sqrt, lambda u, f: 0.5 / f)),
+    "exp": (1, 1, _unary(np.exp, lambda u, f: f)),
+    "log": (1, 1, _unary(np.log, lambda u, f: 1.0 / u)),
+    "abs": (1, 1, _unary(np.abs, lambda u, f: np.sign(u))),
+    "min": (2, 16, _minimum),
+    "max": (2, 16, _maximum),
+    "clip": (3, 3, _clip),
+    "floor": (1, 1, _step(np.floor)),
+    "ceil": (1, 1, _step(np.ceil)),
+    "deg": (1, 1, _deg),
+}
+
+ALLOWED = ("numbers, the time t (seconds), the constants pi e tau, + - * / ** % and parentheses, "
+           "and the functions " + " ".join(FUNCTIONS)
+           + " (deg(x) turns x degrees into radians; clip(x, low, high))")
+
+_OPERATORS = {ast.Add: "+", ast.Sub: "-", ast.Mult: "*", ast.Div: "/", ast.Pow: "**", ast.Mod: "%"}
+
+_REFUSED = {
+    ast.Attribute: "attribute access ('.') is not allowed",
+    ast.Subscript: "subscripts ('[...]') are not allowed",
+    ast.Lambda: "lambda is not allowed",
+    ast.ListComp: "comprehensions are not allowed",
+    ast.SetComp: "comprehensions are not allowed",
+    ast.DictComp: "comprehensions are not allowed",
+    ast.GeneratorExp: "comprehensions are not allowed",
+    ast.NamedExpr: "assignment (':=') is not allowed",
+    ast.Starred: "'*' unpacking is not allowed",
+    ast.JoinedStr: "strings are not allowed",
+    ast.List: "lists are not allowed",
+    ast.Tuple: "tuples are not allowed",
+    ast.Set: "sets are not allowed",
+    ast.Dict: "dicts are not allowed",
+    ast.Await: "await is not allowed",
+    ast.Yield: "yield is not allowed",
+    ast.YieldFrom: "yield is not allowed",
+}
+
+
+@dataclass(frozen=True)
+class Expression:
+    """A checked formula of the time ``t``; call it with an array of times."""
+
+    text: str
+    uses_t: bool
+    _node: _Node
+
+    def evaluate(self, t: np.ndarray | float) -> tuple[np.ndarray, np.ndarray]:
+        """Values and exact time derivatives at the times ``t`` (same shape as ``t``)."""
+        times = np.asarray(t, dtype=float)
+        with np.errstate(all="ignore"):
+            value, slope = self._node(times)
+            value = np.broadcast_to(np.asarray(value, dtype=float), times.shape).copy()
+            slope = np.broadcast_to(np.asarray(slope, dtype=float), times.shape).copy()
+        return value, slope
+
+    def __call__(self, t: np.ndarray | float) -> np.ndarray:
+        return self.evaluate(t)[0]
+
+    def derivative(self, t: np.ndarray | float) -> np.ndarray:
+        return self.evaluate(t)[1]
+
+
+def compile_expression(text: str, *, prefix: str = "") -> Expression:
+    """Check ``text`` and compile it to an :class:`Expression`.
+
+    Raises :class:`UnsafeExpressionError` for anything that could do more than arithmetic and
+    :class:`ParameterError` for typos (syntax, unknown names, wrong argument counts). The
+    message shows ``prefix + text`` with a caret under the offending character; the error's
+    ``column`` attribute is that character's index in ``text``.
+    """
+    if not isinstance(text, str):
+        raise ParameterError(f"a formula must be text, not {type(text).__name__}", hint="allowed: " + ALLOWED)
+    source = text.strip()
+    lead = len(text) - len(text.lstrip())
+    if not source:
+        raise _error(ParameterError, "the formula is empty", text, len(text), prefix)
+    if len(text) > MAX_LENGTH:
+        raise _error(UnsafeExpressionError, f"the formula is too long ({len(text)} characters, "
+                     f"at most {MAX_LENGTH})", text, MAX_LENGTH, prefix)
+    if "\n" in source or "\r" in source:
+        raise _error(ParameterError, "a formula must fit on one line", text,
+                     text.index("\n") if "\n" in text else text.index("\r"), prefix)
+    try:
+        tree = ast.parse(source, mode="eval")
+    except SyntaxError as exc:
+        column = lead + max((exc.offset or 1) - 1, 0)
+        raise _error(ParameterError, f"the formula is not valid: {exc.msg}", text,
+                     min(column, len(text)), prefix) from None
+    except (RecursionError, MemoryError, ValueError):
+        raise _error(UnsafeExpressionError, "the formula is nested too deeply", text, 0, prefix) from None
+    compiler = _Compiler(source, text, lead, prefix)
+    node, uses_t = compiler.compile(tree.body, 0)
+    return Expression(text=source, uses_t=uses_t, _node=node)
+
+
+def _error(kind: type, message: str, text: str, column: int, prefix: str, hint: str | None = None):  # type: ignore[no-untyped-def]
+    shown = prefix + text
+    caret = " " * (len(prefix) + column) + "^"
+    exc = kind(f"{message}\n    {shown}\n    {caret}", hint=hint or "allowed: " + ALLOWED)
+    exc.column = column
+    return exc
+
+
+class _Compiler:
+    """Walks a parsed formula, refusing what is not whitelisted and building closures."""
+
+    def __init__(self, source: str, text: str, lead: int, prefix: str) -> None:
+        self.source, self.text, self.lead, self.prefix = source, text, lead, prefix
+
+    def column(self, node: ast.AST, byte_offset: int | None = None) -> int:
+        """Character column in the user's text of a node (ast columns count UTF-8 bytes)."""
+        offset = getattr(node, "col_offset", 0) if byte_offset is None else byte_offset
+        return self.lead + len(self.source.encode("utf-8")[:offset].decode("utf-8", errors="ignore"))
+
+    def fail(self, node: ast.AST, message: str, kind: type = UnsafeExpressionError,
+             hint: str | None = None, byte_offset: int | None = None):  # type: ignore[no-untyped-def]
+        return _error(kind, message, self.text, self.column(node, byte_offset), self.prefix, hint)
+
+    def compile(self, node: ast.AST, depth: int) -> tuple[_Node, bool]:
+        if depth > MAX_DEPTH:
+            raise self.fail(node, f"the formula is nested too deeply (more than {MAX_DEPTH} levels)")
+        if isinstance(node, ast.Constant):
+            return self.constant(node)
+        if isinstance(node, ast.Name):
+            return self.name(node)
+        if isinstance(node, ast.UnaryOp):
+            return self.unary(node, depth)
+        if isinstance(node, ast.BinOp):
+            return self.binary(node, depth)
+        if isinstance(node, ast.Call):
+            return self.call(node, depth)
+        if isinstance(node, (ast.Attribute, ast.Subscript)):
+            # point at the '.' or '[' rather than at the start of the object
+            raise self.fail(node, _REFUSED[type(node)], byte_offset=node.value.end_col_offset)
+        if type(node) in _REFUSED:
+            raise self.fail(node, _REFUSED[type(node)])
+        if isinstance(node, ast.Compare):
+            raise self.fail(node, "comparisons are not allowed", hint="use min, max or clip; allowed: " + ALLOWED)
+        if isinstance(node, (ast.BoolOp, ast.IfExp)):
+            raise self.fail(node, "conditions (and, or, if) are not allowed",
+                            hint="use min, max or clip; allowed: " + ALLOWED)
+        raise self.fail(node, f"'{type(node).__name__}' is not allowed in a formula")
+
+    def constant(self, node: ast.Constant) -> tuple[_Node, bool]:
+        value = node.value
+        if isinstance(value, bool) or not isinstance(value, (int, float)):
+            kind = "strings" if isinstance(value, (str, bytes)) else f"{type(value).__name__} values"
+            raise self.fail(node, f"{kind} are not allowed, only real numbers")
+        try:
+            number = float(value)
+        except OverflowError:
+            number = math.inf
+        if not math.isfinite(number):
+            raise self.fail(node, "the number is too large", kind=ParameterError)
+        return (lambda t: (number, 0.0)), False
+
+    def name(self, node: ast.Name) -> tuple[_Node, bool]:
+        if node.id == VARIABLE:
+            return (lambda t: (t, 1.0)), True
+        if node.id in CONSTANTS:
+            number = CONSTANTS[node.id]
+            return (lambda t: (number, 0.0)), False
+        if node.id in FUNCTIONS:
+            raise self.fail(node, f"'{node.id}' is a function: call it, e.g. {node.id}(t)", kind=ParameterError)
+        raise self.unknown(node, node.id)
+
+    def unknown(self, node: ast.AST, name: str):  # type: ignore[no-untyped-def]
+        if name.startswith("_") or hasattr(builtins, name):
+            return self.fail(node, f"'{name}' is not allowed in a formula")
+        close = difflib.get_close_matches(name, [VARIABLE, *CONSTANTS, *FUNCTIONS], n=1)
+        hint = (f"did you mean '{close[0]}'? " if close else "") + "allowed: " + ALLOWED
+        return self.fail(node, f"unknown name '{name}'", kind=ParameterError, hint=hint)
+
+    def unary(self, node: ast.UnaryOp, depth: int) -> tuple[_Node, bool]:
+        operand, uses_t = self.compile(node.operand, depth + 1)
+        if isinstance(node.op, ast.USub):
+            def negate(t: np.ndarray) -> _Pair:
+                u, du = operand(t)
+                return -u, -du
+            return negate, uses_t
+        if isinstance(node.op, ast.UAdd):
+            return operand, uses_t
+        raise self.fail(node, "only unary '-' and '+' are allowed")
+
+    def binary(self, node: ast.BinOp, depth: int) -> tuple[_Node, bool]:
+        if type(node.op) not in _OPERATORS:
+            symbol = {ast.FloorDiv: "//", ast.MatMult: "@", ast.BitAnd: "&", ast.BitOr: "|",
+                      ast.BitXor: "^", ast.LShift: "<<", ast.RShift: ">>"}.get(type(node.op), "?")
+            hint = "use floor(a / b); allowed: " + ALLOWED if symbol == "//" else None
+            raise self.fail(node, f"the operator '{symbol}' is not allowed", hint=hint,
+                            byte_offset=node.left.end_col_offset)
+        if isinstance(node.op, ast.Pow):
+            self.check_tower(node.right)
+        left, left_t = self.compile(node.left, depth + 1)
+        right, right_t = self.compile(node.right, depth + 1)
+        rule = _BINARY[type(node.op)]
+        if isinstance(node.op, ast.Pow) and not right_t:
+            self.check_exponent(node.right, right)
+            rule = _power_constant
+
+        def apply(t: np.ndarray) -> _Pair:
+            return rule(left(t), right(t))
+
+        return apply, left_t or right_t
+
+    def check_tower(self, exponent: ast.AST) -> None:
+        for inner in ast.walk(exponent):
+            if isinstance(inner, ast.BinOp) and isinstance(inner.op, ast.Pow):
+                raise self.fail(exponent, "power towers (a**b**c) are not allowed",
+                                hint="write the exponent without **; allowed: " + ALLOWED)
+
+    def check_exponent(self, exponent: ast.AST, compiled: _Node) -> None:
+        """A constant exponent must stay within MAX_EXPONENT (numpy would only give inf)."""
+        with np.errstate(all="ignore"):
+            value = float(np.asarray(compiled(np.zeros(1))[0]).ravel()[0])
+        if not abs(value) <= MAX_EXPONENT:
+            raise self.fail(exponent, f"the exponent {value:g} is too large (at most {MAX_EXPONENT:g})")
+
+    def call(self, node: ast.Call, depth: int) -> tuple[_Node, bool]:
+        if not isinstance(node.func, ast.Name):
+            self.compile(node.func, depth + 1)  # refuses attributes, lambdas... with their own caret
+            raise self.fail(node, "only the listed functions can be called")
+        name = node.func.id
+        if name not in FUNCTIONS:
+            if name in CONSTANTS or name == VARIABLE:
+                raise self.fail(node.func, f"'{name}' is not a function", kind=ParameterError,
+                                hint="write a '*' for a product, e.g. 2*pi*t; allowed: " + ALLOWED)
+            raise self.unknown(node.func, name)
+        if node.keywords:
+            raise self.fail(node.keywords[0].value, "keyword arguments are not allowed")
+        low, high, rule = FUNCTIONS[name]
+        count = len(node.args)
+        if not low <= count <= high:
+            wanted = str(low) if low == high else f"{low} to {high}"
+            raise self.fail(node.func, f"{name}() takes {wanted} argument{'s' if high > 1 else ''}, "
+                            f"got {count}", kind=ParameterError)
+        compiled = [self.compile(arg, depth + 1) for arg in node.args]
+        parts = [c[0] for c in compiled]
+
+        def apply(t: np.ndarray) -> _Pair:
+            return rule(*(part(t) for part in parts))
+
+        return apply, any(c[1] for c in compiled)
+
+
+def _add(a: _Pair, b: _Pair) -> _Pair:
+    return a[0] + b[0], a[1] + b[1]
+
+
+def _sub(a: _Pair, b: _Pair) -> _Pair:
+    return a[0] - b[0], a[1] - b[1]
+
+
+def _mul(a: _Pair, b: _Pair) -> _Pair:
+    return a[0] * b[0], a[1] * b[0] + a[0] * b[1]
+
+
+def _div(a: _Pair, b: _Pair) -> _Pair:
+    return a[0] / b[0], (a[1] * b[0] - a[0] * b[1]) / (b[0] * b[0])
+
+
+def _mod(a: _Pair, b: _Pair) -> _Pair:
+    return np.mod(a[0], b[0]), a[1] - b[1] * np.floor(a[0] / b[0])
+
+
+def _power(a: _Pair, b: _Pair) -> _Pair:
+    value = np.power(a[0], b[0])
+    return value, value * (b[1] * np.log(a[0]) + b[0] * a[1] / a[0])
+
+
+def _power_constant(a: _Pair, b: _Pair) -> _Pair:
+    exponent = b[0]
+    if exponent == 0:
+        return np.power(a[0], 0.0), 0.0
+    return np.power(a[0], exponent), exponent * np.power(a[0], exponent - 1.0) * a[1]
+
+
+_BINARY = {ast.Add: _add, ast.Sub: _sub, ast.Mult: _mul, ast.Div: _div, ast.Mod: _mod, ast.Pow: _power}

@@ -1,0 +1,158 @@
+"""What a picture looks like: size, view, overlays, background and backend, checked once.
+
+Every public render function takes these as keyword arguments; :func:`render_options` turns
+them into a :class:`RenderOptions` and refuses unknown names or bad values with a
+:class:`~bras_kit.errors.ParameterError` that says what to write instead.
+"""
+
+from __future__ import annotations
+
+import math
+import re
+from collections.abc import Sequence
+from dataclasses import dataclass, field, fields
+
+from ..errors import ParameterError
+
+# name -> (azimuth, elevation) in degrees. Azimuth is measured from +x towards +y, so the
+# camera of "front" stands on the -y side and looks along +y at the x-z plane, the plane
+# the tutorial arm moves in; "side" stands on +x and looks along -x.
+VIEWS: dict[str, tuple[float, float]] = {
+    "iso": (-55.0, 25.0),
+    "front": (-90.0, 0.0),
+    "side": (0.0, 0.0),
+    "top": (-90.0, 90.0),
+}
+BACKENDS = ("auto", "egl", "osmesa", "software")
+MAX_SIDE = 8192  # larger than this, GL renderbuffers fail on common drivers
+
+# Colours that have a name here but not in CSS.
+_NAMED = {"rviz": (48, 48, 48)}
+
+
+@dataclass(frozen=True)
+class RenderOptions:
+    """How to draw. ``azimuth``/``elevation`` (degrees) and ``distance`` (metres) override the
+    view's camera; left as None, the camera frames every pose it is asked to show."""
+
+    size: tuple[int, int] = (640, 480)
+    view: str = "iso"
+    tf: bool = False
+    grid: bool = True
+    background: tuple[int, int, int] = (255, 255, 255)
+    backend: str = "auto"
+    azimuth: float | None = None
+    elevation: float | None = None
+    distance: float | None = None
+    fov: float = 40.0  # vertical field of view, degrees
+    package_paths: Sequence[str] = field(default_factory=tuple)
+
+    @property
+    def width(self) -> int:
+        return self.size[0]
+
+    @property
+    def height(self) -> int:
+        return self.size[1]
+
+
+def parse_size(text: str | Sequence[int]) -> tuple[int, int]:
+    """``"640x480"`` (or ``(640, 480)``) -> ``(640, 480)``, each side between 8 and 8192 pixels."""
+    if isinstance(text, str):
+        match = re.fullmatch(r"\s*(\d+)\s*[xX×]\s*(\d+)\s*", text)
+        if match is None:
+            raise ParameterError(f"size '{text}' is not WIDTHxHEIGHT",
+                                 hint="give the picture size in pixels, e.g. --size 640x480")
+        width, height = int(match.group(1)), int(match.group(2))
+    else:
+        try:
+            width, height = (int(v) for v in text)
+        except (TypeError, ValueError):
+            raise ParameterError(f"size {text!r} is not (width, height)",
+                                 hint="give two whole numbers of pixels, e.g. size=(640, 480)") from None
+    if not (8 <= width <= MAX_SIDE and 8 <= height <= MAX_SIDE):
+        raise ParameterError(f"size {width}x{height} is out of range",
+                             hint=f"each side must be between 8 and {MAX_SIDE} pixels")
+    return width, height
+
+
+def parse_color(text: str | Sequence[float]) -> tuple[int, int, int]:
+    """A colour as 0-255 RGB from a CSS name, ``#rrggbb``, ``rgb(...)``, three numbers in 0..1
+    (``"0.2 0.4 0.9"``, like a URDF colour) or a tuple of such numbers."""
+    if not isinstance(text, str):
+        values = [float(v) for v in text][:3]
+        if len(values) == 3 and all(0.0 <= v <= 1.0 for v in values):
+            return tuple(round(v * 255) for v in values)  # type: ignore[return-value]
+        raise ParameterError(f"colour {tuple(text)!r} is not three numbers between 0 and 1",
+                             hint="e.g. background=(1, 1, 1) or background='white'")
+    name = text.strip().lower()
+    if name in _NAMED:
+        return _NAMED[name]
+    parts = name.replace(",", " ").split()
+    if len(parts) in (3, 4) and all(re.fullmatch(r"[0-9.]+", p) for p in parts):
+        try:
+            values = [float(p) for p in parts[:3]]
+        except ValueError:
+            values = []
+        if len(values) == 3 and all(0.0 <= v <= 1.0 for v in values):
+            return tuple(round(v * 255) for v in values)  # type: ignore[return-value]
+    from PIL import ImageColor
+
+    try:
+        rgb = ImageColor.getrgb(name)
+    except ValueError:
+        raise ParameterError(f"'{text}' is not a colour",
+                             hint="give a name (white, black, lightgrey, rviz), #rrggbb, "
+                             "or three numbers between 0 and 1 such as '0.9 0.9 0.9'") from None
+    return rgb[:3]  # type: ignore[return-value]
+
+
+def _angle(name: str, value: object, low: float, high: float) -> float | None:
+    if value is None:
+        return None
+    try:
+        number = float(value)  # type: ignore[arg-type]
+    except (TypeError, ValueError):
+        raise ParameterError(f"{name} {value!r} is not a number", hint=f"give {name} in degrees") from None
+    if not (math.isfinite(number) and low <= number <= high):
+        raise ParameterError(f"{name} {number:g} is out of range",
+                             hint=f"give {name} in degrees between {low:g} and {high:g}")
+    return number
+
+
+def render_options(**opts: object) -> RenderOptions:
+    """Check keyword options and return them as :class:`RenderOptions` (defaults for the rest)."""
+    known = {f.name for f in fields(RenderOptions)}
+    unknown = sorted(set(opts) - known)
+    if unknown:
+        raise ParameterError("unknown render option" + ("s " if len(unknown) > 1 else " ") + ", ".join(unknown),
+                             hint="valid options: " + ", ".join(sorted(known)))
+    values = dict(opts)
+    if "size" in values:
+        values["size"] = parse_size(values["size"])  # type: ignore[arg-type]
+    if "background" in values:
+        values["background"] = parse_color(values["background"])  # type: ignore[arg-type]
+    view = values.get("view", "iso")
+    if view not in VIEWS:
+        raise ParameterError(f"unknown view '{view}'", hint="views: " + ", ".join(VIEWS))
+    backend = values.get("backend", "auto")
+    if backend not in BACKENDS:
+        raise ParameterError(f"unknown backend '{backend}'", hint="backends: " + ", ".join(BACKENDS))
+    values["azimuth"] = _angle("azimuth", values.get("azimuth"), -360.0, 360.0)
+    values["elevation"] = _angle("elevation", values.get("elevation"), -90.0, 90.0)
+    distance = values.get("distance")
+    if distance is not None:
+        try:
+            distance = float(distance)  # type: ignore[arg-type]
+        except (TypeError, ValueError):
+            distance = math.nan
+        if not (math.isfinite(distance) and distance > 0):
+            raise ParameterError(f"distance {values['distance']!r} is not a positive number",
+                                 hint="give the camera's distance to the robot's centre in metres")
+        values["distance"] = distance
+    fov = _angle("fov", values.get("fov", 40.0), 1.0, 170.0)
+    values["fov"] = fov
+    values["package_paths"] = tuple(values.get("package_paths", ()))  # type: ignore[arg-type]
+    values["tf"] = bool(values.get("tf", False))
+    values["grid"] = bool(values.get("grid", True))
+    return RenderOptions(**values)  # type: ignore[arg-type]

@@ -1,0 +1,287 @@
+"""The ROS 2 package of the tutorial, generated from jinja2 templates (``bras-kit new``).
+
+The package is the one the tutorial builds by hand (steps 2 to 7): ``package.xml``,
+``setup.py`` installing ``urdf/``, ``launch/`` and ``rviz/`` (so the "file not found" pitfall
+cannot happen), the launch file, an RViz configuration that shows the arm at once, and an
+animation node whose motion is computed here from the model's own joint limits.
+"""
+
+from __future__ import annotations
+
+import getpass
+import keyword
+import math
+import os
+import re
+from collections.abc import Mapping
+from dataclasses import dataclass
+from pathlib import Path
+
+from . import __version__
+from ._resources import robot_template, templates_dir
+from .errors import BrasKitError, ModelError, OutputExistsError, ParameterError
+from .model import Robot
+
+DEFAULT_PACKAGE = "bras_description"
+PACKAGE_NAME_PATTERN = re.compile(r"[a-z][a-z0-9_]*")
+
+# The tutorial's motion (epaule = 0.8 sin t, coude = 1.2 sin 0.7t) and the wrist's own wave:
+# joint -> (amplitude, angular frequency in rad/s, phase in rad).
+TUTORIAL_WAVES: dict[str, tuple[float, float, float]] = {
+    "epaule": (0.8, 1.0, 0.0),
+    "coude": (1.2, 0.7, 0.0),
+    "poignet": (1.0, 1.3, math.pi / 2),
+}
+OTHER_JOINT_WAVE = (0.5, 0.5, 0.0)
+# Fraction of each half-range (and of each velocity limit) the motion leaves unused.
+LIMIT_MARGIN = 0.1
+
+# template (under templates/package/) -> file made, relative to the package folder
+_FILES: tuple[tuple[str, str], ...] = (
+    ("package.xml.j2", "package.xml"),
+    ("setup.py.j2", "setup.py"),
+    ("setup.cfg.j2", "setup.cfg"),
+    ("README.md.j2", "README.md"),
+    ("resource/marker.j2", "resource/{name}"),
+    ("pkg/__init__.py.j2", "{name}/__init__.py"),
+    ("pkg/motion.py.j2", "{name}/motion.py"),
+    ("pkg/animation.py.j2", "{name}/animation.py"),
+    ("launch/affichage.launch.py.j2", "launch/affichage.launch.py"),
+    ("rviz/package.rviz.j2", "rviz/{name}.rviz"),
+    ("test/test_motion.py.j2", "test/test_motion.py"),
+)
+URDF_FILE = "urdf/bras.urdf"
+XACRO_FILE = "urdf/bras.urdf.xacro"
+
+
+@dataclass(frozen=True)
+class Wave:
+    """One joint's motion: ``centre + amplitude * sin(frequency * t + phase)``."""
+
+    joint: str
+    centre: float
+    amplitude: float
+    frequency: float
+    phase: float
+    lower: float
+    upper: float
+    velocity: float | None
+
+    def position(self, t: float) -> float:
+        return self.centre + self.amplitude * math.sin(self.frequency * t + self.phase)
+
+
+def check_package_name(name: str) -> None:
+    """Raise :class:`ParameterError` unless ``name`` is a valid ROS package (and Python package) name."""
+    if not PACKAGE_NAME_PATTERN.fullmatch(name or ""):
+        raise ParameterError(
+            f"'{name}' is not a valid ROS package name",
+            hint="use lowercase letters, digits and underscores, starting with a letter "
+            "(e.g. bras_description)",
+        )
+    if keyword.iskeyword(name):
+        raise ParameterError(f"'{name}' is a Python keyword and cannot name an ament_python package",
+                             hint="choose another name, e.g. bras_description")
+
+
+def _floor(value: float, digits: int = 6) -> float:
+    scale = 10.0**digits
+    return math.floor(value * scale) / scale
+
+
+def plan_motion(robot: Robot) -> list[Wave]:
+    """A sine wave per movable joint that stays inside its position and velocity limits.
+
+    The tutorial's waves are kept as they are when they fit with a margin of
+    :data:`LIMIT_MARGIN`; otherwise the wave is centred between the limits and its
+    amplitude shrunk, so narrowed limits (``--set coude_upper=0.5``) are still respected.
+    """
+    waves = []
+    for joint in robot.movable_joints():
+        name = joint.name or ""
+        amplitude, frequency, phase = TUTORIAL_WAVES.get(name, OTHER_JOINT_WAVE)
+        lower, upper = joint.bounds()
+        if lower > upper:
+            raise ModelError(f"joint '{name}': lower limit {lower:g} is above upper limit {upper:g}",
+                             line=joint.line, element="joint",
+                             hint=f"swap the values of {name}_lower and {name}_upper")
+        centre = 0.0
+        if math.isfinite(lower) and math.isfinite(upper):
+            half = (upper - lower) / 2.0
+            keep_out = LIMIT_MARGIN * half
+            if not (lower + keep_out <= -amplitude and amplitude <= upper - keep_out):
+                centre = round((lower + upper) / 2.0, 6)
+                amplitude = min(amplitude, half - keep_out)
+        velocity = joint.limit.velocity if joint.limit is not None else None
+        if velocity is not None and velocity > 0 and frequency > 0:
+            amplitude = min(amplitude, (1.0 - LIMIT_MARGIN) * velocity / frequency)
+        amplitude = max(0.0, _floor(amplitude))
+        if math.isfinite(lower) and math.isfinite(upper):  # rounding must not cross a limit
+            amplitude = max(0.0, min(amplitude, _floor(centre - lower), _floor(upper - centre)))
+        waves.append(Wave(name, centre, amplitude, frequency, round(phase, 6), lower, upper, velocity))
+    return waves
+
+
+def _number(value: float | None) -> str:
+    """A float as Python source: the shortest exact form, ``math.inf`` for infinities."""
+    if value is None:
+        return "None"
+    if math.isinf(value):
+        return "math.inf" if value > 0 else "-math.inf"
+    return repr(float(value))
+
+
+def _xacro_with_defaults(text: str, defaults: Mapping[str, str]) -> str:
+    """The arm template with the default of each named ``<xacro:arg>`` replaced."""
+    for name, value in defaults.items():
+        pattern = re.compile(r'(<xacro:arg\s+name="' + re.escape(name) + r'"\s+default=")([^"]*)(")')
+        text, count = pattern.subn(lambda m, v=value: m.group(1) + v + m.group(3), text)
+        if count != 1:
+            raise BrasKitError(f"the arm template has {count} <xacro:arg name=\"{name}\">, expected 1")
+    return text
+
+
+def _view(robot: Robot) -> tuple[float, float]:
+    """Height of the orbit camera's focal point and its distance, from the arm's size at rest."""
+    from .kinematics import fk, tf_tree
+
+    poses = fk(tf_tree(robot), {})
+    top = 0.0
+    for link in robot.links:
+        frame = poses.get(link.name or "")
+        if frame is None:
+            continue
+        for visual in link.visuals:
+            geometry = visual.geometry
+            half = 0.0
+            if geometry is not None and geometry.kind == "box" and geometry.size:
+                half = geometry.size[2] / 2.0
+            elif geometry is not None and geometry.kind == "cylinder" and geometry.length:
+                half = geometry.length / 2.0
+            elif geometry is not None and geometry.radius:
+                half = geometry.radius
+            top = max(top, float(frame[2, 3]) + visual.origin.xyz[2] + half)
+    top = top or 1.0
+    return round(top / 2.0, 3), round(max(1.5, 2.2 * top), 2)
+
+
+def _command_line(name: str, wrist: bool, inertials: bool, params: Mapping[str, str]) -> str:
+    words = ["bras-kit", "new"]
+    if name != DEFAULT_PACKAGE:
+        words += ["--name", name]
+    words += [flag for flag, on in (("--wrist", wrist), ("--inertials", inertials)) if on]
+    for key, value in params.items():
+        item = f"{key}={value}"
+        words += ["--set", f'"{item}"' if " " in item else item]
+    return " ".join(words)
+
+
+def render_package(
+    name: str = DEFAULT_PACKAGE,
+    *,
+    wrist: bool = False,
+    inertials: bool = False,
+    params: Mapping[str, object] | None = None,
+    maintainer: str | None = None,
+    email: str | None = None,
+) -> dict[str, str]:
+    """Every file of the package as ``{relative path: text}``; nothing is written.
+
+    Raises :class:`ParameterError` for a bad package name or template parameter.
+    """
+    import jinja2
+
+    from .authoring import arm_urdf, normalise_parameters
+    from .kinematics import tf_tree
+    from .model import robot_from_xml
+    from .xmlio import parse_xml
+
+    check_package_name(name)
+    settings = normalise_parameters(params or {})
+    urdf_text = arm_urdf(wrist=wrist, inertials=inertials, params=params)
+    robot = robot_from_xml(parse_xml(urdf_text, URDF_FILE), URDF_FILE, urdf_text)
+    waves = plan_motion(robot)
+    root_link = tf_tree(robot).links[0]
+    focal_z, distance = _view(robot)
+    if maintainer is None:
+        try:
+            maintainer = getpass.getuser()
+        except (KeyError, OSError):
+            maintainer = "maintainer"
+    email = email or f"{maintainer}@todo.todo"
+
+    context = {
+        "name": name,
+        "robot_name": robot.name,
+        "root_link": root_link,
+        "links": robot.link_names,
+        "waves": waves,
+        "number": _number,
+        "wrist": wrist,
+        "inertials": inertials,
+        "settings": settings,
+        "maintainer": maintainer,
+        "email": email,
+        "focal_z": focal_z,
+        "distance": distance,
+        "version": __version__,
+        "command": _command_line(name, wrist, inertials, settings),
+        "margin_percent": round(LIMIT_MARGIN * 100),
+    }
+    environment = jinja2.Environment(
+        loader=jinja2.FileSystemLoader(str(templates_dir() / "package")),
+        undefined=jinja2.StrictUndefined,
+        keep_trailing_newline=True,
+        trim_blocks=True,
+        lstrip_blocks=True,
+        autoescape=False,
+    )
+    files: dict[str, str] = {}
+    for template, target in _FILES:
+        files[target.format(name=name)] = environment.get_template(template).render(context)
+    defaults = {"wrist": str(wrist).lower(), "inertials": str(inertials).lower(), **settings}
+    template_text = robot_template().read_text(encoding="utf-8")
+    files[XACRO_FILE] = _xacro_with_defaults(template_text, defaults)
+    files[URDF_FILE] = urdf_text
+    return files
+
+
+def _check_destination(dest: Path, force: bool) -> None:
+    if dest.exists() and not dest.is_dir():
+        raise OutputExistsError(f"{dest} exists and is not a folder",
+                                hint="choose another DIR for the package")
+    if dest.is_dir() and any(dest.iterdir()) and not force:
+        raise OutputExistsError(
+            f"{dest} already exists and is not empty",
+            hint="pass --force to overwrite the package's files there (other files are left alone), "
+            "or choose another DIR",
+        )
+
+
+def scaffold_package(
+    dest: str | os.PathLike[str],
+    name: str = DEFAULT_PACKAGE,
+    wrist: bool = False,
+    inertials: bool = False,
+    params: Mapping[str, object] | None = None,
+    force: bool = False,
+    *,
+    maintainer: str | None = None,
+    email: str | None = None,
+) -> list[Path]:
+    """Write the ament_python package ``name`` into ``dest``; return the files made.
+
+    An existing non-empty ``dest`` is refused (:class:`OutputExistsError`) unless ``force``;
+    every file is rendered before the first is written, so a bad parameter writes nothing.
+    """
+    dest = Path(dest)
+    _check_destination(dest, force)
+    files = render_package(name, wrist=wrist, inertials=inertials, params=params,
+                           maintainer=maintainer, email=email)
+    made = []
+    for relative, text in files.items():
+        path = dest / relative
+        path.parent.mkdir(parents=True, exist_ok=True)
+        path.write_text(text, encoding="utf-8")
+        made.append(path)
+    return made

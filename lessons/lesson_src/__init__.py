@@ -1,0 +1,27 @@
+"""The lessons, in order. Each module defines one ``LESSON`` (and maybe ``SOLUTION``)."""
+
+from __future__ import annotations
+
+import importlib
+
+from ._cells import Lesson
+
+_MODULES = [
+    "l01_describe",
+    "l02_frames",
+    "l03_see",
+    "l10_xacro",
+]
+
+
+def _collect() -> list[Lesson]:
+    lessons = []
+    for name in _MODULES:
+        module = importlib.import_module(f"{__name__}.{name}")
+        lessons.append(module.LESSON)
+        if hasattr(module, "SOLUTION"):
+            lessons.append(module.SOLUTION)
+    return lessons
+
+
+LESSONS = _collect()

@@ -1,0 +1,188 @@
+"""Lesson 3: render the arm, sliders like joint_state_publisher_gui, RViz's settings."""
+
+from ._cells import Lesson, code, md
+
+LESSON = Lesson(
+    "03",
+    {"fr": "le-voir", "en": "see-it"},
+    {"fr": "3 · Le voir : rendu et curseurs", "en": "3 · See it: pictures and sliders"},
+)
+
+LESSON.cells = [
+    md(
+        """
+        Dans le tutoriel, RViz dessine le bras et une petite fenêtre à curseurs
+        (`joint_state_publisher_gui`) fixe l'angle de chaque joint. Ici, `bras_kit.render` dessine
+        le bras hors écran (une image = un tableau numpy) et des curseurs `ipywidgets` jouent le
+        rôle de la fenêtre.
+        """,
+        """
+        In the tutorial, RViz draws the arm and a small slider window (`joint_state_publisher_gui`)
+        sets each joint's angle. Here `bras_kit.render` draws the arm off-screen (a picture is a
+        numpy array) and `ipywidgets` sliders play the part of the window.
+        """,
+    ),
+    code(
+        """
+        import matplotlib.pyplot as plt
+
+        import bras_kit
+        from bras_kit.render import render_pose
+
+        robot = bras_kit.arm()
+        image = render_pose(robot, {"epaule": 0.4, "coude": 0.9}, size=(480, 360))
+        print(image.shape, image.dtype)
+        plt.imshow(image)
+        plt.axis("off")
+        plt.show()
+        """
+    ),
+    md(
+        """
+        ## Quelques poses côte à côte
+
+        Les butées sont `epaule ∈ [-1.57, 1.57]` et `coude ∈ [-2, 2]`. `tf=True` ajoute les
+        trièdres des repères, comme l'affichage TF de RViz (x rouge, y vert, z bleu).
+        """,
+        """
+        ## A few poses side by side
+
+        The limits are `epaule ∈ [-1.57, 1.57]` and `coude ∈ [-2, 2]`. `tf=True` adds the frame
+        axes, like RViz's TF display (x red, y green, z blue).
+        """,
+    ),
+    code(
+        """
+        poses = [{}, {"epaule": 0.8}, {"epaule": -0.5, "coude": 1.5}, {"epaule": 1.2, "coude": -2.0}]
+        fig, axes = plt.subplots(1, len(poses), figsize=(14, 4))
+        for ax, pose in zip(axes, poses):
+            ax.imshow(render_pose(robot, pose, size=(320, 320), tf=True))
+            ax.set_title(", ".join(f"{k}={v}" for k, v in pose.items()) or "zéro")
+            ax.axis("off")
+        plt.show()
+        """,
+        """
+        poses = [{}, {"epaule": 0.8}, {"epaule": -0.5, "coude": 1.5}, {"epaule": 1.2, "coude": -2.0}]
+        fig, axes = plt.subplots(1, len(poses), figsize=(14, 4))
+        for ax, pose in zip(axes, poses):
+            ax.imshow(render_pose(robot, pose, size=(320, 320), tf=True))
+            ax.set_title(", ".join(f"{k}={v}" for k, v in pose.items()) or "zero")
+            ax.axis("off")
+        plt.show()
+        """,
+    ),
+    md(
+        """
+        ## Des curseurs, comme joint_state_publisher_gui
+
+        Un curseur par joint mobile, borné par ses butées : c'est exactement ce que fait la fenêtre
+        du tutoriel, qui lit les `limit` de l'URDF. Bougez un curseur, l'image est redessinée.
+
+        (Hors d'un vrai Jupyter — par exemple quand les tests exécutent ce carnet — personne ne
+        bouge les curseurs : la dernière ligne appelle donc la fonction de dessin une fois
+        directement.)
+        """,
+        """
+        ## Sliders, like joint_state_publisher_gui
+
+        One slider per movable joint, bounded by its limits: exactly what the tutorial's window
+        does, reading the URDF's `limit` elements. Move a slider and the picture is redrawn.
+
+        (Outside a live Jupyter — for example when the tests run this notebook — nobody moves the
+        sliders, so the last line calls the drawing function once directly.)
+        """,
+    ),
+    code(
+        """
+        import ipywidgets as widgets
+        from IPython.display import display
+
+
+        def redraw(**config):
+            picture = render_pose(robot, config, size=(480, 360), tf=True)
+            plt.figure(figsize=(6, 4.5))
+            plt.imshow(picture)
+            plt.axis("off")
+            plt.show()
+            return picture
+
+
+        sliders = {}
+        for joint in robot.movable_joints():
+            lower, upper = joint.bounds()
+            sliders[joint.name] = widgets.FloatSlider(value=0.0, min=lower, max=upper, step=0.01,
+                                                      description=joint.name, continuous_update=False)
+        panel = widgets.interactive(redraw, **sliders)
+        display(panel)
+
+        picture = redraw(epaule=0.6, coude=-1.1)  # what the panel draws when you set these values
+        """
+    ),
+    md(
+        """
+        ## Les deux réglages de RViz qui comptent
+
+        Le tutoriel demande deux réglages dans RViz ; sans eux, la fenêtre reste vide.
+
+        * **Fixed Frame = `base`.** RViz dessine tout dans un repère choisi. Il doit exister dans
+          l'arbre TF : c'est la racine de notre arbre, le seul repère qui ne bouge pas. Un nom qui
+          n'existe pas (`map`, `base_link`…) et RViz ne sait où placer aucun link.
+        * **RobotModel → Description Topic = `/robot_description`.** L'affichage RobotModel a
+          besoin de la forme des links ; `robot_state_publisher` publie l'URDF sur ce topic. Sans
+          lui, RViz connaît les repères mais pas les pièces à dessiner.
+
+        `render_pose` fait les deux choses d'un coup : il prend l'URDF directement (pas de topic)
+        et dessine dans le repère de la racine.
+        """,
+        """
+        ## The two RViz settings that matter
+
+        The tutorial asks for two settings in RViz; without them the window stays empty.
+
+        * **Fixed Frame = `base`.** RViz draws everything in one chosen frame. It must exist in the
+          TF tree: it is our tree's root, the only frame that never moves. Give a name that does
+          not exist (`map`, `base_link`…) and RViz cannot place any link.
+        * **RobotModel → Description Topic = `/robot_description`.** The RobotModel display needs
+          the links' shapes; `robot_state_publisher` publishes the URDF on that topic. Without it
+          RViz knows the frames but not the pieces to draw.
+
+        `render_pose` does both at once: it takes the URDF directly (no topic) and draws in the
+        root's frame.
+        """,
+    ),
+    code(
+        """
+        tree = bras_kit.tf_tree(robot)
+        print("Fixed Frame à choisir :", tree.root)
+        print("repères publiés      :", tree.links)
+        print("'base_link' existe ? ", "base_link" in tree.links)
+        """,
+        """
+        tree = bras_kit.tf_tree(robot)
+        print("Fixed Frame to choose:", tree.root)
+        print("frames published:     ", tree.links)
+        print("does 'base_link' exist?", "base_link" in tree.links)
+        """,
+    ),
+    md(
+        """
+        ## À vous
+
+        Rendez le bras vu de face (`view="front"`) : c'est la vue où le mouvement, dans le plan
+        x-z, se lit le mieux. Quels autres points de vue `render_pose` propose-t-il ?
+        """,
+        """
+        ## Your turn
+
+        Draw the arm seen from the front (`view="front"`): motion happens in the x-z plane, so this
+        is the view that shows it best. Which other viewpoints does `render_pose` offer?
+        """,
+    ),
+    code(
+        """
+        plt.imshow(render_pose(robot, {"epaule": 0.6, "coude": -1.1}, size=(480, 360), view="front"))
+        plt.axis("off")
+        plt.show()
+        """
+    ),
+]

@@ -1,0 +1,46 @@
+"""Shared fixtures. Feature test modules keep their own fixtures; add here only what several share."""
+
+from __future__ import annotations
+
+import os
+
+import pytest
+
+os.environ.setdefault("PYOPENGL_PLATFORM", "egl")
+
+
+@pytest.fixture(scope="session")
+def tutorial_robot():
+    from bras_kit.authoring import arm
+
+    return arm()
+
+
+@pytest.fixture(scope="session")
+def wrist_robot():
+    from bras_kit.authoring import arm
+
+    return arm(wrist=True)
+
+
+@pytest.fixture(scope="session")
+def tutorial_tree(tutorial_robot):
+    from bras_kit.kinematics import tf_tree
+
+    return tf_tree(tutorial_robot)
+
+
+@pytest.fixture
+def run_cli(capsys):
+    """Run the CLI in-process: returns (exit code, stdout, stderr)."""
+    from bras_kit.cli import main
+
+    def runner(*argv: str):
+        try:
+            code = main(list(argv))
+        except SystemExit as exc:  # argparse usage errors
+            code = exc.code if isinstance(exc.code, int) else 2
+        out, err = capsys.readouterr()
+        return code, out, err
+
+    return runner
