@@ -67,7 +67,7 @@ def main() -> None:
     assert np.allclose(ours, model.get_transform("avant_bras"), atol=1e-12), "peer disagrees"
 
     rows = [
-        ("bras-kit fk_batch (chunks of %d)" % args.chunk, args.poses / t_batch),
+        (f"bras-kit fk_batch (chunks of {args.chunk})", args.poses / t_batch),
         ("bras-kit fk (one pose per call)", singles / t_single),
         ("yourdfpy update_cfg + get_transform", peer_poses / t_peer),
     ]

@@ -36,14 +36,14 @@ def template_parameters() -> dict[str, Parameter]:
     for node in root.children:
         if node.tag != "xacro:arg":
             continue
-        name, default = node.get("name", ""), node.get("default", "")
+        name, default = node.get("name") or "", node.get("default") or ""
         if default in ("true", "false"):
             kind = "flag"
         elif len(default.split()) == 4:
             kind = "colour"
         else:
             kind = "number"
-        params[name] = Parameter(name, default, kind)  # type: ignore[arg-type]
+        params[name] = Parameter(name, default, kind)
     return params
 
 

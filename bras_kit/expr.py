@@ -24,7 +24,7 @@ import numpy as np
 from .errors import ParameterError, UnsafeExpressionError
 
 MAX_LENGTH = 1000  # characters of a formula
-MAX_DEPTH = 64  # nesting of operations
+MAX_DEPTH = 100  # nesting of operations (a sum of n terms nests n deep)
 MAX_EXPONENT = 100.0  # largest constant exponent of **
 
 CONSTANTS = {"pi": math.pi, "e": math.e, "tau": math.tau}
@@ -169,18 +169,20 @@ def compile_expression(text: str, *, prefix: str = "") -> Expression:
     lead = len(text) - len(text.lstrip())
     if not source:
         raise _error(ParameterError, "the formula is empty", text, len(text), prefix)
-    if len(text) > MAX_LENGTH:
-        raise _error(UnsafeExpressionError, f"the formula is too long ({len(text)} characters, "
-                     f"at most {MAX_LENGTH})", text, MAX_LENGTH, prefix)
+    if len(source) > MAX_LENGTH:
+        raise _error(UnsafeExpressionError, f"the formula is too long ({len(source)} characters, "
+                     f"at most {MAX_LENGTH})", text, lead + MAX_LENGTH, prefix)
     if "\n" in source or "\r" in source:
         raise _error(ParameterError, "a formula must fit on one line", text,
                      text.index("\n") if "\n" in text else text.index("\r"), prefix)
     try:
         tree = ast.parse(source, mode="eval")
     except SyntaxError as exc:
-        column = lead + max((exc.offset or 1) - 1, 0)
-        raise _error(ParameterError, f"the formula is not valid: {exc.msg}", text,
-                     min(column, len(text)), prefix) from None
+        if not exc.offset or exc.offset > len(source):  # Python says 0 when the text stops short
+            column, why = lead + len(source), "it ends too early"
+        else:
+            column, why = lead + exc.offset - 1, exc.msg
+        raise _error(ParameterError, f"the formula is not valid: {why}", text, column, prefix) from None
     except (RecursionError, MemoryError, ValueError):
         raise _error(UnsafeExpressionError, "the formula is nested too deeply", text, 0, prefix) from None
     compiler = _Compiler(source, text, lead, prefix)
@@ -188,10 +190,22 @@ def compile_expression(text: str, *, prefix: str = "") -> Expression:
     return Expression(text=source, uses_t=uses_t, _node=node)
 
 
+_SHOWN = 72  # longest excerpt of a formula shown above the caret
+
+
 def _error(kind: type, message: str, text: str, column: int, prefix: str, hint: str | None = None):  # type: ignore[no-untyped-def]
-    shown = prefix + text
-    caret = " " * (len(prefix) + column) + "^"
-    exc = kind(f"{message}\n    {shown}\n    {caret}", hint=hint or "allowed: " + ALLOWED)
+    """The error ``kind`` with the formula and a caret under ``column`` (an index in ``text``)."""
+    shown, at = prefix + text, len(prefix) + column
+    if len(shown) > _SHOWN:  # a window around the caret, marked with ellipses
+        start = max(0, min(at - _SHOWN // 2, len(shown) - _SHOWN))
+        end = start + _SHOWN
+        excerpt = shown[start:end]
+        if start > 0:
+            excerpt, at = "..." + excerpt, at - start + 3
+        if end < len(shown):
+            excerpt += "..."
+        shown = excerpt
+    exc = kind(f"{message}\n    {shown}\n    {' ' * at}^", hint=hint or "allowed: " + ALLOWED)
     exc.column = column
     return exc
 
@@ -351,11 +365,12 @@ def _mul(a: _Pair, b: _Pair) -> _Pair:
 
 
 def _div(a: _Pair, b: _Pair) -> _Pair:
-    return a[0] / b[0], (a[1] * b[0] - a[0] * b[1]) / (b[0] * b[0])
+    # np.divide, not '/': constants are Python floats, and 1/0 must give inf, not an exception
+    return np.divide(a[0], b[0]), np.divide(a[1] * b[0] - a[0] * b[1], np.multiply(b[0], b[0]))
 
 
 def _mod(a: _Pair, b: _Pair) -> _Pair:
-    return np.mod(a[0], b[0]), a[1] - b[1] * np.floor(a[0] / b[0])
+    return np.mod(a[0], b[0]), a[1] - b[1] * np.floor(np.divide(a[0], b[0]))
 
 
 def _power(a: _Pair, b: _Pair) -> _Pair:

@@ -231,11 +231,11 @@ def tf_tree(robot: Robot) -> TFTree:
         loop = sorted(set(names) - set(order))
         raise ModelError("links in a loop, not reachable from the root: " + ", ".join(loop),
                          path=where, hint="break the loop: one of these joints points back up the tree")
-    movable = [j.name for j in robot.joints if j.movable]
+    movable = [j.name for j in robot.joints if j.movable and j.name]
     dof_index = {name: k for k, name in enumerate(movable)}
     kinds, origins, axes, sources, gains, offsets = [], [], [], [], [], []
-    for joint in into:
-        if joint is None:
+    for incoming in into:
+        if incoming is None:
             kinds.append(_FIXED)
             origins.append(np.eye(4))
             axes.append(np.zeros(3))
@@ -243,11 +243,11 @@ def tf_tree(robot: Robot) -> TFTree:
             gains.append(0.0)
             offsets.append(0.0)
             continue
-        origins.append(origin_matrix(joint.origin.xyz, joint.origin.rpy))
-        axes.append(_unit(joint.axis_or_default))
+        origins.append(origin_matrix(incoming.origin.xyz, incoming.origin.rpy))
+        axes.append(_unit(incoming.axis_or_default))
         kind = {"revolute": _REVOLUTE, "continuous": _REVOLUTE, "prismatic": _PRISMATIC,
-                "fixed": _FIXED}.get(joint.type or "", _UNSUPPORTED)
-        source, gain, offset = _driver(robot, joint, dof_index)
+                "fixed": _FIXED}.get(incoming.type or "", _UNSUPPORTED)
+        source, gain, offset = _driver(robot, incoming, dof_index)
         if kind in (_REVOLUTE, _PRISMATIC) and source < 0:
             kind = _FIXED
         kinds.append(kind)
@@ -266,21 +266,21 @@ def _driver(robot: Robot, joint: Joint, dof_index: dict[str, int]) -> tuple[int,
     if joint.type not in MOVABLE_TYPES:
         return -1, 0.0, 0.0
     gain, offset, seen = 1.0, 0.0, set()
-    current = joint
-    while current.mimic is not None:
+    current: Joint | None = joint
+    while current is not None and current.mimic is not None:
         if current.name in seen:
             raise ModelError(f"mimic joints follow each other in a loop at '{joint.name}'",
                              path=robot.path, line=joint.line, element="mimic")
         seen.add(current.name)
         leader = robot.joint(current.mimic.joint or "")
-        if leader is None:
+        if leader is None or leader.name is None:
             raise ModelError(f"joint '{current.name}' mimics unknown joint '{current.mimic.joint}'",
                              path=robot.path, line=current.mimic.line, element="mimic",
                              hint="joints: " + ", ".join(robot.joint_names))
         offset = gain * current.mimic.offset + offset
         gain = gain * current.mimic.multiplier
         current = leader
-    if current.name not in dof_index:
+    if current is None or current.name not in dof_index:
         return -1, 0.0, 0.0
     return dof_index[current.name], gain, offset  # type: ignore[index]
 
@@ -321,8 +321,9 @@ def fk_batch(tree: TFTree, q: np.ndarray) -> np.ndarray:
         parent_const = constant[p]
         if kind not in (_REVOLUTE, _PRISMATIC):
             if parent_const is not None:
-                constant[i] = parent_const @ origin
-                out[:, i, :3, :] = constant[i][:3]
+                fixed = parent_const @ origin
+                constant[i] = fixed
+                out[:, i, :3, :] = fixed[:3]
             else:
                 np.matmul(out[:, p], origin, out=out[:, i])
             continue
@@ -374,7 +375,7 @@ def relative_transform(tree: TFTree, config: Mapping[str, float] | None, source:
 
 def describe_transform(matrix: np.ndarray) -> dict[str, list[float]]:
     """Translation, quaternion (x y z w) and roll-pitch-yaw of a transform, as plain lists."""
-    def clean(values: Sequence[float]) -> list[float]:
+    def clean(values: Sequence[float] | np.ndarray) -> list[float]:
         return [float(v) + 0.0 for v in values]  # + 0.0 turns -0.0 into 0.0
 
     return {

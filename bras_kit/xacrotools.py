@@ -61,6 +61,10 @@ def check_expression(expression: str) -> None:
             bad = "a string with a double underscore"
         elif isinstance(node, (ast.Lambda, ast.NamedExpr, ast.Await, ast.Yield, ast.YieldFrom)):
             bad = f"a {type(node).__name__.lower()} expression"
+        elif isinstance(node, ast.BinOp) and isinstance(node.op, ast.Mult) and any(
+            _is_sequence(side) for side in (node.left, node.right)
+        ):
+            bad = "repetition of text or a list with '*'"
         elif isinstance(node, ast.BinOp) and isinstance(node.op, ast.Pow):
             exponent = node.right
             if isinstance(exponent, ast.UnaryOp) and isinstance(exponent.operand, ast.Constant):
@@ -75,6 +79,13 @@ def check_expression(expression: str) -> None:
                 f"refused the expression '{expression.strip()}': it uses {bad}",
                 hint="xacro expressions may only compute numbers and strings from properties",
             )
+
+
+def _is_sequence(node: ast.AST) -> bool:
+    """A literal that '*' would repeat (text, list, tuple, f-string) rather than multiply."""
+    return isinstance(node, (ast.List, ast.Tuple, ast.JoinedStr, ast.ListComp)) or (
+        isinstance(node, ast.Constant) and isinstance(node.value, (str, bytes))
+    )
 
 
 def package_roots(extra: Iterable[str] = ()) -> list[str]:
@@ -108,9 +119,15 @@ def find_package(name: str, roots: Iterable[str]) -> str:
     )
 
 
-def _locate(path: str, message: str) -> int | None:
+def _locate(path: str, message: str, extra: Iterable[str] = ()) -> int | None:
     """Best guess at the line of ``path`` an xacro error is about, from the names it quotes."""
-    tokens = re.findall(r"['\"]([^'\"]{1,80})['\"]", message) + re.findall(r"\$\{[^}]*\}|\$\([^)]*\)", message)
+    tokens = list(extra) + re.findall(r"['\"]([^'\"]{1,80})['\"]", message)
+    tokens += re.findall(r"\$\{[^}]*\}|\$\([^)]*\)", message)
+    tokens += [f"$(arg {name})" for name in re.findall(r"Undefined substitution argument (\S+)", message)]
+    tokens += re.findall(r"[\w./-]+\.(?:xacro|urdf|yaml)\b", message)
+    paths = [os.path.normpath(t) for t in tokens if "/" in t or t.startswith(".")]
+    # an included file is quoted with its full path; the including file holds a relative one
+    tokens += paths + [p.split(os.sep, k)[-1] for p in paths for k in range(1, p.count(os.sep) + 1)]
     try:
         with open(path, encoding="utf-8", errors="replace") as handle:
             lines = handle.read().splitlines()
@@ -121,6 +138,22 @@ def _locate(path: str, message: str) -> int | None:
             if token and token in text:
                 return number
     return None
+
+
+def _inner_error(exc: BaseException) -> BrasKitError | None:
+    """The BrasKitError (from our guards) that xacro wrapped in its own exception, if any."""
+    seen: set[int] = set()
+    current: BaseException | None = exc
+    while current is not None and id(current) not in seen:
+        seen.add(id(current))
+        if isinstance(current, BrasKitError):
+            return current
+        inner = getattr(current, "exc", None)
+        current = inner if isinstance(inner, BaseException) else (current.__cause__ or current.__context__)
+    return None
+
+
+_MISSING_FILE = re.compile(r"No such file or directory: (\S+)")
 
 
 def expand_xacro(
@@ -144,7 +177,7 @@ def expand_xacro(
 
     def safe_parse(inp, filename=None):  # type: ignore[no-untyped-def]
         if inp is None and filename is not None:
-            full = os.path.join(xacro.root_dir, filename)
+            full = os.path.normpath(os.path.join(xacro.root_dir, filename))
             try:
                 with open(full, "rb") as handle:
                     data = handle.read()
@@ -157,11 +190,11 @@ def expand_xacro(
         return original[0](inp, filename)
 
     def guarded_eval(expr, globals_, locals_=None):  # type: ignore[no-untyped-def]
-        check_expression(expr)
+        _checked(expr)
         return original[1](expr, globals_, locals_)
 
     def guarded_subst_eval(expr, context):  # type: ignore[no-untyped-def]
-        check_expression(expr)
+        _checked(expr)
         return original[2](expr, context)
 
     def resolve(name):  # type: ignore[no-untyped-def]
@@ -176,14 +209,20 @@ def expand_xacro(
             with contextlib.redirect_stderr(stderr):
                 doc = xacro.process_file(path, mappings=dict(mappings or {}), verbosity=0)
             return doc.toprettyxml(indent="  ")
-        except BrasKitError as exc:
-            if exc.path is None:
-                exc.path = _current_file(xacro, path)
-                exc.line = exc.line or _locate(exc.path, exc.message)
-            raise
         except Exception as exc:  # xacro raises many kinds; all become one clean error
             where = _current_file(xacro, path)
-            message = str(exc) or type(exc).__name__
+            inner = _inner_error(exc)
+            if inner is not None:  # one of our guards, possibly wrapped by xacro: report it alone
+                if inner.path is None:
+                    inner.path = where
+                    expression = getattr(inner, "expression", "")
+                    inner.line = inner.line or _locate(where, inner.message, [
+                        "${" + expression + "}", "$(eval " + expression, expression] if expression else [])
+                raise inner from None
+            message = " ".join((str(exc) or type(exc).__name__).split())
+            missing = _MISSING_FILE.search(message)
+            if missing:
+                message = f"cannot include {missing.group(1).rstrip(':')}: no such file"
             line = getattr(exc, "lineno", None) or _locate(where, message)
             raise XacroError(f"xacro failed: {message}", path=where, line=line,
                              hint=_hint_for(message)) from None
@@ -194,9 +233,18 @@ def expand_xacro(
             xacro.init_stacks(None)
 
 
+def _checked(expression: str) -> None:
+    """:func:`check_expression`, remembering the expression on the error to find its line."""
+    try:
+        check_expression(expression)
+    except XacroError as exc:
+        exc.expression = expression.strip()  # type: ignore[attr-defined]
+        raise
+
+
 def _current_file(xacro_module, default: str) -> str:  # type: ignore[no-untyped-def]
     stack = [f for f in (xacro_module.filestack or []) if f]
-    return stack[-1] if stack else default
+    return os.path.normpath(stack[-1]) if stack else default
 
 
 def _hint_for(message: str) -> str:
@@ -204,7 +252,7 @@ def _hint_for(message: str) -> str:
         return "pass the argument as name:=value, or give it a default with <xacro:arg name=... default=...>"
     if "Undefined property" in message or "name '" in message and "is not defined" in message:
         return "define the property with <xacro:property name=... value=...> before using it"
-    if "No such file" in message:
+    if "no such file" in message.lower():
         return "check the path of the included file (relative paths start from the including file)"
     if "not well-formed" in message or "mismatched tag" in message:
         return "check the XML on this line is closed and quoted properly"

@@ -89,7 +89,11 @@ def parse_xml(data: bytes | str, path: str | None = None) -> Node:
     parser.CharacterDataHandler = chars
     parser.StartDoctypeDeclHandler = lambda *a: refuse("a DTD (<!DOCTYPE>)")
     parser.EntityDeclHandler = lambda *a: refuse("an entity declaration (<!ENTITY>)")
-    parser.ExternalEntityRefHandler = lambda *a: refuse("an external entity")
+    def refuse_external(*args: object) -> int:
+        refuse("an external entity")
+        return 0
+
+    parser.ExternalEntityRefHandler = refuse_external
     parser.SetParamEntityParsing(xml.parsers.expat.XML_PARAM_ENTITY_PARSING_NEVER)
     try:
         parser.Parse(data, True)

@@ -44,7 +44,8 @@ class RenderOptions:
     azimuth: float | None = None
     elevation: float | None = None
     distance: float | None = None
-    fov: float = 40.0  # vertical field of view, degrees
+    fov: float = 30.0  # vertical field of view, degrees
+    antialias: bool | None = None  # smooth edges (4x multisampling); None: on for pictures, off for sequences
     package_paths: Sequence[str] = field(default_factory=tuple)
 
     @property
@@ -78,13 +79,18 @@ def parse_size(text: str | Sequence[int]) -> tuple[int, int]:
 
 def parse_color(text: str | Sequence[float]) -> tuple[int, int, int]:
     """A colour as 0-255 RGB from a CSS name, ``#rrggbb``, ``rgb(...)``, three numbers in 0..1
-    (``"0.2 0.4 0.9"``, like a URDF colour) or a tuple of such numbers."""
+    (``"0.2 0.4 0.9"``, like a URDF colour), or a tuple of three numbers in 0..1 or whole 0..255."""
     if not isinstance(text, str):
-        values = [float(v) for v in text][:3]
-        if len(values) == 3 and all(0.0 <= v <= 1.0 for v in values):
-            return tuple(round(v * 255) for v in values)  # type: ignore[return-value]
-        raise ParameterError(f"colour {tuple(text)!r} is not three numbers between 0 and 1",
-                             hint="e.g. background=(1, 1, 1) or background='white'")
+        try:
+            values = [float(v) for v in text][:3]
+        except (TypeError, ValueError):
+            values = []
+        bytes_like = all(float(v).is_integer() for v in values) and any(v > 1 for v in values)
+        scale = 1.0 if bytes_like else 255.0
+        if len(values) == 3 and all(0.0 <= v * scale <= 255.0 for v in values):
+            return tuple(round(v * scale) for v in values)  # type: ignore[return-value]
+        raise ParameterError(f"colour {text!r} is neither three numbers in 0..1 nor three in 0..255",
+                             hint="e.g. background=(1, 1, 1), background=(255, 255, 255) or background='white'")
     name = text.strip().lower()
     if name in _NAMED:
         return _NAMED[name]
@@ -150,9 +156,11 @@ def render_options(**opts: object) -> RenderOptions:
             raise ParameterError(f"distance {values['distance']!r} is not a positive number",
                                  hint="give the camera's distance to the robot's centre in metres")
         values["distance"] = distance
-    fov = _angle("fov", values.get("fov", 40.0), 1.0, 170.0)
+    fov = _angle("fov", values.get("fov", 30.0), 1.0, 170.0)
     values["fov"] = fov
     values["package_paths"] = tuple(values.get("package_paths", ()))  # type: ignore[arg-type]
+    if values.get("antialias") is not None:
+        values["antialias"] = bool(values["antialias"])
     values["tf"] = bool(values.get("tf", False))
     values["grid"] = bool(values.get("grid", True))
     return RenderOptions(**values)  # type: ignore[arg-type]

@@ -10,6 +10,12 @@ _MODULES = [
     "l01_describe",
     "l02_frames",
     "l03_see",
+    "l04_package",
+    "l05_motion",
+    "l06_wrist",
+    "l07_inertials",
+    "l08_pitfalls",
+    "l09_reach",
     "l10_xacro",
 ]
 

@@ -191,7 +191,8 @@ LESSON.cells = [
 
         fig, axes = plt.subplots(1, 2, figsize=(8, 4))
         for ax, (label, arm) in zip(axes, [("bras_length = 0.6", robot), ("bras_length = 0.8", longer)]):
-            ax.imshow(render_pose(arm, {"coude": 0.6}, size=(400, 400), view="front"))
+            # the same camera distance for both, so the lengths compare
+            ax.imshow(render_pose(arm, {"coude": 0.6}, size=(400, 400), view="front", distance=3.0))
             ax.set_title(label)
             ax.axis("off")
         plt.show()

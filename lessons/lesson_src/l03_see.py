@@ -97,13 +97,16 @@ LESSON.cells = [
         import ipywidgets as widgets
         from IPython.display import display
 
+        from bras_kit.render import Renderer, show_image
+
+        # One renderer for every redraw; its camera frames all the poses the limits allow,
+        # so the view stays put while the sliders move.
+        renderer = Renderer(robot, size=(480, 360), tf=True)
+
 
         def redraw(**config):
-            picture = render_pose(robot, config, size=(480, 360), tf=True)
-            plt.figure(figsize=(6, 4.5))
-            plt.imshow(picture)
-            plt.axis("off")
-            plt.show()
+            picture = renderer.render(config)
+            display(show_image(picture))
             return picture
 
 
@@ -180,9 +183,10 @@ LESSON.cells = [
     ),
     code(
         """
-        plt.imshow(render_pose(robot, {"epaule": 0.6, "coude": -1.1}, size=(480, 360), view="front"))
-        plt.axis("off")
-        plt.show()
+        from bras_kit.render import VIEWS
+
+        print(list(VIEWS))
+        display(show_image(render_pose(robot, {"epaule": 0.6, "coude": -1.1}, size=(480, 360), view="front")))
         """
     ),
 ]

@@ -1,0 +1,25 @@
+"""bras-kit explain: what a validator rule checks, why it matters and how to fix it."""
+
+from __future__ import annotations
+
+import argparse
+import sys
+
+
+def configure(parser: argparse.ArgumentParser) -> None:
+    parser.add_argument("code", nargs="?", metavar="CODE",
+                        help="a rule code (BK301) or name (joint-not-at-segment-end); omit to list every rule")
+    parser.add_argument("--lang", choices=("en", "fr"), default=None,
+                        help="language (default: from LC_ALL/LC_MESSAGES/LANG, French if it starts with fr)")
+
+
+def run(args: argparse.Namespace) -> int:
+    from ..validate import default_language
+    from ..validate.catalogue import explain_text, find_rule, rule_list_text
+
+    lang = args.lang or default_language()
+    if args.code is None:
+        sys.stdout.write(rule_list_text(lang))
+        return 0
+    sys.stdout.write(explain_text(find_rule(args.code), lang))
+    return 0

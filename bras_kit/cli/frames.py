@@ -1,0 +1,44 @@
+"""bras-kit frames: the frame tree drawn like tf2_tools view_frames (PDF, SVG, PNG) or as DOT."""
+
+from __future__ import annotations
+
+import argparse
+import sys
+
+from ._common import add_force_argument, add_model_arguments, joint_values, warn
+
+DEFAULT_OUTPUT = "frames.pdf"
+
+
+def configure(parser: argparse.ArgumentParser) -> None:
+    add_model_arguments(parser)
+    parser.add_argument("-o", "--output", metavar="FILE",
+                        help=f"where to write: .pdf, .svg, .png or .dot (default {DEFAULT_OUTPUT}, "
+                        "like view_frames); '-' prints the DOT text")
+    parser.add_argument("--set", dest="values", action="append", default=[], metavar="JOINT=VALUE",
+                        help="show the arm in this pose: joint values on the edges, link positions "
+                        "in the boxes; repeatable")
+    add_force_argument(parser)
+
+
+def run(args: argparse.Namespace) -> int:
+    from ..diagrams import FRAME_FORMATS, frame_diagram, frames_dot, output_suffix
+    from ..kinematics import tf_tree
+    from ._common import check_writable, load_model, write_text
+
+    output = args.output or DEFAULT_OUTPUT
+    suffix = None if output == "-" else output_suffix(output, FRAME_FORMATS)
+    robot = load_model(args)
+    config = joint_values(args.values) or None
+    tree = tf_tree(robot)
+    tree.config_vector(config)  # unknown joint names fail here, before anything is written
+    for name, value, lower, upper in tree.out_of_limits(config or {}):
+        warn(f"{name}={value:g} is outside its limits {lower:g}..{upper:g} (marked in red)")
+    if suffix is None or suffix == ".dot":
+        write_text(None if suffix is None else output, frames_dot(robot, config), args.force)
+        return 0
+    check_writable(output, args.force)
+    frame_diagram(robot, config, path=output)
+    note = "" if args.output else " (-o FILE.svg|png|dot for another format, -o - prints DOT)"
+    print(f"wrote {output}: {len(tree.links)} frames, {len(tree.links) - 1} joints{note}", file=sys.stderr)
+    return 0

@@ -1,0 +1,183 @@
+"""bras-kit motion: a motion program -> a joint-state sequence, checked against the joint limits.
+
+Output files look like a recording of /joint_states:
+  CSV (long form): ``time,name,position,velocity``, one row per joint per sample;
+  JSON: a list of messages ``{"time": t, "name": [...], "position": [...], "velocity": [...]}``.
+Samples are taken at k / rate for k = 0 .. floor(duration * rate): 10 s at 20 Hz gives 201 samples
+(both ends), so a CSV has 201 x joints rows after its header.
+"""
+
+from __future__ import annotations
+
+import argparse
+import os
+import sys
+
+from ..errors import ParameterError
+from ._common import (
+    add_force_argument,
+    add_model_arguments,
+    check_writable,
+    joint_values,
+    load_model,
+    warn,
+    write_text,
+)
+
+_EPILOG = """\
+motion SPEC (repeatable):
+  tutorial                 the tutorial's node: epaule=0.8*sin(t), coude=1.2*sin(0.7*t) (+ poignet)
+  JOINT=FORMULA            a formula of the time t in seconds, e.g. coude=1.2*sin(0.7*t)
+                           (numbers, t, pi, e, + - * / ** %, sin cos tan asin acos atan atan2
+                           sqrt exp log abs min max clip floor ceil deg)
+  FILE.csv|.json|.yaml     waypoints: time,JOINT,... (CSV) or {"waypoints": [{"time": 0,
+                           "positions": {"epaule": 0}}, ...]}
+Joints no spec drives stay at 0 (or their --set value; 'tutorial' drives all the others).
+
+examples:
+  bras-kit motion                                  summary of the tutorial's motion
+  bras-kit motion -o states.csv                    10 s at 20 Hz: 201 samples x 2 joints
+  bras-kit motion --motion coude=2.5*sin(t)        warns: coude goes past its upper limit
+  bras-kit motion --wrist --motion tutorial --set poignet=0.5 -o states.json
+  bras-kit motion --motion path.yaml --interpolation cubic --clamp -o states.csv
+"""
+
+
+def configure(parser: argparse.ArgumentParser) -> None:
+    parser.formatter_class = argparse.RawDescriptionHelpFormatter
+    parser.epilog = _EPILOG
+    add_model_arguments(parser)
+    parser.add_argument("-m", "--motion", action="append", default=[], metavar="SPEC",
+                        help="tutorial, JOINT=FORMULA or a waypoint file (repeatable; default: tutorial)")
+    parser.add_argument("--set", dest="set_values", action="append", default=[], metavar="JOINT=VALUE",
+                        help="hold a joint at a value in radians (metres if prismatic) (repeatable)")
+    parser.add_argument("--duration", type=float, metavar="S",
+                        help="seconds to sample (default: the last waypoint's time, else 10)")
+    parser.add_argument("--rate", type=float, default=None, metavar="HZ",
+                        help="samples per second (default: 20, like the tutorial's node)")
+    parser.add_argument("--interpolation", choices=("linear", "cubic"),
+                        help="between waypoints (default: the file's own, else linear); cubic is "
+                             "smooth (C1), starts and ends at rest and never overshoots a waypoint")
+    parser.add_argument("--clamp", action="store_true",
+                        help="keep positions inside the joint limits (default: warn only)")
+    parser.add_argument("--strict", action="store_true",
+                        help="exit with status 1 when a limit is still exceeded")
+    parser.add_argument("-o", "--output", metavar="FILE",
+                        help="write the joint states to FILE (.csv or .json; '-' for stdout) "
+                             "instead of printing a summary")
+    parser.add_argument("--format", choices=("csv", "json"),
+                        help="output format (default: from the -o extension; csv for '-')")
+    add_force_argument(parser)
+
+
+def _output_format(args: argparse.Namespace) -> str | None:
+    if args.output is None:
+        if args.format:
+            raise ParameterError("--format needs -o FILE (or -o - for stdout)")
+        return None
+    if args.format:
+        return str(args.format)
+    if args.output == "-":
+        return "csv"
+    suffix = os.path.splitext(args.output)[1].lower()
+    if suffix in (".csv", ".json"):
+        return suffix[1:]
+    raise ParameterError(f"cannot tell the format of '{args.output}'",
+                         hint="end the file name in .csv or .json, or pass --format csv|json")
+
+
+def run(args: argparse.Namespace) -> int:
+    from ..motion import (
+        DEFAULT_RATE,
+        WAYPOINT_SUFFIXES,
+        check_limits,
+        clamp,
+        describe_segment,
+        describe_violation,
+        motion_from_specs,
+        sample,
+        states_to_csv,
+        states_to_json,
+        waypoint_speeds,
+    )
+
+    if args.file and args.file.lower().endswith(WAYPOINT_SUFFIXES):
+        raise ParameterError(f"'{args.file}' looks like a waypoint file, not a robot",
+                             hint=f"pass it as --motion {args.file} (FILE is the robot: .urdf or .xacro)")
+    fmt = _output_format(args)
+    if fmt is not None and args.output != "-":
+        check_writable(args.output, args.force)
+    robot = load_model(args)
+    motion = motion_from_specs(robot, args.motion, joint_values(args.set_values), args.interpolation)
+    if args.interpolation and not any(t.waypoints is not None for t in motion.tracks):
+        warn("--interpolation only applies to waypoint files")
+    rate = DEFAULT_RATE if args.rate is None else args.rate
+    states = sample(motion, args.duration, rate)
+    segments = waypoint_speeds(robot, motion)
+    violations = check_limits(robot, states)
+    clamped = []
+    if args.clamp:
+        clamped = [v for v in violations if v.kind == "position"]
+        states = clamp(robot, states)
+        violations = check_limits(robot, states)
+    for segment in segments[:10]:
+        warn(describe_segment(segment))
+    if len(segments) > 10:
+        warn(f"... and {len(segments) - 10} more waypoint segments too fast")
+    reported = {s.joint for s in segments}
+    for v in clamped:
+        warn("clamped: " + describe_violation(v))
+    for v in violations:
+        if v.kind == "velocity" and v.joint in reported:
+            continue  # already named segment by segment
+        warn(describe_violation(v))
+    if any(v.kind == "position" for v in violations):
+        print("  hint: pass --clamp to keep positions inside the limits, or lower the amplitude",
+              file=sys.stderr)
+    if fmt is None:
+        print(_summary(robot, motion, states, violations, clamped, rate))
+    else:
+        text = states_to_json(states) if fmt == "json" else states_to_csv(states)
+        write_text(args.output, text, args.force)
+    return 1 if args.strict and (violations or segments) else 0
+
+
+def _summary(robot, motion, states, violations, clamped, rate: float) -> str:  # type: ignore[no-untyped-def]
+    from ..motion import joint_unit
+
+    duration = float(states.times[-1]) if len(states) else 0.0
+    lines = [f"motion: {motion.label or 'fixed pose'}; {duration:g} s at {rate:g} Hz, "
+             f"{len(states)} samples x {len(states.names)} joints"]
+    if not states.names:
+        lines.append("the robot has no movable joint")
+        return "\n".join(lines)
+    header = ("joint", "min", "max", "lower", "upper", "max|vel|", "vel.limit", "limits", "source")
+    rows = [header]
+    sources = motion.sources()
+    for k, name in enumerate(states.names):
+        joint = robot.joint(name)
+        lower, upper = joint.bounds() if joint else (float("-inf"), float("inf"))
+        speed = joint.limit.velocity if joint is not None and joint.limit is not None else None
+        status = [f"clamped ({v.side})" for v in clamped if v.joint == name]
+        status += [("too fast" if v.kind == "velocity" else f"past {v.side}")
+                   for v in violations if v.joint == name]
+        unit = joint_unit(joint)
+        rows.append((
+            name,
+            f"{states.positions[:, k].min():.3f}",
+            f"{states.positions[:, k].max():.3f}",
+            f"{lower:g}", f"{upper:g}",
+            f"{abs(states.velocities[:, k]).max():.3f}",
+            f"{speed:g} {unit}/s" if speed else "-",
+            ", ".join(status) or "ok",
+            sources.get(name, ""),
+        ))
+    widths = [max(len(row[i]) for row in rows) for i in range(len(header))]
+    for row in rows:
+        cells = [cell.ljust(width) if i in (0, 7, 8) else cell.rjust(width)
+                 for i, (cell, width) in enumerate(zip(row, widths))]
+        lines.append("  ".join(cells).rstrip())
+    problems = len(violations)
+    lines.append("all within limits" if not problems else
+                 f"{problems} limit violation{'s' if problems != 1 else ''} (see the warnings above)")
+    return "\n".join(lines)

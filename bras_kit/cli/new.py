@@ -1,0 +1,41 @@
+"""bras-kit new: scaffold the tutorial's ROS 2 package (steps 2 to 7, ready to colcon build)."""
+
+from __future__ import annotations
+
+import argparse
+import os
+
+from ._common import add_force_argument
+
+
+def configure(parser: argparse.ArgumentParser) -> None:
+    parser.add_argument("dir", nargs="?", metavar="DIR",
+                        help="folder to create (default: ./PKG)")
+    parser.add_argument("--name", default="bras_description", metavar="PKG",
+                        help="ROS package name: lowercase letters, digits, _ (default: bras_description)")
+    parser.add_argument("--wrist", action="store_true", help="add the wrist link and joint 'poignet'")
+    parser.add_argument("--inertials", action="store_true", help="add mass and inertia to every link")
+    parser.add_argument("--set", dest="params", action="append", default=[], metavar="NAME=VALUE",
+                        help="change a template parameter (repeatable); 'bras-kit urdf --list-params' "
+                        "shows them")
+    parser.add_argument("--maintainer", metavar="NAME", help="maintainer in package.xml (default: your user name)")
+    parser.add_argument("--email", metavar="EMAIL", help="maintainer e-mail (default: NAME@todo.todo)")
+    add_force_argument(parser)
+
+
+def run(args: argparse.Namespace) -> int:
+    from ..authoring import parse_assignments
+    from ..scaffold import check_package_name, scaffold_package
+
+    check_package_name(args.name)
+    dest = args.dir if args.dir is not None else os.path.join(".", args.name)
+    made = scaffold_package(dest, args.name, wrist=args.wrist, inertials=args.inertials,
+                            params=parse_assignments(args.params), force=args.force,
+                            maintainer=args.maintainer, email=args.email)
+    print(f"created the ROS 2 package '{args.name}' in {dest}:")
+    for path in made:
+        print(f"  {os.path.relpath(path, dest)}")
+    print("\nnext: move it into the src/ folder of a colcon workspace, then")
+    print(f"  colcon build --packages-select {args.name} && source install/setup.bash")
+    print(f"  ros2 launch {args.name} affichage.launch.py")
+    return 0

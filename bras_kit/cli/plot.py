@@ -1,0 +1,47 @@
+"""bras-kit plot: joint angles over time against their limits, and the path of the tool tip."""
+
+from __future__ import annotations
+
+import argparse
+import sys
+
+from ._common import add_force_argument, add_model_arguments, joint_values, warn
+
+DEFAULT_OUTPUT = "plot.png"
+
+
+def configure(parser: argparse.ArgumentParser) -> None:
+    add_model_arguments(parser)
+    parser.add_argument("--motion", action="append", default=[], metavar="SPEC",
+                        help="'tutorial', JOINT=FORMULA (e.g. 'coude=1.2*sin(0.7*t)') or a waypoint "
+                        "file (.csv, .json, .yaml); repeatable; default: the tutorial's animation")
+    parser.add_argument("--set", dest="values", action="append", default=[], metavar="JOINT=VALUE",
+                        help="hold a joint at this value (rad or m); repeatable")
+    parser.add_argument("--interpolation", choices=("linear", "cubic"),
+                        help="between waypoints of a file (default: the file's own, else linear)")
+    parser.add_argument("--duration", type=float, metavar="S",
+                        help="seconds to plot (default: the waypoints' end, else 10)")
+    parser.add_argument("--rate", type=float, metavar="HZ", help="samples per second (default 20, like the tutorial)")
+    parser.add_argument("-o", "--output", metavar="FILE", help=f"image to write: .png, .svg or .pdf (default {DEFAULT_OUTPUT})")
+    add_force_argument(parser)
+
+
+def run(args: argparse.Namespace) -> int:
+    from ..diagrams import FIGURE_FORMATS, output_suffix, plot_motion, tip_point
+    from ..motion import DEFAULT_RATE, check_limits, describe_violation, motion_from_specs, sample
+    from ._common import check_writable, load_model
+
+    output = args.output or DEFAULT_OUTPUT
+    output_suffix(output, FIGURE_FORMATS)
+    check_writable(output, args.force)
+    robot = load_model(args)
+    motion = motion_from_specs(robot, args.motion, joint_values(args.values) or None, args.interpolation)
+    states = sample(motion, args.duration, args.rate if args.rate is not None else DEFAULT_RATE)
+    plot_motion(robot, states, path=output)
+    link, offset = tip_point(robot)
+    duration = float(states.times[-1]) if len(states.times) else 0.0
+    print(f"wrote {output}: {len(states.times)} sample{'s' if len(states.times) != 1 else ''} over {duration:g} s; "
+          f"tip = '{link}' + ({', '.join(f'{v:g}' for v in offset)})", file=sys.stderr)
+    for violation in check_limits(robot, states):
+        warn(describe_violation(violation))
+    return 0

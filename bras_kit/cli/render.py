@@ -1,0 +1,204 @@
+"""bras-kit render: draw the arm off-screen (PNG, numbered frames, GIF, MP4), as RViz would show it.
+
+Heavy modules (pyrender, trimesh, PIL, imageio) are imported inside run(), never at start-up.
+"""
+
+from __future__ import annotations
+
+import argparse
+import math
+import os
+import re
+import sys
+
+from ._common import (
+    add_force_argument,
+    add_model_arguments,
+    check_writable,
+    joint_values,
+    load_model,
+    warn,
+)
+
+_EPILOG = """\
+outputs (any together; with none, writes ROBOT.png of the pose):
+  -o pose.png               one picture: the --set pose (the first frame when animating)
+  --gif [anim.gif]          the motion as a looping GIF (default name: ROBOT.gif)
+  --mp4 [anim.mp4]          the motion as an H.264 video (default name: ROBOT.mp4)
+  --frames-dir DIR          the motion as DIR/frame_0000.png, frame_0001.png ...
+The motion is --motion SPEC (tutorial, JOINT=FORMULA or a waypoint file, as in 'bras-kit motion');
+without it, the tutorial's animation node. It lasts --duration seconds at --fps: duration x fps frames.
+
+examples:
+  bras-kit render                                   bras.png: the arm at the zero pose
+  bras-kit render --gif                             bras.gif: the tutorial's motion, 10 s at 20 fps
+  bras-kit render --set epaule=0.8 --set coude=1.2 --view front --tf -o pose.png
+  bras-kit render --motion coude=1.5*sin(t) --duration 6.28 --mp4 coude.mp4
+  bras-kit render my_robot.urdf --package-path ~/ws/src --view top -o top.png
+"""
+
+
+def configure(parser: argparse.ArgumentParser) -> None:
+    parser.formatter_class = argparse.RawDescriptionHelpFormatter
+    parser.epilog = _EPILOG
+    add_model_arguments(parser)
+    parser.add_argument("--set", dest="set_values", action="append", default=[], metavar="JOINT=VALUE",
+                        help="a joint value in rad (m if prismatic); repeatable; others are 0")
+    parser.add_argument("-m", "--motion", action="append", default=[], metavar="SPEC",
+                        help="tutorial, JOINT=FORMULA or a waypoint file (repeatable; default: tutorial)")
+    parser.add_argument("-o", "--output", metavar="PNG", help="write the picture of the pose here")
+    parser.add_argument("--gif", nargs="?", const="", metavar="FILE", help="write the motion as a GIF")
+    parser.add_argument("--mp4", nargs="?", const="", metavar="FILE", help="write the motion as an MP4")
+    parser.add_argument("--frames-dir", metavar="DIR", help="write each frame as DIR/frame_NNNN.png")
+    parser.add_argument("--size", default="640x480", metavar="WxH", help="picture size in pixels (default 640x480)")
+    parser.add_argument("--fps", type=float, default=20.0, metavar="N",
+                        help="frames per second of the animation (default 20, like the tutorial's node)")
+    parser.add_argument("--duration", type=float, metavar="S",
+                        help="seconds of motion (default: the motion's own length, else 10)")
+    parser.add_argument("--view", choices=("iso", "front", "side", "top"), default="iso",
+                        help="camera direction: iso (three-quarter), front (x-z plane), side (y-z), top")
+    parser.add_argument("--azimuth", type=float, metavar="DEG", help="camera azimuth from +x towards +y")
+    parser.add_argument("--elevation", type=float, metavar="DEG", help="camera height angle, -90..90")
+    parser.add_argument("--distance", type=float, metavar="M",
+                        help="camera distance in metres (default: just far enough to see every pose)")
+    parser.add_argument("--tf", action="store_true", help="draw each link's axes (x red, y green, z blue)")
+    parser.add_argument("--no-grid", action="store_true", help="leave out the ground grid")
+    parser.add_argument("--antialias", action=argparse.BooleanOptionalAction, default=None,
+                        help="smooth edges (default: on for -o pictures, off for animations: "
+                        "twice the speed without a GPU)")
+    parser.add_argument("--background", default="white", metavar="COLOR",
+                        help="a name, #rrggbb or 'r g b' in 0..1 (default white; 'rviz' for RViz's grey)")
+    parser.add_argument("--backend", choices=("auto", "egl", "osmesa", "software"), default="auto",
+                        help="auto: OpenGL on EGL, else OSMesa, else the (slower) software renderer")
+    add_force_argument(parser)
+
+
+def _file_name(robot_name: str | None) -> str:
+    return re.sub(r"[^\w.-]+", "_", robot_name or "").strip("._") or "robot"
+
+
+def _check_frames_dir(folder: str, force: bool) -> None:
+    from ..errors import OutputExistsError
+
+    if os.path.isdir(folder) and not force and any(re.fullmatch(r"frame_\d+\.png", n) for n in os.listdir(folder)):
+        raise OutputExistsError(f"{folder} already holds frame_*.png files",
+                                hint="pass --force to overwrite them, or choose another --frames-dir")
+    if os.path.exists(folder) and not os.path.isdir(folder):
+        raise OutputExistsError(f"{folder} exists and is not a folder", hint="choose another --frames-dir")
+
+
+def _warn_limits(robot, states) -> None:  # type: ignore[no-untyped-def]
+    from ..motion import check_limits
+
+    for v in check_limits(robot, states):
+        what = "speed" if v.kind == "velocity" else "position"
+        warn(f"{v.joint}: {what} {v.value:.4g} passes its limit {v.bound:g} at t={v.time:.2f} s "
+             "(drawn anyway, as RViz would)")
+
+
+def run(args: argparse.Namespace) -> int:
+    from ..errors import ParameterError
+    from ..kinematics import tf_tree
+    from ..render import Renderer, render_motion, render_options
+    from ..render.sequence import (
+        FramesDirWriter,
+        GifWriter,
+        Mp4Writer,
+        gif_delay,
+        palette_samples,
+        save_png,
+        write_frames,
+    )
+
+    opts = dict(size=args.size, view=args.view, tf=args.tf, grid=not args.no_grid, background=args.background,
+                backend=args.backend, azimuth=args.azimuth, elevation=args.elevation, distance=args.distance,
+                antialias=args.antialias, package_paths=tuple(args.package_path))
+    options = render_options(**opts)  # bad values fail before the model is even loaded
+    robot = load_model(args)
+    if not (math.isfinite(args.fps) and 0 < args.fps <= 120):
+        raise ParameterError(f"--fps {args.fps:g} is out of range", hint="give frames per second between 0 and 120")
+    if args.duration is not None and not (math.isfinite(args.duration) and args.duration > 0):
+        raise ParameterError(f"--duration {args.duration:g} is not a positive time", hint="give seconds, e.g. 10")
+    tree = tf_tree(robot)
+    set_values = joint_values(args.set_values)
+    tree.config_vector(set_values)  # unknown joints fail before anything is drawn
+    for name, value, lower, upper in tree.out_of_limits(set_values):
+        warn(f"{name}={value:g} is outside its limits [{lower:g}, {upper:g}] (drawn anyway)")
+
+    stem = _file_name(robot.name)
+    animated = args.gif is not None or args.mp4 is not None or args.frames_dir is not None
+    defaulted = []
+    if not animated and args.output is None:
+        if args.motion:  # a motion asks for an animation
+            args.gif = ""
+            animated = True
+        else:
+            args.output = f"{stem}.png"
+            defaulted.append(args.output)
+    if args.gif == "":
+        args.gif = f"{stem}.gif"
+        defaulted.append(args.gif)
+    if args.mp4 == "":
+        args.mp4 = f"{stem}.mp4"
+        defaulted.append(args.mp4)
+    for path in (args.output, args.gif, args.mp4):
+        if path is not None:
+            check_writable(path, args.force)
+    if args.frames_dir is not None:
+        _check_frames_dir(args.frames_dir, args.force)
+    for path in (args.output, args.gif, args.mp4):
+        if path and os.path.dirname(path):
+            os.makedirs(os.path.dirname(path), exist_ok=True)
+    size = f"{options.width}x{options.height}"
+
+    if not animated:
+        with Renderer(robot, fit=set_values, **opts) as renderer:
+            save_png(renderer.render(set_values), args.output)
+            backend = renderer.backend
+        pose = ", ".join(f"{k}={v:g}" for k, v in set_values.items()) or "zero pose"
+        _report(args.output, f"{pose}, {size}, {backend}", args.output in defaulted)
+        return 0
+
+    from ..motion import DEFAULT_DURATION, motion_from_specs, sample
+
+    motion = motion_from_specs(robot, args.motion, set_values or None)
+    duration = args.duration or motion.duration or DEFAULT_DURATION
+    count = round(duration * args.fps)
+    if count < 1:
+        raise ParameterError(f"{duration:g} s at {args.fps:g} fps is less than one frame",
+                             hint="raise --duration or --fps")
+    # frames at k / fps for k < count: a loop of `count` frames, the end being the next start
+    states = sample(motion, (count - 1) / args.fps, args.fps)
+    _warn_limits(robot, states)
+    if args.gif and gif_delay(args.fps) * args.fps > 100.5:
+        warn(f"a GIF plays at most 50 frames per second; {args.fps:g} fps will play slower")
+    frames = render_motion(robot, states, label="rendering", **opts)
+    with frames:
+        writers = []
+        stream = frames
+        if args.gif:
+            samples, stream = palette_samples(frames)
+            writers.append(GifWriter(args.gif, args.fps, samples))
+        if args.mp4:
+            writers.append(Mp4Writer(args.mp4, args.fps))
+        if args.frames_dir is not None:
+            writers.append(FramesDirWriter(args.frames_dir, len(frames)))
+        if args.output:
+            save_png(frames[0], args.output)
+        backend = frames.renderer.backend
+        written = write_frames(stream, writers)
+    what = motion.label or "motion"
+    details = f"{written} frames at {args.fps:g} fps ({written / args.fps:g} s), {size}, {what}, {backend}"
+    for path in (args.gif, args.mp4):
+        if path:
+            _report(path, details, path in defaulted)
+    if args.frames_dir is not None:
+        _report(os.path.join(args.frames_dir, "frame_*.png"), details, False)
+    if args.output:
+        _report(args.output, f"first frame, {size}, {backend}", False)
+    return 0
+
+
+def _report(path: str, details: str, defaulted: bool) -> None:
+    where = " in the current folder (choose the name with the output option)" if defaulted else ""
+    print(f"wrote {path}{where}: {details}", file=sys.stderr)

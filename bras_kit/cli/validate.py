@@ -1,0 +1,102 @@
+"""bras-kit validate: check URDF/xacro files (or the built-in arm) for defects and the tutorial's pitfalls.
+
+Exit status: 0 no error (warnings and notes allowed), 1 errors (or warnings with --strict),
+2 a file could not be read (not well-formed, unsafe XML, xacro failure, missing) or bad usage.
+"""
+
+from __future__ import annotations
+
+import argparse
+import os
+import sys
+
+EPILOG = """\
+exit status: 0 no errors (warnings allowed), 1 errors (or warnings with --strict),
+2 a file could not be read or the command line is wrong.
+examples:
+  bras-kit validate                         the built-in tutorial arm
+  bras-kit validate urdf/bras.urdf --lang fr
+  bras-kit validate src/ --format json      every .urdf and .xacro below src/
+  bras-kit validate bras.urdf --pose coude=2.5 --motion tutorial
+  bras-kit explain BK301                    what a code means and how to fix it"""
+
+
+def configure(parser: argparse.ArgumentParser) -> None:
+    parser.formatter_class = argparse.RawDescriptionHelpFormatter
+    parser.epilog = EPILOG
+    parser.add_argument("files", nargs="*", metavar="FILE",
+                        help=".urdf or .xacro files, or folders to search (default: the built-in tutorial arm)")
+    parser.add_argument("--format", choices=("text", "json"), default="text",
+                        help="text for people (default), json for programs")
+    parser.add_argument("--lang", choices=("en", "fr"), default=None,
+                        help="language of messages (default: from LC_ALL/LC_MESSAGES/LANG, French if it starts with fr)")
+    parser.add_argument("--strict", action="store_true", help="warnings also fail (exit 1)")
+    parser.add_argument("--pose", action="append", default=[], metavar="JOINT=VALUE",
+                        help="check this joint value against its limits (repeatable; radians or metres)")
+    parser.add_argument("--motion", action="append", default=[], metavar="SPEC",
+                        help="check a motion against limits and velocities: 'tutorial', 'JOINT=FORMULA' "
+                        "(e.g. coude=1.2*sin(0.7*t)) or a waypoint file (repeatable)")
+    parser.add_argument("--duration", type=float, default=None, metavar="SECONDS",
+                        help="how long to sample --motion (default: the motion's own length, else 10 s)")
+    parser.add_argument("--select", action="append", default=[], metavar="CODES",
+                        help="only these rules: codes or prefixes, comma-separated (e.g. BK3,BK201)")
+    parser.add_argument("--ignore", action="append", default=[], metavar="CODES",
+                        help="skip these rules: codes or prefixes, comma-separated (e.g. BK505)")
+    parser.add_argument("--package-path", action="append", default=[], metavar="DIR",
+                        help="folder holding ROS packages, for $(find pkg) and package:// meshes (repeatable)")
+    parser.add_argument("--xacro-arg", action="append", default=[], metavar="NAME:=VALUE",
+                        help="xacro argument for .xacro files (repeatable)")
+    parser.add_argument("--wrist", action="store_true", help="built-in arm: with the wrist joint 'poignet'")
+    parser.add_argument("--inertials", action="store_true", help="built-in arm: with <inertial> on every link")
+    parser.add_argument("--param", action="append", default=[], metavar="NAME=VALUE",
+                        help="built-in arm: change a template parameter (e.g. bras_length=0.8)")
+
+
+def _codes(items: list[str]) -> list[str]:
+    return [code.strip() for item in items for code in item.split(",") if code.strip()]
+
+
+def _use_colour() -> bool:
+    return sys.stdout.isatty() and "NO_COLOR" not in os.environ and os.environ.get("TERM") != "dumb"
+
+
+def run(args: argparse.Namespace) -> int:
+    from ..errors import ParameterError
+    from ..validate import check_robot, collect_files, default_language, validate_path
+    from ..validate.findings import FileResult
+    from ..validate.registry import select_rules
+    from ..validate.report import exit_code, format_json, format_text
+    from ._common import joint_values, xacro_mappings
+
+    lang = args.lang or default_language()
+    select, ignore = _codes(args.select), _codes(args.ignore)
+    try:
+        select_rules(select, ignore)
+    except ValueError as exc:
+        raise ParameterError(f"--select/--ignore: no rule code starts with '{exc}'",
+                             hint="codes look like BK301; 'bras-kit explain' lists them all") from None
+    pose = joint_values(args.pose)
+    if args.duration is not None and not args.duration > 0:
+        raise ParameterError(f"--duration {args.duration:g}: must be a positive number of seconds")
+    options = dict(pose=pose or None, motion=args.motion or None, duration=args.duration, lang=lang,
+                   package_paths=args.package_path, select=select, ignore=ignore)
+    if args.files:
+        if args.wrist or args.inertials or args.param:
+            raise ParameterError("--wrist, --inertials and --param apply to the built-in arm only",
+                                 hint="drop FILE to check the built-in arm, or edit your file")
+        mappings = xacro_mappings(args.xacro_arg)
+        paths = collect_files(args.files)
+        if not paths:
+            raise ParameterError("no .urdf or .xacro file found in " + ", ".join(args.files),
+                                 hint="give a file, or a folder holding .urdf or .xacro files")
+        results = [FileResult(path, validate_path(path, mappings=mappings, **options)) for path in paths]
+    else:
+        from ..authoring import arm, parse_assignments
+
+        robot = arm(wrist=args.wrist, inertials=args.inertials, params=parse_assignments(args.param))
+        results = [check_robot(robot, **options)]  # type: ignore[arg-type]
+    if args.format == "json":
+        sys.stdout.write(format_json(results, strict=args.strict))
+    else:
+        sys.stdout.write(format_text(results, lang, colour=_use_colour()))
+    return exit_code(results, strict=args.strict)

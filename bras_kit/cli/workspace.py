@@ -1,0 +1,49 @@
+"""bras-kit workspace: draw the region the tip reaches, within the joint limits and without them."""
+
+from __future__ import annotations
+
+import argparse
+import os
+
+from ._common import add_force_argument, add_model_arguments, check_writable
+
+FORMATS = (".png", ".svg", ".pdf")
+
+
+def configure(parser: argparse.ArgumentParser) -> None:
+    add_model_arguments(parser)
+    parser.add_argument("-o", "--output", default="workspace.png", metavar="FILE",
+                        help="picture to write: .png, .svg or .pdf (default: workspace.png)")
+    parser.add_argument("--samples", type=int, default=100_000, metavar="N",
+                        help="random joint configurations per region (default: 100000)")
+    parser.add_argument("--link", metavar="TIP", help="the link carrying the tip (default: the end of the longest chain)")
+    parser.add_argument("--tip-offset", nargs=3, type=float, metavar=("X", "Y", "Z"),
+                        help="the tip point in the link's frame (default: the far end of the link's visual along z)")
+    add_force_argument(parser)
+
+
+def run(args: argparse.Namespace) -> int:
+    from ..errors import ParameterError
+    from ..ik import workspace_figure
+    from ..kinematics import tf_tree
+    from ._common import load_model
+
+    extension = os.path.splitext(args.output)[1].lower()
+    if extension not in FORMATS:
+        raise ParameterError(f"cannot write '{args.output}': unknown picture format",
+                             hint="end the file name with " + ", ".join(FORMATS))
+    if not 1 <= args.samples <= 5_000_000:
+        raise ParameterError(f"--samples {args.samples} is out of range", hint="give a number from 1 to 5000000")
+    check_writable(args.output, args.force)
+    tree = tf_tree(load_model(args))
+    figure, _, summary = workspace_figure(tree, args.samples, tip_link=args.link, tip_offset=args.tip_offset)
+    folder = os.path.dirname(args.output)
+    if folder:
+        os.makedirs(folder, exist_ok=True)
+    figure.savefig(args.output)
+    h, v = summary.axes
+    print(f"tip region in the {h}-{v} plane: {summary.area_within_limits:.3f} m^2 within the joint limits, "
+          f"{summary.area_without_limits:.3f} m^2 if every joint turned freely; "
+          f"farthest tip {summary.max_reach:.3f} m from the first joint")
+    print(f"wrote {args.output}")
+    return 0

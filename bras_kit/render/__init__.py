@@ -1,0 +1,51 @@
+"""Draw the arm off-screen: pictures of poses, animations of motions, as RViz would show them.
+
+OpenGL through pyrender on EGL (works with Mesa's software rasteriser: no GPU, no display),
+OSMesa next, and a pure-numpy rasteriser where there is no OpenGL at all. pyrender, trimesh,
+PIL and imageio are imported only when something is drawn or written.
+
+>>> from bras_kit import arm                                        # doctest: +SKIP
+>>> image = render_pose(arm(), {"epaule": 0.8, "coude": 1.2}, view="front")
+>>> save_gif(render_motion(arm(), states), "bras.gif", fps=20)
+"""
+
+from __future__ import annotations
+
+from .display import show_gif, show_image, show_video
+from .options import BACKENDS, VIEWS, RenderOptions, parse_color, parse_size, render_options
+from .renderer import Frames, Renderer, configurations, render_motion, render_pose
+from .sequence import (
+    GifWriter,
+    Mp4Writer,
+    Progress,
+    gif_bytes,
+    save_frames,
+    save_gif,
+    save_mp4,
+    save_png,
+)
+
+__all__ = [
+    "BACKENDS",
+    "VIEWS",
+    "Frames",
+    "GifWriter",
+    "Mp4Writer",
+    "Progress",
+    "RenderOptions",
+    "Renderer",
+    "configurations",
+    "gif_bytes",
+    "parse_color",
+    "parse_size",
+    "render_motion",
+    "render_options",
+    "render_pose",
+    "save_frames",
+    "save_gif",
+    "save_mp4",
+    "save_png",
+    "show_gif",
+    "show_image",
+    "show_video",
+]

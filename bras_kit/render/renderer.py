@@ -1,0 +1,224 @@
+"""The renderer: a robot's scene, a camera framing the poses to show, and a backend drawing them.
+
+One :class:`Renderer` keeps one backend (one OpenGL context) for any number of pictures, so
+a sequence or a notebook slider only moves the links between frames.
+"""
+
+from __future__ import annotations
+
+import math
+import sys
+from collections.abc import Iterator, Mapping, Sequence
+from typing import Any
+
+import numpy as np
+
+from ..errors import BackendError, ParameterError
+from ..kinematics import TFTree, fk_batch, tf_tree
+from ..model import Robot
+from .camera import Camera, fit_camera
+from .options import RenderOptions, render_options
+from .scene import Scene, build_scene
+from .sequence import Progress
+
+WORKSPACE_SAMPLES = 256
+_announced_fallback = False
+
+
+def configurations(tree: TFTree, value: Any) -> np.ndarray:
+    """Joint values as an (N, dof) array in ``tree.dof`` order.
+
+    ``value``: a {joint: value} dict, an array (N, dof) or (dof,), a list of dicts, or joint
+    states with ``names`` and ``positions`` (columns in any order; missing joints stay at 0).
+    """
+    if value is None:
+        return np.zeros((1, len(tree.dof)))
+    if isinstance(value, Mapping):
+        return tree.config_vector(value)[None, :]
+    names, positions = getattr(value, "names", None), getattr(value, "positions", None)
+    if names is not None and positions is not None and not callable(positions):
+        positions = np.asarray(positions, dtype=float).reshape(len(np.atleast_1d(positions)), -1)
+        out = np.zeros((len(positions), len(tree.dof)))
+        for column, name in enumerate(names):
+            if name not in tree.dof:
+                raise ParameterError(f"joint states name '{name}', which is not a movable joint of the robot",
+                                     hint="movable joints: " + (", ".join(tree.dof) or "none"))
+            out[:, tree.dof.index(name)] = positions[:, column]
+        return out
+    if isinstance(value, (list, tuple)) and value and isinstance(value[0], Mapping):
+        return np.stack([tree.config_vector(item) for item in value])
+    q = np.asarray(value, dtype=float)
+    if q.ndim == 1:
+        q = q[None, :]
+    if q.ndim != 2 or q.shape[1] != len(tree.dof):
+        raise ParameterError(f"expected joint values with {len(tree.dof)} columns ({', '.join(tree.dof)}), "
+                             f"got shape {q.shape}")
+    return q
+
+
+def workspace_samples(tree: TFTree, count: int = WORKSPACE_SAMPLES) -> np.ndarray:
+    """Poses spread over the joint limits (a grid for up to 3 joints, random beyond), with the zero pose."""
+    bounds = []
+    for joint in tree.dof_joints():
+        low, high = joint.bounds()
+        if not (math.isfinite(low) and math.isfinite(high)):
+            low, high = (-math.pi, math.pi) if joint.type != "prismatic" else (0.0, 0.0)
+        bounds.append((low, high))
+    if not bounds:
+        return np.zeros((1, 0))
+    if len(bounds) <= 3:
+        axes = [np.linspace(low, high, 7) for low, high in bounds]
+        grid = np.stack(np.meshgrid(*axes, indexing="ij"), axis=-1).reshape(-1, len(bounds))
+    else:
+        rng = np.random.default_rng(0)
+        low, high = np.array(bounds).T
+        grid = low + rng.random((count, len(bounds))) * (high - low)
+    return np.vstack([np.zeros((1, len(bounds))), grid])
+
+
+def open_backend(scene: Scene, camera: Camera, options: RenderOptions):  # type: ignore[no-untyped-def]
+    """The backend asked for; with 'auto', OpenGL (EGL, then OSMesa) or else, saying so once, software."""
+    from ._software import SoftwareBackend
+
+    if options.backend == "software":
+        return SoftwareBackend(scene, camera, options.background)
+    try:
+        from ._pyrender import PyrenderBackend, choose_platform
+
+        platform = choose_platform(options.backend)
+        return PyrenderBackend(scene, camera, options.background, platform,
+                               antialias=options.antialias is not False)
+    except ImportError as exc:
+        error = BackendError(f"cannot load pyrender: {exc}", hint="pip install pyrender, or use backend software")
+    except BackendError as exc:
+        error = exc
+    if options.backend != "auto":
+        raise error
+    global _announced_fallback
+    if not _announced_fallback:
+        _announced_fallback = True
+        print(f"bras-kit render: no OpenGL here ({error.message}); using the software renderer, slower",
+              file=sys.stderr)
+    return SoftwareBackend(scene, camera, options.background)
+
+
+class Renderer:
+    """Draws one robot again and again with the same camera and backend.
+
+    ``fit`` chooses what the camera keeps in view: poses (any form :func:`configurations`
+    takes), or None for poses spread over the joint limits, so a slider never moves the arm
+    out of the picture. Use it as a context manager, or call :meth:`close`.
+
+    >>> with Renderer(arm(), view="front") as renderer:   # doctest: +SKIP
+    ...     image = renderer.render({"epaule": 0.5})
+    """
+
+    def __init__(self, robot: Robot, *, fit: Any = None, **opts: Any) -> None:
+        self.options = render_options(**opts)
+        self.tree = tf_tree(robot)
+        fit_q = workspace_samples(self.tree) if fit is None else configurations(self.tree, fit)
+        self.scene, points = build_scene(self.tree, fk_batch(self.tree, fit_q), tf=self.options.tf,
+                                         grid=self.options.grid, package_paths=self.options.package_paths)
+        self.camera = fit_camera(points, self.options)
+        self._backend = open_backend(self.scene, self.camera, self.options)
+
+    @property
+    def backend(self) -> str:
+        """The backend in use: 'egl', 'osmesa' or 'software'."""
+        return self._backend.name
+
+    def render(self, config: Any = None) -> np.ndarray:
+        """The picture of one pose ({joint: value} or a vector in ``tree.dof`` order): (H, W, 3) uint8."""
+        q = configurations(self.tree, config)
+        if len(q) != 1:
+            raise ParameterError(f"render draws one pose, got {len(q)}", hint="use frames() for a sequence")
+        return self._backend.render(fk_batch(self.tree, q[0]))
+
+    def frames(self, positions: Any) -> Iterator[np.ndarray]:
+        """Pictures of each pose of ``positions`` (any form :func:`configurations` takes), one at a time."""
+        q = configurations(self.tree, positions)
+        for start in range(0, len(q), 256):
+            for transforms in fk_batch(self.tree, q[start:start + 256]):
+                yield self._backend.render(transforms)
+
+    def close(self) -> None:
+        backend, self._backend = getattr(self, "_backend", None), None
+        if backend is not None:
+            backend.close()
+
+    def __enter__(self) -> Renderer:
+        return self
+
+    def __exit__(self, *exc: object) -> None:
+        self.close()
+
+
+class Frames:
+    """The pictures of a motion, drawn when iterated (memory stays flat), with a progress bar.
+
+    ``len(frames)`` is the number of poses; iterate as often as needed (each pass draws again),
+    ``frames[i]`` draws one, ``sample(k)`` draws k spread over the motion. One renderer serves
+    them all until the end of a pass or :meth:`close`.
+    """
+
+    def __init__(self, robot: Robot, positions: Any, *, progress: bool | None = None,
+                 label: str = "rendering", **opts: Any) -> None:
+        self._tree = tf_tree(robot)
+        self.positions = configurations(self._tree, positions)
+        # sequences leave antialiasing off unless asked: twice the frame rate on Mesa's llvmpipe
+        self._opts = {"antialias": False, **opts}
+        self._robot, self._progress, self._label = robot, progress, label
+        render_options(**self._opts)  # refuse bad options now, not at the first frame
+        self._renderer: Renderer | None = None
+
+    def __len__(self) -> int:
+        return len(self.positions)
+
+    @property
+    def renderer(self) -> Renderer:
+        if self._renderer is None:
+            self._renderer = Renderer(self._robot, fit=self.positions, **self._opts)
+        return self._renderer
+
+    def __getitem__(self, index: int) -> np.ndarray:
+        return self.renderer.render(self.positions[index])
+
+    def sample(self, count: int) -> list[np.ndarray]:
+        picks = np.unique(np.linspace(0, len(self) - 1, max(1, min(count, len(self)))).round().astype(int))
+        return [self[int(i)] for i in picks]
+
+    def __iter__(self) -> Iterator[np.ndarray]:
+        progress = Progress(len(self), self._label, enabled=self._progress)
+        try:
+            for frame in self.renderer.frames(self.positions):
+                yield frame
+                progress.update()
+        finally:
+            progress.close()
+            self.close()
+
+    def close(self) -> None:
+        renderer, self._renderer = self._renderer, None
+        if renderer is not None:
+            renderer.close()
+
+    def __enter__(self) -> Frames:
+        return self
+
+    def __exit__(self, *exc: object) -> None:
+        self.close()
+
+
+def render_pose(robot: Robot, config: Mapping[str, float] | Sequence[float] | None = None, **opts: Any) -> np.ndarray:
+    """One picture of ``robot`` at ``config`` (missing joints at 0), framed on that pose: (H, W, 3) uint8."""
+    with Renderer(robot, fit=config, **opts) as renderer:
+        return renderer.render(config)
+
+
+def render_motion(robot: Robot, states: Any, *, progress: bool | None = None, **opts: Any) -> Frames:
+    """The pictures of a motion (joint states, or an (N, dof) array), framed so the arm never leaves them.
+
+    Returns a :class:`Frames` sequence drawn lazily: pass it to :func:`save_gif` /
+    :func:`save_mp4`, iterate it, or ``list()`` it to keep every picture in memory.
+    """
+    return Frames(robot, states, progress=progress, **opts)

@@ -1,0 +1,210 @@
+"""The robot as coloured triangle meshes fixed to its links, plus the ground grid and TF axes.
+
+Backends receive this description and only move parts by their link's transform, so what
+is drawn is decided once, here, from the model (no XML is read again). Vertices are kept in
+the link frame with the visual's origin and scale already applied.
+"""
+
+from __future__ import annotations
+
+import math
+import os
+from collections.abc import Sequence
+from dataclasses import dataclass
+
+import numpy as np
+
+from ..errors import ModelError
+from ..kinematics import TFTree, origin_matrix
+from ..model import Robot, Visual
+
+DEFAULT_COLOR = (0.7, 0.7, 0.7, 1.0)  # a visual with no material, as RViz shows it
+GRID_COLOR = (0.78, 0.78, 0.78)
+AXIS_COLORS = ((1.0, 0.0, 0.0, 1.0), (0.0, 1.0, 0.0, 1.0), (0.0, 0.0, 1.0, 1.0))  # x y z
+CYLINDER_SECTIONS = 32
+
+
+@dataclass
+class Part:
+    """One coloured mesh moving with link ``tree.links[link]``; ``unlit`` ones keep their pure colour."""
+
+    link: int
+    vertices: np.ndarray  # (V, 3) in the link frame
+    faces: np.ndarray  # (F, 3) vertex indices, counter-clockwise seen from outside
+    color: tuple[float, float, float, float]  # sRGB, 0..1
+    unlit: bool = False
+    label: str = ""
+
+
+@dataclass
+class Grid:
+    """Ground lines in the world frame: ``segments`` has shape (S, 2, 3)."""
+
+    segments: np.ndarray
+    color: tuple[float, float, float] = GRID_COLOR
+
+
+@dataclass
+class Scene:
+    tree: TFTree
+    parts: list[Part]
+    grid: Grid | None
+
+
+def resolve_mesh_path(filename: str, robot: Robot, package_paths: Sequence[str] = (),
+                      line: int | None = None) -> str:
+    """The file a mesh ``filename`` names: ``package://pkg/...``, ``file://...``, or relative to the URDF."""
+    from ..xacrotools import find_package, package_roots
+
+    if filename.startswith("package://"):
+        package, _, rest = filename[len("package://"):].partition("/")
+        roots = list(package_paths)
+        if robot.path and os.path.exists(robot.path):
+            # a URDF inside its package (pkg/urdf/x.urdf) finds its own meshes
+            roots.append(os.path.dirname(os.path.dirname(os.path.dirname(os.path.abspath(robot.path)))))
+        try:
+            folder = find_package(package, package_roots(roots))
+        except Exception:
+            raise ModelError(f"mesh '{filename}': package '{package}' not found",
+                             path=robot.path, line=line, element="mesh",
+                             hint=f"pass --package-path DIR, a folder holding {package}/ (with its package.xml)") from None
+        path = os.path.join(folder, rest)
+    elif filename.startswith("file://"):
+        path = filename[len("file://"):]
+    else:
+        base = os.path.dirname(os.path.abspath(robot.path)) if robot.path and os.path.exists(robot.path) else os.getcwd()
+        path = os.path.join(base, filename)
+    if not os.path.isfile(path):
+        raise ModelError(f"mesh file not found: {path}", path=robot.path, line=line, element="mesh",
+                         hint="check the filename, or pass --package-path for package:// names")
+    return path
+
+
+def visual_mesh(robot: Robot, visual: Visual, package_paths: Sequence[str] = ()):  # type: ignore[no-untyped-def]
+    """The visual's shape as a ``trimesh.Trimesh`` in the link frame, or None when it has no usable shape."""
+    import trimesh
+
+    g = visual.geometry
+    if g is None:
+        return None
+    if g.kind == "box" and g.size is not None:
+        mesh = trimesh.creation.box(extents=[abs(v) for v in g.size])
+    elif g.kind == "cylinder" and g.radius and g.length:
+        mesh = trimesh.creation.cylinder(radius=abs(g.radius), height=abs(g.length), sections=CYLINDER_SECTIONS)
+    elif g.kind == "sphere" and g.radius:
+        mesh = trimesh.creation.icosphere(subdivisions=2, radius=abs(g.radius))
+    elif g.kind == "mesh" and g.filename:
+        path = resolve_mesh_path(g.filename, robot, package_paths, g.line)
+        try:
+            mesh = trimesh.load(path, force="mesh")
+        except Exception as exc:
+            raise ModelError(f"cannot read mesh {path}: {exc}", path=robot.path, line=g.line,
+                             element="mesh", hint="give an STL, OBJ or DAE file") from None
+        if not isinstance(mesh, trimesh.Trimesh) or len(mesh.faces) == 0:
+            raise ModelError(f"mesh {path} holds no triangles", path=robot.path, line=g.line,
+                             element="mesh", hint="export the mesh as triangles (STL, OBJ or DAE)")
+        if g.scale is not None:
+            mesh.apply_scale(np.asarray(g.scale, dtype=float))
+    else:
+        return None
+    mesh.apply_transform(origin_matrix(visual.origin.xyz, visual.origin.rpy))
+    return mesh
+
+
+def robot_parts(tree: TFTree, package_paths: Sequence[str] = ()) -> list[Part]:
+    """A :class:`Part` per drawable visual of every link, with the material's colour."""
+    robot = tree.robot
+    parts = []
+    for index, name in enumerate(tree.links):
+        link = robot.link(name)
+        if link is None:
+            continue
+        for number, visual in enumerate(link.visuals, 1):
+            mesh = visual_mesh(robot, visual, package_paths)
+            if mesh is None:
+                continue
+            color = robot.material_rgba(visual) or DEFAULT_COLOR
+            parts.append(Part(index, np.asarray(mesh.vertices, dtype=float), np.asarray(mesh.faces, dtype=np.int64),
+                              tuple(float(c) for c in color), label=f"{name} visual {number}"))  # type: ignore[arg-type]
+    return parts
+
+
+def triad_parts(tree: TFTree, length: float) -> list[Part]:
+    """Red, green and blue rods along each link's x, y and z axes (RViz's TF display)."""
+    import trimesh
+
+    radius = length / 22.0
+    rods = []
+    for axis, color in zip(np.eye(3), AXIS_COLORS):
+        rod = trimesh.creation.cylinder(radius=radius, segment=[np.zeros(3), axis * length], sections=12)
+        rods.append((np.asarray(rod.vertices, dtype=float), np.asarray(rod.faces, dtype=np.int64), color))
+    return [Part(i, v.copy(), f, c, unlit=True, label=f"{name} axes")
+            for i, name in enumerate(tree.links) for v, f, c in rods]
+
+
+def part_corners(parts: Sequence[Part]) -> np.ndarray:
+    """The 8 corners of each part's box in its link frame: shape (P, 8, 3)."""
+    out = np.empty((len(parts), 8, 3))
+    for k, part in enumerate(parts):
+        low, high = part.vertices.min(axis=0), part.vertices.max(axis=0)
+        out[k] = [[(low, high)[i][0], (low, high)[j][1], (low, high)[m][2]]
+                  for i in (0, 1) for j in (0, 1) for m in (0, 1)]
+    return out
+
+
+def world_points(parts: Sequence[Part], transforms: np.ndarray) -> np.ndarray:
+    """Corners of every part over every pose (``transforms``: (N, L, 4, 4)) in the world: (M, 3)."""
+    if not parts:
+        return np.zeros((1, 3))
+    corners = part_corners(parts)  # (P, 8, 3)
+    links = np.array([p.link for p in parts])
+    chosen = transforms[:, links]  # (N, P, 4, 4)
+    rot, pos = chosen[..., :3, :3], chosen[..., :3, 3]
+    points = np.einsum("npij,pkj->npki", rot, corners) + pos[:, :, None, :]
+    return points.reshape(-1, 3)
+
+
+def floor_height(parts: Sequence[Part], transforms: np.ndarray) -> float:
+    """Where the ground is: the bottom of what never moves (the base), else z = 0 or below the lowest point."""
+    static = [p for p in parts if np.allclose(transforms[:, p.link], transforms[0, p.link], atol=1e-9)]
+    if static:
+        return float(world_points(static, transforms[:1])[:, 2].min())
+    return min(0.0, float(world_points(parts, transforms)[:, 2].min()))
+
+
+def _nice_step(span: float) -> float:
+    """1, 2 or 5 times a power of ten, close to ``span``."""
+    exponent = math.floor(math.log10(span))
+    for factor in (1.0, 2.0, 5.0, 10.0):
+        if factor * 10 ** exponent >= span:
+            return factor * 10 ** exponent
+    return 10.0 ** (exponent + 1)  # pragma: no cover - the loop always returns
+
+
+def ground_grid(points: np.ndarray, floor: float) -> Grid:
+    """A square grid centred on the world origin, wide enough for every point's footprint."""
+    reach = float(np.abs(points[:, :2]).max()) if len(points) else 0.0
+    reach = max(reach * 1.25, 0.1)
+    step = _nice_step(reach / 5.0)
+    half = math.ceil(reach / step) * step
+    ticks = np.arange(-half, half + step / 2, step)
+    segments = []
+    for v in ticks:
+        segments.append([(v, -half, floor), (v, half, floor)])
+        segments.append([(-half, v, floor), (half, v, floor)])
+    return Grid(np.asarray(segments, dtype=float))
+
+
+def build_scene(tree: TFTree, fit_transforms: np.ndarray, *, tf: bool = False, grid: bool = True,
+                package_paths: Sequence[str] = ()) -> tuple[Scene, np.ndarray]:
+    """The scene and the world points the camera must keep in view (every part over ``fit_transforms``)."""
+    parts = robot_parts(tree, package_paths)
+    points = world_points(parts, fit_transforms)
+    if tf:
+        extent = float(np.ptp(points, axis=0).max()) if len(parts) else 0.0
+        parts = parts + triad_parts(tree, max(0.18 * extent, 0.05))
+        points = world_points(parts, fit_transforms)
+    ground = None
+    if grid:
+        ground = ground_grid(points, floor_height(parts, fit_transforms) if parts else 0.0)
+    return Scene(tree, parts, ground), points

@@ -1,0 +1,312 @@
+"""Writing frame sequences: GIF, MP4 and numbered PNGs, one frame at a time, with a progress bar.
+
+Frames are streamed: each writer keeps at most the previous frame, so memory stays flat
+however long the motion is. The GIF writer maps every frame onto one adaptive palette
+(computed once from a few frames) and stores only the rectangle that changed since the
+previous frame, which keeps animations of an arm on a still background small and fast.
+"""
+
+from __future__ import annotations
+
+import io
+import os
+import struct
+import sys
+import time
+from collections.abc import Iterable, Iterator, Sequence
+from typing import IO, Any, Protocol
+
+import numpy as np
+
+from ..errors import BackendError, ParameterError
+
+PALETTE_SAMPLES = 4  # frames the GIF palette is computed from
+_LUT_BITS = 5  # colour -> palette index table: 5 bits per channel (32768 entries)
+
+
+class FrameWriter(Protocol):
+    def write(self, frame: np.ndarray) -> None: ...
+    def close(self) -> None: ...
+
+
+class Progress:
+    """A one-line progress bar on stderr, drawn only when stderr is a terminal."""
+
+    def __init__(self, total: int, label: str = "rendering", *, stream: IO[str] | None = None,
+                 enabled: bool | None = None) -> None:
+        self.stream = stream if stream is not None else sys.stderr
+        if enabled is None:
+            isatty = getattr(self.stream, "isatty", None)
+            enabled = bool(isatty and isatty())
+        self.enabled = enabled
+        self.total, self.label, self.done = max(total, 1), label, 0
+        self._start = self._last = time.monotonic()
+
+    def update(self, count: int = 1) -> None:
+        self.done += count
+        now = time.monotonic()
+        if self.enabled and (now - self._last >= 0.1 or self.done >= self.total):
+            self._last = now
+            self._draw(now)
+
+    def _draw(self, now: float) -> None:
+        share = min(self.done / self.total, 1.0)
+        filled = int(share * 30)
+        elapsed = now - self._start
+        left = elapsed / share - elapsed if share > 0 else 0.0
+        self.stream.write(f"\r{self.label} [{'#' * filled}{'.' * (30 - filled)}] "
+                          f"{self.done}/{self.total} frames, {left:4.1f} s left ")
+        self.stream.flush()
+
+    def close(self) -> None:
+        if self.enabled:
+            elapsed = time.monotonic() - self._start
+            self.stream.write(f"\r{self.label} [{'#' * 30}] {self.done}/{self.total} frames "
+                              f"in {elapsed:.1f} s{' ' * 8}\n")
+            self.stream.flush()
+
+
+def _rgb(frame: np.ndarray) -> np.ndarray:
+    frame = np.asarray(frame)
+    if frame.ndim != 3 or frame.shape[2] not in (3, 4) or frame.dtype != np.uint8:
+        raise ParameterError(f"a frame must be an (H, W, 3) uint8 image, got {frame.dtype} {frame.shape}")
+    return frame[..., :3]
+
+
+# ---------------------------------------------------------------- GIF
+
+
+def gif_delay(fps: float) -> int:
+    """Frame delay in hundredths of a second (GIF's unit) for ``fps``; at least 2, as browsers require."""
+    return max(2, round(100.0 / fps))
+
+
+class _PaletteMap:
+    """An adaptive 256-colour palette and a table taking any colour to its nearest entry."""
+
+    def __init__(self, samples: Sequence[np.ndarray]) -> None:
+        from PIL import Image
+
+        tiles = [_rgb(s)[::2, ::2] for s in samples]
+        width = max(t.shape[1] for t in tiles)
+        stacked = np.concatenate([np.pad(t, ((0, 0), (0, width - t.shape[1]), (0, 0)), mode="edge") for t in tiles])
+        quantised = Image.fromarray(np.ascontiguousarray(stacked)).quantize(
+            colors=256, method=Image.Quantize.MEDIANCUT, dither=Image.Dither.NONE)
+        count = len(quantised.getcolors(256) or []) or 256
+        palette = np.asarray(quantised.getpalette()[: 3 * 256], dtype=np.uint8).reshape(-1, 3)
+        palette = palette[: max(count, 1)]
+        self.palette = np.zeros((256, 3), dtype=np.uint8)
+        self.palette[: len(palette)] = palette
+        from scipy.spatial import cKDTree
+
+        levels = (np.arange(1 << _LUT_BITS) << (8 - _LUT_BITS)) + (1 << (7 - _LUT_BITS))
+        r, g, b = np.meshgrid(levels, levels, levels, indexing="ij")
+        cube = np.stack([r.ravel(), g.ravel(), b.ravel()], axis=1).astype(np.float64)
+        self._table = cKDTree(palette.astype(np.float64)).query(cube)[1].astype(np.uint8)
+
+    def indices(self, frame: np.ndarray) -> np.ndarray:
+        shift = 8 - _LUT_BITS
+        rgb = _rgb(frame)
+        key = ((rgb[..., 0].astype(np.uint16) >> shift) << (2 * _LUT_BITS)) \
+            | ((rgb[..., 1].astype(np.uint16) >> shift) << _LUT_BITS) | (rgb[..., 2].astype(np.uint16) >> shift)
+        return self._table[key]
+
+
+class GifWriter:
+    """Streams frames into a looping GIF (a path or a binary file object)."""
+
+    def __init__(self, target: str | os.PathLike[str] | IO[bytes], fps: float,
+                 palette_samples: Sequence[np.ndarray]) -> None:
+        if not palette_samples:
+            raise ParameterError("a GIF palette needs at least one sample frame")
+        self._palette = _PaletteMap(palette_samples)
+        self._delay = gif_delay(fps)
+        self._own = not hasattr(target, "write")
+        self._file: IO[bytes] = open(target, "wb") if self._own else target  # type: ignore[arg-type,assignment]
+        self._previous: np.ndarray | None = None
+        self.frames = 0
+
+    def _header(self, width: int, height: int) -> bytes:
+        loop = b"!\xff\x0bNETSCAPE2.0\x03\x01" + struct.pack("<H", 0) + b"\x00"
+        return (b"GIF89a" + struct.pack("<HHBBB", width, height, 0xF7, 0, 0)
+                + self._palette.palette.tobytes() + loop)
+
+    def write(self, frame: np.ndarray) -> None:
+        from PIL import GifImagePlugin, Image
+
+        index = self._palette.indices(frame)
+        if self._previous is None:
+            self._file.write(self._header(index.shape[1], index.shape[0]))
+            top, left, patch = 0, 0, index
+        else:
+            if index.shape != self._previous.shape:
+                raise ParameterError("all frames of a GIF must have the same size")
+            changed = index != self._previous
+            rows, cols = np.flatnonzero(changed.any(axis=1)), np.flatnonzero(changed.any(axis=0))
+            if len(rows) == 0:
+                top, left, patch = 0, 0, index[:1, :1]
+            else:
+                top, left = int(rows[0]), int(cols[0])
+                patch = index[top:int(rows[-1]) + 1, left:int(cols[-1]) + 1]
+        image = Image.fromarray(np.ascontiguousarray(patch), mode="L")
+        # disposal 1: keep this frame under the next one, which only paints what changed
+        for chunk in GifImagePlugin.getdata(image, (left, top), duration=self._delay * 10, disposal=1):
+            self._file.write(chunk)
+        self._previous = index
+        self.frames += 1
+
+    def close(self) -> None:
+        if self._file is None:
+            return
+        self._file.write(b";")
+        if self._own:
+            self._file.close()
+        self._file = None  # type: ignore[assignment]
+
+
+# ---------------------------------------------------------------- MP4
+
+
+class Mp4Writer:
+    """H.264 in yuv420p (plays everywhere) through imageio-ffmpeg; odd sizes are padded to even."""
+
+    def __init__(self, path: str | os.PathLike[str], fps: float) -> None:
+        self._path, self._fps = os.fspath(path), fps
+        self._pipe: Any = None
+        self.frames = 0
+
+    def write(self, frame: np.ndarray) -> None:
+        rgb = _rgb(frame)
+        height, width = rgb.shape[:2]
+        pad_h, pad_w = height % 2, width % 2
+        if pad_h or pad_w:
+            rgb = np.pad(rgb, ((0, pad_h), (0, pad_w), (0, 0)), mode="edge")
+        if self._pipe is None:
+            try:
+                import imageio_ffmpeg
+            except ImportError:
+                raise BackendError("MP4 needs imageio-ffmpeg", hint="pip install imageio-ffmpeg") from None
+            self._pipe = imageio_ffmpeg.write_frames(
+                self._path, (rgb.shape[1], rgb.shape[0]), fps=self._fps, codec="libx264",
+                pix_fmt_in="rgb24", pix_fmt_out="yuv420p", quality=None, macro_block_size=1,
+                ffmpeg_log_level="error", output_params=["-preset", "veryfast", "-crf", "20"])
+            self._pipe.send(None)
+        self._pipe.send(np.ascontiguousarray(rgb))
+        self.frames += 1
+
+    def close(self) -> None:
+        if self._pipe is not None:
+            self._pipe.close()
+            self._pipe = None
+
+
+# ---------------------------------------------------------------- PNG
+
+
+def frame_name(index: int, total: int) -> str:
+    return f"frame_{index:0{max(4, len(str(max(total - 1, 0))))}d}.png"
+
+
+def save_png(image: np.ndarray, path: str | os.PathLike[str] | IO[bytes]) -> None:
+    """Write one picture; the format follows the file's extension (PNG when writing to a file object)."""
+    from PIL import Image
+
+    picture = Image.fromarray(np.ascontiguousarray(_rgb(image)))
+    if hasattr(path, "write"):
+        picture.save(path, format="PNG")  # type: ignore[arg-type]
+        return
+    try:
+        picture.save(os.fspath(path), compress_level=3) if str(path).lower().endswith(".png") \
+            else picture.save(os.fspath(path))
+    except (KeyError, ValueError):
+        raise ParameterError(f"cannot tell the picture format of '{path}'",
+                             hint="end the name with .png (or .jpg, .bmp)") from None
+
+
+class FramesDirWriter:
+    """Numbered PNGs (frame_0000.png ...) in a folder, for video editors and slides."""
+
+    def __init__(self, folder: str | os.PathLike[str], total: int) -> None:
+        self.folder, self.total, self.frames = os.fspath(folder), total, 0
+        os.makedirs(self.folder, exist_ok=True)
+
+    def write(self, frame: np.ndarray) -> None:
+        save_png(frame, os.path.join(self.folder, frame_name(self.frames, self.total)))
+        self.frames += 1
+
+    def close(self) -> None:
+        pass
+
+
+# ---------------------------------------------------------------- whole sequences
+
+
+def palette_samples(frames: Iterable[np.ndarray], count: int = PALETTE_SAMPLES) -> tuple[list[np.ndarray], Iterator[np.ndarray]]:
+    """Frames to compute a GIF palette from, and an iterator over all frames.
+
+    A sequence that can draw any frame (``sample`` method, like the frames of
+    :func:`~bras_kit.render.render_motion`) gives frames spread over the whole motion; any
+    other iterable lends its first ``count`` frames, which are put back in front.
+    """
+    sample = getattr(frames, "sample", None)
+    if callable(sample):
+        return list(sample(count)), iter(frames)
+    iterator = iter(frames)
+    head = []
+    for frame in iterator:
+        head.append(frame)
+        if len(head) == count:
+            break
+
+    def chained() -> Iterator[np.ndarray]:
+        yield from head
+        yield from iterator
+
+    return head, chained()
+
+
+def write_frames(frames: Iterable[np.ndarray], writers: Sequence[FrameWriter]) -> int:
+    """Feed each frame to every writer, then close them; returns the number of frames."""
+    count = 0
+    try:
+        for frame in frames:
+            for writer in writers:
+                writer.write(frame)
+            count += 1
+    finally:
+        for writer in writers:
+            writer.close()
+    return count
+
+
+def save_gif(frames: Iterable[np.ndarray], path: str | os.PathLike[str] | IO[bytes], fps: float = 20.0) -> int:
+    """Write ``frames`` as a looping GIF at ``fps`` frames per second; returns the frame count."""
+    _check_fps(fps)
+    samples, stream = palette_samples(frames)
+    if not samples:
+        raise ParameterError("no frames to write", hint="give at least one frame")
+    return write_frames(stream, [GifWriter(path, fps, samples)])
+
+
+def save_mp4(frames: Iterable[np.ndarray], path: str | os.PathLike[str], fps: float = 20.0) -> int:
+    """Write ``frames`` as an H.264 MP4 at ``fps`` frames per second; returns the frame count."""
+    _check_fps(fps)
+    return write_frames(frames, [Mp4Writer(path, fps)])
+
+
+def save_frames(frames: Iterable[np.ndarray], folder: str | os.PathLike[str]) -> int:
+    """Write ``frames`` as frame_0000.png, frame_0001.png ... in ``folder``; returns the count."""
+    total = len(frames) if hasattr(frames, "__len__") else 10_000  # type: ignore[arg-type]
+    return write_frames(frames, [FramesDirWriter(folder, total)])
+
+
+def gif_bytes(frames: Iterable[np.ndarray], fps: float = 20.0) -> bytes:
+    """A GIF in memory (for notebooks)."""
+    buffer = io.BytesIO()
+    save_gif(frames, buffer, fps)
+    return buffer.getvalue()
+
+
+def _check_fps(fps: float) -> None:
+    if not (isinstance(fps, (int, float)) and 0 < fps <= 120):
+        raise ParameterError(f"fps {fps!r} is out of range", hint="give frames per second between 0 and 120, e.g. 20")

@@ -1,0 +1,248 @@
+"""The validator: URDF defects and the tutorial's pitfalls, as findings with codes and hints.
+
+::
+
+    from bras_kit.validate import validate, validate_path
+    findings = validate(robot, pose={"coude": 2.5}, lang="fr")
+    findings = validate_path("bras.urdf")   # .urdf or .xacro; unreadable files give BK100-BK103
+
+Every rule lives in the registry (:data:`RULES`), one module per family: :mod:`.structure`
+(BK1xx), :mod:`.joints` (BK2xx), :mod:`.pitfalls` (BK3xx), :mod:`.geometry` (BK4xx),
+:mod:`.inertia` (BK5xx). Words come from ``messages_en`` / ``messages_fr``.
+"""
+
+from __future__ import annotations
+
+import dataclasses
+import os
+import re
+from collections.abc import Iterable, Mapping, Sequence
+from typing import Any
+
+from ..errors import BrasKitError, ParameterError, XacroError, XMLSafetyError, XMLSyntaxError
+from ..model import Robot
+from . import geometry, inertia, joints, pitfalls, structure  # noqa: F401  (importing registers the rules)
+from .context import Context
+from .findings import UNREADABLE_CODES, FileResult, Finding, sort_key
+from .i18n import DEFAULT_LANGUAGE, LANGUAGES, check_language, default_language, word
+from .registry import ERROR, INFO, RULES, WARNING, Hit, Rule, run_rules, select_rules
+
+__all__ = [
+    "ERROR", "INFO", "LANGUAGES", "RULES", "UNREADABLE_CODES", "WARNING", "FileResult", "Finding",
+    "Rule", "collect_files", "default_language", "validate", "validate_path",
+]
+
+SOURCE_SUFFIXES = (".urdf", ".xacro")
+
+
+def validate(
+    robot: Robot,
+    *,
+    pose: Mapping[str, float] | None = None,
+    states: Any = None,
+    lang: str = DEFAULT_LANGUAGE,
+    package_paths: Sequence[str] = (),
+    select: Iterable[str] = (),
+    ignore: Iterable[str] = (),
+) -> list[Finding]:
+    """Check a robot model; return its findings sorted by line.
+
+    ``pose`` (joint -> value) is checked against the limits (BK303); ``states`` (a
+    :class:`bras_kit.motion.JointStates`) against limits and velocities (BK304, BK305).
+    A pose or states naming a joint the robot cannot move is a :class:`ParameterError`.
+    ``select``/``ignore`` are code prefixes (``BK3``, ``BK301``).
+    """
+    check_language(lang)
+    context = Context(robot, pose=pose, states=states, package_paths=tuple(package_paths))
+    _check_joint_names(context, pose, "--pose")
+    if states is not None:
+        _check_joint_names(context, dict.fromkeys(states.names, 0.0), "the motion")
+    rules = _rules(select, ignore)
+    findings = [word(r, found, lang) for r, found in run_rules(rules, context)]
+    return sorted(findings, key=sort_key)
+
+
+def validate_path(
+    path: str | os.PathLike[str],
+    *,
+    pose: Mapping[str, float] | None = None,
+    motion: Sequence[str] | None = None,
+    duration: float | None = None,
+    lang: str = DEFAULT_LANGUAGE,
+    package_paths: Sequence[str] = (),
+    mappings: Mapping[str, str] | None = None,
+    select: Iterable[str] = (),
+    ignore: Iterable[str] = (),
+) -> list[Finding]:
+    """Load a ``.urdf`` or ``.xacro`` file and check it.
+
+    A file that cannot be read at all (missing, not well-formed, unsafe XML, xacro failure)
+    gives a single finding BK100-BK103 instead of raising; ``bras-kit validate`` exits 2 on
+    those. ``motion`` specs (``"tutorial"``, ``"coude=1.2*sin(0.7*t)"``, a waypoint file) are
+    sampled at 20 Hz for ``duration`` seconds and checked like ``states``. Only a bad ``pose``
+    or ``motion`` raises (:class:`~bras_kit.errors.ParameterError`).
+    """
+    check_language(lang)
+    path = os.fspath(path)
+    robot_or_failure = load_for_validation(path, mappings=mappings, package_paths=package_paths, lang=lang)
+    if isinstance(robot_or_failure, Finding):
+        return [robot_or_failure]
+    robot = robot_or_failure
+    if path.endswith(".xacro") and not robot.links and robot.root_tag == "robot" \
+            and _defines_macros(path):
+        return [_loader_finding("BK124", Hit("robot", robot.name, None), lang)]
+    states = motion_states(robot, motion, duration) if motion else None
+    findings = validate(robot, pose=pose, states=states, lang=lang, package_paths=package_paths,
+                        select=select, ignore=ignore)
+    if path.endswith(".xacro"):
+        findings = _lines_in_xacro_source(path, findings)
+    return findings
+
+
+def check_robot(robot: Robot, *, motion: Sequence[str] | None = None, duration: float | None = None,
+                **options: Any) -> FileResult:
+    """An already loaded robot (the built-in arm) checked like a file, as a :class:`FileResult`."""
+    states = motion_states(robot, motion, duration) if motion else None
+    return FileResult(robot.path or "<robot>", validate(robot, states=states, **options))
+
+
+# ---------------------------------------------------------------- files
+
+
+def collect_files(paths: Iterable[str]) -> list[str]:
+    """The files to check: files as given, folders searched recursively for *.urdf and *.xacro
+    (hidden folders skipped, sorted). A path that does not exist is kept: it becomes BK103."""
+    out: list[str] = []
+    for path in paths:
+        if not os.path.isdir(path):
+            out.append(path)
+            continue
+        for folder, dirs, files in os.walk(path):
+            dirs[:] = sorted(d for d in dirs if not d.startswith("."))
+            out.extend(os.path.join(folder, f) for f in sorted(files) if f.endswith(SOURCE_SUFFIXES))
+    return out
+
+
+def load_for_validation(path: str, *, mappings: Mapping[str, str] | None = None,
+                        package_paths: Sequence[str] = (), lang: str = DEFAULT_LANGUAGE) -> Robot | Finding:
+    """The robot in ``path``, or the finding (BK100-BK103) saying why it cannot be read."""
+    from ..authoring import load
+
+    if os.path.isdir(path):
+        return _loader_finding("BK103", Hit("file", None, None, {"path": path}, "folder"), lang)
+    if not os.path.exists(path):
+        return _loader_finding("BK103", Hit("file", None, None, {"path": path}, "missing"), lang)
+    try:
+        return load(path, mappings=mappings, package_paths=package_paths)
+    except BrasKitError as exc:
+        return _unreadable(path, exc, lang)
+
+
+def _unreadable(path: str, exc: BrasKitError, lang: str) -> Finding:
+    other = exc.path if exc.path and os.path.abspath(exc.path) != os.path.abspath(path) else None
+    where = f"{other}:{exc.line}: " if other and exc.line else (f"{other}: " if other else "")
+    line = None if other else exc.line
+    if isinstance(exc, XMLSafetyError):
+        message = exc.message
+        variant = ("undefined" if "undefined entity" in message else "dtd" if "DTD" in message
+                   else "entity" if "entity declaration" in message
+                   else "external" if "external entity" in message else "")
+        hit = Hit("file", None, line, {"where": f" ({where.rstrip(': ')})" if where else ""}, variant)
+        return _loader_finding("BK101", hit, lang)
+    if isinstance(exc, XMLSyntaxError):
+        detail = exc.message.removeprefix("not well-formed XML: ")
+        return _loader_finding("BK100", Hit("file", None, line, {"detail": where + detail}), lang)
+    if isinstance(exc, XacroError):
+        detail = exc.message.removeprefix("xacro failed: ")
+        return _loader_finding("BK102", Hit("file", None, line, {"detail": where + detail}, _xacro_kind(detail)), lang)
+    return _loader_finding("BK103", Hit("file", None, line, {"path": path, "detail": exc.message}), lang)
+
+
+def _xacro_kind(message: str) -> str:
+    lowered = message.lower()
+    if lowered.startswith("refused the expression") or "cannot read the expression" in lowered:
+        return "unsafe"
+    if "$(find" in message:
+        return "package"
+    if "substitution arg" in lowered or ("arg" in lowered and "undefined" in lowered):
+        return "arg"
+    if "undefined property" in lowered or "is not defined" in lowered:
+        return "property"
+    if "no such file" in lowered:
+        return "include"
+    if "not well-formed" in lowered or "mismatched tag" in lowered:
+        return "xml"
+    return ""
+
+
+def _loader_finding(code: str, found: Hit, lang: str) -> Finding:
+    return word(RULES[code], found, lang)
+
+
+def _defines_macros(path: str) -> bool:
+    try:
+        with open(path, encoding="utf-8", errors="replace") as handle:
+            return "<xacro:macro" in handle.read()
+    except OSError:
+        return False
+
+
+_NAME = re.compile(r"""<(link|joint|material|robot)\b[^>]*?\bname\s*=\s*["']([^"']*)["']""")
+
+
+def _lines_in_xacro_source(path: str, findings: list[Finding]) -> list[Finding]:
+    """Point findings at the xacro source rather than the expanded text: the line of the
+    element with that name when the name is written literally once; otherwise no line."""
+    try:
+        with open(path, encoding="utf-8", errors="replace") as handle:
+            text = handle.read()
+    except OSError:
+        return [dataclasses.replace(f, line=None) for f in findings]
+    lines: dict[tuple[str, str], int | None] = {}
+    for match in _NAME.finditer(text):
+        key = (match.group(1), match.group(2))
+        lines[key] = None if key in lines else text.count("\n", 0, match.start()) + 1
+    return [dataclasses.replace(f, line=lines.get((f.element, f.name or ""))) for f in findings]
+
+
+# ---------------------------------------------------------------- pose and motion
+
+
+def _check_joint_names(context: Context, values: Mapping[str, float] | None, source: str) -> None:
+    for name in values or {}:
+        joint = context.joints.get(name)
+        movable = [j.name for j in context.robot.movable_joints() if j.name]
+        hint = "movable joints: " + (", ".join(movable) or "none")
+        where = context.robot.path
+        if joint is None:
+            raise ParameterError(f"{source} names joint '{name}', which this robot does not have",
+                                 path=where, hint=hint)
+        if not joint.movable:
+            why = f"follows '{joint.mimic.joint}'" if joint.mimic is not None else f"is {joint.type}"
+            raise ParameterError(f"{source} sets joint '{name}', which {why} and cannot be set",
+                                 path=where, hint=hint)
+
+
+def motion_states(robot: Robot, specs: Sequence[str] | None, duration: float | None = None) -> Any:
+    """Sample the motion given by ``specs`` (see :func:`bras_kit.motion.motion_from_specs`).
+
+    Returns None when the robot's links do not form a tree (the structure rules say why).
+    """
+    from ..errors import ModelError
+    from ..motion import motion_from_specs, sample
+
+    try:
+        return sample(motion_from_specs(robot, list(specs or [])), duration=duration)
+    except ModelError:
+        return None
+    except ParameterError as exc:
+        exc.path = exc.path or robot.path
+        raise
+
+
+def _rules(select: Iterable[str], ignore: Iterable[str]) -> list[Rule]:
+    try:
+        return select_rules(select, ignore)
+    except ValueError as exc:
+        raise ParameterError(f"no rule code starts with '{exc}'",
+                             hint="codes look like BK301; families are BK1 to BK5 (bras-kit explain lists them)") from None

@@ -1,0 +1,130 @@
+"""The rule registry: every check has a stable code, a name, a severity and one small function.
+
+A rule function reads a :class:`~bras_kit.validate.context.Context` (the robot model, its
+issues and a few indexes built once) and yields :class:`Hit` objects: where the defect is and
+the numbers that describe it, never words. Wording comes later, in the user's language, from
+``messages_en`` / ``messages_fr`` (see :mod:`bras_kit.validate.i18n`).
+
+Codes by family: BK1xx structure, BK2xx joints, BK3xx the tutorial's pitfalls, BK4xx geometry,
+BK5xx inertia. Codes never change meaning; a retired code is not reused.
+"""
+
+from __future__ import annotations
+
+from collections.abc import Callable, Iterable, Iterator, Mapping
+from dataclasses import dataclass, field
+from typing import TYPE_CHECKING
+
+if TYPE_CHECKING:
+    from .context import Context
+
+ERROR, WARNING, INFO = "error", "warning", "info"
+SEVERITIES = (ERROR, WARNING, INFO)
+
+FAMILIES = {
+    "BK1": "structure",
+    "BK2": "joints",
+    "BK3": "pitfalls",
+    "BK4": "geometry",
+    "BK5": "inertia",
+}
+
+
+@dataclass(frozen=True)
+class Hit:
+    """One defect found by a rule: the named element that holds it, its line, and the facts.
+
+    ``element``/``name`` identify the link, joint, material or robot (``<joint name="coude">``);
+    ``line`` is the most precise source line known (the ``<origin>`` or ``<limit>`` line when
+    that is where the fix goes). ``params`` fill the message templates; ``variant`` picks one
+    wording when a rule has several (``"gap"`` / ``"overlap"``...).
+    """
+
+    element: str
+    name: str | None
+    line: int | None
+    params: Mapping[str, object] = field(default_factory=dict)
+    variant: str = ""
+
+
+Check = Callable[["Context"], Iterable[Hit]]
+
+
+@dataclass(frozen=True)
+class Rule:
+    """A registered check. ``check`` is None for loader rules, which the file loader reports
+    itself (the file could not be read at all, or is a xacro macro library)."""
+
+    code: str
+    name: str
+    severity: str
+    check: Check | None
+
+    @property
+    def family(self) -> str:
+        return FAMILIES[self.code[:3]]
+
+    @property
+    def reported_by_loader(self) -> bool:
+        return self.check is None
+
+
+RULES: dict[str, Rule] = {}
+
+
+def _register(code: str, name: str, severity: str, check: Check | None) -> None:
+    if code in RULES:
+        raise ValueError(f"rule code {code} registered twice")
+    if code[:3] not in FAMILIES or len(code) != 5 or not code[2:].isdigit():
+        raise ValueError(f"bad rule code {code!r}")
+    if severity not in SEVERITIES:
+        raise ValueError(f"bad severity {severity!r} for {code}")
+    RULES[code] = Rule(code, name, severity, check)
+
+
+def rule(code: str, name: str, severity: str) -> Callable[[Check], Check]:
+    """Decorator registering ``check`` under ``code``."""
+
+    def decorate(check: Check) -> Check:
+        _register(code, name, severity, check)
+        return check
+
+    return decorate
+
+
+def loader_rule(code: str, name: str, severity: str = ERROR) -> None:
+    """Register a rule that the file loader reports rather than a check over the model."""
+    _register(code, name, severity, None)
+
+
+def hit(element: str, name: str | None, line: int | None, variant: str = "", **params: object) -> Hit:
+    return Hit(element, name, line, params, variant)
+
+
+def sorted_rules() -> list[Rule]:
+    return [RULES[code] for code in sorted(RULES)]
+
+
+def select_rules(select: Iterable[str] = (), ignore: Iterable[str] = ()) -> list[Rule]:
+    """Rules chosen by code prefixes, like ruff: ``BK3`` is every pitfall, ``BK301`` one rule.
+
+    An empty ``select`` means every rule. Unknown prefixes raise ``ValueError`` (the CLI turns
+    that into a usage error).
+    """
+    chosen = [p.strip().upper() for p in select if p.strip()]
+    dropped = [p.strip().upper() for p in ignore if p.strip()]
+    for prefix in chosen + dropped:
+        if not any(code.startswith(prefix) for code in RULES):
+            raise ValueError(prefix)
+    return [
+        r for r in sorted_rules()
+        if (not chosen or any(r.code.startswith(p) for p in chosen))
+        and not any(r.code.startswith(p) for p in dropped)
+    ]
+
+
+def run_rules(rules: Iterable[Rule], context: Context) -> Iterator[tuple[Rule, Hit]]:
+    for r in rules:
+        if r.check is not None:
+            for found in r.check(context):
+                yield r, found

@@ -1,0 +1,81 @@
+"""Every URDF bras-kit writes is accepted by urdfdom's check_urdf, the parser ROS itself uses."""
+
+from __future__ import annotations
+
+import shutil
+import subprocess
+
+import pytest
+
+from bras_kit.authoring import arm_urdf
+
+INSTALL_HINT = ("check_urdf (urdfdom) is missing: install it with "
+                "'sudo apt-get install liburdfdom-tools' (CI does this in .ci/run)")
+
+VARIANTS = {
+    "default": {},
+    "wrist": {"wrist": True},
+    "inertials": {"inertials": True},
+    "wrist-inertials": {"wrist": True, "inertials": True},
+    "long-bras": {"params": {"bras_length": 0.8}},
+    "short-forearm-wrist": {"wrist": True, "params": {"avant_bras_length": 0.3}},
+    "narrow-limits": {"wrist": True, "params": {"coude_lower": -0.5, "coude_upper": 0.5,
+                                                "poignet_lower": 0.1, "poignet_upper": 0.6}},
+    "everything-changed": {"wrist": True, "inertials": True,
+                           "params": {"base_radius": 0.2, "bras_width": 0.1, "bras_mass": 3,
+                                      "poignet_color": "1 1 0 0.5", "epaule_effort": 25}},
+}
+
+
+def check_urdf(path) -> subprocess.CompletedProcess:
+    program = shutil.which("check_urdf")
+    if program is None:
+        pytest.fail(INSTALL_HINT)
+    return subprocess.run([program, str(path)], capture_output=True, text=True, timeout=60)
+
+
+@pytest.mark.parametrize("options", VARIANTS.values(), ids=VARIANTS.keys())
+def test_generated_urdf_passes_check_urdf(tmp_path, options):
+    path = tmp_path / "bras.urdf"
+    path.write_text(arm_urdf(**options))
+    result = check_urdf(path)
+    assert result.returncode == 0, result.stdout + result.stderr
+    assert "Successfully Parsed XML" in result.stdout
+    assert "robot name is: bras" in result.stdout
+    assert "root Link: base has 1 child(ren)" in result.stdout
+    chain = ["bras", "avant_bras"] + (["poignet"] if options.get("wrist") else [])
+    children = [line.split()[-1] for line in result.stdout.splitlines() if "child(1):" in line]
+    assert children == chain
+
+
+def test_cli_written_urdf_passes_check_urdf(run_cli, tmp_path):
+    path = tmp_path / "cli.urdf"
+    code, _, err = run_cli("urdf", "--wrist", "--inertials", "-o", str(path))
+    assert code == 0, err
+    assert check_urdf(path).returncode == 0
+
+
+def test_check_urdf_rejects_a_joint_to_a_missing_link(tmp_path):
+    """The same check fails on a broken file, so the tests above can fail too."""
+    path = tmp_path / "broken.urdf"
+    path.write_text(arm_urdf().replace('<child link="avant_bras"/>', '<child link="nulle_part"/>'))
+    result = check_urdf(path)
+    assert result.returncode != 0
+    assert "nulle_part" in result.stdout + result.stderr
+
+
+def test_check_urdf_rejects_a_second_root(tmp_path):
+    path = tmp_path / "two_roots.urdf"
+    path.write_text(arm_urdf().replace("</robot>", '<link name="orphelin"/></robot>'))
+    assert check_urdf(path).returncode != 0
+
+
+@pytest.mark.parametrize("wrist", [False, True], ids=["default", "wrist"])
+def test_scaffolded_package_urdf_passes_check_urdf(tmp_path, wrist):
+    from bras_kit.scaffold import render_package
+
+    path = tmp_path / "bras.urdf"
+    path.write_text(render_package(wrist=wrist, params={"bras_length": 0.7})["urdf/bras.urdf"])
+    result = check_urdf(path)
+    assert result.returncode == 0, result.stdout + result.stderr
+    assert ("child(1):  poignet" in result.stdout) == wrist
