@@ -17,7 +17,7 @@ from ._resources import robot_template
 from .errors import ParameterError
 from .model import Robot, robot_from_xml
 from .xacrotools import expand_xacro
-from .xmlio import parse_xml, read_xml
+from .xmlio import parse_xml, read_bytes, read_xml
 
 VARIANT_FLAGS = ("wrist", "inertials")
 
@@ -132,7 +132,5 @@ def load(path: str | os.PathLike[str] | None = None, *, mappings: Mapping[str, s
     if path.endswith(".xacro"):
         text = expand_xacro(path, mappings, package_paths)
         return robot_from_xml(parse_xml(text, path), path, text)
-    root = read_xml(path)
-    with open(path, encoding="utf-8", errors="replace") as handle:
-        text = handle.read()
-    return robot_from_xml(root, path, text)
+    data = read_bytes(path)
+    return robot_from_xml(parse_xml(data, path), path, data.decode("utf-8", errors="replace"))

@@ -349,10 +349,12 @@ class _Reader:
             )
         mimic_node = node.find("mimic")
         if mimic_node is not None:
+            multiplier = self.number(mimic_node, "multiplier", name)
+            offset = self.number(mimic_node, "offset", name)
             joint.mimic = Mimic(
                 self.text(mimic_node, "joint", name),
-                self.number(mimic_node, "multiplier", name) or 1.0,
-                self.number(mimic_node, "offset", name) or 0.0,
+                1.0 if multiplier is None else multiplier,
+                0.0 if offset is None else offset,
                 mimic_node.line,
             )
         return joint

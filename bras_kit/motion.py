@@ -756,6 +756,20 @@ def sample(motion: Motion, duration: float | None = None, rate: float = DEFAULT_
     return JointStates(times, list(motion.names), positions, velocities)
 
 
+def sample_loop(motion: Motion, duration: float | None = None, fps: float = DEFAULT_RATE) -> JointStates:
+    """``round(duration * fps)`` frames at ``k / fps``: an animation loop whose end is the next start.
+
+    Unlike :func:`sample`, the last instant is left out, so a GIF of 9 s at 20 fps has 180 frames.
+    """
+    if duration is None:
+        duration = motion.duration if motion.duration is not None else DEFAULT_DURATION
+    count = round(float(duration) * float(fps)) if math.isfinite(duration) and math.isfinite(fps) else 0
+    if count < 1:
+        raise ParameterError(f"{duration:g} s at {fps:g} fps is less than one frame",
+                             hint="raise --duration or --fps")
+    return sample(motion, (count - 1) / fps, fps)
+
+
 # ---------------------------------------------------------------- limits
 
 

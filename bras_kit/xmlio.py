@@ -63,6 +63,7 @@ def parse_xml(data: bytes | str, path: str | None = None) -> Node:
     if isinstance(data, str):
         data = data.encode("utf-8")
     parser = xml.parsers.expat.ParserCreate()
+    parser.buffer_text = True  # one text callback per run of text, not one per line
     root_holder: list[Node] = []
     stack: list[Node] = []
 
@@ -124,19 +125,23 @@ def parse_xml(data: bytes | str, path: str | None = None) -> Node:
     return root_holder[0]
 
 
-def read_xml(path: str | os.PathLike[str]) -> Node:
-    """Read and safely parse an XML file; a missing or unreadable file is a :class:`BrasKitError`."""
+def read_bytes(path: str | os.PathLike[str]) -> bytes:
+    """A file's bytes; a missing or unreadable file is a :class:`BrasKitError` naming it."""
     path = os.fspath(path)
     try:
         with open(path, "rb") as handle:
-            data = handle.read()
+            return handle.read()
     except FileNotFoundError:
         raise BrasKitError(f"no such file: {path}", hint="check the path and spelling") from None
     except IsADirectoryError:
         raise BrasKitError(f"{path} is a folder, not a file") from None
     except OSError as exc:
         raise BrasKitError(f"cannot read {path}: {exc.strerror}") from None
-    return parse_xml(data, path=path)
+
+
+def read_xml(path: str | os.PathLike[str]) -> Node:
+    """Read and safely parse an XML file; a missing or unreadable file is a :class:`BrasKitError`."""
+    return parse_xml(read_bytes(path), path=os.fspath(path))
 
 
 def check_xml_safe(data: bytes | str, path: str | None = None) -> None:

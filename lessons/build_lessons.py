@@ -22,7 +22,7 @@ HERE = Path(__file__).resolve().parent
 sys.path.insert(0, str(HERE))
 
 from lesson_src import LESSONS  # noqa: E402  (the lessons themselves, one module each)
-from lesson_src._cells import Cell, Lesson  # noqa: E402
+from lesson_src._cells import Cell, Lesson, untranslated_comments  # noqa: E402
 
 LANGS = ("fr", "en")
 
@@ -60,6 +60,13 @@ def render_all() -> dict[Path, str]:
     return out
 
 
+def untranslated() -> list[str]:
+    """English comments of shared code cells that have no French words yet."""
+    return [f"lesson {lesson.number}: no French for the comment {comment!r} (add it to FR_COMMENTS)"
+            for lesson in LESSONS for cell in lesson.cells if cell.shared
+            for comment in untranslated_comments(cell.en)]
+
+
 def main(argv: list[str] | None = None) -> int:
     parser = argparse.ArgumentParser(description=__doc__.splitlines()[0])
     parser.add_argument("--check", action="store_true", help="only check the notebooks are current")
@@ -69,26 +76,23 @@ def main(argv: list[str] | None = None) -> int:
     for rel, text in wanted.items():
         path = HERE / rel
         current = path.read_text(encoding="utf-8") if path.exists() else None
-        if current == text:
-            continue
-        stale.append(rel)
-        if not args.check:
-            path.parent.mkdir(parents=True, exist_ok=True)
-            path.write_text(text, encoding="utf-8")
-    known = set(wanted)
+        if current != text:
+            stale.append(rel)
+            if not args.check:
+                path.parent.mkdir(parents=True, exist_ok=True)
+                path.write_text(text, encoding="utf-8")
     extra = [p.relative_to(HERE) for lang in LANGS for p in (HERE / lang).rglob("*.ipynb")
-             if p.relative_to(HERE) not in known and ".ipynb_checkpoints" not in p.parts]
+             if p.relative_to(HERE) not in wanted and ".ipynb_checkpoints" not in p.parts]
+    problems = untranslated()
+    problems += [f"not made by build_lessons.py: lessons/{rel}" for rel in extra]
     if args.check:
+        problems += [f"out of date: lessons/{rel} (run python lessons/build_lessons.py)" for rel in stale]
+    else:
         for rel in stale:
-            print(f"out of date: lessons/{rel} (run python lessons/build_lessons.py)")
-        for rel in extra:
-            print(f"not made by build_lessons.py: lessons/{rel}")
-        return 1 if stale or extra else 0
-    for rel in stale:
-        print(f"wrote lessons/{rel}")
-    for rel in extra:
-        print(f"note: lessons/{rel} is not made by this script")
-    return 0
+            print(f"wrote lessons/{rel}")
+    for problem in problems:
+        print(problem)
+    return 1 if problems else 0
 
 
 if __name__ == "__main__":

@@ -58,6 +58,22 @@ SPATIAL_URDF = """<?xml version="1.0"?>
 """
 
 
+# Two parallel joints in a tilted plane: a fixed mount turned about x, an elbow axis pointing the
+# other way with a yaw in its origin, and a tool offset off the forearm's line.
+TILTED_2R_URDF = """<?xml version="1.0"?>
+<robot name="tilted">
+  <link name="sol"/><link name="socle"/><link name="a"/><link name="b"/><link name="outil"/>
+  <joint name="mount" type="fixed"><parent link="sol"/><child link="socle"/>
+    <origin xyz="0.1 0.2 0.3" rpy="0.3 0 0"/></joint>
+  <joint name="q1" type="revolute"><parent link="socle"/><child link="a"/>
+    <origin xyz="0 0 0.1"/><axis xyz="0 0 1"/><limit lower="-3.2" upper="3.2" effort="1" velocity="1"/></joint>
+  <joint name="q2" type="revolute"><parent link="a"/><child link="b"/>
+    <origin xyz="0.4 0.1 0.05" rpy="0 0 0.5"/><axis xyz="0 0 -1"/><limit lower="-3.2" upper="3.2" effort="1" velocity="1"/></joint>
+  <joint name="tool" type="fixed"><parent link="b"/><child link="outil"/><origin xyz="0.3 -0.1 0.02"/></joint>
+</robot>
+"""
+
+
 @pytest.fixture(scope="module")
 def wrist_tree(wrist_robot):
     return tf_tree(wrist_robot)
@@ -122,6 +138,22 @@ def test_two_link_structure_follows_changed_parameters():
     shape = planar_two_link(tf_tree(arm(params={"bras_length": 0.8, "avant_bras_length": 0.3, "base_length": 0.2})))
     assert shape.upper == pytest.approx(0.8) and shape.lower == pytest.approx(0.3)
     np.testing.assert_allclose(shape.origin, [0, 0, 0.1], atol=1e-15)
+
+
+def test_two_link_structure_in_a_tilted_plane_round_trips():
+    tree = tf_tree(robot_from_xml(parse_xml(TILTED_2R_URDF, "tilted.urdf"), "tilted.urdf"))
+    shape = planar_two_link(tree)
+    assert shape is not None and shape.sign == -1.0
+    assert shape.upper == pytest.approx(math.hypot(0.4, 0.1))
+    assert shape.lower == pytest.approx(math.hypot(0.3, 0.1))
+    configs = random_configs(tree, 200, seed=4)
+    targets = tip_by_fk(tree, configs, "outil", (0, 0, 0))
+    for elbow in ("up", "down"):
+        solved, ok = ik_2r_batch(shape, targets, elbow)
+        assert ok.all()
+        np.testing.assert_allclose(tip_by_fk(tree, solved, "outil", (0, 0, 0)), targets, atol=1e-9)
+    result = ik_2r(tree, targets[0] + 0.05 * shape.normal)
+    assert result.reason == "off_plane" and "0.05 m off" in result.message and "the plane through" in result.message
 
 
 def test_chains_other_than_two_parallel_joints_are_not_two_link(wrist_tree, spatial_tree, tutorial_tree):
@@ -335,7 +367,7 @@ def test_numeric_round_trip_of_a_spatial_arm_with_orientation(spatial_tree):
     assert chain.tip_link == "pince" and chain.joints == ("j1", "j2", "j3", "j4", "j5", "j6", "j7")
     configs = random_configs(spatial_tree, 40, seed=5)
     transforms = fk_batch(spatial_tree, configs)[:, spatial_tree.index("pince")]
-    for q, pose in zip(configs, transforms):
+    for pose in transforms:
         target = pose[:3, :3] @ np.array([0, 0, 0.1]) + pose[:3, 3]
         result = solve_ik(spatial_tree, target, rotation=pose[:3, :3])
         assert result.reachable, result.message

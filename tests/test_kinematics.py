@@ -266,3 +266,12 @@ def test_prismatic_joint_under_a_moving_parent_slides_along_the_rotated_axis():
         expected_pos = np.array([0, 0, 1]) + rot_z(yaw) @ np.array([0.2, 0, 0]) + expected_rot @ [extend, 0, 0]
         np.testing.assert_allclose(batch[k, 2, :3, :3], expected_rot, atol=1e-12)
         np.testing.assert_allclose(batch[k, 2, :3, 3], expected_pos, atol=1e-12)
+
+
+def test_mimic_multiplier_of_zero_holds_the_follower_still():
+    text = """<robot name="m"><link name="a"/><link name="b"/><link name="c"/>
+      <joint name="lead" type="continuous"><parent link="a"/><child link="b"/><axis xyz="0 0 1"/></joint>
+      <joint name="follow" type="continuous"><parent link="a"/><child link="c"/><axis xyz="0 0 1"/>
+        <mimic joint="lead" multiplier="0" offset="0.25"/></joint></robot>"""
+    transforms = fk(tf_tree(robot_from(text)), {"lead": 1.0})
+    np.testing.assert_allclose(transforms["c"][:3, :3], rot_z(0.25), atol=1e-12)

@@ -57,6 +57,21 @@ def test_french_and_english_notebooks_have_the_same_cells(path: Path) -> None:
     assert hidden[0] == hidden[1]
 
 
+@pytest.mark.parametrize("path", _notebooks("fr"), ids=_id)
+def test_french_notebooks_are_written_in_french(path: Path) -> None:
+    twin = next(p for p in _notebooks("en") if _key(p) == _key(path))
+    fr, en = nbformat.read(path, as_version=4), nbformat.read(twin, as_version=4)
+    pairs = [(a.source, b.source) for a, b in zip(fr.cells, en.cells) if a.cell_type == "markdown"]
+    same = [a for a, b in pairs if a == b]
+    assert len(same) * 4 <= len(pairs), f"{len(same)} of {len(pairs)} text cells are not translated"
+
+
+def test_notebook_code_passes_ruff() -> None:
+    result = subprocess.run([sys.executable, "-m", "ruff", "check", "--no-cache", "--output-format", "concise",
+                             *map(str, ALL)], capture_output=True, text=True)
+    assert result.returncode == 0, result.stdout + result.stderr
+
+
 def test_notebooks_match_their_build_script() -> None:
     result = subprocess.run([sys.executable, str(LESSONS / "build_lessons.py"), "--check"],
                             capture_output=True, text=True)

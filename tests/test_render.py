@@ -7,6 +7,7 @@ Segments are found by colour: the material's hue (blue 0.2 0.4 0.9 is 223 degree
 from __future__ import annotations
 
 import math
+import os
 
 import numpy as np
 import pytest
@@ -311,8 +312,40 @@ def test_osmesa_cannot_start_once_opengl_runs_on_egl(tutorial_robot):
     render_pose(tutorial_robot, None, backend="egl", size=(32, 32))
     with pytest.raises(BackendError) as info:
         render_pose(tutorial_robot, None, backend="osmesa", size=(32, 32))
-    assert "osmesa" in str(info.value).lower() or "OSMesa" in str(info.value)
-    assert info.value.hint
+    assert "already set up for egl in this process, so osmesa cannot start" in str(info.value)
+    assert "PYOPENGL_PLATFORM=osmesa" in info.value.hint
+
+
+def test_osmesa_needs_a_newer_pyopengl_than_pyrender_pins(monkeypatch):
+    from bras_kit.render import _pyrender
+
+    monkeypatch.setattr(_pyrender, "_loaded_platform", lambda: None)
+    monkeypatch.setenv("PYOPENGL_PLATFORM", "egl")
+    monkeypatch.setattr(_pyrender, "_pyopengl_version", lambda: (3, 1, 0))
+    with pytest.raises(BackendError, match="PyOpenGL 3.1.5 or later"):
+        _pyrender.choose_platform("osmesa")
+    assert os.environ["PYOPENGL_PLATFORM"] == "egl"  # untouched: EGL still works in this process
+    monkeypatch.setattr(_pyrender, "_pyopengl_version", lambda: (3, 1, 7))
+    assert _pyrender.choose_platform("osmesa") == "osmesa"
+    assert os.environ["PYOPENGL_PLATFORM"] == "osmesa"
+
+
+def test_auto_prefers_egl_then_osmesa(monkeypatch):
+    from bras_kit.render import _pyrender
+
+    monkeypatch.setattr(_pyrender, "_loaded_platform", lambda: None)
+    monkeypatch.delenv("PYOPENGL_PLATFORM", raising=False)
+    monkeypatch.setattr(_pyrender, "_pyopengl_version", lambda: (3, 1, 7))
+    found = {"EGL": "libEGL.so.1", "OSMesa": "libOSMesa.so.8"}
+    monkeypatch.setattr(_pyrender.ctypes.util, "find_library", lambda name: found.get(name))
+    assert _pyrender.choose_platform("auto") == "egl"
+    monkeypatch.delenv("PYOPENGL_PLATFORM")
+    del found["EGL"]
+    assert _pyrender.choose_platform("auto") == "osmesa"
+    monkeypatch.delenv("PYOPENGL_PLATFORM")
+    found.clear()
+    with pytest.raises(BackendError, match="neither libEGL nor libOSMesa"):
+        _pyrender.choose_platform("auto")
 
 
 def test_odd_picture_width_is_read_without_row_padding(tutorial_robot):
@@ -326,7 +359,7 @@ def test_odd_picture_width_is_read_without_row_padding(tutorial_robot):
 # ---------------------------------------------------------------- meshes
 
 
-def _mesh_package(tmp_path, with_mesh: bool = True):
+def _mesh_package(tmp_path, with_mesh: bool = True, filename="package://demo_description/meshes/cube.stl"):
     import trimesh
 
     package = tmp_path / "demo_description"
@@ -339,12 +372,12 @@ def _mesh_package(tmp_path, with_mesh: bool = True):
     urdf.write_text("""<robot name="demo">
   <link name="base">
     <visual>
-      <geometry><mesh filename="package://demo_description/meshes/cube.stl" scale="0.1 0.1 0.6"/></geometry>
+      <geometry><mesh filename="FILENAME" scale="0.1 0.1 0.6"/></geometry>
       <material name="vert"><color rgba="0.1 0.8 0.2 1"/></material>
     </visual>
   </link>
 </robot>
-""")
+""".replace("FILENAME", filename))
     return urdf
 
 
@@ -367,3 +400,22 @@ def test_missing_mesh_names_the_file_and_line(tmp_path):
         render_pose(robot, None, package_paths=[str(tmp_path)])
     assert "cube.stl" in str(info.value)
     assert info.value.line == 4
+
+
+@pytest.mark.parametrize("filename", ["package://demo_description/meshes/cube.stl", "../meshes/cube.stl"])
+def test_mesh_beside_the_urdf_needs_no_package_path(tmp_path, filename):
+    from bras_kit.authoring import load
+
+    robot = load(_mesh_package(tmp_path, filename=filename))  # urdf/demo.urdf inside its package
+    image = render_pose(robot, None, view="front", grid=False, size=(120, 120))
+    assert hue_mask(image, 128.0).sum() > 200
+
+
+def test_unknown_package_says_how_to_find_it(tmp_path):
+    from bras_kit.authoring import load
+
+    robot = load(_mesh_package(tmp_path, filename="package://elsewhere/meshes/cube.stl"))
+    with pytest.raises(ModelError) as info:
+        render_pose(robot, None)
+    assert "package 'elsewhere' not found" in str(info.value)
+    assert "--package-path" in info.value.hint

@@ -183,6 +183,7 @@ def test_language_follows_the_locale(run_cli, monkeypatch):
 def test_pose_outside_limits_on_the_command_line(run_cli):
     code, out, _ = run_cli("validate", "--pose", "coude=2.5", "--pose", "epaule=0.3", "--select", "BK3")
     assert code == 1
+    assert run_cli("validate", "--pose", "coude=2.5,epaule=0.3", "--select", "BK3")[1] == out
     assert out == (
         "<bras-kit tutorial arm>:53: BK303 error <joint name=\"coude\"> joint 'coude' = 2.5 rad is 0.5 rad "
         "above its upper limit 2\n"

@@ -443,7 +443,7 @@ def test_non_finite_number_anywhere(check):
 def test_continuous_joint_with_bounds(check):
     f = only(check(edited(('<joint name="coude" type="revolute">', '<joint name="coude" type="continuous">'))),
              "BK208")
-    assert f.message == "joint 'coude' is continuous, so its 'lower', 'upper' limit is ignored"
+    assert f.message == "joint 'coude' is continuous, so URDF readers ignore 'lower', 'upper' in its <limit>"
     text = edited(('<joint name="coude" type="revolute">', '<joint name="coude" type="continuous">'),
                   (COUDE_LIMIT, '<limit effort="10" velocity="1.0"/>'))
     assert "BK208" not in codes(check(text))
@@ -884,3 +884,33 @@ def test_french_messages(check):
     assert f.message == ("l'articulation 'coude' est en z=0.5, mais le <box> du link 'bras' occupe z 0..0.6 : "
                          "l'enfant est accroché 0.1 m avant le bout du segment")
     assert f.hint == "placez l'articulation au bout de 'bras' : <origin xyz=\"0 0 0.6\"/>"
+
+
+def test_missing_colour_of_a_top_level_material_belongs_to_the_material(check):
+    text = edited(("<link name=\"base\">", '<material name="gris"><color/></material>\n<link name="base">'))
+    f = only(check(text), "BK122")
+    assert (f.element, f.name, f.line, f.message) == ("material", "gris", 6, "<color> has no 'rgba' attribute")
+    assert f.hint == 'write it, e.g. rgba="0.2 0.4 0.9 1"'
+
+
+def test_macro_library_note_can_be_ignored(check):
+    text = ('<robot name="pieces" xmlns:xacro="http://www.ros.org/wiki/xacro">'
+            '<xacro:macro name="segment" params="name"><link name="${name}"/></xacro:macro></robot>')
+    assert check(text, "pieces.xacro", ignore=["BK124"]) == []
+
+
+def test_joint_beside_its_parent_is_fine_when_the_shapes_touch(check):
+    # a mobile base: the wheel axle sits 3.5 cm under a 0.4 x 0.1 x 0.1 plate; the 3.5 cm wheel touches it
+    rover = ('<robot name="rover"><link name="plate"><visual><geometry><box size="0.4 0.1 0.1"/></geometry>'
+             '</visual></link><link name="wheel"><visual><origin rpy="1.5707963 0 0"/><geometry>'
+             '<cylinder length="0.1" radius="0.035"/></geometry></visual></link>'
+             '<joint name="axle" type="continuous"><parent link="plate"/><child link="wheel"/>'
+             '<origin xyz="0.13 0 -0.085"/><axis xyz="0 1 0"/></joint></robot>')
+    assert "BK301" not in codes(check(rover))
+    # two 1 m links side by side on one axle (like Gazebo's RRBot): the second beside the first
+    side_by_side = BRAS.replace('<origin xyz="0 0 0.6"/>', '<origin xyz="0 0.07 0.55"/>')
+    assert "BK301" not in codes(check(side_by_side))
+    small_wheel = rover.replace('radius="0.035"', 'radius="0.02"')  # now 1.5 cm of air under the plate
+    assert only(check(small_wheel), "BK301").message == (
+        "joint 'axle' at xyz 0.13 0 -0.085 is 0.035 m outside link 'plate' "
+        "(its <box> spans x -0.2..0.2, y -0.05..0.05, z -0.05..0.05)")

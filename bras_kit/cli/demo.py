@@ -37,7 +37,7 @@ def run(args: argparse.Namespace) -> int:
     from ..authoring import arm
     from ..diagrams import frame_diagram, plot_motion
     from ..errors import OutputExistsError
-    from ..motion import check_limits, sample, tutorial_motion
+    from ..motion import check_limits, sample_loop, tutorial_motion
     from ..render import parse_size, render_motion, render_pose, save_gif, save_png
     from ..scaffold import scaffold_package
     from ..validate import validate
@@ -70,7 +70,7 @@ def run(args: argparse.Namespace) -> int:
     _done(start, pose_png)
 
     start = _step(f"animating the tutorial motion ({args.duration:g} s at {args.fps:g} fps)")
-    states = sample(tutorial_motion(robot), duration=args.duration, rate=args.fps)
+    states = sample_loop(tutorial_motion(robot), args.duration, args.fps)
     gif = os.path.join(outdir, f"{robot.name}.gif")
     save_gif(render_motion(robot, states, size=size, backend=args.backend), gif, fps=args.fps)
     _done(start, gif)

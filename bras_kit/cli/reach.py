@@ -54,7 +54,8 @@ def configure(parser: argparse.ArgumentParser) -> None:
                         help="length of the move in seconds (default and minimum: the shortest within the "
                         "velocity limits)")
     parser.add_argument("--gif", metavar="OUT.gif", help="render the move to an animated GIF")
-    parser.add_argument("--format", choices=("text", "json"), default="text")
+    parser.add_argument("--format", choices=("text", "json"), default="text",
+                        help="text for people (default), json for scripts")
     add_force_argument(parser)
 
 
@@ -91,6 +92,7 @@ def _write_gif(robot, motion, path: str) -> None:  # type: ignore[no-untyped-def
 
 
 def _angle(value: float, unit: str) -> str:
+    value = 0.0 if abs(value) < 5e-7 else value  # no "-0.000000"
     if unit == "rad":
         return f"{value:+.6f} rad ({math.degrees(value):+8.2f} deg)"
     return f"{value:+.6f} m"
@@ -138,14 +140,15 @@ def run(args: argparse.Namespace) -> int:
         data["tip_link"] = chain.tip_link
         data["tip_offset"] = [float(v) for v in chain.tip_offset]
         if motion is not None:
-            data["motion"] = {
+            move: dict[str, object] = {
                 "from": {n: float(v) for n, v in zip(tree.dof, motion.start)},
                 "duration": motion.duration,
                 "peak_velocity": {n: float(v) for n, v in zip(tree.dof, motion.peak_velocities())},
                 "violations": [v.describe() for v in violations],
             }
             if args.gif:
-                data["motion"]["gif"] = args.gif
+                move["gif"] = args.gif
+            data["motion"] = move
         print(json.dumps(data, indent=2))
         return code
 

@@ -6,19 +6,28 @@ Heavy modules (pyrender, trimesh, PIL, imageio) are imported inside run(), never
 from __future__ import annotations
 
 import argparse
+import contextlib
 import math
 import os
 import re
 import sys
+from collections.abc import Iterable, Iterator
+from typing import TYPE_CHECKING
 
 from ._common import (
     add_force_argument,
     add_model_arguments,
     check_writable,
+    format_config,
     joint_values,
     load_model,
     warn,
 )
+
+if TYPE_CHECKING:
+    import numpy as np
+
+PICTURE_SUFFIXES = (".png", ".jpg", ".jpeg", ".bmp", ".tif", ".tiff", ".webp")
 
 _EPILOG = """\
 outputs (any together; with none, writes ROBOT.png of the pose):
@@ -102,6 +111,7 @@ def run(args: argparse.Namespace) -> int:
     from ..render import Renderer, render_motion, render_options
     from ..render.sequence import (
         FramesDirWriter,
+        FrameWriter,
         GifWriter,
         Mp4Writer,
         gif_delay,
@@ -141,41 +151,38 @@ def run(args: argparse.Namespace) -> int:
     if args.mp4 == "":
         args.mp4 = f"{stem}.mp4"
         defaulted.append(args.mp4)
+    if args.output is not None and not args.output.lower().endswith(PICTURE_SUFFIXES):
+        raise ParameterError(f"-o {args.output}: cannot tell the picture format from the name",
+                             hint="end the name with " + ", ".join(PICTURE_SUFFIXES))
     for path in (args.output, args.gif, args.mp4):
         if path is not None:
             check_writable(path, args.force)
     if args.frames_dir is not None:
         _check_frames_dir(args.frames_dir, args.force)
-    for path in (args.output, args.gif, args.mp4):
-        if path and os.path.dirname(path):
-            os.makedirs(os.path.dirname(path), exist_ok=True)
+    with _writing():
+        for path in (args.output, args.gif, args.mp4):
+            if path and os.path.dirname(path):
+                os.makedirs(os.path.dirname(path), exist_ok=True)
     size = f"{options.width}x{options.height}"
 
     if not animated:
-        with Renderer(robot, fit=set_values, **opts) as renderer:
+        with Renderer(robot, fit=set_values, **opts) as renderer, _writing():
             save_png(renderer.render(set_values), args.output)
             backend = renderer.backend
-        pose = ", ".join(f"{k}={v:g}" for k, v in set_values.items()) or "zero pose"
-        _report(args.output, f"{pose}, {size}, {backend}", args.output in defaulted)
+        _report(args.output, f"{format_config(set_values)}, {size}, {backend}", args.output in defaulted)
         return 0
 
-    from ..motion import DEFAULT_DURATION, motion_from_specs, sample
+    from ..motion import motion_from_specs, sample_loop
 
     motion = motion_from_specs(robot, args.motion, set_values or None)
-    duration = args.duration or motion.duration or DEFAULT_DURATION
-    count = round(duration * args.fps)
-    if count < 1:
-        raise ParameterError(f"{duration:g} s at {args.fps:g} fps is less than one frame",
-                             hint="raise --duration or --fps")
-    # frames at k / fps for k < count: a loop of `count` frames, the end being the next start
-    states = sample(motion, (count - 1) / args.fps, args.fps)
+    states = sample_loop(motion, args.duration, args.fps)
     _warn_limits(robot, states)
     if args.gif and gif_delay(args.fps) * args.fps > 100.5:
         warn(f"a GIF plays at most 50 frames per second; {args.fps:g} fps will play slower")
     frames = render_motion(robot, states, label="rendering", **opts)
-    with frames:
-        writers = []
-        stream = frames
+    with frames, _writing():
+        writers: list[FrameWriter] = []
+        stream: Iterable[np.ndarray] = frames
         if args.gif:
             samples, stream = palette_samples(frames)
             writers.append(GifWriter(args.gif, args.fps, samples))
@@ -197,6 +204,18 @@ def run(args: argparse.Namespace) -> int:
     if args.output:
         _report(args.output, f"first frame, {size}, {backend}", False)
     return 0
+
+
+@contextlib.contextmanager
+def _writing() -> Iterator[None]:
+    """A file that cannot be written (permissions, full disk) is a user error, not a traceback."""
+    from ..errors import BrasKitError
+
+    try:
+        yield
+    except OSError as exc:
+        raise BrasKitError(f"cannot write {exc.filename or 'the output'}: {exc.strerror or exc}",
+                           hint="check the folder exists, is writable and has space") from None
 
 
 def _report(path: str, details: str, defaulted: bool) -> None:

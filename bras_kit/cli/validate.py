@@ -32,7 +32,8 @@ def configure(parser: argparse.ArgumentParser) -> None:
                         help="language of messages (default: from LC_ALL/LC_MESSAGES/LANG, French if it starts with fr)")
     parser.add_argument("--strict", action="store_true", help="warnings also fail (exit 1)")
     parser.add_argument("--pose", action="append", default=[], metavar="JOINT=VALUE",
-                        help="check this joint value against its limits (repeatable; radians or metres)")
+                        help="check this joint value against its limits (radians or metres; repeatable, "
+                        "or comma-separated: --pose epaule=0.5,coude=2.5)")
     parser.add_argument("--motion", action="append", default=[], metavar="SPEC",
                         help="check a motion against limits and velocities: 'tutorial', 'JOINT=FORMULA' "
                         "(e.g. coude=1.2*sin(0.7*t)) or a waypoint file (repeatable)")
@@ -53,6 +54,7 @@ def configure(parser: argparse.ArgumentParser) -> None:
 
 
 def _codes(items: list[str]) -> list[str]:
+    """``["BK3,BK201", "BK505"]`` -> ``["BK3", "BK201", "BK505"]`` (also for --pose items)."""
     return [code.strip() for item in items for code in item.split(",") if code.strip()]
 
 
@@ -75,7 +77,7 @@ def run(args: argparse.Namespace) -> int:
     except ValueError as exc:
         raise ParameterError(f"--select/--ignore: no rule code starts with '{exc}'",
                              hint="codes look like BK301; 'bras-kit explain' lists them all") from None
-    pose = joint_values(args.pose)
+    pose = joint_values(_codes(args.pose))
     if args.duration is not None and not args.duration > 0:
         raise ParameterError(f"--duration {args.duration:g}: must be a positive number of seconds")
     options = dict(pose=pose or None, motion=args.motion or None, duration=args.duration, lang=lang,

@@ -37,7 +37,7 @@ def configurations(tree: TFTree, value: Any) -> np.ndarray:
         return tree.config_vector(value)[None, :]
     names, positions = getattr(value, "names", None), getattr(value, "positions", None)
     if names is not None and positions is not None and not callable(positions):
-        positions = np.asarray(positions, dtype=float).reshape(len(np.atleast_1d(positions)), -1)
+        positions = np.atleast_2d(np.asarray(positions, dtype=float))
         out = np.zeros((len(positions), len(tree.dof)))
         for column, name in enumerate(names):
             if name not in tree.dof:
@@ -166,7 +166,7 @@ class Frames:
         self._tree = tf_tree(robot)
         self.positions = configurations(self._tree, positions)
         # sequences leave antialiasing off unless asked: twice the frame rate on Mesa's llvmpipe
-        self._opts = {"antialias": False, **opts}
+        self._opts = {**opts, "antialias": bool(opts.get("antialias"))}
         self._robot, self._progress, self._label = robot, progress, label
         render_options(**self._opts)  # refuse bad options now, not at the first frame
         self._renderer: Renderer | None = None

@@ -14,7 +14,7 @@ from dataclasses import dataclass
 
 import numpy as np
 
-from ..errors import ModelError
+from ..errors import ModelError, XacroError
 from ..kinematics import TFTree, origin_matrix
 from ..model import Robot, Visual
 
@@ -64,7 +64,7 @@ def resolve_mesh_path(filename: str, robot: Robot, package_paths: Sequence[str] 
             roots.append(os.path.dirname(os.path.dirname(os.path.dirname(os.path.abspath(robot.path)))))
         try:
             folder = find_package(package, package_roots(roots))
-        except Exception:
+        except XacroError:
             raise ModelError(f"mesh '{filename}': package '{package}' not found",
                              path=robot.path, line=line, element="mesh",
                              hint=f"pass --package-path DIR, a folder holding {package}/ (with its package.xml)") from None

@@ -21,6 +21,7 @@ import numpy as np
 from ..errors import BackendError, ParameterError
 
 PALETTE_SAMPLES = 4  # frames the GIF palette is computed from
+TRANSPARENT = 255  # GIF palette index left for "unchanged since the previous frame"
 _LUT_BITS = 5  # colour -> palette index table: 5 bits per channel (32768 entries)
 
 
@@ -82,7 +83,8 @@ def gif_delay(fps: float) -> int:
 
 
 class _PaletteMap:
-    """An adaptive 256-colour palette and a table taking any colour to its nearest entry."""
+    """An adaptive 255-colour palette (the 256th entry is transparent) and a table taking any
+    colour to its nearest entry."""
 
     def __init__(self, samples: Sequence[np.ndarray]) -> None:
         from PIL import Image
@@ -91,10 +93,9 @@ class _PaletteMap:
         width = max(t.shape[1] for t in tiles)
         stacked = np.concatenate([np.pad(t, ((0, 0), (0, width - t.shape[1]), (0, 0)), mode="edge") for t in tiles])
         quantised = Image.fromarray(np.ascontiguousarray(stacked)).quantize(
-            colors=256, method=Image.Quantize.MEDIANCUT, dither=Image.Dither.NONE)
-        count = len(quantised.getcolors(256) or []) or 256
-        palette = np.asarray(quantised.getpalette()[: 3 * 256], dtype=np.uint8).reshape(-1, 3)
-        palette = palette[: max(count, 1)]
+            colors=TRANSPARENT, method=Image.Quantize.MEDIANCUT, dither=Image.Dither.NONE)
+        used = np.array(sorted(int(index) for _, index in quantised.getcolors(256) or [(0, 0)]))  # type: ignore[arg-type]
+        palette = np.asarray(quantised.getpalette() or [0, 0, 0], dtype=np.uint8).reshape(-1, 3)[used]
         self.palette = np.zeros((256, 3), dtype=np.uint8)
         self.palette[: len(palette)] = palette
         from scipy.spatial import cKDTree
@@ -144,13 +145,15 @@ class GifWriter:
             changed = index != self._previous
             rows, cols = np.flatnonzero(changed.any(axis=1)), np.flatnonzero(changed.any(axis=0))
             if len(rows) == 0:
-                top, left, patch = 0, 0, index[:1, :1]
+                top, left, patch = 0, 0, np.full((1, 1), TRANSPARENT, dtype=np.uint8)
             else:
-                top, left = int(rows[0]), int(cols[0])
-                patch = index[top:int(rows[-1]) + 1, left:int(cols[-1]) + 1]
-        image = Image.fromarray(np.ascontiguousarray(patch), mode="L")
+                top, bottom, left, right = int(rows[0]), int(rows[-1]) + 1, int(cols[0]), int(cols[-1]) + 1
+                # inside the changed rectangle, unchanged pixels are transparent: long runs, small file
+                patch = np.where(changed[top:bottom, left:right], index[top:bottom, left:right], TRANSPARENT)
+        image = Image.fromarray(np.ascontiguousarray(patch, dtype=np.uint8), mode="L")
         # disposal 1: keep this frame under the next one, which only paints what changed
-        for chunk in GifImagePlugin.getdata(image, (left, top), duration=self._delay * 10, disposal=1):
+        for chunk in GifImagePlugin.getdata(image, (left, top), duration=self._delay * 10, disposal=1,
+                                            transparency=TRANSPARENT):
             self._file.write(chunk)
         self._previous = index
         self.frames += 1

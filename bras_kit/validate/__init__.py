@@ -13,10 +13,12 @@ Every rule lives in the registry (:data:`RULES`), one module per family: :mod:`.
 
 from __future__ import annotations
 
+import contextlib
 import dataclasses
+import gc
 import os
 import re
-from collections.abc import Iterable, Mapping, Sequence
+from collections.abc import Iterable, Iterator, Mapping, Sequence
 from typing import Any
 
 from ..errors import BrasKitError, ParameterError, XacroError, XMLSafetyError, XMLSyntaxError
@@ -29,7 +31,7 @@ from .registry import ERROR, INFO, RULES, WARNING, Hit, Rule, run_rules, select_
 
 __all__ = [
     "ERROR", "INFO", "LANGUAGES", "RULES", "UNREADABLE_CODES", "WARNING", "FileResult", "Finding",
-    "Rule", "collect_files", "default_language", "validate", "validate_path",
+    "Rule", "check_robot", "collect_files", "default_language", "validate", "validate_path",
 ]
 
 SOURCE_SUFFIXES = (".urdf", ".xacro")
@@ -84,16 +86,18 @@ def validate_path(
     """
     check_language(lang)
     path = os.fspath(path)
-    robot_or_failure = load_for_validation(path, mappings=mappings, package_paths=package_paths, lang=lang)
-    if isinstance(robot_or_failure, Finding):
-        return [robot_or_failure]
-    robot = robot_or_failure
-    if path.endswith(".xacro") and not robot.links and robot.root_tag == "robot" \
-            and _defines_macros(path):
-        return [_loader_finding("BK124", Hit("robot", robot.name, None), lang)]
-    states = motion_states(robot, motion, duration) if motion else None
-    findings = validate(robot, pose=pose, states=states, lang=lang, package_paths=package_paths,
-                        select=select, ignore=ignore)
+    with _collector_paused():
+        robot_or_failure = load_for_validation(path, mappings=mappings, package_paths=package_paths, lang=lang)
+        if isinstance(robot_or_failure, Finding):
+            return [robot_or_failure]
+        robot = robot_or_failure
+        if path.endswith(".xacro") and not robot.links and robot.root_tag == "robot" \
+                and _defines_macros(path):
+            chosen = any(r.code == "BK124" for r in _rules(select, ignore))
+            return [_loader_finding("BK124", Hit("robot", robot.name, None), lang)] if chosen else []
+        states = motion_states(robot, motion, duration) if motion else None
+        findings = validate(robot, pose=pose, states=states, lang=lang, package_paths=package_paths,
+                            select=select, ignore=ignore)
     if path.endswith(".xacro"):
         findings = _lines_in_xacro_source(path, findings)
     return findings
@@ -104,6 +108,22 @@ def check_robot(robot: Robot, *, motion: Sequence[str] | None = None, duration: 
     """An already loaded robot (the built-in arm) checked like a file, as a :class:`FileResult`."""
     states = motion_states(robot, motion, duration) if motion else None
     return FileResult(robot.path or "<robot>", validate(robot, states=states, **options))
+
+
+@contextlib.contextmanager
+def _collector_paused() -> Iterator[None]:
+    """Pause Python's cyclic garbage collector while a file is read and checked.
+
+    A 10,000-link URDF makes some 200,000 small objects and no reference cycles; the collector
+    would scan them again and again for nothing (about half the load time).
+    """
+    enabled = gc.isenabled()
+    gc.disable()
+    try:
+        yield
+    finally:
+        if enabled:
+            gc.enable()
 
 
 # ---------------------------------------------------------------- files

@@ -60,6 +60,12 @@ def rule_list_text(lang: str = "en") -> str:
 # ---------------------------------------------------------------- docs/rules.md
 
 
+def _md(text: str) -> str:
+    """Markdown with ``<tags>`` outside `code spans` escaped, so that they show instead of vanishing as HTML."""
+    parts = text.split("`")
+    return "`".join(part.replace("<", "&lt;") if i % 2 == 0 else part for i, part in enumerate(parts))
+
+
 def _templates(label: str, template: Template) -> list[str]:
     if isinstance(template, str):
         return [f"- {label}: `{template}`"] if template else []
@@ -70,12 +76,12 @@ def _section(rule: Rule, lang: str) -> list[str]:
     text = rule_text(rule.code, lang)
     language = "English" if lang == "en" else "Français"
     return [
-        f"**{language}**: {text.title}",
+        f"**{language}**: {_md(text.title)}",
         "",
         *_templates("message", text.message),
         *_templates("hint", text.hint),
         "",
-        text.explanation,
+        _md(text.explanation),
         "",
     ]
 
@@ -109,7 +115,7 @@ written there literally, and are left out otherwise.
 def catalogue_markdown() -> str:
     parts = [INTRO, "| Code | Name | Severity | Finds |", "|---|---|---|---|"]
     for r in sorted_rules():
-        parts.append(f"| [{r.code}](#{r.code.lower()}) | {r.name} | {r.severity} | {rule_text(r.code).title} |")
+        parts.append(f"| [{r.code}](#{r.code.lower()}) | {r.name} | {r.severity} | {_md(rule_text(r.code).title)} |")
     parts.append("")
     for prefix, family in FAMILIES.items():
         parts += [f"## {prefix}xx: {ui('en')[f'family_{family}']}", ""]

@@ -9,7 +9,7 @@ first defect).
 from __future__ import annotations
 
 import os
-from collections.abc import Mapping, Sequence
+from collections.abc import Callable, Iterable, Mapping, Sequence
 from dataclasses import dataclass, field
 from functools import cached_property
 from typing import Any
@@ -41,6 +41,13 @@ class Context:
     states: Any = None  # bras_kit.motion.JointStates (times, names, positions, velocities)
     package_paths: Sequence[str] = ()
     _bounds: dict[int, Bounds | None] = field(default_factory=dict, init=False, repr=False)
+    _derived: dict[str, Any] = field(default_factory=dict, init=False, repr=False)
+
+    def derived(self, key: str, compute: Callable[[Context], Any]) -> Any:
+        """A fact several rules need (e.g. every principal moment), computed once per validation."""
+        if key not in self._derived:
+            self._derived[key] = compute(self)
+        return self._derived[key]
 
     # ------------------------------------------------------------ indexes
 
@@ -124,7 +131,10 @@ class Context:
             children.setdefault(joint.parent, []).append(joint)
         roots = [name for name in known if name not in parent_joint]
         isolated = [name for name in known if name not in named] if len(known) > 1 else []
-        return Graph(parent_joint, extra, roots, isolated, _cycles(known, parent_joint), children)
+        parent_of = {child: joint.parent or "" for child, joint in parent_joint.items()}
+        # a walk from child to parent meets the loop's links in reverse joint order
+        cycles = [[parent_joint[name] for name in reversed(loop)] for loop in find_loops(known, parent_of)]
+        return Graph(parent_joint, extra, roots, isolated, cycles, children)
 
     # ------------------------------------------------------------ shapes
 
@@ -149,50 +159,46 @@ class Context:
     # ------------------------------------------------------------ issues -> owners
 
     def owner(self, issue: Issue) -> tuple[str, str | None]:
-        """The named element (link or joint) an issue belongs to, as (tag, name).
+        """The named element (link, joint or material) an issue belongs to, as (tag, name).
 
         The parser records the owner's name; links and joints may share a name (``poignet``),
         so the owner is the one whose definition starts last at or before the issue's line.
         """
-        if issue.element in ("robot", "material") and issue.name is None:
-            return issue.element, None
-        if issue.element == "material" and issue.name not in self.links and issue.name not in self.joints:
-            return "material", issue.name
-        if issue.name is None:
-            return ("joint" if issue.element in _JOINT_TAGS else "link"), None
-        link, joint = self.links.get(issue.name), self.joints.get(issue.name)
+        link = self.links.get(issue.name) if issue.name is not None else None
+        joint = self.joints.get(issue.name) if issue.name is not None else None
         if link is not None and joint is not None:
-            link_line, joint_line = link.line or 0, joint.line or 0
-            if link_line != joint_line:
-                candidates = [(ln, tag) for ln, tag in ((link_line, "link"), (joint_line, "joint"))
-                              if ln <= issue.line]
-                if candidates:
-                    return max(candidates)[1], issue.name
-            return ("joint" if issue.element in _JOINT_TAGS else "link"), issue.name
-        if joint is not None:
+            before = [(line, tag) for line, tag in ((link.line or 0, "link"), (joint.line or 0, "joint"))
+                      if line <= issue.line]
+            if len(before) == 2 and before[0][0] != before[1][0]:
+                return max(before)[1], issue.name
+            if len(before) == 1:
+                return before[0][1], issue.name
+        elif joint is not None:
             return "joint", issue.name
-        if link is not None:
+        elif link is not None:
             return "link", issue.name
+        if issue.element in ("material", "color", "texture") and link is None and joint is None:
+            return "material", issue.name
         return ("joint" if issue.element in _JOINT_TAGS else "link"), issue.name
 
 
-def _cycles(links: Mapping[str, Link], parent_joint: Mapping[str, Joint]) -> list[list[Joint]]:
-    """Loops in the parent relation, each once, by walking up from every link (linear time)."""
+def find_loops(nodes: Iterable[str], step: Mapping[str, str]) -> list[list[str]]:
+    """Loops in a "points to" relation (link -> parent link, joint -> mimicked joint), each once.
+
+    Each node is walked from at most once, so the search is linear in the number of nodes.
+    A loop is returned as the nodes met, in walking order, starting where it closes.
+    """
     state: dict[str, int] = {}  # 1: on the current walk, 2: settled
-    loops: list[list[Joint]] = []
-    for start in links:
-        if start in state:
-            continue
+    loops: list[list[str]] = []
+    for start in nodes:
         walk: list[str] = []
         current: str | None = start
         while current is not None and current not in state:
             state[current] = 1
             walk.append(current)
-            joint = parent_joint.get(current)
-            current = joint.parent if joint is not None else None
-        if current is not None and state[current] == 1:  # came back onto this walk: a loop
-            members = walk[walk.index(current):]
-            loops.append([parent_joint[name] for name in reversed(members)])
+            current = step.get(current)
+        if current is not None and state[current] == 1:  # came back onto this walk
+            loops.append(walk[walk.index(current):])
         for name in walk:
             state[name] = 2
     return loops

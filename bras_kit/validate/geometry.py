@@ -38,8 +38,8 @@ def geometry_missing(ctx: Context) -> Iterator[Hit]:
             if element.geometry is None:
                 yield hit("link", link.name, element.line, "absent", link=link.name, tag=_kind(element))
     for issue in ctx.issues("unknown_geometry"):
-        element, name = ctx.owner(issue)
-        yield hit(element, name, issue.line, "unknown" if issue.value else "empty", link=name,
+        owner, name = ctx.owner(issue)
+        yield hit(owner, name, issue.line, "unknown" if issue.value else "empty", link=name,
                   tag=issue.value)
 
 

@@ -8,36 +8,48 @@ from __future__ import annotations
 
 import math
 from collections.abc import Iterator
+from dataclasses import dataclass
 
 import numpy as np
 
-from ..model import Inertial, Link
+from ..model import MOVABLE_TYPES, Inertial, Link
 from .context import Context
 from .registry import ERROR, INFO, WARNING, Hit, hit, rule
-from .solids import number, rotation, solid_inertia, vector
+from .solids import finite, number, rotation, solid_moments, vector
 
-MOVING_TYPES = ("revolute", "continuous", "prismatic")
 MISMATCH_FACTOR = 2.0
 KEYS = ("ixx", "ixy", "ixz", "iyy", "iyz", "izz")
 
 
-def _tensor(inertial: Inertial) -> np.ndarray | None:
-    values = [inertial.inertia.get(k) for k in KEYS]
-    if any(v is None or not math.isfinite(v) for v in values):
-        return None
-    return np.array(inertial.matrix(), dtype=float)
+@dataclass(frozen=True)
+class Body:
+    """A link's readable inertia: the tensor and its principal moments (ascending)."""
+
+    link: Link
+    inertial: Inertial
+    tensor: np.ndarray
+    moments: tuple[float, float, float]
+    positive_definite: bool
 
 
-def _principal(tensor: np.ndarray) -> np.ndarray:
-    """Principal moments, ascending (computed on the scaled tensor so huge values cannot overflow)."""
-    scale = float(np.abs(tensor).max())
-    if scale == 0.0:
-        return np.zeros(3)
-    return np.linalg.eigvalsh(tensor / scale) * scale
+def bodies(ctx: Context) -> list[Body]:
+    """Every link whose six inertia values are finite numbers, moments computed in one batch."""
+    return ctx.derived("inertia.bodies", _bodies)  # type: ignore[no-any-return]
 
 
-def _positive_definite(moments: np.ndarray) -> bool:
-    return bool(moments[-1] > 0 and moments[0] > 1e-12 * moments[-1])
+def _bodies(ctx: Context) -> list[Body]:
+    readable = [(link, inertial) for link, inertial in _inertials(ctx)
+                if finite(*(inertial.inertia.get(k) for k in KEYS))]
+    if not readable:
+        return []
+    tensors = np.array([inertial.matrix() for _, inertial in readable], dtype=float)
+    # scaled so that huge values cannot overflow; eigenvalues scale back linearly
+    scale = np.abs(tensors).max(axis=(1, 2))
+    scale[scale == 0] = 1.0
+    moments = np.linalg.eigvalsh(tensors / scale[:, None, None]) * scale[:, None]
+    definite = (moments[:, 2] > 0) & (moments[:, 0] > 1e-12 * moments[:, 2])
+    return [Body(link, inertial, tensors[i], tuple(moments[i].tolist()), bool(definite[i]))  # type: ignore[arg-type]
+            for i, (link, inertial) in enumerate(readable)]
 
 
 def _inertials(ctx: Context) -> Iterator[tuple[Link, Inertial]]:
@@ -56,26 +68,19 @@ def mass_not_positive(ctx: Context) -> Iterator[Hit]:
 
 @rule("BK501", "inertia-not-positive-definite", ERROR)
 def inertia_not_positive_definite(ctx: Context) -> Iterator[Hit]:
-    for link, inertial in _inertials(ctx):
-        tensor = _tensor(inertial)
-        if tensor is None:
-            continue
-        moments = _principal(tensor)
-        if not _positive_definite(moments):
-            variant = "zero" if not tensor.any() else ""
-            yield hit("link", link.name, inertial.line, variant, link=link.name,
-                      moments=tuple(float(m) for m in moments))
+    for body in bodies(ctx):
+        if not body.positive_definite:
+            variant = "zero" if not body.tensor.any() else ""
+            yield hit("link", body.link.name, body.inertial.line, variant, link=body.link.name,
+                      moments=body.moments)
 
 
 @rule("BK502", "inertia-triangle-inequality", ERROR)
 def inertia_triangle_inequality(ctx: Context) -> Iterator[Hit]:
-    for link, inertial in _inertials(ctx):
-        tensor = _tensor(inertial)
-        if tensor is None:
-            continue
-        a, b, c = (float(m) for m in _principal(tensor))
-        if _positive_definite(np.array([a, b, c])) and a + b < c * (1 - 1e-9):
-            yield hit("link", link.name, inertial.line, link=link.name, a=a, b=b, c=c)
+    for body in bodies(ctx):
+        a, b, c = body.moments
+        if body.positive_definite and a + b < c * (1 - 1e-9):
+            yield hit("link", body.link.name, body.inertial.line, link=body.link.name, a=a, b=b, c=c)
 
 
 def _solid_text(kind: str, link: Link, ctx: Context) -> str:
@@ -100,13 +105,14 @@ def expected_inertia(ctx: Context, link: Link) -> np.ndarray | None:
     if mass is None or not math.isfinite(mass) or mass <= 0:
         return None
     element = shape[0]
-    solid = solid_inertia(element.geometry, mass)  # type: ignore[arg-type]
-    if solid is None:
+    moments = solid_moments(element.geometry, mass)  # type: ignore[arg-type]
+    if moments is None or not all(math.isfinite(m) for m in moments):
         return None
-    in_link = rotation(element.origin) @ solid @ rotation(element.origin).T
-    to_inertial = rotation(inertial.origin)
-    expected = to_inertial.T @ in_link @ to_inertial
-    return expected if np.isfinite(expected).all() else None
+    solid = np.diag(moments)
+    if element.origin.rpy == (0.0, 0.0, 0.0) and inertial.origin.rpy == (0.0, 0.0, 0.0):
+        return solid
+    to_inertial = rotation(inertial.origin).T @ rotation(element.origin)
+    return to_inertial @ solid @ to_inertial.T  # type: ignore[no-any-return]
 
 
 def _inertia_xml(tensor: np.ndarray) -> str:
@@ -127,26 +133,27 @@ def _sig(value: float, scale: float) -> str:
 
 @rule("BK503", "inertia-mismatch", WARNING)
 def inertia_mismatch(ctx: Context) -> Iterator[Hit]:
-    for link, inertial in _inertials(ctx):
-        tensor = _tensor(inertial)
-        if tensor is None or not _positive_definite(_principal(tensor)):
+    for body in bodies(ctx):
+        link, inertial, tensor = body.link, body.inertial, body.tensor
+        if not body.positive_definite:
             continue
         expected = expected_inertia(ctx, link)
         if expected is None:
             continue
-        given, wanted = np.diag(tensor), np.diag(expected)  # positive: both tensors are positive definite
-        largest = float(wanted.max())
+        # both diagonals are positive: both tensors are positive definite
+        given, wanted = tensor.diagonal().tolist(), expected.diagonal().tolist()
+        largest = max(wanted)
         spreads = [
             max(given[i] / wanted[i], wanted[i] / given[i]) if wanted[i] >= 0.01 * largest else 1.0
             for i in range(3)  # a near-zero moment (thin rod about its length) has no meaningful ratio
         ]
-        axis = int(np.argmax(spreads))
+        axis = max(range(3), key=lambda i: spreads[i])
         if spreads[axis] <= MISMATCH_FACTOR:
             continue
         kind = ctx.shape(link)[0].geometry.kind  # type: ignore[index, union-attr]
         yield hit("link", link.name, inertial.line, "more" if given[axis] > wanted[axis] else "less",
-                  link=link.name, key=("ixx", "iyy", "izz")[axis], given=float(given[axis]),
-                  expected=float(wanted[axis]), factor=round(float(spreads[axis]), 1), mass=inertial.mass,
+                  link=link.name, key=("ixx", "iyy", "izz")[axis], given=given[axis],
+                  expected=wanted[axis], factor=round(spreads[axis], 1), mass=inertial.mass,
                   solid=_solid_text(kind, link, ctx), inertia=_inertia_xml(expected))
 
 
@@ -170,7 +177,7 @@ def inertial_origin_misplaced(ctx: Context) -> Iterator[Hit]:
         if any(inertial.origin.rpy):
             origin += f' rpy="{vector(inertial.origin.rpy)}"'
         yield hit("link", link.name, inertial.origin.line or inertial.line, variant, link=link.name, at=xyz,
-                  span=bounds.span(k) if variant == "end" else bounds.spans(), centre=bounds.centre,
+                  span=bounds.span(k) if k is not None and variant == "end" else bounds.spans(), centre=bounds.centre,
                   origin=origin + "/>", expected=bounds.centre)
 
 
@@ -179,7 +186,7 @@ def inertial_missing(ctx: Context) -> Iterator[Hit]:
     parent_joint = ctx.graph.parent_joint
     missing = [
         link for link in ctx.robot.links
-        if link.inertial is None and link.name in parent_joint and parent_joint[link.name].type in MOVING_TYPES
+        if link.inertial is None and link.name in parent_joint and parent_joint[link.name].type in MOVABLE_TYPES
     ]
     if missing:  # one note per robot: it is advice for later, not a defect of each link
         first = missing[0]

@@ -5,24 +5,20 @@ from __future__ import annotations
 import math
 from collections.abc import Iterator
 
-from ..model import Joint
+from ..model import MOVABLE_TYPES, Joint
 from .context import Context
 from .registry import ERROR, INFO, WARNING, Hit, hit, rule
-from .solids import number
+from .solids import finite, number
 
 LIMITED_TYPES = ("revolute", "prismatic")
-MOVING_TYPES = ("revolute", "continuous", "prismatic")
 AXIS_TYPES = ("revolute", "continuous", "prismatic", "planar")
 UNIT_TOLERANCE = 1e-3
 MAX_PRISMATIC_TRAVEL = 10.0  # metres: beyond this, the limits were almost surely written in mm or cm
 MAX_REVOLUTE_ANGLE = 2 * math.pi + 0.01  # radians: beyond one turn either way, probably degrees
 
 
-def _finite(*values: float | None) -> bool:
-    return all(v is not None and math.isfinite(v) for v in values)
-
-
-def _unit(joint: Joint) -> str:
+def unit(joint: Joint) -> str:
+    """The unit of a joint's position: metres for prismatic joints, radians otherwise."""
     return "m" if joint.type == "prismatic" else "rad"
 
 
@@ -51,9 +47,9 @@ def limit_lower_above_upper(ctx: Context) -> Iterator[Hit]:
     for joint in ctx.robot.joints:
         if joint.type in LIMITED_TYPES and joint.limit is not None:
             lower, upper = joint.bounds()
-            if _finite(lower, upper) and lower > upper:
+            if finite(lower, upper) and lower > upper:
                 yield hit("joint", joint.name, joint.limit.line, joint=joint.name, lower=lower,
-                          upper=upper, unit=_unit(joint))
+                          upper=upper, unit=unit(joint))
 
 
 @rule("BK203", "limit-range-empty", WARNING)
@@ -62,17 +58,17 @@ def limit_range_empty(ctx: Context) -> Iterator[Hit]:
         limit = joint.limit
         if joint.type in LIMITED_TYPES and limit is not None:
             lower, upper = joint.bounds()
-            if _finite(lower, upper) and lower == upper:
+            if finite(lower, upper) and lower == upper:
                 unwritten = limit.lower is None and limit.upper is None
                 if unwritten and any((limit.line, a) in ctx.unreadable for a in ("lower", "upper")):
                     continue  # an unreadable number, already reported by BK123
                 yield hit("joint", joint.name, limit.line, "unwritten" if unwritten else "",
-                          joint=joint.name, value=lower, unit=_unit(joint))
+                          joint=joint.name, value=lower, unit=unit(joint))
 
 
 def _axis_joints(ctx: Context) -> Iterator[tuple[Joint, tuple[float, float, float], float]]:
     for joint in ctx.robot.joints:
-        if joint.type in AXIS_TYPES and joint.axis is not None and _finite(*joint.axis):
+        if joint.type in AXIS_TYPES and joint.axis is not None and finite(*joint.axis):
             yield joint, joint.axis, math.sqrt(sum(v * v for v in joint.axis))
 
 
@@ -87,9 +83,9 @@ def axis_zero(ctx: Context) -> Iterator[Hit]:
 def axis_not_unit(ctx: Context) -> Iterator[Hit]:
     for joint, axis, norm in _axis_joints(ctx):
         if norm > 0.0 and abs(norm - 1.0) > UNIT_TOLERANCE:
-            unit = tuple(v / norm for v in axis)
+            direction = " ".join(f"{v / norm:.4g}" if v else "0" for v in axis)
             yield hit("joint", joint.name, joint.axis_line or joint.line, joint=joint.name, axis=axis,
-                      norm=norm, unit=" ".join(f"{v:.4g}" if v else "0" for v in unit))
+                      norm=norm, unit=direction)
 
 
 @rule("BK206", "axis-unreadable", ERROR)
@@ -121,7 +117,7 @@ def continuous_with_bounds(ctx: Context) -> Iterator[Hit]:
 def limit_not_positive(ctx: Context) -> Iterator[Hit]:
     for joint in ctx.robot.joints:
         limit = joint.limit
-        if joint.type not in MOVING_TYPES or limit is None:
+        if joint.type not in MOVABLE_TYPES or limit is None:
             continue
         for attribute, value in (("effort", limit.effort), ("velocity", limit.velocity)):
             if value is not None and math.isfinite(value) and value <= 0:
@@ -133,7 +129,7 @@ def prismatic_travel_implausible(ctx: Context) -> Iterator[Hit]:
     for joint in ctx.robot.joints:
         if joint.type == "prismatic" and joint.limit is not None:
             lower, upper = joint.bounds()
-            if _finite(lower, upper) and upper - lower > MAX_PRISMATIC_TRAVEL:
+            if finite(lower, upper) and upper - lower > MAX_PRISMATIC_TRAVEL:
                 yield hit("joint", joint.name, joint.limit.line, joint=joint.name, travel=upper - lower,
                           lower=lower, upper=upper, lower_m=lower / 1000, upper_m=upper / 1000,
                           limit=MAX_PRISMATIC_TRAVEL)
@@ -144,7 +140,7 @@ def revolute_limit_in_degrees(ctx: Context) -> Iterator[Hit]:
     for joint in ctx.robot.joints:
         if joint.type == "revolute" and joint.limit is not None:
             lower, upper = joint.bounds()
-            if _finite(lower, upper) and max(abs(lower), abs(upper)) > MAX_REVOLUTE_ANGLE:
+            if finite(lower, upper) and max(abs(lower), abs(upper)) > MAX_REVOLUTE_ANGLE:
                 yield hit("joint", joint.name, joint.limit.line, joint=joint.name, lower=lower, upper=upper,
                           lower_rad=number(round(math.radians(lower), 4)),
                           upper_rad=number(round(math.radians(upper), 4)))
@@ -165,6 +161,6 @@ def fixed_joint_with_motion(ctx: Context) -> Iterator[Hit]:
 @rule("BK213", "axis-default", INFO)
 def axis_default(ctx: Context) -> Iterator[Hit]:
     for joint in ctx.robot.joints:
-        if joint.type in MOVING_TYPES and joint.axis_line is None:
+        if joint.type in MOVABLE_TYPES and joint.axis_line is None:
             variant = "prismatic" if joint.type == "prismatic" else ""
             yield hit("joint", joint.name, joint.line, variant, joint=joint.name)

@@ -409,7 +409,7 @@ end stops are written `continuous`, not with infinite limits.""",
     ),
     "BK208": T(
         title="a continuous joint has lower/upper limits",
-        message="joint '{joint}' is continuous, so its {attributes} limit is ignored",
+        message="joint '{joint}' is continuous, so URDF readers ignore {attributes} in its <limit>",
         hint='make it type="revolute" if it must stop at these values, or remove lower/upper',
         explanation="""\
 A `continuous` joint turns without end stops; URDF readers ignore `lower` and `upper` on it.
@@ -492,8 +492,10 @@ upper arm `bras` is 0.6 m long. If the origin does not match the parent's length
 segment starts inside the parent or floats away from it ("segments mal positionnés").
 
 bras-kit checks moving joints (revolute, continuous, prismatic) whose parent link has one box
-or cylinder visual, and says where the segment ends and which origin fits. Sensor mounts and
-tool frames on fixed joints are not checked.""",
+or cylinder visual, and says where the segment ends and which origin fits. A joint lying off
+to the side of its parent's shape is reported only when the child's shape does not touch the
+parent's either: links side by side on one axle, or a wheel under its chassis, are designs.
+Sensor mounts and tool frames on fixed joints are not checked.""",
     ),
     "BK302": T(
         title="a segment's visual does not start at its joint",
@@ -718,7 +720,7 @@ shape, more than a quarter of its length away from the middle.""",
         explanation="""\
 RViz only draws; it never uses mass or inertia. A physics simulator such as Gazebo ignores, or
 refuses, links without `<inertial>`: this is the tutorial's "aller plus loin" exercise. A note,
-not a problem, while you only visualise the arm.""",
+not a problem, while you only visualise the arm; it is given once per robot, naming the links.""",
     ),
     "BK506": T(
         title="the root link has an inertia",

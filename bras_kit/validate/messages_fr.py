@@ -430,7 +430,7 @@ s'envole. Une articulation sans butée s'écrit `continuous`, pas avec des limit
     ),
     "BK208": T(
         title="une articulation continuous a des limites lower/upper",
-        message="l'articulation '{joint}' est continuous : sa limite {attributes} est ignorée",
+        message="l'articulation '{joint}' est continuous : les lecteurs URDF ignorent {attributes} dans son <limit>",
         hint='passez-la en type="revolute" si elle doit s\'arrêter à ces valeurs, sinon retirez lower/upper',
         explanation="""\
 Une articulation `continuous` tourne sans butée ; les lecteurs URDF ignorent `lower` et
@@ -517,8 +517,10 @@ positionnés »).
 
 bras-kit vérifie les articulations mobiles (revolute, continuous, prismatic) dont le link
 parent a un seul visuel pavé (box) ou cylindre, et indique où finit le segment et quelle
-origine convient. Les supports de capteurs et repères d'outil sur des articulations fixes ne
-sont pas vérifiés.""",
+origine convient. Une articulation placée à côté de la forme de son parent n'est signalée que
+si la forme de l'enfant ne touche pas non plus celle du parent : des links côte à côte sur un
+même axe, ou une roue sous son châssis, sont voulus. Les supports de capteurs et repères
+d'outil sur des articulations fixes ne sont pas vérifiés.""",
     ),
     "BK302": T(
         title="le visuel d'un segment ne part pas de son articulation",
@@ -754,7 +756,8 @@ de la forme ou, pour une forme allongée, à plus d'un quart de sa longueur du m
         explanation="""\
 RViz ne fait que dessiner ; il n'utilise jamais la masse ni l'inertie. Un simulateur physique
 comme Gazebo ignore, voire refuse, les links sans `<inertial>` : c'est l'exercice « pour aller
-plus loin » du tutoriel. Une simple remarque tant que vous ne faites qu'afficher le bras.""",
+plus loin » du tutoriel. Une simple remarque tant que vous ne faites qu'afficher le bras ; elle
+est donnée une fois par robot, avec la liste des links.""",
     ),
     "BK506": T(
         title="le link racine a une inertie",

@@ -7,7 +7,9 @@
 
 A "segment" is a link with exactly one box or cylinder visual that is clearly longer along one
 axis than the others; only joints that move (revolute, continuous, prismatic) are checked, so
-sensor mounts and tool frames on fixed joints may sit anywhere.
+sensor mounts and tool frames on fixed joints may sit anywhere. A joint off to the side of its
+parent's shape is reported only when the child's shape does not touch the parent's either
+(links side by side on one axle, or a wheel under its chassis, are designs, not mistakes).
 """
 
 from __future__ import annotations
@@ -16,12 +18,12 @@ import math
 from collections.abc import Iterator
 from typing import Any
 
-from ..model import Joint, Link, Visual
+from ..model import MOVABLE_TYPES, Joint, Link, Visual
 from .context import Context
+from .joints import unit
 from .registry import ERROR, WARNING, Hit, hit, rule
-from .solids import AXES, Bounds, number, vector
+from .solids import AXES, Bounds, finite, number, vector
 
-MOVING_TYPES = ("revolute", "continuous", "prismatic")
 LIMIT_TOLERANCE = 1e-9
 
 
@@ -37,15 +39,11 @@ def origin_xml(xyz: tuple[float, ...], rpy: tuple[float, ...]) -> str:
     return text + "/>"
 
 
-def _finite(values: tuple[float, ...]) -> bool:
-    return all(math.isfinite(v) for v in values)
-
-
 def _direction(ctx: Context, link: Link, bounds: Bounds, k: int, tol: float) -> int:
     """Which way a segment runs from its joint along axis k: towards its child joints if they
     say, otherwise towards its farther end (+1 when centred)."""
     for child in ctx.graph.children.get(link.name or "", []):
-        if child.type in MOVING_TYPES and _finite(child.origin.xyz) and abs(child.origin.xyz[k]) > tol:
+        if child.type in MOVABLE_TYPES and finite(*child.origin.xyz) and abs(child.origin.xyz[k]) > tol:
             return 1 if child.origin.xyz[k] > 0 else -1
     return 1 if abs(bounds.hi[k]) >= abs(bounds.lo[k]) else -1
 
@@ -66,7 +64,7 @@ def _segment_end(ctx: Context, link: Link, bounds: Bounds, k: int, at: float, to
 @rule("BK301", "joint-not-at-segment-end", ERROR)
 def joint_not_at_segment_end(ctx: Context) -> Iterator[Hit]:
     for joint in ctx.robot.joints:
-        if joint.type not in MOVING_TYPES or not _finite(joint.origin.xyz + joint.origin.rpy):
+        if joint.type not in MOVABLE_TYPES or not finite(*joint.origin.xyz, *joint.origin.rpy):
             continue
         parent = ctx.links.get(joint.parent or "")
         shape = ctx.shape(parent) if parent is not None else None
@@ -78,8 +76,6 @@ def joint_not_at_segment_end(ctx: Context) -> Iterator[Hit]:
         tol = tolerance(bounds)
         inside = tuple(min(max(p[i], bounds.lo[i]), bounds.hi[i]) for i in range(3))
         outside = math.dist(p, inside)
-        common = dict(joint=joint.name, link=parent.name, tag=_tag(element))
-        line = joint.origin.line or joint.line
         on_axis = k is not None and all(bounds.lo[i] - tol <= p[i] <= bounds.hi[i] + tol for i in range(3) if i != k)
         if on_axis:
             assert k is not None
@@ -88,12 +84,22 @@ def joint_not_at_segment_end(ctx: Context) -> Iterator[Hit]:
                 continue
             expected = tuple(ends[0] if i == k else p[i] for i in range(3))
             beyond = outside > tol
-            yield hit("joint", joint.name, line, "beyond" if beyond else "short", **common,
-                      coord=f"{AXES[k]}={number(p[k])}", distance=outside if beyond else abs(ends[0] - p[k]),
-                      span=bounds.span(k), origin=origin_xml(expected, joint.origin.rpy), expected=expected)
-        elif outside > tol:
-            yield hit("joint", joint.name, line, "outside", **common, at=p, distance=outside,
-                      span=bounds.spans(), origin=origin_xml(inside, joint.origin.rpy), expected=inside)
+            yield hit("joint", joint.name, joint.origin.line or joint.line, "beyond" if beyond else "short",
+                      joint=joint.name, link=parent.name, tag=_tag(element), coord=f"{AXES[k]}={number(p[k])}",
+                      distance=outside if beyond else abs(ends[0] - p[k]), span=bounds.span(k),
+                      origin=origin_xml(expected, joint.origin.rpy), expected=expected)
+        elif outside > tol and not _child_touches(ctx, joint, bounds, tol):
+            yield hit("joint", joint.name, joint.origin.line or joint.line, "outside", joint=joint.name,
+                      link=parent.name, tag=_tag(element), at=p, distance=outside, span=bounds.spans(),
+                      origin=origin_xml(inside, joint.origin.rpy), expected=inside)
+
+
+def _child_touches(ctx: Context, joint: Joint, parent: Bounds, tol: float) -> bool:
+    """Whether the child's shape, placed by the joint, touches the parent's shape: then a joint
+    beside the parent is a design (links side by side on one axle, a wheel under its chassis)."""
+    child = ctx.links.get(joint.child or "")
+    shape = ctx.shape(child) if child is not None else None
+    return shape is not None and shape[1].moved(joint.origin).gap(parent) <= tol
 
 
 def _tag(element: object) -> str:
@@ -105,7 +111,7 @@ def _tag(element: object) -> str:
 def visual_not_at_joint(ctx: Context) -> Iterator[Hit]:
     for link in ctx.robot.links:
         joint = ctx.graph.parent_joint.get(link.name or "")
-        if joint is None or joint.type not in MOVING_TYPES or not link.visuals:
+        if joint is None or joint.type not in MOVABLE_TYPES or not link.visuals:
             continue
         shape = ctx.shape(link)
         if shape is None or not isinstance(shape[0], Visual):
@@ -133,10 +139,6 @@ def _limit_line(joint: Joint) -> int | None:
     return (joint.limit.line if joint.limit is not None else None) or joint.line
 
 
-def _unit(joint: Joint) -> str:
-    return "m" if joint.type == "prismatic" else "rad"
-
-
 @rule("BK303", "pose-outside-limits", ERROR)
 def pose_outside_limits(ctx: Context) -> Iterator[Hit]:
     for name, value in (ctx.pose or {}).items():
@@ -149,7 +151,7 @@ def pose_outside_limits(ctx: Context) -> Iterator[Hit]:
             yield hit("joint", name, _limit_line(joint), "upper" if above else "lower", joint=name,
                       value=float(value), bound=upper if above else lower,
                       excess=value - upper if above else lower - value, lower=lower, upper=upper,
-                      unit=_unit(joint))
+                      unit=unit(joint))
 
 
 def _violations(ctx: Context, kind: str) -> Iterator[tuple[Joint, Any]]:
@@ -170,19 +172,19 @@ def motion_outside_limits(ctx: Context) -> Iterator[Hit]:
         lower, upper = joint.bounds()
         yield hit("joint", joint.name, _limit_line(joint), v.side, joint=joint.name, time=v.time,
                   bound=v.bound, worst=round(v.excess, 3), worst_time=v.peak_time, worst_value=round(v.value, 3),
-                  samples=v.samples, lower=lower, upper=upper, unit=_unit(joint))
+                  samples=v.samples, lower=lower, upper=upper, unit=unit(joint))
 
 
 @rule("BK305", "motion-too-fast", WARNING)
 def motion_too_fast(ctx: Context) -> Iterator[Hit]:
     for joint, v in _violations(ctx, "velocity"):
         yield hit("joint", joint.name, _limit_line(joint), joint=joint.name, time=v.time,
-                  speed=round(abs(v.value), 3), worst_time=v.peak_time, limit=v.bound, unit=_unit(joint) + "/s")
+                  speed=round(abs(v.value), 3), worst_time=v.peak_time, limit=v.bound, unit=unit(joint) + "/s")
 
 
 @rule("BK306", "no-movable-joint", WARNING)
 def no_movable_joint(ctx: Context) -> Iterator[Hit]:
-    if ctx.robot.links and not any(j.type in MOVING_TYPES for j in ctx.robot.joints):
+    if ctx.robot.links and not any(j.type in MOVABLE_TYPES for j in ctx.robot.joints):
         yield hit("robot", ctx.robot.name, ctx.robot.line, "fixed" if ctx.robot.joints else "",
                   robot=ctx.robot.name, joints=len(ctx.robot.joints))
 

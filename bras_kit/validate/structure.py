@@ -6,7 +6,7 @@ import difflib
 from collections.abc import Iterable, Iterator
 
 from ..model import JOINT_TYPES, Joint
-from .context import Context
+from .context import Context, find_loops
 from .registry import ERROR, INFO, WARNING, Hit, hit, loader_rule, rule
 
 # Reported by the loader when a file cannot be read at all (bras-kit validate then exits 2),
@@ -236,24 +236,12 @@ def mimic_joint_unknown(ctx: Context) -> Iterator[Hit]:
 
 @rule("BK121", "mimic-cycle", ERROR)
 def mimic_cycle(ctx: Context) -> Iterator[Hit]:
-    state: dict[str, int] = {}
-    for start in ctx.joints:
-        walk: list[str] = []
-        current: str | None = start
-        while current is not None and current not in state:
-            state[current] = 1
-            walk.append(current)
-            joint = ctx.joints.get(current)
-            leader = joint.mimic.joint if joint is not None and joint.mimic is not None else None
-            current = leader if leader in ctx.joints else None
-        if current is not None and state[current] == 1:
-            members = walk[walk.index(current):]
-            joint = ctx.joints[members[-1]]
-            chain = " -> ".join(members + [current])
-            yield hit("joint", joint.name, (joint.mimic.line if joint.mimic else None) or joint.line,
-                      joint=joint.name, chain=chain)
-        for name in walk:
-            state[name] = 2
+    leader = {name: joint.mimic.joint for name, joint in ctx.joints.items()
+              if joint.mimic is not None and joint.mimic.joint is not None and joint.mimic.joint in ctx.joints}
+    for loop in find_loops(ctx.joints, leader):
+        joint = ctx.joints[loop[-1]]
+        line = (joint.mimic.line if joint.mimic is not None else None) or joint.line
+        yield hit("joint", joint.name, line, joint=joint.name, chain=" -> ".join(loop + [loop[0]]))
 
 
 @rule("BK122", "attribute-missing", ERROR)

@@ -2,6 +2,7 @@
 
 from __future__ import annotations
 
+import re
 import textwrap
 from dataclasses import dataclass, field
 
@@ -12,6 +13,7 @@ class Cell:
     fr: str
     en: str
     hidden: bool = False  # a collapsed solution cell (source_hidden)
+    shared: bool = False  # a code cell written once; its French comments come from FR_COMMENTS
 
 
 @dataclass
@@ -31,8 +33,74 @@ def md(fr: str, en: str) -> Cell:
 
 
 def code(src: str, en: str | None = None, *, hidden: bool = False) -> Cell:
-    """A code cell; ``en`` only when the English cell differs (comments, printed words)."""
-    return Cell("code", _dedent(src), _dedent(en if en is not None else src), hidden=hidden)
+    """A code cell; ``en`` only when the English cell differs (printed words).
+
+    A cell given once is shared; its comments are English and become French through
+    :data:`FR_COMMENTS` (a comment missing there stays English: the build script says so).
+    """
+    if en is not None:
+        return Cell("code", _dedent(src), _dedent(en), hidden=hidden)
+    text = _dedent(src)
+    return Cell("code", french_comments(text), text, hidden=hidden, shared=True)
+
+
+# English comment of a shared code cell -> its French words.
+FR_COMMENTS = {
+    "the same camera distance for both, so the lengths compare":
+        "la même distance de caméra pour les deux, pour comparer les longueurs",
+    "joint epaule": "joint epaule",
+    "joint coude": "joint coude",
+    "+ 0.0 turns -0.0 into 0.0": "+ 0.0 change -0.0 en 0.0",
+    "One renderer for every redraw; its camera frames all the poses the limits allow,":
+        "Un seul moteur de rendu pour tous les dessins ; sa caméra cadre toutes les poses permises,",
+    "so the view stays put while the sliders move.":
+        "si bien que la vue ne bouge pas quand les curseurs bougent.",
+    "what the panel draws when you set these values":
+        "ce que dessine le panneau pour ces valeurs",
+    "--no-build-isolation: use the installed setuptools, no download":
+        "--no-build-isolation : le setuptools installé, sans téléchargement",
+    "tidy up the temporary folder": "ranger le dossier temporaire",
+    "20 Hz, like the node's 0.05 s timer": "20 Hz, comme le minuteur de 0,05 s du nœud",
+    "Each expectation of the exercise, ticked or not.": "Chaque attente de l'exercice, cochée ou non.",
+    "about y": "autour de y",
+    "ixx = iyy = 0.030533, izz = 0.0010667": "ixx = iyy = 0.030533, izz = 0.0010667",
+    "repaired: the generated arm": "réparé : le bras généré",
+    "one row per picture, columns epaule, coude": "une ligne par image, colonnes epaule, coude",
+}
+
+_COMMENT = re.compile(r"(#\s*)(.+)$")
+
+
+def french_comments(text: str) -> str:
+    """``text`` with each ``# comment`` found in :data:`FR_COMMENTS` in French."""
+    out = []
+    for line in text.split("\n"):
+        match = _COMMENT.search(line)
+        if match and not _in_string(line, match.start()) and match.group(2).strip() in FR_COMMENTS:
+            line = line[:match.start(2)] + FR_COMMENTS[match.group(2).strip()]
+        out.append(line)
+    return "\n".join(out)
+
+
+def untranslated_comments(text: str) -> list[str]:
+    """Comments of a shared cell that :data:`FR_COMMENTS` does not translate."""
+    found = []
+    for line in text.split("\n"):
+        match = _COMMENT.search(line)
+        if match and not _in_string(line, match.start()) and match.group(2).strip() not in FR_COMMENTS:
+            found.append(match.group(2).strip())
+    return found
+
+
+def _in_string(line: str, index: int) -> bool:
+    """Whether position ``index`` of ``line`` is inside a quoted string (good enough for comments)."""
+    quote = None
+    for char in line[:index]:
+        if quote is None and char in "\"'":
+            quote = char
+        elif char == quote:
+            quote = None
+    return quote is not None
 
 
 def _dedent(text: str) -> str:

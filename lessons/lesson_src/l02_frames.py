@@ -167,7 +167,9 @@ LESSON.cells = [
         """
         from bras_kit.kinematics import describe_transform
 
-        print(describe_transform(bras_kit.relative_transform(tree, pose, "bras", "avant_bras")))
+        echo = describe_transform(bras_kit.relative_transform(tree, pose, "bras", "avant_bras"))
+        for key, values in echo.items():
+            print(f"{key:9s}", np.round(values, 6) + 0.0)  # + 0.0 turns -0.0 into 0.0
         """
     ),
     md(

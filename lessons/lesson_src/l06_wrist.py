@@ -24,12 +24,14 @@ SETUP = code(
     import bras_kit
     from bras_kit.validate import validate
 
+    SEVERITE = {"error": "erreur", "warning": "avertissement", "info": "info"}
+
 
     def show(findings):
         if not findings:
             print("aucun problème trouvé")
         for f in findings:
-            print(f"{f.code} [{f.severity}] {f.message}")
+            print(f"{f.code} [{SEVERITE[f.severity]}] {f.message}")
             if f.hint:
                 print("    ->", f.hint)
 

@@ -46,68 +46,84 @@ INTRO = md(
     """,
 )
 
-SETUP = code(
-    """
-    import re
-    from pathlib import Path
+_IMPORTS = """
+import re
+from pathlib import Path
 
-    import numpy as np
+import numpy as np
 
-    import bras_kit
-    from bras_kit.validate import validate
+import bras_kit
+from bras_kit.validate import validate
+"""
 
-    reference = bras_kit.arm(inertials=True)  # the template's answer, to compare with
+_REFERENCE = {
+    "fr": "reference = bras_kit.arm(inertials=True)  # la réponse du modèle, pour comparer",
+    "en": "reference = bras_kit.arm(inertials=True)  # the template's answer, to compare with",
+}
 
-
-    def show(findings):
-        if not findings:
-            print("aucun problème trouvé")
-        for f in findings:
-            print(f"{f.code} [{f.severity}] {f.message}")
-            if f.hint:
-                print("    ->", f.hint)
+_SHOW = {
+    "fr": """
+SEVERITE = {"error": "erreur", "warning": "avertissement", "info": "info"}
 
 
-    def compare(name, mine):
-        expected = reference.link(name).inertial.inertia
-        if mine is None:
-            print(f"{name}: pas encore de réponse")
-            return False
-        ok = all(np.isclose(mine[k], expected[k]) for k in ("ixx", "iyy", "izz"))
-        print(f"{name}: {'✓' if ok else '✗'} {mine}  (attendu {expected})")
-        return ok
-    """,
-    """
-    import re
-    from pathlib import Path
+def show(findings):
+    if not findings:
+        print("aucun problème trouvé")
+    for f in findings:
+        print(f"{f.code} [{SEVERITE[f.severity]}] {f.message}")
+        if f.hint:
+            print("    ->", f.hint)
+""",
+    "en": """
+def show(findings):
+    if not findings:
+        print("no problem found")
+    for f in findings:
+        print(f"{f.code} [{f.severity}] {f.message}")
+        if f.hint:
+            print("    ->", f.hint)
+""",
+}
 
-    import numpy as np
+_COMPARE = {
+    "fr": """
+def compare(name, mine):
+    expected = reference.link(name).inertial.inertia
+    if mine is None:
+        print(f"{name}: pas encore de réponse")
+        return False
+    ok = all(np.isclose(mine[k], expected[k]) for k in ("ixx", "iyy", "izz"))
+    print(f"{name}: {'✓' if ok else '✗'} {mine}  (attendu {expected})")
+    return ok
+""",
+    "en": """
+def compare(name, mine):
+    expected = reference.link(name).inertial.inertia
+    if mine is None:
+        print(f"{name}: no answer yet")
+        return False
+    ok = all(np.isclose(mine[k], expected[k]) for k in ("ixx", "iyy", "izz"))
+    print(f"{name}: {'✓' if ok else '✗'} {mine}  (expected {expected})")
+    return ok
+""",
+}
 
-    import bras_kit
-    from bras_kit.validate import validate
 
-    reference = bras_kit.arm(inertials=True)  # the template's answer, to compare with
+def _setup(lang: str, solution: bool = False) -> str:
+    """The first code cell; the solution's leaves out what only the validator part needs."""
+    imports = _IMPORTS.strip("\n")
+    if solution:
+        imports = imports.replace("import re\nfrom pathlib import Path\n\n", "")
+        imports = imports.replace("\nfrom bras_kit.validate import validate", "")
+    blocks = [imports + "\n\n" + _REFERENCE[lang]]
+    if not solution:
+        blocks.append(_SHOW[lang].strip("\n"))
+    blocks.append(_COMPARE[lang].strip("\n"))
+    return "\n\n\n".join(blocks)
 
 
-    def show(findings):
-        if not findings:
-            print("no problem found")
-        for f in findings:
-            print(f"{f.code} [{f.severity}] {f.message}")
-            if f.hint:
-                print("    ->", f.hint)
-
-
-    def compare(name, mine):
-        expected = reference.link(name).inertial.inertia
-        if mine is None:
-            print(f"{name}: no answer yet")
-            return False
-        ok = all(np.isclose(mine[k], expected[k]) for k in ("ixx", "iyy", "izz"))
-        print(f"{name}: {'✓' if ok else '✗'} {mine}  (expected {expected})")
-        return ok
-    """,
-)
+SETUP = code(_setup("fr"), _setup("en"))
+SOLUTION_SETUP = code(_setup("fr", solution=True), _setup("en", solution=True))
 
 CHECK = code(
     """
@@ -188,6 +204,9 @@ LESSON.cells = [
     ),
     md(
         """
+        (L'info BK506 est un détail à connaître : `robot_state_publisher` ignore l'inertie du link
+        racine et le signale par un avertissement au démarrage.)
+
         ## Une mauvaise inertie
 
         Les trois moments d'un vrai corps vérifient l'**inégalité triangulaire** :
@@ -196,6 +215,9 @@ LESSON.cells = [
         `izz = 0.1` au bras (au lieu de 0,00107) :
         """,
         """
+        (The BK506 note is a detail worth knowing: `robot_state_publisher` ignores the root link's
+        inertia and says so with a warning at start-up.)
+
         ## A bad inertia
 
         The three moments of a real body obey the **triangle inequality**: `ixx + iyy ≥ izz` (and
@@ -314,7 +336,7 @@ LESSON.cells = [
 
 SOLUTION.cells = [
     INTRO,
-    SETUP,
+    SOLUTION_SETUP,
     code(
         """
         def box_inertia(m, x, y, z):

@@ -67,9 +67,12 @@ LESSON.cells = [
         scaffold_package(package)
 
 
+        SEVERITE = {"error": "erreur", "warning": "avertissement", "info": "info"}
+
+
         def show(findings):
             for f in findings:
-                print(f"{f.code} [{f.severity}] ligne {f.line} : {f.message}")
+                print(f"{f.code} [{SEVERITE[f.severity]}] ligne {f.line} : {f.message}")
                 print("    ->", f.hint)
             if not findings:
                 print("aucun problème trouvé")

@@ -150,7 +150,7 @@ LESSON.cells = [
         ax.set_ylim(-0.6, 1.3)
         ax.set_xlabel("x (m)")
         ax.set_ylabel("z (m)")
-        ax.legend()
+        ax.legend(loc="upper left")
         plt.show()
         """,
         """
@@ -171,7 +171,7 @@ LESSON.cells = [
         ax.set_ylim(-0.6, 1.3)
         ax.set_xlabel("x (m)")
         ax.set_ylabel("z (m)")
-        ax.legend()
+        ax.legend(loc="upper left")
         plt.show()
         """,
     ),
