@@ -504,64 +504,11 @@ def save_figure(figure: Figure, path: str | os.PathLike[str], dpi: float = 100.0
 # ---------------------------------------------------------------- the tool tip
 
 
-def _support_point(visual_matrix: np.ndarray, geometry: Any, direction: np.ndarray) -> np.ndarray | None:
-    """The point of a primitive farthest along ``direction`` (link frame); a face's centre on ties."""
-    rotation, centre = visual_matrix[:3, :3], visual_matrix[:3, 3]
-    local = rotation.T @ direction
-    tol = 1e-9
-    if geometry.kind == "box" and geometry.size is not None:
-        half = np.asarray(geometry.size, dtype=float) / 2
-        offset = np.where(np.abs(local) > tol, np.sign(local) * half, 0.0)
-    elif geometry.kind == "cylinder" and geometry.radius is not None and geometry.length is not None:
-        radial = np.array([local[0], local[1], 0.0])
-        norm = float(np.linalg.norm(radial))
-        offset = radial / norm * geometry.radius if norm > tol else np.zeros(3)
-        if abs(local[2]) > tol:
-            offset[2] = math.copysign(geometry.length / 2, local[2])
-    elif geometry.kind == "sphere" and geometry.radius is not None:
-        offset = local * geometry.radius
-    else:  # meshes are not loaded here: their extent is unknown
-        return None
-    return centre + rotation @ offset
-
-
 def tip_point(robot: Robot) -> tuple[str, np.ndarray]:
-    """The tool tip: the link at the end of the chain and the tip's offset in that link's frame.
+    """The tool tip: the end link and the tip's offset in its frame (see :mod:`bras_kit.tip`)."""
+    from .tip import tool_tip
 
-    The end link is the deepest leaf of the tree (ties: farthest from the root at the zero
-    pose, then last in file order). The tip is the point of its visual geometry (box, cylinder,
-    sphere) farthest along the chain's direction (from the nearest ancestor at a different
-    place to the link, at the zero pose); the link's origin when it has no such visual.
-    """
-    from .kinematics import origin_matrix
-
-    tree = tf_tree(robot)
-    depth = _depths(tree.parent)
-    has_child = [False] * len(tree.links)
-    for p in tree.parent:
-        if p >= 0:
-            has_child[p] = True
-    zero = fk_batch(tree, np.zeros(len(tree.dof)))
-    leaves = [i for i in range(len(tree.links)) if not has_child[i]]
-    end = max(leaves, key=lambda i: (depth[i], round(float(np.linalg.norm(zero[i][:3, 3])), 12), i))
-    rotation, position = zero[end][:3, :3], zero[end][:3, 3]
-    direction = np.array([0.0, 0.0, 1.0])
-    ancestor = tree.parent[end]
-    while ancestor >= 0:
-        step = position - zero[ancestor][:3, 3]
-        if np.linalg.norm(step) > 1e-9:
-            direction = rotation.T @ (step / np.linalg.norm(step))
-            break
-        ancestor = tree.parent[ancestor]
-    link = robot.link(tree.links[end])
-    best, best_reach = np.zeros(3), -math.inf
-    for visual in (link.visuals if link is not None else []):
-        if visual.geometry is None:
-            continue
-        point = _support_point(origin_matrix(visual.origin.xyz, visual.origin.rpy), visual.geometry, direction)
-        if point is not None and float(direction @ point) > best_reach + 1e-12:
-            best, best_reach = point, float(direction @ point)
-    return tree.links[end], best
+    return tool_tip(tf_tree(robot))
 
 
 def states_matrix(tree: TFTree, states: Any) -> np.ndarray:

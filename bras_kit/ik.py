@@ -33,8 +33,9 @@ from typing import Any
 import numpy as np
 
 from .errors import ParameterError
-from .kinematics import _PRISMATIC, _REVOLUTE, TFTree, fk_batch, rpy_to_matrix, tf_tree
-from .model import Geometry, Robot
+from .kinematics import TFTree, fk_batch, tf_tree
+from .model import Robot
+from .tip import end_link, tool_tip
 
 Vector = Sequence[float] | np.ndarray  # three numbers: a point, an offset
 
@@ -87,50 +88,12 @@ def _bounds(tree: TFTree) -> tuple[np.ndarray, np.ndarray]:
 # ---------------------------------------------------------------- the tip
 
 
-def _far_end_along_z(geometry: Geometry | None, rotation: np.ndarray) -> float | None:
-    """How far the geometry reaches along the link's z from the visual origin (None: unknown)."""
-    if geometry is None:
-        return None
-    row = np.abs(rotation[2])  # how the geometry's own axes project on the link's z
-    if geometry.kind == "box" and geometry.size is not None:
-        return float(row @ np.asarray(geometry.size, dtype=float)) / 2.0
-    if geometry.kind == "cylinder" and geometry.length is not None and geometry.radius is not None:
-        return float(row[2] * geometry.length / 2.0 + geometry.radius * math.hypot(row[0], row[1]))
-    if geometry.kind == "sphere" and geometry.radius is not None:
-        return float(geometry.radius)
-    return None  # meshes: the extent is unknown without loading the file
-
-
-def link_tip_offset(robot: Robot, link_name: str) -> np.ndarray:
-    """The far end of a link's visual geometry along its local z, as a point (0, 0, z) in its frame.
-
-    For a segment drawn from its frame up z (the tutorial's boxes), z is the segment's length.
-    Links without a visual, or whose geometry is a mesh, give (0, 0, 0): the frame origin.
-    """
-    link = robot.link(link_name)
-    top = 0.0
-    for visual in link.visuals if link is not None else []:
-        half = _far_end_along_z(visual.geometry, rpy_to_matrix(visual.origin.rpy))
-        if half is not None:
-            top = max(top, visual.origin.xyz[2] + half)
-    return np.array([0.0, 0.0, top])
-
-
-def default_tip_link(tree: TFTree) -> str:
-    """The end of the longest chain: the deepest link (the first one met, on a tie)."""
-    depth = [0] * len(tree.links)
-    for i in range(1, len(tree.links)):
-        depth[i] = depth[tree.parent[i]] + 1
-    return tree.links[int(np.argmax(depth))]
-
-
 def resolve_tip(tree: TFTree, tip_link: str | None = None,
                 tip_offset: Vector | None = None) -> tuple[str, np.ndarray]:
-    """(link, point in the link's frame): defaults are the deepest link and its far end along z."""
-    link = default_tip_link(tree) if tip_link is None else tree.links[tree.index(tip_link)]
+    """(link, point in the link's frame): defaults are those of :func:`bras_kit.tip.tool_tip`."""
     if tip_offset is None:
-        return link, link_tip_offset(tree.robot, link)
-    return link, _point(tip_offset, "the tip offset")
+        return tool_tip(tree, tip_link)
+    return tree.links[tree.index(tip_link)] if tip_link else end_link(tree), _point(tip_offset, "the tip offset")
 
 
 # ---------------------------------------------------------------- the serial chain
@@ -226,19 +189,19 @@ def _compile_chain(tree: TFTree, tip_link: str | None, tip_offset: Vector | None
     rot, pos = np.eye(3), np.zeros(3)
     names, revolute, axes, pre_rot, pre_pos, columns, gains, offsets = [], [], [], [], [], [], [], []
     for i in path:
-        origin = tree._origin[i]
-        pos = pos + rot @ origin[:3, 3]
-        rot = rot @ origin[:3, :3]
-        if tree._kind[i] not in (_REVOLUTE, _PRISMATIC):
+        motion = tree.joint_motion(i)
+        pos = pos + rot @ motion.origin[:3, 3]
+        rot = rot @ motion.origin[:3, :3]
+        if motion.kind == "fixed":
             continue
         names.append(str(tree.joints[i].name))  # type: ignore[union-attr]
-        revolute.append(tree._kind[i] == _REVOLUTE)
-        axes.append(tree._axis[i])
+        revolute.append(motion.kind == "revolute")
+        axes.append(motion.axis)
         pre_rot.append(rot)
         pre_pos.append(pos)
-        columns.append(tree._source[i])
-        gains.append(tree._gain[i])
-        offsets.append(tree._offset[i])
+        columns.append(motion.column)
+        gains.append(motion.gain)
+        offsets.append(motion.offset)
         rot, pos = np.eye(3), np.zeros(3)
     variables = list(dict.fromkeys(columns))
     joint_var = [variables.index(c) for c in columns]
@@ -1036,6 +999,10 @@ class ReachMotion:
         inside = (times >= 0) & (times <= self.duration)
         ds = np.where(inside, 30.0 * tau ** 2 * (1.0 - tau) ** 2 / self.duration, 0.0)
         return ds[:, None] * (self.goal - self.start)[None, :]
+
+    def evaluate(self, t: np.ndarray | float) -> tuple[np.ndarray, np.ndarray]:
+        """Positions and velocities, as :meth:`bras_kit.motion.Motion.evaluate` (so ``sample`` takes it)."""
+        return self.positions(t), self.velocities(t)
 
     def peak_velocities(self) -> np.ndarray:
         if self.duration <= 0:

@@ -96,6 +96,21 @@ _FIXED, _REVOLUTE, _PRISMATIC, _UNSUPPORTED = 0, 1, 2, 3
 
 
 @dataclass(frozen=True)
+class JointMotion:
+    """How the joint into a link moves it: the parent-to-joint ``origin`` (4x4), then, for
+    ``kind`` "revolute" or "prismatic", a turn or slide along the unit ``axis`` by
+    ``gain * q[column] + offset`` (mimic joints have their leader's column). "fixed" otherwise.
+    """
+
+    kind: str
+    origin: np.ndarray
+    axis: np.ndarray
+    column: int
+    gain: float
+    offset: float
+
+
+@dataclass(frozen=True)
 class TFTree:
     """A robot compiled for kinematics: links in topological order (root first).
 
@@ -124,6 +139,11 @@ class TFTree:
     def unsupported_joints(self) -> list[str]:
         """Floating and planar joints: kept at their origin, never moved."""
         return [j.name or "?" for j, k in zip(self.joints, self._kind) if j is not None and k == _UNSUPPORTED]
+
+    def joint_motion(self, i: int) -> JointMotion:
+        """How link ``i`` moves relative to its parent (see :class:`JointMotion`)."""
+        kind = {_REVOLUTE: "revolute", _PRISMATIC: "prismatic"}.get(self._kind[i], "fixed")
+        return JointMotion(kind, self._origin[i], self._axis[i], self._source[i], self._gain[i], self._offset[i])
 
     def index(self, link: str) -> int:
         try:

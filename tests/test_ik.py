@@ -517,3 +517,17 @@ def test_workspace_figure_shows_limits_solid_and_free_region_faint(tutorial_tree
     assert summary.area_without_limits == pytest.approx(math.pi * 1.2, rel=0.05)
     assert summary.area_within_limits < summary.area_without_limits
     assert summary.max_reach == pytest.approx(1.1, abs=1e-3)
+
+
+def test_reaching_motion_samples_like_any_motion_and_passes_the_limit_check(wrist_robot, wrist_tree):
+    from bras_kit.motion import check_limits, sample
+
+    start = {"epaule": 0.3, "coude": -0.5}
+    result = solve_ik(wrist_tree, (0.5, 0.0, 0.6), start=start)
+    motion = reach_motion(wrist_tree, start, result.joints)
+    states = sample(motion, motion.duration, 50.0)
+    assert states.names == list(wrist_tree.dof)
+    np.testing.assert_allclose(states.positions[0], [0.3, -0.5, 0.0], atol=1e-15)
+    np.testing.assert_allclose(states.positions, motion.positions(states.times), atol=1e-15)
+    np.testing.assert_allclose(states.velocities, motion.velocities(states.times), atol=1e-15)
+    assert check_limits(wrist_robot, states) == []
