@@ -427,11 +427,11 @@ def test_png_of_a_big_figure_is_capped_by_lowering_its_resolution(tmp_path, monk
     diagrams.save_figure(figure, str(tmp_path / "full.png"))
     full = matplotlib.image.imread(str(tmp_path / "full.png"))
     assert full.shape[:2] == (round(height * 100), round(width * 100))
-    monkeypatch.setattr(diagrams, "MAX_RASTER_SIDE", 300)
+    monkeypatch.setattr(diagrams.output, "MAX_RASTER_SIDE", 300)
     diagrams.save_figure(figure, str(tmp_path / "side.png"))
     side = matplotlib.image.imread(str(tmp_path / "side.png"))
     assert max(side.shape[:2]) == 300
-    monkeypatch.setattr(diagrams, "MAX_RASTER_PIXELS", 20_000)
+    monkeypatch.setattr(diagrams.output, "MAX_RASTER_PIXELS", 20_000)
     diagrams.save_figure(figure, str(tmp_path / "area.png"))
     area = matplotlib.image.imread(str(tmp_path / "area.png"))
     assert 19_000 < area.shape[0] * area.shape[1] <= 20_000 + sum(area.shape[:2])

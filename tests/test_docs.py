@@ -10,6 +10,7 @@ page run in order, in one temporary folder.
 
 from __future__ import annotations
 
+import base64
 import re
 import shlex
 import subprocess
@@ -115,8 +116,61 @@ def test_site_builds_strictly(tmp_path: Path) -> None:
                              "-f", str(ROOT / "mkdocs.yml"), "-d", str(tmp_path / "site")],
                             capture_output=True, text=True, cwd=ROOT)
     assert result.returncode == 0, result.stderr
-    assert (tmp_path / "site" / "cli" / "validate" / "index.html").is_file()
-    assert (tmp_path / "site" / "rules" / "index.html").is_file()
+    site = tmp_path / "site"
+    assert (site / "cli" / "validate" / "index.html").is_file()
+    assert (site / "rules" / "index.html").is_file()
+    # every lesson is published with its outputs: text printed by the code and its pictures
+    for lang in ("fr", "en"):
+        notebooks = sorted((ROOT / "lessons" / lang).rglob("*.ipynb"))
+        assert len(notebooks) >= 10
+        for notebook in notebooks:
+            page = site / "lessons" / lang / notebook.relative_to(ROOT / "lessons" / lang).with_suffix("") / "index.html"
+            assert page.is_file(), page
+    see_it = site / "lessons" / "en" / "03-see-it"
+    pictures = sorted(see_it.glob("out-*.png"))
+    assert len(pictures) >= 3
+    html = (see_it / "index.html").read_text(encoding="utf-8")
+    assert "(360, 480, 3) uint8" in html  # the printed shape of the first rendered picture
+    assert all(p.name in html for p in pictures)
+    assert pictures[0].read_bytes().startswith(b"\x89PNG")
+
+
+def _load_lessons_hook():
+    import importlib.util
+
+    spec = importlib.util.spec_from_file_location("lessons_hook", DOCS / "hooks" / "lessons.py")
+    module = importlib.util.module_from_spec(spec)
+    spec.loader.exec_module(module)
+    return module
+
+
+def test_lesson_pages_keep_text_code_printed_output_and_pictures() -> None:
+    hook = _load_lessons_hook()
+    png = b"\x89PNG\r\n\x1a\nfake"
+    notebook = {"cells": [
+        {"cell_type": "markdown", "source": ["# Title\n", "Some *text*."]},
+        {"cell_type": "code", "source": "print(1 + 1)\nimage", "outputs": [
+            {"output_type": "stream", "name": "stdout", "text": ["2\n"]},
+            {"output_type": "display_data", "data": {"image/png": base64.b64encode(png).decode(),
+                                                     "text/plain": "<Figure>"}},
+            {"output_type": "execute_result", "data": {"text/plain": "\x1b[31m42\x1b[0m"}},
+        ]},
+    ]}
+    markdown, pictures = hook.to_markdown(notebook, "01-x")
+    assert markdown.startswith("# Title\nSome *text*.\n\n```python")
+    assert "```python\nprint(1 + 1)\nimage\n```" in markdown
+    assert "```text\n2\n```" in markdown
+    assert "![output of cell 1](01-x/out-01-1.png)" in markdown
+    assert "```text\n42\n```" in markdown  # terminal colours removed
+    assert pictures == {"01-x/out-01-1.png": png}
+
+
+def test_a_failing_lesson_cell_fails_the_site_build() -> None:
+    hook = _load_lessons_hook()
+    notebook = {"cells": [{"cell_type": "code", "source": "1/0", "outputs": [
+        {"output_type": "error", "ename": "ZeroDivisionError", "evalue": "", "traceback": []}]}]}
+    with pytest.raises(RuntimeError, match="cell 0 failed: ZeroDivisionError"):
+        hook.to_markdown(notebook, "broken")
 
 
 def _nav_files(node: object) -> list[str]:

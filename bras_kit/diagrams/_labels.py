@@ -1,0 +1,102 @@
+"""Numbers and joint facts as short text, shared by the tree, the frame diagram and the plots."""
+
+from __future__ import annotations
+
+import math
+from collections.abc import Mapping, Sequence
+
+from ..kinematics import TFTree
+from ..model import Joint
+from ..motion import joint_unit
+
+
+def format_number(value: float | None) -> str:
+    """A short, stable rendering of a number: 4 significant digits, no ``-0``, ``?`` when missing."""
+    if value is None:
+        return "?"
+    if not math.isfinite(value):
+        return "nan" if math.isnan(value) else ("inf" if value > 0 else "-inf")
+    if abs(value) < 1e-12:
+        return "0"
+    return f"{value:.4g}"
+
+
+def format_vector(values: Sequence[float] | None) -> str:
+    return " ".join(format_number(v) for v in values) if values is not None else "?"
+
+
+def beyond_limits(joint: Joint, value: float) -> bool:
+    lower, upper = joint.bounds()
+    return bool(value < lower or value > upper)
+
+
+def _range_text(joint: Joint, separator: str = "..") -> str | None:
+    """``-1.57..1.57`` for a bounded joint, None when there is nothing to show."""
+    if joint.type in ("revolute", "prismatic"):
+        if joint.limit is None:
+            return "no <limit>"
+        return f"{format_number(joint.limit.lower)}{separator}{format_number(joint.limit.upper)}"
+    return None
+
+
+def _axis_text(joint: Joint) -> str:
+    text = format_vector(joint.axis_or_default)
+    return text if joint.axis is not None else text + " (default)"
+
+
+def joint_summary(joint: Joint) -> str:
+    """One line about a joint: ``revolute, axis 0 1 0, -1.57..1.57``."""
+    parts = [joint.type or "no type"]
+    if joint.type in ("revolute", "continuous", "prismatic"):
+        parts.append("axis " + _axis_text(joint))
+    limits = _range_text(joint)
+    if limits is not None:
+        parts.append(limits)
+    if joint.mimic is not None:
+        parts.append(f"mimics {joint.mimic.joint}")
+    return ", ".join(parts)
+
+
+def joint_label_lines(joint: Joint, value: float | None = None) -> list[str]:
+    """The detail lines under a joint's name in the frame diagram (origin, axis, limits, value)."""
+    lines = [joint.type or "no type"]
+    if joint.mimic is not None:
+        lines[0] += (f", mimics {joint.mimic.joint} x{format_number(joint.mimic.multiplier)}"
+                     f" {'+' if joint.mimic.offset >= 0 else '-'}{format_number(abs(joint.mimic.offset))}")
+    lines.append("xyz " + format_vector(joint.origin.xyz))
+    lines.append("rpy " + format_vector(joint.origin.rpy))
+    if joint.type in ("revolute", "continuous", "prismatic"):
+        lines.append("axis " + _axis_text(joint))
+    limits = _range_text(joint, " .. ")
+    if limits is not None:
+        lines.append(f"limits {limits} {joint_unit(joint)}" if joint.limit is not None else limits)
+    elif joint.type == "continuous":
+        lines.append("no position limits")
+    if joint.limit is not None and joint.type in ("revolute", "continuous", "prismatic"):
+        lines.append(f"effort {format_number(joint.limit.effort)}, "
+                     f"velocity {format_number(joint.limit.velocity)}")
+    if value is not None:
+        text = f"value {format_number(value)} {joint_unit(joint)}"
+        if joint.type != "prismatic":
+            text += f" ({format_number(math.degrees(value))} deg)"
+        if beyond_limits(joint, value):
+            text += " OUT OF LIMITS"
+        lines.append(text)
+    return lines
+
+
+def joint_values(tree: TFTree, config: Mapping[str, float] | None) -> dict[str, float]:
+    """Every driven joint's value for ``config``: the movable ones, and mimic joints from their leader.
+
+    Unknown or fixed joint names in ``config`` raise :class:`~bras_kit.errors.ParameterError`.
+    """
+    q = tree.config_vector(config)
+    values = {name: float(v) for name, v in zip(tree.dof, q)}
+    for joint in tree.robot.joints:  # file order
+        if joint.mimic is None or joint.name is None:
+            continue
+        # the tree has already followed the mimic chain to the configuration column that drives it
+        motion = tree.joint_motion(tree.index(joint.child or ""))
+        if motion.kind != "fixed":
+            values[joint.name] = motion.gain * values[tree.dof[motion.column]] + motion.offset
+    return values

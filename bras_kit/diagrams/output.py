@@ -1,0 +1,43 @@
+"""Writing figures: the output format from the file name, and saving with a capped PNG size."""
+
+from __future__ import annotations
+
+import math
+import os
+from collections.abc import Sequence
+from typing import TYPE_CHECKING
+
+from ..errors import ParameterError
+
+if TYPE_CHECKING:  # pragma: no cover
+    from matplotlib.figure import Figure
+
+FIGURE_FORMATS = (".png", ".svg", ".pdf")
+# a PNG's longest side and pixel count; bigger figures get a lower resolution instead
+MAX_RASTER_SIDE, MAX_RASTER_PIXELS = 16000, 40_000_000
+
+
+def output_suffix(path: str | os.PathLike[str], allowed: Sequence[str]) -> str:
+    suffix = os.path.splitext(os.fspath(path))[1].lower()
+    if suffix not in allowed:
+        raise ParameterError(f"cannot write '{os.fspath(path)}': unknown format '{suffix or '(none)'}'",
+                             hint="end the file name with " + ", ".join(allowed))
+    return suffix
+
+
+def save_figure(figure: Figure, path: str | os.PathLike[str], dpi: float = 100.0) -> None:
+    """Save a figure as PNG, SVG or PDF (from the suffix), text kept as text in SVG and PDF.
+
+    A PNG's size is capped (:data:`MAX_RASTER_SIDE`, :data:`MAX_RASTER_PIXELS`) by lowering its resolution.
+    """
+    import matplotlib
+
+    suffix = output_suffix(path, FIGURE_FORMATS)
+    width, height = figure.get_size_inches()
+    if suffix == ".png":
+        dpi = min(dpi, MAX_RASTER_SIDE / max(width, height), math.sqrt(MAX_RASTER_PIXELS / (width * height)))
+    folder = os.path.dirname(os.fspath(path))
+    if folder:
+        os.makedirs(folder, exist_ok=True)
+    with matplotlib.rc_context({"svg.fonttype": "none", "pdf.fonttype": 42}):
+        figure.savefig(path, dpi=dpi, format=suffix[1:], facecolor="white")

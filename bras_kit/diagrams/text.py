@@ -1,0 +1,57 @@
+"""The TF tree as indented text, the way ``bras-kit tree`` prints it."""
+
+from __future__ import annotations
+
+from collections.abc import Mapping
+from dataclasses import dataclass
+
+from ..kinematics import tf_tree
+from ..model import Robot
+from ._labels import beyond_limits, format_number, joint_summary, joint_values
+from ._tree import children_of
+
+
+@dataclass(frozen=True)
+class TreeGlyphs:
+    """The characters that draw the text tree."""
+
+    branch: str  # a child with siblings after it
+    last: str  # the last child
+    pipe: str  # continues an ancestor's branch
+    blank: str  # under an ancestor that was the last child
+    arrow: str  # joint -> child link
+
+
+UNICODE_GLYPHS = TreeGlyphs("├─ ", "└─ ", "│  ", "   ", "→")
+ASCII_GLYPHS = TreeGlyphs("|- ", "`- ", "|  ", "   ", "->")
+
+
+def tree_text(robot: Robot, config: Mapping[str, float] | None = None, *, ascii: bool = False) -> str:
+    """The TF tree as indented text, one link per line (the root first), each child under its joint.
+
+    ``config`` adds each movable joint's value. Each level is indented by three characters, so a
+    line's indentation is 3 x the depth of its link. Raises :class:`~bras_kit.errors.ModelError`
+    when the links do not form a tree.
+    """
+    tree = tf_tree(robot)
+    values = joint_values(tree, config) if config else {}
+    glyphs = ASCII_GLYPHS if ascii else UNICODE_GLYPHS
+    children = children_of(tree.parent)
+    lines = [tree.links[0]]
+    # depth-first, pre-order, with an explicit stack: (link index, prefix of its line, is last child)
+    stack = [(child, "", k == len(children[0]) - 1) for k, child in enumerate(children[0])][::-1]
+    while stack:
+        index, prefix, last = stack.pop()
+        joint = tree.joints[index]
+        assert joint is not None
+        text = f"{joint.name or '?'} ({joint_summary(joint)})"
+        if joint.name in values:
+            value = values[joint.name]  # type: ignore[index]
+            text += f" = {format_number(value)}"
+            if beyond_limits(joint, value):
+                text += " (out of limits)"
+        lines.append(f"{prefix}{glyphs.last if last else glyphs.branch}{text} {glyphs.arrow} {tree.links[index]}")
+        below = prefix + (glyphs.blank if last else glyphs.pipe)
+        kids = children[index]
+        stack.extend((child, below, k == len(kids) - 1) for k, child in reversed(list(enumerate(kids))))
+    return "\n".join(lines) + "\n"

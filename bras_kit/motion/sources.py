@@ -1,0 +1,240 @@
+"""Where motions come from: the tutorial's node, formulas of t, a fixed pose, waypoint files.
+
+Each source fills a layer of tracks; :func:`motion_from_specs` stacks layers and refuses a
+joint driven twice.
+"""
+
+from __future__ import annotations
+
+import math
+import os
+from collections.abc import Mapping, Sequence
+from dataclasses import dataclass, field
+
+import numpy as np
+
+from ..errors import ParameterError
+from ..expr import compile_expression
+from ..kinematics import TFTree, tf_tree
+from ..model import Joint, Robot
+from .core import Motion, Track, check_joint
+from .interpolation import interpolator
+from .limits import joint_unit, speed_limit
+from .waypoints import WAYPOINT_SUFFIXES, read_waypoints
+
+
+@dataclass
+class _Layer:
+    tracks: dict[str, Track] = field(default_factory=dict)
+    duration: float | None = None
+    label: str = ""
+
+
+def _formula_track(joint: str, formula: str, prefix: str = "") -> Track:
+    expression = compile_expression(formula, prefix=prefix)
+    return Track(joint, expression.evaluate, expression.text)
+
+
+def _constant_track(joint: str, value: float) -> Track:
+    def evaluate(t: np.ndarray) -> tuple[np.ndarray, np.ndarray]:
+        return np.full(t.shape, value), np.zeros(t.shape)
+
+    return Track(joint, evaluate, f"held at {value:g}")
+
+
+def _round_down(value: float, step: float = 0.01) -> float:
+    return math.floor(value / step + 1e-9) * step
+
+
+def _fitted_sine(joint: Joint, amplitude: float, omega: float, phase: str = "") -> str:
+    """A sine formula kept inside the joint's position limits and 90% of its velocity limit."""
+    lower, upper = joint.bounds()
+    centre = 0.0
+    if math.isfinite(lower) and math.isfinite(upper):
+        span = upper - lower
+        centre = round(min(max(0.0, lower + 0.4 * span), upper - 0.4 * span), 3)
+        room = min(upper - centre, centre - lower)
+        amplitude = min(amplitude, 0.8 * room)
+    speed = speed_limit(joint)
+    if speed is not None:
+        amplitude = min(amplitude, 0.9 * speed / omega)
+    amplitude = _round_down(max(amplitude, 0.0))
+    wave = f"sin({omega!r}*t{phase})" if omega != 1.0 else f"sin(t{phase})"
+    if amplitude <= 0:
+        return repr(centre)
+    text = f"{amplitude!r}*{wave}"
+    return f"{centre!r} + {text}" if centre else text
+
+
+# The tutorial's node: epaule = 0.8 sin t, coude = 1.2 sin 0.7t, kept as written (even past
+# narrower limits: that is the pitfall the limit check is for).
+TUTORIAL_FORMULAS = {"epaule": "0.8*sin(t)", "coude": "1.2*sin(0.7*t)"}
+
+
+def tutorial_motion(robot: Robot) -> Motion:
+    """The tutorial's animation: epaule = 0.8 sin t, coude = 1.2 sin 0.7t.
+
+    A wrist ``poignet`` follows 0.9 sin(1.3t + pi/3) (smaller if its limits are narrower); any
+    other movable joint gets a gentle sine inside its limits, each at its own pace.
+    """
+    tree = tf_tree(robot)
+    return _build(tree, [_tutorial_layer(tree)], label="tutorial")
+
+
+def _tutorial_layer(tree: TFTree) -> _Layer:
+    tracks: dict[str, Track] = {}
+    others = 0
+    for name, joint in zip(tree.dof, tree.dof_joints()):
+        if name in TUTORIAL_FORMULAS:
+            formula = TUTORIAL_FORMULAS[name]
+        elif name == "poignet":
+            formula = _fitted_sine(joint, 0.9, 1.3, " + pi/3")
+        else:
+            cap = 0.1 if joint_unit(joint) == "m" else 0.8
+            formula = _fitted_sine(joint, cap, 0.5 + 0.25 * others)
+            others += 1
+        tracks[name] = _formula_track(name, formula)
+    return _Layer(tracks, None, "tutorial")
+
+
+def _split_formula(spec: str) -> tuple[str, str, str]:
+    """``"epaule = 0.8*sin(t)"`` -> (joint, formula, the text before the formula)."""
+    name, sep, formula = spec.partition("=")
+    if not sep or not name.strip():
+        raise ParameterError(f"'{spec}' is not JOINT=FORMULA",
+                             hint="write e.g. epaule=0.8*sin(t) (the time is t, in seconds)")
+    return name.strip(), formula, spec[: len(name) + 1]
+
+
+def _formula_layer(tree: TFTree, specs: Sequence[str]) -> _Layer:
+    tracks: dict[str, Track] = {}
+    for spec in specs:
+        name, formula, prefix = _split_formula(spec)
+        check_joint(tree, name)
+        if name in tracks:
+            raise ParameterError(f"two formulas for joint '{name}'", hint="give each joint one formula")
+        tracks[name] = _formula_track(name, formula, prefix)
+    return _Layer(tracks, None, "formulas")
+
+
+def _pose_layer(tree: TFTree, config: Mapping[str, float]) -> _Layer:
+    tree.config_vector(config)  # unknown or fixed joints: a clear error
+    tracks = {}
+    for name, value in config.items():
+        number = float(value)
+        if not math.isfinite(number):
+            raise ParameterError(f"{name}={value}: the joint value is not a finite number")
+        tracks[name] = _constant_track(name, number)
+    return _Layer(tracks, None, "pose")
+
+
+def _build(tree: TFTree, layers: Sequence[_Layer], base: _Layer | None = None, label: str = "") -> Motion:
+    """Joints take their track from the layers (the first that drives them), else ``base``, else 0."""
+    tracks = []
+    for name in tree.dof:
+        track = next((layer.tracks[name] for layer in layers if name in layer.tracks), None)
+        if track is None and base is not None:
+            track = base.tracks.get(name)
+        tracks.append(track or _constant_track(name, 0.0))
+    durations = [layer.duration for layer in layers if layer.duration is not None]
+    return Motion(list(tree.dof), tracks, max(durations) if durations else None,
+                  label or " + ".join(layer.label for layer in layers if layer.label))
+
+
+def _base_layer(tree: TFTree, base: Mapping[str, float] | Motion | None) -> _Layer | None:
+    if base is None:
+        return None
+    if isinstance(base, Motion):
+        return _Layer({t.joint: t for t in base.tracks}, base.duration, base.label)
+    return _pose_layer(tree, base)
+
+
+def formula_motion(robot: Robot, specs: Sequence[str],
+                   base: Mapping[str, float] | Motion | None = None) -> Motion:
+    """One formula of ``t`` per joint (``"epaule=0.8*sin(t)"``); other joints follow ``base``.
+
+    ``base`` is a pose (joint values by name) or another motion; without it they stay at 0.
+    """
+    tree = tf_tree(robot)
+    return _build(tree, [_formula_layer(tree, specs)], _base_layer(tree, base))
+
+
+def pose_motion(robot: Robot, config: Mapping[str, float] | None = None) -> Motion:
+    """Every joint held still: the values of ``config``, 0 for joints it does not name."""
+    tree = tf_tree(robot)
+    return _build(tree, [_pose_layer(tree, config or {})], label="pose")
+
+
+def waypoint_motion(robot: Robot, path: str, interpolation: str | None = None,
+                    base: Mapping[str, float] | Motion | None = None) -> Motion:
+    """Joint values through the waypoints of a CSV, JSON or YAML file.
+
+    ``interpolation`` ("linear" or "cubic") overrides the file's own; the default is linear.
+    Before the first waypoint and after the last, joints hold still. Joints the file does not
+    name follow ``base`` (0 without it). The natural duration is the last waypoint's time.
+    """
+    tree = tf_tree(robot)
+    return _build(tree, [_waypoint_layer(tree, path, interpolation)], _base_layer(tree, base))
+
+
+def _waypoint_layer(tree: TFTree, path: str, interpolation: str | None) -> _Layer:
+    points = read_waypoints(path, tree, interpolation)
+    tracks = {}
+    for k, joint in enumerate(points.joints):
+        evaluate = interpolator(points.times, points.values[:, k], points.interpolation)
+        tracks[joint] = Track(joint, evaluate, f"{os.path.basename(path)} ({points.interpolation})", points)
+    return _Layer(tracks, points.duration, os.path.basename(path))
+
+
+def spec_kind(spec: str) -> str:
+    """"tutorial", "file" (a waypoint file) or "formula"; anything else is a ParameterError."""
+    text = spec.strip()
+    if text.lower() == "tutorial":
+        return "tutorial"
+    if text.lower().endswith(WAYPOINT_SUFFIXES):
+        return "file"
+    if "=" in text:
+        return "formula"
+    raise ParameterError(f"'{spec}' is not a motion",
+                         hint="give 'tutorial', JOINT=FORMULA (e.g. epaule=0.8*sin(t)) "
+                              "or a waypoint file (.csv, .json, .yaml)")
+
+
+def motion_from_specs(robot: Robot, specs: Sequence[str], set_values: Mapping[str, float] | None = None,
+                      interpolation: str | None = None) -> Motion:
+    """Combine motion specs: "tutorial", "JOINT=FORMULA" and waypoint files, plus fixed values.
+
+    Formulas and files drive the joints they name (two specs for one joint are an error);
+    ``set_values`` hold joints still; "tutorial" drives every joint left over. With no specs and
+    no values this is the tutorial motion; with values only, a fixed pose.
+    """
+    tree = tf_tree(robot)
+    specs = list(specs)
+    set_values = dict(set_values or {})
+    if not specs and not set_values:
+        return tutorial_motion(robot)
+    layers: list[_Layer] = []
+    formulas: list[str] = []
+    background: _Layer | None = None
+    for spec in specs:
+        kind = spec_kind(spec)
+        if kind == "tutorial":
+            background = _tutorial_layer(tree)
+        elif kind == "file":
+            layers.append(_waypoint_layer(tree, spec.strip(), interpolation))
+        else:
+            formulas.append(spec)
+    if formulas:
+        layers.append(_formula_layer(tree, formulas))
+    if set_values:
+        layers.append(_pose_layer(tree, set_values))
+    owner: dict[str, str] = {}
+    for layer in layers:
+        for name in layer.tracks:
+            if name in owner:
+                raise ParameterError(f"joint '{name}' is driven twice: by {owner[name]} and by {layer.label}",
+                                     hint="give each joint one source (formula, waypoint file or --set)")
+            owner[name] = layer.label
+    labels = [layer.label for layer in layers] + (["tutorial"] if background else [])
+    return _build(tree, layers, background, " + ".join(labels))
+

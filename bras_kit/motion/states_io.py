@@ -1,0 +1,119 @@
+"""Joint states to and from files: /joint_states-like CSV (long form), JSON messages."""
+
+from __future__ import annotations
+
+import os
+
+import numpy as np
+
+from ..errors import ParameterError
+from .core import JointStates
+
+
+def states_to_messages(states: JointStates) -> list[dict]:
+    """One dict per sample, shaped like a sensor_msgs/JointState message."""
+    return [{"time": float(t), "name": list(states.names), "position": [float(v) for v in p],
+             "velocity": [float(v) for v in w]}
+            for t, p, w in zip(states.times, states.positions, states.velocities)]
+
+
+def states_to_json(states: JointStates) -> str:
+    """A JSON list of messages {"time", "name", "position", "velocity"}, one per line."""
+    import json
+
+    body = ",\n".join(json.dumps(message) for message in states_to_messages(states))
+    return "[\n" + body + "\n]\n" if body else "[]\n"
+
+
+def states_to_csv(states: JointStates) -> str:
+    """Long form, like a recorded /joint_states: ``time,name,position,velocity``, one row per joint per sample."""
+    rows = ["time,name,position,velocity"]
+    for t, position, velocity in zip(states.times, states.positions, states.velocities):
+        time = repr(float(t))
+        rows.extend(f"{time},{name},{float(p)!r},{float(v)!r}"
+                    for name, p, v in zip(states.names, position, velocity))
+    return "\n".join(rows) + "\n"
+
+
+def read_states(path: str) -> JointStates:
+    """Read back a joint-state file written by ``bras-kit motion`` (CSV long form or JSON)."""
+    suffix = os.path.splitext(path)[1].lower()
+    try:
+        with open(path, encoding="utf-8-sig") as handle:
+            text = handle.read()
+    except (OSError, UnicodeDecodeError) as exc:
+        raise ParameterError(f"cannot read the joint states: {exc}", path=path,
+                             hint="give a .csv or .json file written by bras-kit motion") from None
+    if suffix == ".json":
+        return _states_from_json(text, path)
+    if suffix == ".csv":
+        return _states_from_csv(text, path)
+    raise ParameterError("joint states are read from .csv or .json files", path=path,
+                         hint="write them with bras-kit motion -o states.csv")
+
+
+def _states_from_json(text: str, path: str) -> JointStates:
+    import json
+
+    try:
+        data = json.loads(text)
+    except json.JSONDecodeError as exc:
+        raise ParameterError(f"not valid JSON: {exc.msg}", path=path, line=exc.lineno) from None
+    hint = 'a list of {"time": t, "name": [...], "position": [...], "velocity": [...]}'
+    if not isinstance(data, list) or not data:
+        raise ParameterError("expected a non-empty list of joint-state messages", path=path, hint=hint)
+    names = None
+    times, positions, velocities = [], [], []
+    for index, message in enumerate(data):
+        try:
+            if names is None:
+                names = [str(n) for n in message["name"]]
+            if list(message["name"]) != names:
+                raise ParameterError(f"message {index + 1} names other joints than the first", path=path, hint=hint)
+            position = [float(v) for v in message["position"]]
+            velocity = [float(v) for v in message.get("velocity") or [0.0] * len(names)]
+            if len(position) != len(names) or len(velocity) != len(names):
+                raise ValueError
+            times.append(float(message["time"]))
+        except (KeyError, TypeError, ValueError):
+            raise ParameterError(f"message {index + 1} is not a joint state", path=path, hint=hint) from None
+        positions.append(position)
+        velocities.append(velocity)
+    return JointStates(np.array(times), names or [], np.array(positions), np.array(velocities))
+
+
+def _states_from_csv(text: str, path: str) -> JointStates:
+    lines = text.splitlines()
+    if not lines or [c.strip() for c in lines[0].split(",")] != ["time", "name", "position", "velocity"]:
+        raise ParameterError("the header is not time,name,position,velocity", path=path, line=1,
+                             hint="write the file with bras-kit motion -o states.csv")
+    names: list[str] = []
+    times: list[float] = []
+    positions: list[list[float]] = []
+    velocities: list[list[float]] = []
+    for number, line in enumerate(lines[1:], start=2):
+        if not line.strip():
+            continue
+        cells = line.split(",")
+        try:
+            time, name, position, velocity = float(cells[0]), cells[1].strip(), float(cells[2]), float(cells[3])
+        except (IndexError, ValueError):
+            raise ParameterError("expected time,name,position,velocity", path=path, line=number) from None
+        if not times or time != times[-1]:
+            if times and len(positions[-1]) != len(names):
+                raise ParameterError(f"the sample at t={times[-1]:g} s does not list every joint",
+                                     path=path, line=number)
+            times.append(time)
+            positions.append([])
+            velocities.append([])
+        if len(times) == 1 and name not in names:
+            names.append(name)
+        k = len(positions[-1])
+        if k >= len(names) or names[k] != name:
+            raise ParameterError(f"joint '{name}' is out of order (expected the order {', '.join(names)})",
+                                 path=path, line=number)
+        positions[-1].append(position)
+        velocities[-1].append(velocity)
+    if not times or len(positions[-1]) != len(names):
+        raise ParameterError("no complete joint state in the file", path=path)
+    return JointStates(np.array(times), names, np.array(positions), np.array(velocities))

@@ -1,0 +1,323 @@
+"""Waypoint files (CSV, JSON, YAML) read with their line numbers, and segments too fast for a joint."""
+
+from __future__ import annotations
+
+import math
+import os
+from dataclasses import dataclass
+
+import numpy as np
+
+from ..errors import ParameterError
+from ..kinematics import TFTree, tf_tree
+from ..model import Robot
+from .core import Motion, Waypoints, check_joint
+from .interpolation import INTERPOLATIONS, segment_peaks
+from .limits import TOLERANCE, joint_unit, speed_limit
+
+WAYPOINT_SUFFIXES = (".csv", ".json", ".yaml", ".yml")
+
+
+def read_waypoints(path: str, tree: TFTree | Robot, interpolation: str | None = None) -> Waypoints:
+    """Read a waypoint file (.csv, .json, .yaml/.yml) and check it against the robot's joints.
+
+    CSV: a header ``time,JOINT,...`` then one row per waypoint (';' or tab separators with
+    decimal commas also work; blank lines and lines starting with '#' are skipped).
+    JSON/YAML: ``{"interpolation": "cubic", "waypoints": [{"time": 0, "positions": {"epaule": 0}}]}``,
+    or just the list of waypoints; ``positions`` may be a list when ``"joints"`` names the columns.
+    Times are seconds, increasing, from 0; values are radians (metres for prismatic joints).
+    """
+    if isinstance(tree, Robot):
+        tree = tf_tree(tree)
+    if interpolation is not None and interpolation not in INTERPOLATIONS:
+        raise ParameterError(f"unknown interpolation '{interpolation}'", hint="use linear or cubic")
+    suffix = os.path.splitext(path)[1].lower()
+    if suffix not in WAYPOINT_SUFFIXES:
+        raise ParameterError(f"{path}: not a waypoint file", path=None,
+                             hint="waypoint files end in .csv, .json, .yaml or .yml")
+    try:
+        with open(path, encoding="utf-8-sig") as handle:
+            text = handle.read()
+    except FileNotFoundError:
+        raise ParameterError("no such waypoint file", path=path,
+                             hint="check the path (relative paths start from the current folder)") from None
+    except (OSError, UnicodeDecodeError) as exc:
+        raise ParameterError(f"cannot read the waypoint file: {exc}", path=path,
+                             hint="waypoint files are UTF-8 text") from None
+    if suffix == ".csv":
+        times, joints, values, lines, written = _parse_csv(text, path, tree)
+    else:
+        times, joints, values, lines, written = _parse_structured(text, path, tree, suffix == ".json")
+    _check_times(times, lines, path)
+    return Waypoints(np.asarray(times, dtype=float), joints, np.asarray(values, dtype=float).reshape(len(times), len(joints)),
+                     interpolation or written or "linear", path, tuple(lines))
+
+
+def _number(text: str, decimal_comma: bool = False) -> float | None:
+    try:
+        value = float(text.replace(",", ".") if decimal_comma else text)
+    except ValueError:
+        return None
+    return value if math.isfinite(value) else None
+
+
+def _parse_csv(text: str, path: str, tree: TFTree):  # type: ignore[no-untyped-def]
+    import csv
+
+    header: list[str] | None = None
+    delimiter, decimal_comma = ",", False
+    times: list[float] = []
+    rows: list[list[float]] = []
+    lines: list[int | None] = []
+    for number, line in enumerate(text.splitlines(), start=1):
+        if not line.strip() or line.lstrip().startswith("#"):
+            continue
+        if header is None:
+            if "," not in line and (";" in line or "\t" in line):
+                delimiter = ";" if ";" in line else "\t"
+                decimal_comma = True
+            header = [cell.strip() for cell in next(csv.reader([line], delimiter=delimiter))]
+            _check_header(header, path, number, tree)
+            continue
+        cells = [cell.strip() for cell in next(csv.reader([line], delimiter=delimiter))]
+        if len(cells) != len(header):
+            raise ParameterError(f"row has {len(cells)} values, the header has {len(header)} "
+                                 f"({', '.join(header)})", path=path, line=number,
+                                 hint="give a time and one value per joint on every row")
+        values = []
+        for column, cell in zip(header, cells):
+            value = _number(cell, decimal_comma)
+            if value is None:
+                raise ParameterError(f"{column}: '{cell}' is not a number", path=path, line=number,
+                                     hint="write times in seconds and joint values in radians (metres "
+                                          "for prismatic joints), e.g. 0.5")
+            values.append(value)
+        times.append(values[0])
+        rows.append(values[1:])
+        lines.append(number)
+    if header is None:
+        raise ParameterError("the waypoint file is empty", path=path,
+                             hint="start with a header such as time,epaule,coude")
+    if not rows:
+        raise ParameterError("no waypoints after the header", path=path,
+                             hint="add rows such as 0,0,0 then 2,0.5,1.0 (time, then one value per joint)")
+    return times, header[1:], rows, lines, None
+
+
+def _check_header(header: list[str], path: str, line: int, tree: TFTree) -> None:
+    if header[0].lower() != "time":
+        raise ParameterError(f"the first column is '{header[0]}', not 'time'", path=path, line=line,
+                             hint="start the file with a header such as time," + ",".join(tree.dof))
+    if len(header) < 2:
+        raise ParameterError("the header names no joint", path=path, line=line,
+                             hint="name the joint columns after time, e.g. time," + ",".join(tree.dof))
+    seen = set()
+    for name in header[1:]:
+        if not name:
+            raise ParameterError("a column of the header has no name", path=path, line=line,
+                                 hint="movable joints: " + ", ".join(tree.dof))
+        if name in seen:
+            raise ParameterError(f"the column '{name}' appears twice", path=path, line=line,
+                                 hint="give each joint one column")
+        seen.add(name)
+        check_joint(tree, name, path, line)
+
+
+_TOP_KEYS = ("waypoints", "interpolation", "joints")
+_POINT_KEYS = ("time", "positions")
+
+
+def _parse_structured(text: str, path: str, tree: TFTree, is_json: bool):  # type: ignore[no-untyped-def]
+    kind = "JSON" if is_json else "YAML"
+    if is_json:
+        import json
+
+        try:
+            data = json.loads(text)
+        except json.JSONDecodeError as exc:
+            raise ParameterError(f"not valid JSON: {exc.msg} (column {exc.colno})", path=path, line=exc.lineno,
+                                 hint="check commas, quotes and brackets near that line") from None
+    else:
+        import yaml
+
+        try:
+            data = yaml.safe_load(text)
+        except yaml.YAMLError as exc:
+            mark = getattr(exc, "problem_mark", None)
+            problem = getattr(exc, "problem", None) or "cannot be read"
+            raise ParameterError(f"not valid YAML: {problem}", path=path,
+                                 line=mark.line + 1 if mark is not None else None,
+                                 hint="check the indentation and the ':' after each key near that line") from None
+    lines = _waypoint_lines(text)
+    written = None
+    names: list[str] | None = None
+    if isinstance(data, dict):
+        unknown = [k for k in data if k not in _TOP_KEYS]
+        if unknown:
+            raise ParameterError(f"unknown key '{unknown[0]}'", path=path,
+                                 hint="the keys are " + ", ".join(_TOP_KEYS))
+        if "waypoints" not in data:
+            raise ParameterError(f"no 'waypoints' in the {kind} file", path=path,
+                                 hint='write {"interpolation": "linear", "waypoints": [{"time": 0, '
+                                      '"positions": {"epaule": 0}}, ...]}')
+        written = data.get("interpolation")
+        if written is not None and written not in INTERPOLATIONS:
+            raise ParameterError(f"unknown interpolation {written!r}", path=path, hint="use linear or cubic")
+        if "joints" in data:
+            names = data["joints"]
+            if not isinstance(names, list) or not all(isinstance(n, str) for n in names):
+                raise ParameterError("'joints' must be a list of joint names", path=path,
+                                     hint="movable joints: " + ", ".join(tree.dof))
+            for name in names:
+                check_joint(tree, name, path)
+        data = data["waypoints"]
+    if not isinstance(data, list) or not data:
+        raise ParameterError("the waypoints must be a non-empty list", path=path,
+                             hint='each waypoint is {"time": 0.0, "positions": {"epaule": 0.0, "coude": 0.0}}')
+    times: list[float] = []
+    rows: list[dict[str, float]] = []
+    for index, point in enumerate(data):
+        line = lines[index] if index < len(lines) else None
+        where = f"waypoint {index + 1}"
+        if not isinstance(point, dict):
+            raise ParameterError(f"{where} is not a mapping with 'time' and 'positions'", path=path, line=line,
+                                 hint='write {"time": 0.5, "positions": {"epaule": 0.3}}')
+        unknown = [k for k in point if k not in _POINT_KEYS]
+        missing = [k for k in _POINT_KEYS if k not in point]
+        if unknown or missing:
+            what = f"unknown key '{unknown[0]}'" if unknown else f"no '{missing[0]}'"
+            raise ParameterError(f"{where}: {what}", path=path, line=line,
+                                 hint="each waypoint has exactly 'time' (seconds) and 'positions'")
+        time = _structured_number(point["time"])
+        if time is None:
+            raise ParameterError(f"{where}: time {point['time']!r} is not a number", path=path, line=line,
+                                 hint="give the time in seconds, e.g. 1.5")
+        positions = point["positions"]
+        if isinstance(positions, list):
+            if names is None:
+                raise ParameterError(f"{where}: positions is a list but the file has no 'joints'", path=path,
+                                     line=line, hint='add "joints": [...] naming the columns, or give '
+                                                     'positions by name: {"epaule": 0.3}')
+            if len(positions) != len(names):
+                raise ParameterError(f"{where}: {len(positions)} positions for {len(names)} joints "
+                                     f"({', '.join(names)})", path=path, line=line,
+                                     hint="give one value per joint named in 'joints'")
+            positions = dict(zip(names, positions))
+        if not isinstance(positions, dict) or not positions:
+            raise ParameterError(f"{where}: positions must map joint names to values", path=path, line=line,
+                                 hint='write "positions": {"epaule": 0.3, "coude": -0.2}')
+        row = {}
+        for name, raw in positions.items():
+            check_joint(tree, str(name), path, line)
+            value = _structured_number(raw)
+            if value is None:
+                raise ParameterError(f"{where}: {name} = {raw!r} is not a number", path=path, line=line,
+                                     hint="joint values are radians (metres for prismatic joints)")
+            row[str(name)] = value
+        times.append(time)
+        rows.append(row)
+    joints = list(dict.fromkeys(name for row in rows for name in row))
+    for index, row in enumerate(rows):
+        absent = [name for name in joints if name not in row]
+        if absent:
+            line = lines[index] if index < len(lines) else None
+            raise ParameterError(f"waypoint {index + 1} has no value for {', '.join(absent)}", path=path,
+                                 line=line, hint="give every joint of the file a value in every waypoint")
+    values = [[row[name] for name in joints] for row in rows]
+    return times, joints, values, [lines[i] if i < len(lines) else None for i in range(len(rows))], written
+
+
+def _structured_number(raw: object) -> float | None:
+    if isinstance(raw, bool):
+        return None
+    if isinstance(raw, (int, float)):
+        try:
+            value = float(raw)
+        except OverflowError:
+            return None
+        return value if math.isfinite(value) else None
+    if isinstance(raw, str):  # YAML 1.1 reads 1e-3 as text
+        return _number(raw.strip())
+    return None
+
+
+def _waypoint_lines(text: str) -> list[int | None]:
+    """The line of each waypoint, found by composing the text as YAML (JSON is YAML too)."""
+    import yaml
+
+    try:
+        node = yaml.compose(text, Loader=yaml.SafeLoader)
+    except yaml.YAMLError:
+        return []
+    if isinstance(node, yaml.MappingNode):
+        node = next((value for key, value in node.value if getattr(key, "value", None) == "waypoints"), None)
+    if not isinstance(node, yaml.SequenceNode):
+        return []
+    return [item.start_mark.line + 1 for item in node.value]
+
+
+def _check_times(times: list[float], lines: list[int | None], path: str) -> None:
+    for index, time in enumerate(times):
+        line = lines[index] if index < len(lines) else None
+        if time < 0:
+            raise ParameterError(f"waypoint time {time:g} is negative", path=path, line=line,
+                                 hint="times are seconds from the start of the motion, from 0")
+        if index and time <= times[index - 1]:
+            raise ParameterError(f"waypoint time {time:g} does not come after the previous one "
+                                 f"({times[index - 1]:g})", path=path, line=line,
+                                 hint="list waypoints in increasing time order, each at a later time")
+
+
+@dataclass(frozen=True)
+class SegmentSpeed:
+    """A waypoint segment that needs ``joint`` to move at ``speed``, above its velocity ``limit``."""
+
+    joint: str
+    start: float
+    end: float
+    speed: float
+    limit: float
+    path: str | None = None
+    lines: tuple[int | None, int | None] = (None, None)
+    unit: str = "rad"
+    interpolation: str = "linear"
+
+
+def waypoint_speeds(robot: Robot, motion: Motion, tolerance: float = TOLERANCE) -> list[SegmentSpeed]:
+    """Waypoint segments where a joint would need more than its velocity limit.
+
+    The speed is the segment's peak: |change / time| for linear interpolation, the largest
+    speed of the cubic (at a segment end or where the acceleration is zero) for cubic.
+    """
+    out = []
+    for track in motion.tracks:
+        points = track.waypoints
+        joint = robot.joint(track.joint)
+        limit = speed_limit(joint)
+        if points is None or limit is None or len(points.times) < 2:
+            continue
+        column = points.values[:, points.joints.index(track.joint)]
+        for i, speed in enumerate(segment_peaks(points.times, column, points.interpolation)):
+            if speed > limit + tolerance:
+                lines = (points.lines[i] if i < len(points.lines) else None,
+                         points.lines[i + 1] if i + 1 < len(points.lines) else None)
+                out.append(SegmentSpeed(track.joint, float(points.times[i]), float(points.times[i + 1]),
+                                        float(speed), limit, points.path, lines, joint_unit(joint),
+                                        points.interpolation))
+    return out
+
+
+def describe_segment(segment: SegmentSpeed) -> str:
+    """One line for people naming the segment, the joint, the speed it needs and the fix."""
+    s = segment
+    where = ""
+    if s.path:
+        where = os.path.basename(s.path)
+        if s.lines[0] is not None and s.lines[1] is not None:
+            where += f" lines {s.lines[0]}-{s.lines[1]}"
+        where += ": "
+    spread = (s.end - s.start) * s.speed / s.limit
+    return (f"{where}{s.joint} needs {s.speed:.4g} {s.unit}/s between t={s.start:g} s and t={s.end:g} s "
+            f"({s.interpolation}), above its velocity limit {s.limit:g} {s.unit}/s; "
+            f"space these waypoints about {spread:.3g} s apart")
+

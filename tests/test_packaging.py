@@ -1,0 +1,40 @@
+"""What `pip install .` ships: every subpackage of bras_kit and every template."""
+
+from __future__ import annotations
+
+import re
+import subprocess
+import sys
+import zipfile
+from pathlib import Path
+
+import pytest
+
+ROOT = Path(__file__).resolve().parent.parent
+
+
+def subpackages() -> set[str]:
+    return {".".join(p.parent.relative_to(ROOT).parts) for p in (ROOT / "bras_kit").rglob("__init__.py")}
+
+
+def test_every_subpackage_is_declared_in_pyproject():
+    # the [tool.setuptools] packages list (read by hand: tomllib is Python 3.11+, we support 3.10)
+    block = re.search(r"^packages = \[(.*?)\]", (ROOT / "pyproject.toml").read_text(), re.S | re.M)
+    assert block is not None
+    declared = set(re.findall(r'"([\w.]+)"', block.group(1)))
+    assert subpackages() <= declared
+    assert "bras_kit.templates" in declared
+
+
+@pytest.mark.slow
+def test_the_wheel_holds_every_module_and_template(tmp_path):
+    subprocess.run([sys.executable, "-m", "pip", "wheel", "--no-deps", "--no-build-isolation", "-q",
+                    "-w", str(tmp_path), str(ROOT)], check=True, capture_output=True)
+    wheel = next(tmp_path.glob("bras_kit-*.whl"))
+    names = set(zipfile.ZipFile(wheel).namelist())
+    modules = {p.relative_to(ROOT).as_posix() for p in (ROOT / "bras_kit").rglob("*.py")}
+    assert modules - names == set()
+    templates = {"bras_kit/templates/" + p.relative_to(ROOT / "templates").as_posix()
+                 for p in (ROOT / "templates").rglob("*") if p.is_file() and "__pycache__" not in p.parts}
+    assert templates - names == set()
+    assert "bras_kit/templates/robot/bras.urdf.xacro" in names
