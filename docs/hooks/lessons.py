@@ -10,6 +10,7 @@ from __future__ import annotations
 
 import base64
 import json
+import os
 import re
 import tempfile
 from concurrent.futures import ThreadPoolExecutor
@@ -123,6 +124,9 @@ def on_files(files: Any, config: Any) -> Any:
     from mkdocs.structure.files import File
 
     found = notebooks()
+    # The kernels inherit the environment: a headless MPLBACKEND=Agg (as CI sets) would make
+    # plt.show() draw nothing, so the pages would lose their figures. Use Jupyter's inline one.
+    os.environ["MPLBACKEND"] = "module://matplotlib_inline.backend_inline"
     with ThreadPoolExecutor(max_workers=2) as pool:
         executed = list(pool.map(execute, [str(path) for _, path in found]))
     for (lang, path), text in zip(found, executed):
