@@ -63,6 +63,8 @@ _LAZY = {
     "solve_ik": "bras_kit.ik",
     "ik_2r": "bras_kit.ik",
     "jacobian": "bras_kit.ik",
+    "simulate": "bras_kit.physics",
+    "build_mjcf": "bras_kit.physics",
 }
 
 

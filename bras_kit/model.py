@@ -26,7 +26,7 @@ class Issue:
     """Something the parser could not read as written; the validator turns these into findings.
 
     kind: ``missing_attribute``, ``bad_number``, ``non_finite``, ``unexpanded_xacro``,
-    ``unknown_geometry``, ``root_not_robot``.
+    ``unknown_geometry``, ``root_not_robot``, ``late_xml_declaration``.
     """
 
     kind: str
@@ -365,6 +365,8 @@ def robot_from_xml(root: Node, path: str | None = None, source_text: str | None 
     robot = Robot(root.get("name"), path=path, root_tag=root.tag, line=root.line,
                   source_text=source_text)
     reader = _Reader(robot)
+    if root.late_declaration is not None:
+        robot.issues.append(Issue("late_xml_declaration", root.late_declaration, "?xml", None, None, None))
     if root.tag != "robot":
         reader.issue("root_not_robot", root, None, None, root.tag)
         return robot

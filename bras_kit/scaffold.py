@@ -13,6 +13,7 @@ import keyword
 import math
 import os
 import re
+import unicodedata
 from collections.abc import Mapping
 from dataclasses import dataclass
 from pathlib import Path
@@ -83,6 +84,33 @@ def check_package_name(name: str) -> None:
     if keyword.iskeyword(name):
         raise ParameterError(f"'{name}' is a Python keyword and cannot name an ament_python package",
                              hint="choose another name, e.g. bras_description")
+
+
+# catkin_pkg's test of a maintainer's email: colcon ignores a package.xml that fails it
+EMAIL_PATTERN = re.compile(r"^[-a-zA-Z0-9_%+]+(\.[-a-zA-Z0-9_%+]+)*@[-a-zA-Z0-9%]+(\.[-a-zA-Z0-9%]+)*\.[a-zA-Z]{2,}$")
+
+
+def default_email(maintainer: str) -> str:
+    """A placeholder address catkin_pkg accepts: ``Jean Dupont`` -> ``jean.dupont@todo.todo``."""
+    ascii_name = unicodedata.normalize("NFKD", maintainer).encode("ascii", "ignore").decode().lower()
+    local = ".".join(re.findall(r"[a-z0-9_+-]+", ascii_name)) or "maintainer"
+    return f"{local}@todo.todo"
+
+
+def check_maintainer(name: str) -> None:
+    """Raise :class:`ParameterError` for a name that would break setup.py or package.xml as written."""
+    bad = sorted({c for c in name if c in "'\"\\<>&" or not c.isprintable()})
+    if bad or not name.strip():
+        shown = " ".join(repr(c) for c in bad) if bad else "an empty name"
+        raise ParameterError(f"maintainer '{name}': {shown} cannot be written into setup.py and package.xml",
+                             hint="give --maintainer a plain name (letters, digits, spaces, . and -)")
+
+
+def check_email(email: str) -> None:
+    """Raise :class:`ParameterError` unless catkin_pkg (hence colcon) accepts ``email``."""
+    if not EMAIL_PATTERN.match(email):
+        raise ParameterError(f"'{email}' is not an email address colcon accepts",
+                             hint="give --email name@domain.tld (colcon would treat the package as plain Python)")
 
 
 def _floor(value: float, digits: int = 6) -> float:
@@ -209,7 +237,9 @@ def render_package(
             maintainer = getpass.getuser()
         except (KeyError, OSError):
             maintainer = "maintainer"
-    email = email or f"{maintainer}@todo.todo"
+    check_maintainer(maintainer)
+    email = email or default_email(maintainer)
+    check_email(email)
 
     context = {
         "name": name,

@@ -1,12 +1,17 @@
-"""Run the real ``xacro`` package without ROS, safely.
+"""Run the real ``xacro`` package without ROS, on files from strangers.
 
-Three things are added around xacro:
+xacro itself is kept (its parser, macros, properties, includes, output), with walls around it:
 
-* every file xacro parses is first read by :mod:`bras_kit.xmlio`, so a DTD or an entity is
-  refused before minidom could expand it;
-* every ``${...}`` and ``$(eval ...)`` expression is checked by :func:`check_expression`
-  before xacro evaluates it: arithmetic, names, calls and subscripts pass; dunder names,
-  introspection (``vars``, ``type``...) and huge powers do not;
+* every ``${...}`` and ``$(eval ...)`` expression is interpreted by the allow-list evaluator
+  of :mod:`bras_kit.xacro_eval`, never by Python's ``eval``;
+* every file xacro opens (the main file, includes, ``load_yaml``) must be a regular file of at
+  most :data:`MAX_FILE_BYTES`, inside the file's own folder or a package folder given by the
+  caller, and is first read by :mod:`bras_kit.xmlio`, so a DTD or an entity is refused before
+  minidom could expand it;
+* macro nesting, include nesting, the number of elements processed, the time spent and the
+  output size are bounded;
+* a file that is not the built-in template is expanded in a child process with CPU, memory
+  and wall-clock limits (:mod:`bras_kit.sandbox`), the second wall;
 * ``$(find pkg)`` is resolved from package folders given by the caller or the
   ``BRAS_KIT_PACKAGE_PATH`` environment variable (a folder holding packages, a package
   itself, or an install ``share/`` tree), then ``AMENT_PREFIX_PATH`` when ROS is there.
@@ -14,78 +19,49 @@ Three things are added around xacro:
 
 from __future__ import annotations
 
-import ast
 import contextlib
 import io
 import os
 import re
+import stat
 import threading
-from collections.abc import Iterable, Mapping
+import time
+from collections.abc import Callable, Iterable, Mapping
+from typing import Any
 
 from .errors import BrasKitError, XacroError
 from .xmlio import check_xml_safe
 
 PACKAGE_PATH_ENV = "BRAS_KIT_PACKAGE_PATH"
-
-# Names that open a way from data to code (introspection, dynamic attribute access).
-_FORBIDDEN_NAMES = frozenset({
-    "vars", "type", "dir", "getattr", "setattr", "delattr", "globals", "locals", "eval", "exec",
-    "compile", "open", "input", "help", "breakpoint", "memoryview", "object", "mro",
-    "isinstance", "issubclass", "super", "classmethod", "staticmethod", "property",
-    "format", "format_map", "func_globals", "gi_frame", "f_globals", "f_locals", "f_back",
-    "tb_frame", "cr_frame", "load_yaml", "__import__",
-})
-MAX_LITERAL_EXPONENT = 64
+MAX_FILE_BYTES = 8 << 20  # any one file xacro reads
+MAX_OUTPUT_CHARS = 64 << 20
+MAX_MACRO_DEPTH = 100
+MAX_INCLUDE_DEPTH = 50
+MAX_ELEMENTS = 500_000  # elements processed (macro bodies count each time they are expanded)
+MAX_CHILDREN = 20_000  # children of one element (minidom inserts in quadratic time)
+SANDBOX_CPU_SECONDS = 20
+SANDBOX_WALL_SECONDS = 30.0
+SANDBOX_MEMORY_BYTES = 1536 << 20
 
 _lock = threading.Lock()
 
 
 def check_expression(expression: str) -> None:
-    """Raise :class:`UnsafeExpression` unless ``expression`` is plain arithmetic-like Python.
+    """Raise :class:`XacroError` unless ``expression`` only uses what the allow-list accepts.
 
-    Used for xacro ``${}`` and ``$(eval)``; xacro's own guard only refuses names starting
-    with ``__``, which string subscripts of ``vars()`` get around.
+    The expression is not evaluated: names are not looked up. Used to vet an expression
+    alone; during expansion the evaluator itself refuses what it does not know.
     """
+    from .xacro_eval import UnsafeXacroExpression, vet
+
     try:
-        tree = ast.parse(expression.strip(), mode="eval")
+        vet(expression)
     except SyntaxError as exc:
         raise XacroError(f"cannot read the expression '{expression}': {exc.msg}",
                          hint="check brackets and operators inside ${...}") from None
-    for node in ast.walk(tree):
-        bad = None
-        if isinstance(node, ast.Name) and (node.id.startswith("_") or node.id in _FORBIDDEN_NAMES):
-            bad = f"the name '{node.id}'"
-        elif isinstance(node, ast.Attribute) and (node.attr.startswith("_") or node.attr in _FORBIDDEN_NAMES):
-            bad = f"the attribute '.{node.attr}'"
-        elif isinstance(node, ast.Constant) and isinstance(node.value, str) and "__" in node.value:
-            bad = "a string with a double underscore"
-        elif isinstance(node, (ast.Lambda, ast.NamedExpr, ast.Await, ast.Yield, ast.YieldFrom)):
-            bad = f"a {type(node).__name__.lower()} expression"
-        elif isinstance(node, ast.BinOp) and isinstance(node.op, ast.Mult) and any(
-            _is_sequence(side) for side in (node.left, node.right)
-        ):
-            bad = "repetition of text or a list with '*'"
-        elif isinstance(node, ast.BinOp) and isinstance(node.op, ast.Pow):
-            exponent = node.right
-            if isinstance(exponent, ast.UnaryOp) and isinstance(exponent.operand, ast.Constant):
-                exponent = exponent.operand
-            if isinstance(exponent, ast.Constant) and isinstance(exponent.value, (int, float)) \
-                    and abs(exponent.value) > MAX_LITERAL_EXPONENT:
-                bad = f"a power above {MAX_LITERAL_EXPONENT}"
-            elif isinstance(exponent, ast.BinOp) and isinstance(exponent.op, ast.Pow):
-                bad = "a tower of powers"
-        if bad:
-            raise XacroError(
-                f"refused the expression '{expression.strip()}': it uses {bad}",
-                hint="xacro expressions may only compute numbers and strings from properties",
-            )
-
-
-def _is_sequence(node: ast.AST) -> bool:
-    """A literal that '*' would repeat (text, list, tuple, f-string) rather than multiply."""
-    return isinstance(node, (ast.List, ast.Tuple, ast.JoinedStr, ast.ListComp)) or (
-        isinstance(node, ast.Constant) and isinstance(node.value, (str, bytes))
-    )
+    except UnsafeXacroExpression as exc:
+        raise XacroError(f"refused the expression '{expression.strip()}': {exc.message}",
+                         hint=exc.hint) from None
 
 
 def package_roots(extra: Iterable[str] = ()) -> list[str]:
@@ -99,24 +75,46 @@ def package_roots(extra: Iterable[str] = ()) -> list[str]:
 
 
 def find_package(name: str, roots: Iterable[str]) -> str:
-    """The folder of package ``name`` under one of ``roots`` (checked for a package.xml or being a share/ entry)."""
-    searched = []
+    """The folder of package ``name`` under one of ``roots``.
+
+    A folder ``name`` with a ``package.xml`` (or in an install ``share/`` tree) wins; failing
+    that, a plain folder named ``name`` is taken, as ``xacro`` does with a package path whose
+    packages were copied without their manifest. :func:`package_origin` says which was used.
+    """
+    searched: list[str] = []
+    fallback = None
     for root in roots:
         candidates = [os.path.join(root, name), os.path.join(root, "share", name)]
         if os.path.basename(os.path.normpath(root)) == name:
             candidates.insert(0, root)
         for candidate in candidates:
             searched.append(candidate)
-            if os.path.isdir(candidate) and (
-                os.path.isfile(os.path.join(candidate, "package.xml"))
-                or os.path.basename(os.path.dirname(candidate)) == "share"
-            ):
-                return os.path.abspath(candidate)
+            if not os.path.isdir(candidate):
+                continue
+            if os.path.isfile(os.path.join(candidate, "package.xml")) \
+                    or os.path.basename(os.path.dirname(candidate)) == "share":
+                return _remember(name, os.path.abspath(candidate))
+            fallback = fallback or os.path.abspath(candidate)
+    if fallback is not None:
+        return _remember(name, fallback)
     raise XacroError(
         f"$(find {name}): package '{name}' not found",
         hint=f"pass --package-path DIR (a folder holding {name}/ or an install share/ tree) "
         f"or set {PACKAGE_PATH_ENV}" + (f"; searched: {', '.join(searched)}" if searched else ""),
     )
+
+
+_FOUND: dict[str, str] = {}
+
+
+def _remember(name: str, folder: str) -> str:
+    _FOUND[name] = folder
+    return folder
+
+
+def package_origin(name: str) -> str | None:
+    """The folder last used for package ``name`` in this process (for ``--verbose``)."""
+    return _FOUND.get(name)
 
 
 def _locate(path: str, message: str, extra: Iterable[str] = ()) -> int | None:
@@ -129,9 +127,8 @@ def _locate(path: str, message: str, extra: Iterable[str] = ()) -> int | None:
     # an included file is quoted with its full path; the including file holds a relative one
     tokens += paths + [p.split(os.sep, k)[-1] for p in paths for k in range(1, p.count(os.sep) + 1)]
     try:
-        with open(path, encoding="utf-8", errors="replace") as handle:
-            lines = handle.read().splitlines()
-    except OSError:
+        lines = _read_limited(path).decode("utf-8", errors="replace").splitlines()
+    except (OSError, BrasKitError):
         return None
     for token in tokens:
         for number, text in enumerate(lines, 1):
@@ -160,86 +157,320 @@ def expand_xacro(
     path: str | os.PathLike[str],
     mappings: Mapping[str, str] | None = None,
     package_paths: Iterable[str] = (),
+    *,
+    sandbox: bool | None = None,
 ) -> str:
-    """Expand a xacro file to URDF text with the real xacro package.
+    """Expand a xacro file to URDF text with the real xacro package, behind the walls above.
 
     ``mappings`` are xacro args (``name:=value`` on xacro's command line). Errors become a
-    :class:`XacroError` naming the file, the best-guess line and what to do.
+    :class:`XacroError` naming the file, the best-guess line and what to do. ``sandbox``
+    (default: every file but the built-in template) runs the expansion in a limited child.
     """
+    path = os.fspath(path)
+    if not os.path.exists(path):
+        raise BrasKitError(f"no such file: {path}", hint="check the path and spelling")
+    check_readable_file(path)
+    if sandbox is None:
+        sandbox = not _is_builtin_template(path)
+    if sandbox:
+        from .sandbox import run_limited
+
+        return run_limited(_expand, path, dict(mappings or {}), tuple(package_paths),
+                           cpu_seconds=SANDBOX_CPU_SECONDS, memory_bytes=SANDBOX_MEMORY_BYTES,
+                           wall_seconds=SANDBOX_WALL_SECONDS, what=f"expanding {path}")
+    return _expand(path, dict(mappings or {}), tuple(package_paths))
+
+
+def _is_builtin_template(path: str) -> bool:
+    from ._resources import robot_template
+
+    try:
+        return os.path.samefile(path, robot_template())
+    except OSError:
+        return False
+
+
+_FORBIDDEN_TREES = ("/proc", "/sys", "/dev")
+
+
+def check_readable_file(path: str) -> None:
+    """Raise unless ``path`` is a regular file of at most :data:`MAX_FILE_BYTES` outside /proc, /sys, /dev."""
+    real = os.path.realpath(path)
+    if any(real == tree or real.startswith(tree + os.sep) for tree in _FORBIDDEN_TREES):
+        raise XacroError(f"refused to read {path}: it is a system file, not a robot description",
+                         hint="include only files of your robot's packages")
+    try:
+        info = os.stat(path)
+    except OSError as exc:
+        raise BrasKitError(f"cannot read {path}: {exc.strerror}") from None
+    if stat.S_ISDIR(info.st_mode):
+        raise BrasKitError(f"{path} is a folder, not a file")
+    if not stat.S_ISREG(info.st_mode):
+        raise XacroError(f"refused to read {path}: it is not a regular file (a device, pipe or socket)",
+                         hint="give the path of a .xacro, .urdf or .yaml file")
+    if info.st_size > MAX_FILE_BYTES:
+        raise XacroError(f"refused to read {path}: {info.st_size:,} bytes is more than the "
+                         f"{MAX_FILE_BYTES >> 20} MiB a robot description file may have")
+
+
+def _read_limited(path: str) -> bytes:
+    """The bytes of a checked regular file, never blocking on a pipe swapped in meanwhile."""
+    check_readable_file(path)
+    fd = os.open(path, os.O_RDONLY | getattr(os, "O_NONBLOCK", 0))
+    try:
+        if not stat.S_ISREG(os.fstat(fd).st_mode):
+            raise XacroError(f"refused to read {path}: it is not a regular file")
+        data = b""
+        while len(data) <= MAX_FILE_BYTES:
+            chunk = os.read(fd, 1 << 20)
+            if not chunk:
+                return data
+            data += chunk
+        raise XacroError(f"refused to read {path}: more than {MAX_FILE_BYTES >> 20} MiB")
+    finally:
+        os.close(fd)
+
+
+def _inside(path: str, folders: Iterable[str]) -> bool:
+    real = os.path.realpath(path)
+    return any(real == f or real.startswith(f.rstrip(os.sep) + os.sep) for f in folders)
+
+
+class _Hooks:
+    """The replacements put into xacro for one expansion, and what they share."""
+
+    def __init__(self, xacro: Any, subst: Any, path: str, roots: list[str]) -> None:
+        from .xacro_eval import BUILTINS, MATH, Budget
+
+        self.xacro, self.subst, self.roots = xacro, subst, roots
+        self.budget = Budget()
+        self.elements = 0
+        self.yaml_folders = [os.path.realpath(os.path.dirname(os.path.abspath(path)))]
+        self.yaml_folders += [os.path.realpath(r) for r in roots if os.path.isdir(r)]
+        self.original = (xacro.parse, xacro.safe_eval, xacro.eval_all, subst._eval, subst._eval_find,
+                         subst._eval_dict.get("find"), xacro.replace_node)
+        self.callables = self._callables(BUILTINS, MATH)
+
+    def _callables(self, builtin_table: Mapping[str, Any], math_table: Mapping[str, Any]) -> dict[int, Any]:
+        import builtins
+        import math
+
+        xacro, table = self.xacro, {}
+        for name, safe in builtin_table.items():
+            table[id(safe)] = safe
+            real = getattr(builtins, name, None)
+            if real is not None:
+                table[id(real)] = safe
+        for name, safe in math_table.items():
+            if callable(safe):
+                table[id(safe)] = safe
+                table[id(getattr(math, name))] = safe
+        symbols = xacro._global_symbols
+        for name in ("sorted", "range"):  # deprecated direct forms of python.sorted / python.range
+            if name in symbols:
+                table[id(dict.__getitem__(symbols, name))] = builtin_table[name]
+        namespace = dict.__getitem__(symbols, "xacro")
+        for name in ("arg", "tokenize", "dotify", "abs_filename", "message", "warning", "error",
+                     "print_location", "fatal"):
+            if dict.__contains__(namespace, name):
+                helper = dict.__getitem__(namespace, name)
+                table[id(helper)] = helper
+            if name in symbols:  # the deprecated direct form wraps the same helper
+                table[id(dict.__getitem__(symbols, name))] = dict.__getitem__(namespace, name)
+        for candidate in (dict.get(namespace, "load_yaml"), symbols.get("load_yaml"), xacro.load_yaml):
+            if candidate is not None:
+                table[id(candidate)] = self.load_yaml
+        table[id(self.load_yaml)] = self.load_yaml
+        for name in ("env", "optenv"):
+            function = self.subst._eval_dict.get(name)
+            if function is not None:
+                table[id(function)] = function
+        table[id(self.resolve)] = self.resolve
+        return table
+
+    # files
+    def parse(self, inp: Any, filename: str | None = None) -> Any:
+        xacro = self.xacro
+        if len(xacro.filestack or []) > MAX_INCLUDE_DEPTH:
+            raise XacroError(f"includes are nested more than {MAX_INCLUDE_DEPTH} deep",
+                             hint="a file probably includes itself")
+        if inp is None and filename is not None:
+            full = os.path.normpath(os.path.join(xacro.root_dir, filename))
+            if not os.path.exists(full):
+                return self.original[0](inp, filename)  # xacro's own "No such file" error
+            data = _read_limited(full)
+            check_xml_safe(data, full)
+            try:
+                text = data.decode("utf-8")
+            except UnicodeDecodeError as exc:
+                raise XacroError(f"{full} is not UTF-8 text (byte {exc.start})",
+                                 hint="save the file as UTF-8") from None
+            return self.original[0](text, filename)
+        if isinstance(inp, (str, bytes)):
+            check_xml_safe(inp, filename)
+        return self.original[0](inp, filename)
+
+    def load_yaml(self, filename: str) -> Any:
+        full = self.xacro.abs_filename_spec(filename)
+        if not _inside(full, self.yaml_folders):
+            raise XacroError(f"refused to load {filename}: only YAML files next to the robot description "
+                             "or inside the given package folders may be read",
+                             hint="move the file next to your xacro file, or pass its package with --package-path")
+        check_readable_file(full)
+        return self.original_load_yaml(filename)
+
+    @property
+    def original_load_yaml(self) -> Callable[[str], Any]:
+        return self.xacro.load_yaml  # type: ignore[no-any-return]
+
+    def resolve(self, name: str) -> str:
+        return find_package(name, self.roots)
+
+    # expressions
+    def _evaluate(self, expression: str, lookup: Callable[[str], Any]) -> Any:
+        from .xacro_eval import Evaluator, UnsafeXacroExpression
+
+        try:
+            return Evaluator(lookup, self._attribute, self.callables, self.budget).run(expression)
+        except UnsafeXacroExpression as exc:
+            error = XacroError(f"refused the expression '{expression.strip()}': {exc.message}", hint=exc.hint)
+            error.expression = expression.strip()  # type: ignore[attr-defined]
+            raise error from None
+
+    def _attribute(self, value: Any, name: str) -> Any:
+        from .xacro_eval import UnsafeXacroExpression
+
+        if isinstance(value, self.xacro.NameSpace):
+            try:
+                return value[name]
+            except KeyError:
+                raise NameError(f"name '{name}' is not defined") from None
+        if isinstance(value, self.xacro.YamlDictWrapper):
+            return value.__getattr__(name)
+        raise UnsafeXacroExpression(f"it uses the attribute '.{name}' of a {type(value).__name__}",
+                                    hint="only namespaces (math., python., xacro.) and YAML data have attributes")
+
+    def safe_eval(self, expr: str, globals_: Any, locals_: Any = None) -> Any:
+        table = locals_ if locals_ is not None else globals_
+        return self._evaluate(expr, table.__getitem__)
+
+    def subst_eval(self, s: str, context: dict[str, Any]) -> str:
+        subst = self.subst
+        if "arg" not in context:
+            context["arg"] = {}
+        if s.find("__") >= 0:
+            raise subst.SubstitutionException("$(eval ...) may not contain double underscore expressions")
+        args = context["arg"]
+
+        def arg(name: str) -> Any:
+            return subst.convert_value(subst._eval_arg(name, args=args), "auto")
+
+        def dirname() -> str:
+            return subst._eval_dirname(context["filename"])  # type: ignore[no-any-return]
+
+        functions: dict[str, Any] = {k: v for k, v in subst._eval_dict.items() if k != "__builtins__"}
+        functions.update(arg=arg, dirname=dirname, find=self.resolve)
+        self.callables[id(arg)] = arg
+        self.callables[id(dirname)] = dirname
+        from .xacro_eval import BUILTINS
+
+        def lookup(name: str) -> Any:
+            if name in functions:
+                return functions[name]
+            if name in args:
+                return subst.convert_value(args[name], "auto")
+            return BUILTINS[name]
+
+        return str(self._evaluate(s, lookup))
+
+    def eval_all(self, node: Any, macros: Any, symbols: Any) -> Any:
+        self.elements += 1
+        if self.elements > MAX_ELEMENTS:
+            raise XacroError(f"the expansion makes more than {MAX_ELEMENTS:,} elements",
+                             hint="a macro probably expands itself too many times")
+        if len(self.xacro.macrostack or []) > MAX_MACRO_DEPTH:
+            raise XacroError(f"macros are nested more than {MAX_MACRO_DEPTH} deep",
+                             hint="a macro probably calls itself without end")
+        self.budget.spend()
+        if self.elements % 64 == 0 and time.monotonic() > self.budget.deadline:
+            raise XacroError("the expansion takes too long and was stopped",
+                             hint="a macro probably expands itself too many times")
+        return self.original[2](node, macros, symbols)
+
+    def replace_node(self, node: Any, by: Any, content_only: bool = False) -> Any:
+        parent = node.parentNode
+        if parent is not None and by is not None:
+            if isinstance(by, list):
+                incoming = sum(len(b.childNodes) if content_only else 1 for b in by)
+            else:
+                incoming = len(by.childNodes) if content_only else 1
+            if len(parent.childNodes) + incoming > MAX_CHILDREN:
+                raise XacroError(f"an element gets more than {MAX_CHILDREN:,} children",
+                                 hint="a macro probably expands itself too many times")
+        if time.monotonic() > self.budget.deadline:
+            raise XacroError("the expansion takes too long and was stopped",
+                             hint="a macro probably expands itself too many times")
+        return self.original[6](node, by, content_only)
+
+    def install(self) -> None:
+        xacro, subst = self.xacro, self.subst
+        xacro.parse, xacro.safe_eval, xacro.eval_all = self.parse, self.safe_eval, self.eval_all
+        xacro.replace_node = self.replace_node
+        subst._eval, subst._eval_find = self.subst_eval, self.resolve
+        subst._eval_dict["find"] = self.resolve
+
+    def uninstall(self) -> None:
+        xacro, subst = self.xacro, self.subst
+        xacro.parse, xacro.safe_eval, xacro.eval_all = self.original[0], self.original[1], self.original[2]
+        xacro.replace_node = self.original[6]
+        subst._eval, subst._eval_find = self.original[3], self.original[4]
+        subst._eval_dict["find"] = self.original[5]
+
+
+def _expand(path: str, mappings: Mapping[str, str], package_paths: tuple[str, ...]) -> str:
     import xacro
     import xacro.substitution_args as subst
 
-    path = os.fspath(path)
-    if not os.path.isfile(path):
-        raise BrasKitError(f"no such file: {path}", hint="check the path and spelling")
-    roots = package_roots(package_paths)
-    original = (xacro.parse, xacro.safe_eval, subst._eval, subst._eval_find, subst._eval_dict.get("find"))
-
-    def safe_parse(inp, filename=None):  # type: ignore[no-untyped-def]
-        if inp is None and filename is not None:
-            full = os.path.normpath(os.path.join(xacro.root_dir, filename))
-            try:
-                with open(full, "rb") as handle:
-                    data = handle.read()
-            except OSError:
-                return original[0](inp, filename)
-            check_xml_safe(data, full)
-            return original[0](data.decode("utf-8"), filename)
-        if isinstance(inp, (str, bytes)):
-            check_xml_safe(inp, filename)
-        return original[0](inp, filename)
-
-    def guarded_eval(expr, globals_, locals_=None):  # type: ignore[no-untyped-def]
-        _checked(expr)
-        return original[1](expr, globals_, locals_)
-
-    def guarded_subst_eval(expr, context):  # type: ignore[no-untyped-def]
-        _checked(expr)
-        return original[2](expr, context)
-
-    def resolve(name):  # type: ignore[no-untyped-def]
-        return find_package(name, roots)
-
+    hooks = _Hooks(xacro, subst, path, package_roots(package_paths))
     stderr = io.StringIO()
     with _lock:
-        xacro.parse, xacro.safe_eval = safe_parse, guarded_eval
-        subst._eval, subst._eval_find = guarded_subst_eval, resolve
-        subst._eval_dict["find"] = resolve
+        hooks.install()
         try:
             with contextlib.redirect_stderr(stderr):
-                doc = xacro.process_file(path, mappings=dict(mappings or {}), verbosity=0)
-            return doc.toprettyxml(indent="  ")
+                doc = xacro.process_file(path, mappings=dict(mappings), verbosity=0)
+                text = doc.toprettyxml(indent="  ")
+            if len(text) > MAX_OUTPUT_CHARS:
+                raise XacroError(f"the expanded URDF has {len(text):,} characters, more than "
+                                 f"{MAX_OUTPUT_CHARS >> 20} Mi allowed", path=path)
+            return str(text)
         except Exception as exc:  # xacro raises many kinds; all become one clean error
-            where = _current_file(xacro, path)
-            inner = _inner_error(exc)
-            if inner is not None:  # one of our guards, possibly wrapped by xacro: report it alone
-                if inner.path is None:
-                    inner.path = where
-                    expression = getattr(inner, "expression", "")
-                    inner.line = inner.line or _locate(where, inner.message, [
-                        "${" + expression + "}", "$(eval " + expression, expression] if expression else [])
-                raise inner from None
-            message = " ".join((str(exc) or type(exc).__name__).split())
-            missing = _MISSING_FILE.search(message)
-            if missing:
-                message = f"cannot include {missing.group(1).rstrip(':')}: no such file"
-            line = getattr(exc, "lineno", None) or _locate(where, message)
-            raise XacroError(f"xacro failed: {message}", path=where, line=line,
-                             hint=_hint_for(message)) from None
+            raise _clean_error(xacro, path, exc) from None
         finally:
-            xacro.parse, xacro.safe_eval = original[0], original[1]
-            subst._eval, subst._eval_find = original[2], original[3]
-            subst._eval_dict["find"] = original[4]
+            hooks.uninstall()
             xacro.init_stacks(None)
 
 
-def _checked(expression: str) -> None:
-    """:func:`check_expression`, remembering the expression on the error to find its line."""
-    try:
-        check_expression(expression)
-    except XacroError as exc:
-        exc.expression = expression.strip()  # type: ignore[attr-defined]
-        raise
+def _clean_error(xacro: Any, path: str, exc: BaseException) -> BrasKitError:
+    where = _current_file(xacro, path)
+    inner = _inner_error(exc)
+    if inner is not None:  # one of our walls, possibly wrapped by xacro: report it alone
+        if inner.path is None:
+            inner.path = where
+            expression = getattr(inner, "expression", "")
+            inner.line = inner.line or _locate(where, inner.message, [
+                "${" + expression + "}", "$(eval " + expression, expression] if expression else [])
+        return inner
+    if isinstance(exc, RecursionError) or isinstance(getattr(exc, "exc", None), RecursionError):
+        return XacroError("the file nests too deeply (macros, properties or elements)", path=where,
+                          hint="a macro or property probably refers to itself")
+    if isinstance(exc, MemoryError):
+        return XacroError("the expansion ran out of memory", path=where, hint="simplify the file")
+    message = " ".join((str(exc) or type(exc).__name__).split())[:1000]
+    missing = _MISSING_FILE.search(message)
+    if missing:
+        message = f"cannot include {missing.group(1).rstrip(':')}: no such file"
+    line = getattr(exc, "lineno", None) or _locate(where, message)
+    return XacroError(f"xacro failed: {message}", path=where, line=line, hint=_hint_for(message))
 
 
 def _current_file(xacro_module, default: str) -> str:  # type: ignore[no-untyped-def]

@@ -8,6 +8,8 @@ The result is a small tree of :class:`Node` objects that remember their line.
 from __future__ import annotations
 
 import os
+import re
+import stat
 import xml.parsers.expat
 from collections.abc import Iterator
 from dataclasses import dataclass, field
@@ -26,6 +28,7 @@ class Node:
     line: int
     children: list[Node] = field(default_factory=list)
     text: str = ""
+    late_declaration: int | None = None  # root only: line of an <?xml ?> that did not come first
 
     def find(self, tag: str) -> Node | None:
         for child in self.children:
@@ -62,6 +65,7 @@ def parse_xml(data: bytes | str, path: str | None = None) -> Node:
     """
     if isinstance(data, str):
         data = data.encode("utf-8")
+    data, late_declaration = _blank_late_declaration(data)
     parser = xml.parsers.expat.ParserCreate()
     parser.buffer_text = True  # one text callback per run of text, not one per line
     root_holder: list[Node] = []
@@ -122,13 +126,46 @@ def parse_xml(data: bytes | str, path: str | None = None) -> Node:
         ) from None
     if not root_holder:
         raise XMLSyntaxError("the file holds no XML element", path=path, line=1)
+    root_holder[0].late_declaration = late_declaration
     return root_holder[0]
+
+
+_LATE_DECLARATION = re.compile(rb"\A(\xef\xbb\xbf)?(\s+)(<\?xml\b[^>]*\?>)")
+
+
+def _blank_late_declaration(data: bytes) -> tuple[bytes, int | None]:
+    """Blank an ``<?xml ...?>`` declaration that follows blank lines or spaces (expat refuses it;
+    urdfdom and pybullet read such files). Returns the data, same length and lines, and the
+    declaration's line, or None when there was nothing to blank."""
+    match = _LATE_DECLARATION.match(data[:4096])
+    if match is None:
+        return data, None
+    start, end = match.span(3)
+    line = data[:start].count(b"\n") + 1
+    return data[:start] + b" " * (end - start) + data[end:], line
+
+
+MAX_READ_BYTES = 256 << 20
 
 
 def read_bytes(path: str | os.PathLike[str]) -> bytes:
     """A file's bytes; a missing or unreadable file is a :class:`BrasKitError` naming it."""
     path = os.fspath(path)
+    if path == "-":
+        import sys
+
+        data = sys.stdin.buffer.read(MAX_READ_BYTES + 1)
+        if len(data) > MAX_READ_BYTES:
+            raise BrasKitError(f"refused to read standard input: more than {MAX_READ_BYTES >> 20} MiB")
+        return data
     try:
+        info = os.stat(path)
+        if not stat.S_ISREG(info.st_mode) and not stat.S_ISDIR(info.st_mode):
+            raise BrasKitError(f"refused to read {path}: it is not a regular file (a device, pipe or socket)",
+                               hint="give the path of a .urdf or .xacro file")
+        if info.st_size > MAX_READ_BYTES:
+            raise BrasKitError(f"refused to read {path}: {info.st_size:,} bytes is more than the "
+                               f"{MAX_READ_BYTES >> 20} MiB a robot description may have")
         with open(path, "rb") as handle:
             return handle.read()
     except FileNotFoundError:

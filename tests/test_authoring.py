@@ -186,7 +186,7 @@ def test_unknown_parameter_lists_valid_names():
         arm(params={"bras_lenght": 0.8})
     assert "unknown parameter 'bras_lenght'" in info.value.message
     for name in template_parameters():
-        if name not in ("wrist", "inertials"):
+        if name not in ("wrist", "inertials", "collisions"):
             assert name in info.value.hint
 
 

@@ -163,12 +163,17 @@ def test_tree_text_unknown_joint_value_is_an_error(tutorial_robot):
 
 
 def test_tree_text_handles_a_chain_deeper_than_the_recursion_limit():
+    from bras_kit.diagrams.text import MAX_INDENT
+
     count = 3000
     links = [Link(f"l{i}") for i in range(count)]
     joints = [Joint(f"j{i}", "fixed", f"l{i - 1}", f"l{i}") for i in range(1, count)]
     lines = tree_text(Robot("chaine", links, joints)).splitlines()
     assert len(lines) == count
-    assert lines[-1] == " " * (3 * (count - 2)) + f"└─ j{count - 1} (fixed) → l{count - 1}"
+    # indentation stops growing after MAX_INDENT levels; deeper lines say their depth instead
+    assert lines[MAX_INDENT] == " " * (3 * (MAX_INDENT - 1)) + f"└─ j{MAX_INDENT} (fixed) → l{MAX_INDENT}"
+    assert lines[-1] == " " * (3 * (MAX_INDENT - 1)) + f"[depth {count - 1}] └─ j{count - 1} (fixed) → l{count - 1}"
+    assert max(len(line) for line in lines) < 3 * MAX_INDENT + 40  # linear output, not quadratic
 
 
 # ---------------------------------------------------------------- DOT

@@ -35,7 +35,7 @@ def test_every_lesson_exists_in_both_languages() -> None:
     en = {_key(p) for p in _notebooks("en")}
     assert fr == en
     lessons = {k for k in fr if "/" not in k}
-    assert lessons == {f"{n:02d}" for n in range(1, 11)}
+    assert lessons == {f"{n:02d}" for n in range(1, 12)}
     assert {k for k in fr if k.startswith("solutions/")} >= {"solutions/06", "solutions/07"}
 
 

@@ -392,14 +392,25 @@ def test_package_mesh_is_found_scaled_and_coloured(tmp_path):
     assert height / width == pytest.approx(6.0, rel=0.12)  # scale 0.1 x 0.6
 
 
-def test_missing_mesh_names_the_file_and_line(tmp_path):
+def test_missing_mesh_is_drawn_as_a_red_stand_in_with_one_warning(tmp_path, capsys):
     from bras_kit.authoring import load
 
-    robot = load(_mesh_package(tmp_path, with_mesh=False))
-    with pytest.raises(ModelError) as info:
-        render_pose(robot, None, package_paths=[str(tmp_path)])
-    assert "cube.stl" in str(info.value)
-    assert info.value.line == 4
+    urdf = _mesh_package(tmp_path, with_mesh=False)
+    text = urdf.read_text().replace("</robot>", """  <link name="arm">
+    <visual><origin xyz="0.3 0 0"/><geometry><box size="0.1 0.1 0.1"/></geometry>
+      <material name="blue"><color rgba="0.1 0.2 0.9 1"/></material></visual>
+    <visual><geometry><mesh filename="package://demo_description/meshes/cube.stl"/></geometry></visual>
+  </link>
+  <joint name="j" type="fixed"><parent link="base"/><child link="arm"/></joint>
+</robot>""")
+    urdf.write_text(text)
+    image = render_pose(load(urdf), None, view="front", grid=False, size=(200, 200),
+                        package_paths=[str(tmp_path)])
+    warnings = [line for line in capsys.readouterr().err.splitlines() if line.startswith("warning:")]
+    assert len(warnings) == 1 and "cube.stl" in warnings[0]  # one warning for the file used twice
+    assert hue_mask(image, 0.0).sum() > 100  # the red stand-ins
+    assert hue_mask(image, 230.0).sum() > 100  # the rest of the robot is drawn
+    assert hue_mask(image, 128.0).sum() == 0  # the mesh's own green is not pretended
 
 
 @pytest.mark.parametrize("filename", ["package://demo_description/meshes/cube.stl", "../meshes/cube.stl"])
@@ -413,9 +424,10 @@ def test_mesh_beside_the_urdf_needs_no_package_path(tmp_path, filename):
 
 def test_unknown_package_says_how_to_find_it(tmp_path):
     from bras_kit.authoring import load
+    from bras_kit.render.scene import resolve_mesh_path
 
     robot = load(_mesh_package(tmp_path, filename="package://elsewhere/meshes/cube.stl"))
     with pytest.raises(ModelError) as info:
-        render_pose(robot, None)
+        resolve_mesh_path("package://elsewhere/meshes/cube.stl", robot)
     assert "package 'elsewhere' not found" in str(info.value)
     assert "--package-path" in info.value.hint

@@ -499,7 +499,7 @@ def test_moving_joint_without_axis_turns_about_x(check):
 def test_elbow_short_of_the_upper_arm_end(check):
     """The tutorial's "segments mal positionnés": coude at z 0.5 on a 0.6 m upper arm."""
     f = only(check(edited(('<origin xyz="0 0 0.6"/>', '<origin xyz="0 0 0.5"/>'))), "BK301")
-    assert (f.severity, f.element, f.name, f.line) == ("error", "joint", "coude", LINE_COUDE_ORIGIN)
+    assert (f.severity, f.element, f.name, f.line) == ("warning", "joint", "coude", LINE_COUDE_ORIGIN)
     assert f.message == ("joint 'coude' is at z=0.5, but the <box> of link 'bras' runs z 0..0.6: "
                          "the child hangs 0.1 m short of the segment's end")
     assert f.hint == "put the joint at the end of 'bras': <origin xyz=\"0 0 0.6\"/>"
@@ -513,12 +513,27 @@ def test_elbow_past_the_upper_arm_end(check):
     assert f.hint == "put the joint at the end of 'bras': <origin xyz=\"0 0 0.6\" rpy=\"0 0.1 0\"/>"
 
 
-def test_shoulder_floating_above_the_base(check):
-    f = only(check(edited(('<origin xyz="0 0 0.05"/>', '<origin xyz="0 0 0.1"/>'))), "BK301")
-    assert f.name == "epaule"
-    assert f.message == ("joint 'epaule' at xyz 0 0 0.1 is 0.05 m outside link 'base' "
-                         "(its <cylinder> spans x -0.15..0.15, y -0.15..0.15, z -0.05..0.05)")
-    assert f.hint == "move the joint onto 'base', e.g. <origin xyz=\"0 0 0.05\"/>"
+def test_joint_off_a_parent_that_is_not_a_segment_is_not_judged(check):
+    # the base is a flat cylinder (0.3 wide, 0.1 high), not a segment: a shoulder above it is a design
+    # choice the heuristic cannot judge (motors on a chassis, a cart on a rail look the same)
+    assert "BK301" not in codes(check(edited(('<origin xyz="0 0 0.05"/>', '<origin xyz="0 0 0.1"/>'))))
+
+
+def test_prismatic_carriage_mid_rail_is_not_a_segment_mistake(check):
+    rail = ('<robot name="cartpole"><link name="rail"><visual><geometry><box size="4 0.05 0.05"/></geometry>'
+            '</visual></link><link name="cart"><visual><geometry><box size="0.3 0.2 0.1"/></geometry></visual>'
+            '</link><joint name="slider" type="prismatic"><parent link="rail"/><child link="cart"/>'
+            '<origin xyz="0 0 0"/><axis xyz="1 0 0"/>'
+            '<limit lower="-1.9" upper="1.9" effort="10" velocity="1"/></joint></robot>')
+    assert "BK301" not in codes(check(rail))
+    revolute = rail.replace('type="prismatic"', 'type="revolute"')  # a hinge mid-rail is the tutorial's mistake
+    assert only(check(revolute), "BK301").severity == "warning"
+
+
+def test_joint_far_past_the_segment_is_not_judged(check):
+    # a knee 1.5 segment lengths past a thin 0.2 m box: not on that segment at all
+    far = edited(('<origin xyz="0 0 0.6"/>', '<origin xyz="0 0 1.5"/>'))
+    assert "BK301" not in codes(check(far))
 
 
 def test_joint_within_tolerance_of_the_end_or_fixed_is_not_flagged(check):
@@ -911,6 +926,119 @@ def test_joint_beside_its_parent_is_fine_when_the_shapes_touch(check):
     side_by_side = BRAS.replace('<origin xyz="0 0 0.6"/>', '<origin xyz="0 0.07 0.55"/>')
     assert "BK301" not in codes(check(side_by_side))
     small_wheel = rover.replace('radius="0.035"', 'radius="0.02"')  # now 1.5 cm of air under the plate
-    assert only(check(small_wheel), "BK301").message == (
-        "joint 'axle' at xyz 0.13 0 -0.085 is 0.035 m outside link 'plate' "
-        "(its <box> spans x -0.2..0.2, y -0.05..0.05, z -0.05..0.05)")
+    assert "BK301" not in codes(check(small_wheel))  # beside the plate: not the tutorial's segment case
+
+
+# ====================================================================== round 2: precision on real robots
+
+
+def test_blank_line_before_the_xml_declaration_is_a_warning_and_the_file_is_read(check, tmp_path):
+    import shutil
+    import subprocess
+
+    text = "\n\n" + BRAS.lstrip()
+    findings = check(text)
+    f = only(findings, "BK125")
+    assert (f.severity, f.line) == ("warning", 3)
+    assert "BK100" not in codes(findings) and "BK301" not in codes(findings)  # the rest was checked
+    # the outside oracle: urdfdom reads such a file too
+    path = tmp_path / "robot.urdf"
+    assert subprocess.run([shutil.which("check_urdf") or "check_urdf", str(path)], capture_output=True).returncode == 0
+    assert "BK125" not in codes(check(BRAS))
+
+
+def test_latin1_file_is_an_encoding_error_with_the_fix(tmp_path):
+    path = tmp_path / "latin1.urdf"
+    path.write_bytes(BRAS.replace("<robot", "<!-- bras articulé -->\n<robot", 1).encode("latin-1"))
+    f = only(validate_path(str(path)), "BK100")
+    assert "0xe9" in f.message and "Latin-1" in f.message and "UTF-8" in f.hint
+    lines = BRAS.splitlines()
+    assert f.line == lines.index(next(line for line in lines if line.startswith("<robot"))) + 1
+    french = only(validate_path(str(path), lang="fr"), "BK100")
+    assert "n'est pas du texte UTF-8" in french.message and "0xe9" in french.message
+
+
+def test_moving_leaf_link_without_visual_is_a_warning(check):
+    tip = add_before_end('<link name="outil"/><joint name="rotation_outil" type="revolute"><parent link="avant_bras"/>'
+                         '<child link="outil"/><origin xyz="0 0 0.5"/><axis xyz="0 0 1"/>'
+                         '<limit lower="-1" upper="1" effort="1" velocity="1"/></joint>')
+    f = only(check(tip), "BK308")
+    assert (f.severity, f.name) == ("warning", "outil")
+    assert "rotation_outil" in f.message
+    fixed = tip.replace('type="revolute"><parent link="avant_bras"/><child link="outil"/>',
+                        'type="fixed"><parent link="avant_bras"/><child link="outil"/>')
+    assert "BK308" not in codes(check(fixed))  # a tool frame on a fixed joint is fine
+
+
+def _with_inertials(text: str) -> str:
+    inertial = ('<inertial><mass value="1"/><inertia ixx="0.01" ixy="0" ixz="0" iyy="0.01" iyz="0" '
+                'izz="0.01"/></inertial>')
+    for link in ("base", "bras", "avant_bras"):
+        text = text.replace(f'<link name="{link}">', f'<link name="{link}">{inertial}', 1)
+    return text
+
+
+def test_massless_frame_link_behind_a_fixed_joint_is_legal(check):
+    # like UR's tool0 or panda_hand_tcp: zero mass and inertia, fused into a heavy link
+    frame = add_before_end('<link name="tool0"><inertial><mass value="0"/><inertia ixx="0" ixy="0" ixz="0" '
+                           'iyy="0" iyz="0" izz="0"/></inertial></link><joint name="flange" type="fixed">'
+                           '<parent link="avant_bras"/><child link="tool0"/><origin xyz="0 0 0.5"/></joint>',
+                           text=_with_inertials(BRAS))
+    assert not {"BK500", "BK501"} & codes(check(frame))
+    # the same on a moving joint is a body with no mass: MuJoCo and Gazebo refuse it
+    moving = frame.replace('<joint name="flange" type="fixed">', '<joint name="flange" type="revolute">'
+                           '<axis xyz="0 0 1"/><limit lower="-1" upper="1" effort="1" velocity="1"/>')
+    assert {"BK500", "BK501"} <= codes(check(moving))
+    assert only(check(moving), "BK500").severity == "error"
+
+
+def test_massless_root_link_is_legal(check):
+    root = _with_inertials(BRAS).replace('<link name="base"><inertial><mass value="1"/>', '<link name="base">'
+                                         '<inertial><mass value="0"/>', 1)
+    assert "BK500" not in codes(check(root))
+
+
+def test_negative_moment_of_inertia_is_an_error_even_on_a_frame_link(check):
+    bad = add_before_end('<link name="tool0"><inertial><mass value="0.1"/><inertia ixx="-0.01" ixy="0" ixz="0" '
+                         'iyy="0.01" iyz="0" izz="0.01"/></inertial></link><joint name="flange" type="fixed">'
+                         '<parent link="avant_bras"/><child link="tool0"/><origin xyz="0 0 0.5"/></joint>',
+                         text=_with_inertials(BRAS))
+    assert only(check(bad), "BK501").severity == "error"
+
+
+@pytest.mark.parametrize("lower,upper,flagged", [
+    ("-9.42477796", "9.42477796", False),  # ANYmal's ±3π
+    ("-6.98131701", "6.98131701", False),  # ABB IRB 140 axis 6: ±400° in radians
+    ("-10", "10", True),  # whole numbers beyond one turn: degrees
+    ("-90", "90", True),
+    ("-13.0", "13.5", True),  # beyond two turns
+])
+def test_limit_in_degrees_spares_multi_turn_joints(check, lower, upper, flagged):
+    text = edited((COUDE_LIMIT, f'<limit lower="{lower}" upper="{upper}" effort="10" velocity="1.0"/>'))
+    assert ("BK211" in codes(check(text))) is flagged
+
+
+def test_package_urdf_beside_its_xacro_is_checked_once_and_compared(run_cli, tmp_path):
+    from bras_kit.scaffold import scaffold_package
+
+    package = tmp_path / "bras_description"
+    scaffold_package(str(package))
+    code, out, _ = run_cli("validate", str(package), "--ignore", "BK505")
+    assert code == 0
+    urdf, xacro = package / "urdf" / "bras.urdf", package / "urdf" / "bras.urdf.xacro"
+    from bras_kit.validate import compare_generated
+
+    assert [f.code for f in compare_generated(str(urdf), str(xacro))] == ["BK126"]
+    assert f"{urdf}: BK126 info this URDF was generated from {xacro}, which is checked instead" in out
+    # no finding is reported twice: each line names one file, the xacro's findings only once
+    assert out.count(" BK") == len({line for line in out.splitlines() if " BK" in line})
+    # edited by hand: out of date
+    urdf.write_text(urdf.read_text(encoding="utf-8").replace('size="0.08 0.08 0.6"', 'size="0.08 0.08 0.7"', 1),
+                    encoding="utf-8")
+    code, out, _ = run_cli("validate", str(package), "--ignore", "BK505")
+    assert f"{urdf}: BK127 warning this URDF differs from what {xacro} gives now" in out
+    assert 'size="0.08 0.08 0.7" instead of "0.08 0.08 0.6"' in out
+    assert [(f.code, f.severity) for f in compare_generated(str(urdf), str(xacro))] == [("BK127", "warning")]
+    assert run_cli("validate", str(package), "--ignore", "BK505", "--strict")[0] == 1
+    # named explicitly, the URDF is checked as itself
+    assert "BK126" not in run_cli("validate", str(urdf))[1]

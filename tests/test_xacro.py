@@ -191,8 +191,8 @@ def test_dtd_in_an_included_file_is_refused_and_names_that_file(run_cli):
 
 @pytest.mark.parametrize("name,reason", [
     ("import.xacro", "the name '__import__'"),
-    ("subclasses.xacro", "a string with a double underscore"),
-    ("subclasses_split.xacro", "the attribute '.vars'"),
+    ("subclasses.xacro", "the function 'vars', which is not allowed"),
+    ("subclasses_split.xacro", "the function 'vars', which is not allowed"),
 ], ids=["dunder-import", "vars-subclasses", "vars-subclasses-split"])
 def test_unsafe_expression_is_refused_and_does_not_run(run_cli, monkeypatch, tmp_path, name, reason):
     monkeypatch.chdir(tmp_path)
@@ -227,7 +227,7 @@ def test_huge_power_is_refused_without_being_computed():
                              str(DATA / "unsafe" / "huge_power.xacro")],
                             capture_output=True, text=True, timeout=120)
     assert result.returncode == 2
-    assert "huge_power.xacro:5: refused the expression '10**10**10': it uses a tower of powers" \
+    assert "huge_power.xacro:5: refused the expression '10**10**10': 10 ** 10000000000 is too large" \
         in result.stderr
 
 
@@ -235,7 +235,8 @@ def test_huge_power_is_refused_without_being_computed():
     ("2 ** 8", True),
     ("pi / 2 * radius", True),
     ("[x * 2 for x in python.range(3)]", True),
-    ("10 ** 100", False),
+    ("10 ** 100", True),
+    ("10 ** 10000", False),
     ("().__class__", False),
     ("python.getattr(1, 'real')", False),
     ("(lambda: 1)()", False),
@@ -258,5 +259,5 @@ def test_repeating_text_or_lists_is_refused_before_it_fills_memory(tmp_path, run
                     f'  <link name="${{{expression}}}"/>\n</robot>\n')
     code, _, err = run_cli("xacro", str(path))
     assert code == 2
-    assert "repetition of text or a list" in err
+    assert "repeating this text or list makes it too large" in err
     assert f"{path}:2:" in err

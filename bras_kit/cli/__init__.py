@@ -9,6 +9,7 @@ from __future__ import annotations
 
 import argparse
 import importlib
+import os
 import sys
 from collections.abc import Sequence
 
@@ -31,6 +32,8 @@ COMMANDS: dict[str, str] = {
     "plot": "plot joint angles with their limits and the path of the tool tip",
     "reach": "inverse kinematics: joint values that put the tip at X Y Z, and a motion there",
     "workspace": "draw the region the tip can reach within the joint limits",
+    "simulate": "physics with MuJoCo: gravity, motors limited by effort, collisions",
+    "mjcf": "write the MuJoCo model (MJCF) bras-kit builds from the URDF",
 }
 
 _MODULES = {"xacro": "xacro_cmd"}
@@ -82,3 +85,18 @@ def main(argv: Sequence[str] | None = None) -> int:
         return 130
     except BrokenPipeError:
         return 0
+    except MemoryError:
+        print(f"bras-kit {args.command}: error: out of memory: the input is too large for this machine",
+              file=sys.stderr)
+        return 2
+    except OSError as exc:  # a file problem no command caught: still one line, never a traceback
+        where = f"{exc.filename}: " if getattr(exc, "filename", None) else ""
+        print(f"bras-kit {args.command}: error: {where}{exc.strerror or exc}", file=sys.stderr)
+        return 2
+    except Exception as exc:  # a bug: say so in one line; BRAS_KIT_DEBUG=1 shows the traceback
+        if os.environ.get("BRAS_KIT_DEBUG"):
+            raise
+        print(f"bras-kit {args.command}: internal error: {type(exc).__name__}: {exc}\n"
+              "  hint: this is a bug in bras-kit; run again with BRAS_KIT_DEBUG=1 and report the traceback",
+              file=sys.stderr)
+        return 2

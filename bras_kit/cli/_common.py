@@ -3,11 +3,12 @@
 from __future__ import annotations
 
 import argparse
-import os
+import math
 import sys
-from collections.abc import Iterable, Mapping
+from collections.abc import Callable, Iterable, Mapping
+from typing import Any
 
-from ..errors import OutputExistsError, ParameterError
+from ..errors import ParameterError
 
 
 def add_model_arguments(parser: argparse.ArgumentParser, *, variants: bool = True) -> None:
@@ -23,6 +24,8 @@ def add_model_arguments(parser: argparse.ArgumentParser, *, variants: bool = Tru
                             help="built-in arm: add the wrist joint 'poignet' (the tutorial's exercise)")
         parser.add_argument("--inertials", action="store_true",
                             help="built-in arm: add <inertial> mass and inertia to every link")
+        parser.add_argument("--collisions", action="store_true",
+                            help="built-in arm: add <collision> shapes equal to the visuals (on with --inertials)")
         parser.add_argument("--param", action="append", default=[], metavar="NAME=VALUE",
                             help="built-in arm: change a template parameter (e.g. bras_length=0.8)")
 
@@ -43,9 +46,11 @@ def load_model(args: argparse.Namespace):  # type: ignore[no-untyped-def]
 
     if args.file is None:
         return arm(wrist=getattr(args, "wrist", False), inertials=getattr(args, "inertials", False),
-                   params=parse_assignments(getattr(args, "param", [])))
-    if getattr(args, "wrist", False) or getattr(args, "inertials", False) or getattr(args, "param", []):
-        raise ParameterError("--wrist, --inertials and --param apply to the built-in arm only",
+                   params=parse_assignments(getattr(args, "param", [])),
+                   collisions=getattr(args, "collisions", False))
+    if getattr(args, "wrist", False) or getattr(args, "inertials", False) or getattr(args, "param", []) \
+            or getattr(args, "collisions", False):
+        raise ParameterError("--wrist, --inertials, --collisions and --param apply to the built-in arm only",
                              hint="drop FILE to use the built-in arm, or edit your file")
     return load(args.file, mappings=xacro_mappings(args.xacro_arg), package_paths=args.package_path)
 
@@ -57,10 +62,14 @@ def joint_values(items: Iterable[str]) -> dict[str, float]:
     values = {}
     for name, text in parse_assignments(items, "joint value").items():
         try:
-            values[name] = float(text)
+            value = float(text)
         except ValueError:
             raise ParameterError(f"{name}={text!r}: the joint value is not a number",
                                  hint="give radians for revolute joints and metres for prismatic ones") from None
+        if not math.isfinite(value):
+            raise ParameterError(f"{name}={text!r}: a joint value must be a finite number",
+                                 hint="give radians for revolute joints and metres for prismatic ones")
+        values[name] = value
     return values
 
 
@@ -68,24 +77,25 @@ def add_force_argument(parser: argparse.ArgumentParser) -> None:
     parser.add_argument("--force", action="store_true", help="overwrite files that already exist")
 
 
-def check_writable(path: str, force: bool) -> None:
-    """Refuse to overwrite an existing file unless ``force``."""
-    if os.path.exists(path) and not force:
-        raise OutputExistsError(f"{path} already exists", hint="pass --force to overwrite it, or choose another -o")
+def check_writable(path: str, force: bool, *, make_parents: bool = False, option: str = "-o") -> None:
+    """Refuse a path that exists (even a dangling link) unless ``force``, a folder, or a missing parent."""
+    from ..outputs import check_output
+
+    check_output(path, force, make_parents=make_parents, option=option)
 
 
-def write_text(path: str | None, text: str, force: bool) -> None:
-    """Write ``text`` to ``path`` (stdout when None), refusing to overwrite without ``force``."""
-    if path is None or path == "-":
-        sys.stdout.write(text if text.endswith("\n") else text + "\n")
-        return
-    check_writable(path, force)
-    folder = os.path.dirname(path)
-    if folder:
-        os.makedirs(folder, exist_ok=True)
-    with open(path, "w", encoding="utf-8") as handle:
-        handle.write(text)
-    print(f"wrote {path}", file=sys.stderr)
+def write_text(path: str | None, text: str, force: bool, **options: Any) -> None:
+    """Write ``text`` to ``path`` (stdout when None or '-') through the one safe write function."""
+    from ..outputs import write_text as write
+
+    write(path, text, force, **options)
+
+
+def save_with(path: str, force: bool, writer: Callable[[str], Any], **options: Any) -> Any:
+    """``writer(temporary_path)`` then moved onto ``path``: see :func:`bras_kit.outputs.write_to`."""
+    from ..outputs import write_to
+
+    return write_to(path, force, writer, **options)
 
 
 def warn(message: str) -> None:

@@ -36,25 +36,32 @@ def _done(start: float, path: str) -> None:
 def run(args: argparse.Namespace) -> int:
     from ..authoring import arm
     from ..diagrams import frame_diagram, plot_motion
-    from ..errors import OutputExistsError
     from ..motion import check_limits, sample_loop, tutorial_motion
+    from ..outputs import write_to
     from ..render import parse_size, render_motion, render_pose, save_gif, save_png
     from ..scaffold import scaffold_package
     from ..validate import validate
 
     outdir = args.outdir
-    if os.path.isdir(outdir) and os.listdir(outdir) and not args.force:
-        raise OutputExistsError(f"{outdir} exists and is not empty",
-                                hint="pass --force to write into it, or name another folder")
-    os.makedirs(outdir, exist_ok=True)
+    owned = _claim(outdir, args.force)
     size = parse_size(args.size)
     robot = arm(wrist=args.wrist)
     variant = "with the wrist 'poignet'" if args.wrist else "epaule + coude"
     print(f"bras-kit demo: the tutorial arm '{robot.name}' ({variant}) -> {outdir}/")
+    made: list[str] = []
+
+    def save(name: str, writer) -> str:  # type: ignore[no-untyped-def]
+        path = os.path.join(outdir, name)
+        write_to(path, args.force or name in owned, writer, announce=False)
+        made.append(name)
+        _remember(outdir, owned | set(made))
+        return path
 
     start = _step("scaffolding the ROS 2 package")
     package_dir = os.path.join(outdir, "bras_description")
-    scaffold_package(package_dir, wrist=args.wrist, force=args.force)
+    scaffold_package(package_dir, wrist=args.wrist, force=args.force or "bras_description" in owned)
+    made.append("bras_description")
+    _remember(outdir, owned | set(made))
     _done(start, package_dir + "/")
 
     start = _step("validating the URDF")
@@ -65,29 +72,70 @@ def run(args: argparse.Namespace) -> int:
         print(f"    {finding.code} {finding.severity}: {finding.message}")
 
     start = _step(f"rendering the pose {', '.join(f'{k}={v}' for k, v in DEMO_POSE.items())} with TF axes")
-    pose_png = os.path.join(outdir, "pose.png")
-    save_png(render_pose(robot, DEMO_POSE, size=size, tf=True, backend=args.backend), pose_png)
+    picture = render_pose(robot, DEMO_POSE, size=size, tf=True, backend=args.backend)
+    pose_png = save("pose.png", lambda path: save_png(picture, path))
     _done(start, pose_png)
 
     start = _step(f"animating the tutorial motion ({args.duration:g} s at {args.fps:g} fps)")
     states = sample_loop(tutorial_motion(robot), args.duration, args.fps)
-    gif = os.path.join(outdir, f"{robot.name}.gif")
-    save_gif(render_motion(robot, states, size=size, backend=args.backend), gif, fps=args.fps)
+    gif = save(f"{robot.name}.gif",
+               lambda path: save_gif(render_motion(robot, states, size=size, backend=args.backend), path, fps=args.fps))
     _done(start, gif)
     for violation in check_limits(robot, states):
         print(f"    warning: {violation.joint} leaves its {violation.kind} limit at t={violation.time:.2f} s")
 
     start = _step("drawing the frame tree")
-    frames_pdf = os.path.join(outdir, "frames.pdf")
-    frame_diagram(robot, DEMO_POSE, path=frames_pdf)
-    frame_diagram(robot, DEMO_POSE, path=os.path.join(outdir, "frames.png"))
+    frames_pdf = save("frames.pdf", lambda path: frame_diagram(robot, DEMO_POSE, path=path))
+    save("frames.png", lambda path: frame_diagram(robot, DEMO_POSE, path=path))
     _done(start, frames_pdf + " (+ .png)")
 
     start = _step("plotting joint angles and the tip path")
-    plot_png = os.path.join(outdir, "motion.png")
-    plot_motion(robot, states, path=plot_png)
+    plot_png = save("motion.png", lambda path: plot_motion(robot, states, path=path))
     _done(start, plot_png)
 
     print(f"done. Open {gif} to see the arm move; build {package_dir} with colcon on a ROS 2 machine.")
     sys.stdout.flush()
     return 1 if any(f.severity == "error" for f in findings) else 0
+
+
+MANIFEST = ".bras-kit-demo"
+
+
+def _claim(outdir: str, force: bool) -> set[str]:
+    """Make sure ``outdir`` is ours to write in; return the names an earlier demo made there.
+
+    The demo owns its folder: running it again refreshes what it made (listed in a manifest),
+    and it refuses only a folder holding something else, unless ``force``.
+    """
+    from ..errors import OutputExistsError
+    from ..outputs import OutputError
+
+    if os.path.islink(outdir) or (os.path.lexists(outdir) and not os.path.isdir(outdir)):
+        raise OutputError(f"{outdir} exists and is not a folder", hint="name a new folder for the demo")
+    owned: set[str] = set()
+    if os.path.isdir(outdir):
+        try:
+            with open(os.path.join(outdir, MANIFEST), encoding="utf-8") as handle:
+                owned = {line.strip() for line in handle if line.strip() and "/" not in line}
+        except FileNotFoundError:
+            pass
+        except OSError as exc:
+            raise OutputError(f"cannot read {os.path.join(outdir, MANIFEST)}: {exc.strerror}") from None
+        foreign = sorted(set(os.listdir(outdir)) - owned - {MANIFEST})
+        if foreign and not force:
+            shown = ", ".join(foreign[:5]) + (", ..." if len(foreign) > 5 else "")
+            raise OutputExistsError(f"{outdir} holds files the demo did not make ({shown})",
+                                    hint="name another folder, or pass --force to write beside them")
+    try:
+        os.makedirs(outdir, exist_ok=True)
+    except OSError as exc:
+        raise OutputError(f"cannot create the folder {outdir}: {exc.strerror}") from None
+    return owned
+
+
+def _remember(outdir: str, names: set[str]) -> None:
+    """List what the demo made, so the next run may refresh it."""
+    from ..outputs import write_text
+
+    path = os.path.join(outdir, MANIFEST)
+    write_text(path, "\n".join(sorted(names)), True, announce=False)

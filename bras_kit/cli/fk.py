@@ -53,7 +53,7 @@ def run(args: argparse.Namespace) -> int:
     if args.source is not None:
         pose = describe_transform(relative_transform(tree, config, args.source, args.target))
         if args.format == "json":
-            print(json.dumps({"from": args.source, "to": args.target, "config": full, **pose}, indent=2))
+            print(_json({"from": args.source, "to": args.target, "config": full, **pose}))
             return 0
         print(_text_block(f"At {args.source} -> {args.target}", pose))
         return 0
@@ -61,8 +61,19 @@ def run(args: argparse.Namespace) -> int:
     names = [tree.links[tree.index(args.link)]] if args.link else list(tree.links)
     poses = {name: describe_transform(transforms[name]) for name in names}
     if args.format == "json":
-        print(json.dumps({"root": tree.root, "config": full, "links": poses}, indent=2))
+        print(_json({"root": tree.root, "config": full, "links": poses}))
         return 0
     for name, pose in poses.items():
         print(_text_block(f"At {tree.root} -> {name}", pose))
     return 0
+
+
+def _json(document: dict) -> str:  # type: ignore[type-arg]
+    """JSON text; a NaN or infinity (from a non-finite <origin> or axis) is an error, never printed."""
+    from ..errors import ModelError
+
+    try:
+        return json.dumps(document, indent=2, allow_nan=False)
+    except ValueError:
+        raise ModelError("a pose is not a finite number: the model holds nan or inf in an <origin> or <axis>",
+                         hint="run bras-kit validate on the file to see where") from None

@@ -24,7 +24,7 @@ def configure(parser: argparse.ArgumentParser) -> None:
 def run(args: argparse.Namespace) -> int:
     from ..diagrams import FRAME_FORMATS, frame_diagram, frames_dot, output_suffix
     from ..kinematics import tf_tree
-    from ._common import check_writable, load_model, write_text
+    from ._common import check_writable, load_model, save_with, write_text
 
     output = args.output or DEFAULT_OUTPUT
     suffix = None if output == "-" else output_suffix(output, FRAME_FORMATS)
@@ -38,7 +38,7 @@ def run(args: argparse.Namespace) -> int:
         write_text(None if suffix is None else output, frames_dot(robot, config), args.force)
         return 0
     check_writable(output, args.force)
-    frame_diagram(robot, config, path=output)
+    save_with(output, args.force, lambda temporary: frame_diagram(robot, config, path=temporary), announce=False)
     note = "" if args.output else " (-o FILE.svg|png|dot for another format, -o - prints DOT)"
     print(f"wrote {output}: {len(tree.links)} frames, {len(tree.links) - 1} joints{note}", file=sys.stderr)
     return 0

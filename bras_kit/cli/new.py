@@ -19,7 +19,7 @@ def configure(parser: argparse.ArgumentParser) -> None:
                         help="change a template parameter (repeatable); 'bras-kit urdf --list-params' "
                         "shows them")
     parser.add_argument("--maintainer", metavar="NAME", help="maintainer in package.xml (default: your user name)")
-    parser.add_argument("--email", metavar="EMAIL", help="maintainer e-mail (default: NAME@todo.todo)")
+    parser.add_argument("--email", metavar="EMAIL", help="maintainer e-mail, one colcon accepts (default: from NAME, e.g. jean.dupont@todo.todo)")
     add_force_argument(parser)
 
 

@@ -29,7 +29,7 @@ def configure(parser: argparse.ArgumentParser) -> None:
 def run(args: argparse.Namespace) -> int:
     from ..diagrams import FIGURE_FORMATS, output_suffix, plot_motion, tip_point
     from ..motion import DEFAULT_RATE, check_limits, describe_violation, motion_from_specs, sample
-    from ._common import check_writable, load_model
+    from ._common import check_writable, load_model, save_with
 
     output = args.output or DEFAULT_OUTPUT
     output_suffix(output, FIGURE_FORMATS)
@@ -37,7 +37,7 @@ def run(args: argparse.Namespace) -> int:
     robot = load_model(args)
     motion = motion_from_specs(robot, args.motion, joint_values(args.values) or None, args.interpolation)
     states = sample(motion, args.duration, args.rate if args.rate is not None else DEFAULT_RATE)
-    plot_motion(robot, states, path=output)
+    save_with(output, args.force, lambda temporary: plot_motion(robot, states, path=temporary), announce=False)
     link, offset = tip_point(robot)
     duration = float(states.times[-1]) if len(states.times) else 0.0
     print(f"wrote {output}: {len(states.times)} sample{'s' if len(states.times) != 1 else ''} over {duration:g} s; "

@@ -80,7 +80,7 @@ def _view(robot, motion) -> str:  # type: ignore[no-untyped-def]
     return "front" if moving and about_y else "iso"
 
 
-def _write_gif(robot, motion, path: str) -> None:  # type: ignore[no-untyped-def]
+def _write_gif(robot, motion, path: str, force: bool) -> None:  # type: ignore[no-untyped-def]
     from ..errors import BackendError
 
     try:
@@ -88,7 +88,9 @@ def _write_gif(robot, motion, path: str) -> None:  # type: ignore[no-untyped-def
     except ImportError as exc:
         raise BackendError(f"cannot render the GIF: {exc}", hint="check the bras-kit install (pip install -e .)") from None
     frames = render_motion(robot, _states(motion), view=_view(robot, motion))
-    save_gif(frames, path, GIF_RATE)
+    from ._common import save_with
+
+    save_with(path, force, lambda temporary: save_gif(frames, temporary, GIF_RATE), option="--gif", announce=False)
 
 
 def _angle(value: float, unit: str) -> str:
@@ -110,7 +112,7 @@ def run(args: argparse.Namespace) -> int:
     from ._common import format_config, load_model
 
     if args.gif:
-        check_writable(args.gif, args.force)
+        check_writable(args.gif, args.force, option="--gif")
     robot = load_model(args)
     tree = tf_tree(robot)
     start = joint_values(args.start)
@@ -129,7 +131,7 @@ def run(args: argparse.Namespace) -> int:
     elif args.duration is not None or args.gif:
         warn("no move: the target is not reached")
     if motion is not None and args.gif:
-        _write_gif(robot, motion, args.gif)
+        _write_gif(robot, motion, args.gif, args.force)
     code = 0 if result.reachable and not result.singular and not violations else 1
 
     units = {name: ("m" if (j := robot.joint(name)) is not None and j.type == "prismatic" else "rad")

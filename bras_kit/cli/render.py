@@ -108,6 +108,7 @@ def _warn_limits(robot, states) -> None:  # type: ignore[no-untyped-def]
 def run(args: argparse.Namespace) -> int:
     from ..errors import ParameterError
     from ..kinematics import tf_tree
+    from ..outputs import staged
     from ..render import Renderer, render_motion, render_options
     from ..render.sequence import (
         FramesDirWriter,
@@ -154,20 +155,17 @@ def run(args: argparse.Namespace) -> int:
     if args.output is not None and not args.output.lower().endswith(PICTURE_SUFFIXES):
         raise ParameterError(f"-o {args.output}: cannot tell the picture format from the name",
                              hint="end the name with " + ", ".join(PICTURE_SUFFIXES))
-    for path in (args.output, args.gif, args.mp4):
+    for path, option in ((args.output, "-o"), (args.gif, "--gif"), (args.mp4, "--mp4")):
         if path is not None:
-            check_writable(path, args.force)
+            check_writable(path, args.force, option=option)
     if args.frames_dir is not None:
         _check_frames_dir(args.frames_dir, args.force)
-    with _writing():
-        for path in (args.output, args.gif, args.mp4):
-            if path and os.path.dirname(path):
-                os.makedirs(os.path.dirname(path), exist_ok=True)
     size = f"{options.width}x{options.height}"
 
     if not animated:
-        with Renderer(robot, fit=set_values, **opts) as renderer, _writing():
-            save_png(renderer.render(set_values), args.output)
+        with Renderer(robot, fit=set_values, **opts) as renderer, _writing(), \
+                staged(args.output, args.force) as temporary:
+            save_png(renderer.render(set_values), temporary)
             backend = renderer.backend
         _report(args.output, f"{format_config(set_values)}, {size}, {backend}", args.output in defaulted)
         return 0
@@ -180,18 +178,21 @@ def run(args: argparse.Namespace) -> int:
     if args.gif and gif_delay(args.fps) * args.fps > 100.5:
         warn(f"a GIF plays at most 50 frames per second; {args.fps:g} fps will play slower")
     frames = render_motion(robot, states, label="rendering", **opts)
-    with frames, _writing():
+    with frames, _writing(), contextlib.ExitStack() as outputs:
+        def target(path: str, option: str) -> str:
+            return outputs.enter_context(staged(path, args.force, option=option))
+
         writers: list[FrameWriter] = []
         stream: Iterable[np.ndarray] = frames
         if args.gif:
             samples, stream = palette_samples(frames)
-            writers.append(GifWriter(args.gif, args.fps, samples))
+            writers.append(GifWriter(target(args.gif, "--gif"), args.fps, samples))
         if args.mp4:
-            writers.append(Mp4Writer(args.mp4, args.fps))
+            writers.append(Mp4Writer(target(args.mp4, "--mp4"), args.fps))
         if args.frames_dir is not None:
             writers.append(FramesDirWriter(args.frames_dir, len(frames)))
         if args.output:
-            save_png(frames[0], args.output)
+            save_png(frames[0], target(args.output, "-o"))
         backend = frames.renderer.backend
         written = write_frames(stream, writers)
     what = motion.label or "motion"

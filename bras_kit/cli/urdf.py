@@ -10,6 +10,8 @@ from ._common import add_force_argument, write_text
 def configure(parser: argparse.ArgumentParser) -> None:
     parser.add_argument("--wrist", action="store_true", help="add the wrist link and joint 'poignet'")
     parser.add_argument("--inertials", action="store_true", help="add mass and inertia to every link")
+    parser.add_argument("--collisions", action="store_true",
+                        help="add <collision> shapes equal to the visuals (on with --inertials)")
     parser.add_argument("--set", dest="params", action="append", default=[], metavar="NAME=VALUE",
                         help="change a template parameter (repeatable); --list-params shows them")
     parser.add_argument("--list-params", action="store_true", help="list the template parameters and exit")
@@ -24,6 +26,7 @@ def run(args: argparse.Namespace) -> int:
         for p in template_parameters().values():
             print(f"{p.name:20s} {p.kind:7s} default {p.default}")
         return 0
-    text = arm_urdf(wrist=args.wrist, inertials=args.inertials, params=parse_assignments(args.params))
+    text = arm_urdf(wrist=args.wrist, inertials=args.inertials, params=parse_assignments(args.params),
+                    collisions=args.collisions)
     write_text(args.output, text, args.force)
     return 0

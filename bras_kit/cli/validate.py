@@ -17,6 +17,7 @@ examples:
   bras-kit validate                         the built-in tutorial arm
   bras-kit validate urdf/bras.urdf --lang fr
   bras-kit validate src/ --format json      every .urdf and .xacro below src/
+  bras-kit validate bras_description/       a ROS 2 package: also setup.py, launch, RViz, nodes
   bras-kit validate bras.urdf --pose coude=2.5 --motion tutorial
   bras-kit explain BK301                    what a code means and how to fix it"""
 
@@ -25,7 +26,8 @@ def configure(parser: argparse.ArgumentParser) -> None:
     parser.formatter_class = argparse.RawDescriptionHelpFormatter
     parser.epilog = EPILOG
     parser.add_argument("files", nargs="*", metavar="FILE",
-                        help=".urdf or .xacro files, or folders to search (default: the built-in tutorial arm)")
+                        help=".urdf or .xacro files, or folders to search; a folder holding package.xml and setup.py "
+                        "is also checked as a ROS 2 package (default: the built-in tutorial arm)")
     parser.add_argument("--format", choices=("text", "json"), default="text",
                         help="text for people (default), json for programs")
     parser.add_argument("--lang", choices=("en", "fr"), default=None,
@@ -64,8 +66,16 @@ def _use_colour() -> bool:
 
 def run(args: argparse.Namespace) -> int:
     from ..errors import ParameterError
-    from ..validate import check_robot, collect_files, default_language, validate_path
+    from ..validate import (
+        check_robot,
+        collect_files,
+        compare_generated,
+        default_language,
+        generated_pairs,
+        validate_path,
+    )
     from ..validate.findings import FileResult
+    from ..validate.package import find_packages, validate_package
     from ..validate.registry import select_rules
     from ..validate.report import exit_code, format_json, format_text
     from ._common import joint_values, xacro_mappings
@@ -88,10 +98,18 @@ def run(args: argparse.Namespace) -> int:
                                  hint="drop FILE to check the built-in arm, or edit your file")
         mappings = xacro_mappings(args.xacro_arg)
         paths = collect_files(args.files)
-        if not paths:
+        packages = find_packages(args.files)
+        if not paths and not packages:
             raise ParameterError("no .urdf or .xacro file found in " + ", ".join(args.files),
                                  hint="give a file, or a folder holding .urdf or .xacro files")
-        results = [FileResult(path, validate_path(path, mappings=mappings, **options)) for path in paths]
+        results = [result for package in packages
+                   for result in validate_package(package, lang=lang, select=select, ignore=ignore)]
+        generated = generated_pairs(paths, args.files)  # bras.urdf beside bras.urdf.xacro: check the xacro once
+        results += [FileResult(path, compare_generated(path, generated[path], mappings=mappings,
+                                                       package_paths=args.package_path, lang=lang,
+                                                       select=select, ignore=ignore)
+                               if path in generated else validate_path(path, mappings=mappings, **options))
+                    for path in paths]
     else:
         from ..authoring import arm, parse_assignments
 

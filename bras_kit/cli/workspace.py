@@ -5,7 +5,7 @@ from __future__ import annotations
 import argparse
 import os
 
-from ._common import add_force_argument, add_model_arguments, check_writable
+from ._common import add_force_argument, add_model_arguments, check_writable, save_with
 
 FORMATS = (".png", ".svg", ".pdf")
 
@@ -37,10 +37,7 @@ def run(args: argparse.Namespace) -> int:
     check_writable(args.output, args.force)
     tree = tf_tree(load_model(args))
     figure, _, summary = workspace_figure(tree, args.samples, tip_link=args.link, tip_offset=args.tip_offset)
-    folder = os.path.dirname(args.output)
-    if folder:
-        os.makedirs(folder, exist_ok=True)
-    figure.savefig(args.output)
+    save_with(args.output, args.force, figure.savefig, announce=False)
     h, v = summary.axes
     print(f"tip region in the {h}-{v} plane: {summary.area_within_limits:.3f} m^2 within the joint limits, "
           f"{summary.area_without_limits:.3f} m^2 if every joint turned freely; "

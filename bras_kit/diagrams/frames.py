@@ -7,6 +7,7 @@ from collections.abc import Mapping, Sequence
 from dataclasses import dataclass
 from typing import TYPE_CHECKING, Any
 
+from ..errors import ModelError
 from ..kinematics import tf_tree
 from ..model import Robot
 from ._labels import beyond_limits
@@ -43,6 +44,9 @@ class _Box:
     height: float
 
 
+MAX_DIAGRAM_LINKS = 2000
+
+
 def frame_diagram(robot: Robot, config: Mapping[str, float] | None = None,
                   path: str | os.PathLike[str] | None = None) -> Figure:
     """Draw the frame tree with matplotlib (no Graphviz): link boxes, joint labels on the edges.
@@ -52,8 +56,12 @@ def frame_diagram(robot: Robot, config: Mapping[str, float] | None = None,
     """
     suffix = output_suffix(path, FRAME_FORMATS) if path is not None else None
     tree = tf_tree(robot)
-    values, positions = pose_facts(tree, config)
     n = len(tree.links)
+    if n > MAX_DIAGRAM_LINKS:
+        raise ModelError(f"the robot has {n:,} links: a frame diagram of more than {MAX_DIAGRAM_LINKS} "
+                         "cannot be read (nor drawn in reasonable memory)",
+                         hint="use 'bras-kit tree' for the text tree, or 'bras-kit frames -o tree.dot' for Graphviz")
+    values, positions = pose_facts(tree, config)
     link_lines = [link_label(link, positions[i] if positions is not None else None).split("\n")
                   for i, link in enumerate(tree.links)]
     joint_lines: list[list[str]] = [[]]

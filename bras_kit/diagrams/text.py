@@ -26,6 +26,9 @@ UNICODE_GLYPHS = TreeGlyphs("├─ ", "└─ ", "│  ", "   ", "→")
 ASCII_GLYPHS = TreeGlyphs("|- ", "`- ", "|  ", "   ", "->")
 
 
+MAX_INDENT = 64  # levels of indentation drawn; deeper links carry their depth instead
+
+
 def tree_text(robot: Robot, config: Mapping[str, float] | None = None, *, ascii: bool = False) -> str:
     """The TF tree as indented text, one link per line (the root first), each child under its joint.
 
@@ -38,10 +41,12 @@ def tree_text(robot: Robot, config: Mapping[str, float] | None = None, *, ascii:
     glyphs = ASCII_GLYPHS if ascii else UNICODE_GLYPHS
     children = children_of(tree.parent)
     lines = [tree.links[0]]
-    # depth-first, pre-order, with an explicit stack: (link index, prefix of its line, is last child)
-    stack = [(child, "", k == len(children[0]) - 1) for k, child in enumerate(children[0])][::-1]
+    # depth-first, pre-order, with an explicit stack: (link index, prefix of its line, is last child, depth).
+    # Past MAX_INDENT levels the indentation stops growing and the depth is written instead, so a
+    # chain of 100,000 links gives 100,000 short lines, not gigabytes of spaces.
+    stack = [(child, "", k == len(children[0]) - 1, 1) for k, child in enumerate(children[0])][::-1]
     while stack:
-        index, prefix, last = stack.pop()
+        index, prefix, last, depth = stack.pop()
         joint = tree.joints[index]
         assert joint is not None
         text = f"{joint.name or '?'} ({joint_summary(joint)})"
@@ -50,8 +55,9 @@ def tree_text(robot: Robot, config: Mapping[str, float] | None = None, *, ascii:
             text += f" = {format_number(value)}"
             if beyond_limits(joint, value):
                 text += " (out of limits)"
-        lines.append(f"{prefix}{glyphs.last if last else glyphs.branch}{text} {glyphs.arrow} {tree.links[index]}")
-        below = prefix + (glyphs.blank if last else glyphs.pipe)
+        deep = f"[depth {depth}] " if depth > MAX_INDENT else ""
+        lines.append(f"{prefix}{deep}{glyphs.last if last else glyphs.branch}{text} {glyphs.arrow} {tree.links[index]}")
+        below = prefix if depth >= MAX_INDENT else prefix + (glyphs.blank if last else glyphs.pipe)
         kids = children[index]
-        stack.extend((child, below, k == len(kids) - 1) for k, child in reversed(list(enumerate(kids))))
+        stack.extend((child, below, k == len(kids) - 1, depth + 1) for k, child in reversed(list(enumerate(kids))))
     return "\n".join(lines) + "\n"

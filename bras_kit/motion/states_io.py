@@ -10,11 +10,22 @@ from ..errors import ParameterError
 from .core import JointStates
 
 
+def _efforts(states: JointStates):  # type: ignore[no-untyped-def]
+    """Measured motor torques when the states come from a simulation (``bras-kit simulate``), else None."""
+    efforts = getattr(states, "efforts", None)
+    return efforts if efforts is not None and len(efforts) == len(states.times) else None
+
+
 def states_to_messages(states: JointStates) -> list[dict]:
-    """One dict per sample, shaped like a sensor_msgs/JointState message."""
-    return [{"time": float(t), "name": list(states.names), "position": [float(v) for v in p],
-             "velocity": [float(v) for v in w]}
-            for t, p, w in zip(states.times, states.positions, states.velocities)]
+    """One dict per sample, shaped like a sensor_msgs/JointState message (with "effort" when simulated)."""
+    messages = [{"time": float(t), "name": list(states.names), "position": [float(v) for v in p],
+                 "velocity": [float(v) for v in w]}
+                for t, p, w in zip(states.times, states.positions, states.velocities)]
+    efforts = _efforts(states)
+    if efforts is not None:
+        for message, row in zip(messages, efforts):
+            message["effort"] = [float(v) for v in row]
+    return messages
 
 
 def states_to_json(states: JointStates) -> str:
@@ -26,7 +37,18 @@ def states_to_json(states: JointStates) -> str:
 
 
 def states_to_csv(states: JointStates) -> str:
-    """Long form, like a recorded /joint_states: ``time,name,position,velocity``, one row per joint per sample."""
+    """Long form, like a recorded /joint_states: ``time,name,position,velocity``, one row per joint per sample.
+
+    Simulated states (with measured torques) get a fifth column, ``effort``.
+    """
+    efforts = _efforts(states)
+    if efforts is not None:
+        rows = ["time,name,position,velocity,effort"]
+        for t, position, velocity, effort in zip(states.times, states.positions, states.velocities, efforts):
+            time = repr(float(t))
+            rows.extend(f"{time},{name},{float(p)!r},{float(v)!r},{float(e)!r}"
+                        for name, p, v, e in zip(states.names, position, velocity, effort))
+        return "\n".join(rows) + "\n"
     rows = ["time,name,position,velocity"]
     for t, position, velocity in zip(states.times, states.positions, states.velocities):
         time = repr(float(t))
@@ -84,7 +106,8 @@ def _states_from_json(text: str, path: str) -> JointStates:
 
 def _states_from_csv(text: str, path: str) -> JointStates:
     lines = text.splitlines()
-    if not lines or [c.strip() for c in lines[0].split(",")] != ["time", "name", "position", "velocity"]:
+    header = [c.strip() for c in lines[0].split(",")] if lines else []
+    if header not in (["time", "name", "position", "velocity"], ["time", "name", "position", "velocity", "effort"]):
         raise ParameterError("the header is not time,name,position,velocity", path=path, line=1,
                              hint="write the file with bras-kit motion -o states.csv")
     names: list[str] = []

@@ -102,6 +102,9 @@ def open_backend(scene: Scene, camera: Camera, options: RenderOptions):  # type:
     return SoftwareBackend(scene, camera, options.background)
 
 
+MAX_RENDER_LINKS = 5000  # real robots have a few hundred at most; each link costs a scene node
+
+
 class Renderer:
     """Draws one robot again and again with the same camera and backend.
 
@@ -116,6 +119,11 @@ class Renderer:
     def __init__(self, robot: Robot, *, fit: Any = None, **opts: Any) -> None:
         self.options = render_options(**opts)
         self.tree = tf_tree(robot)
+        if len(self.tree.links) > MAX_RENDER_LINKS:
+            from ..errors import ModelError
+
+            raise ModelError(f"the robot has {len(self.tree.links):,} links, more than the {MAX_RENDER_LINKS:,} "
+                             "bras-kit draws", hint="'bras-kit tree' and 'bras-kit validate' work on models of any size")
         fit_q = workspace_samples(self.tree) if fit is None else configurations(self.tree, fit)
         self.scene, points = build_scene(self.tree, fk_batch(self.tree, fit_q), tf=self.options.tf,
                                          grid=self.options.grid, package_paths=self.options.package_paths)

@@ -9,6 +9,7 @@ from __future__ import annotations
 
 import math
 import os
+import sys
 from collections.abc import Sequence
 from dataclasses import dataclass
 
@@ -77,6 +78,9 @@ def resolve_mesh_path(filename: str, robot: Robot, package_paths: Sequence[str] 
     if not os.path.isfile(path):
         raise ModelError(f"mesh file not found: {path}", path=robot.path, line=line, element="mesh",
                          hint="check the filename, or pass --package-path for package:// names")
+    if os.path.getsize(path) > MAX_MESH_BYTES:
+        raise ModelError(f"mesh file {path} is larger than {MAX_MESH_BYTES >> 20} MiB", path=robot.path,
+                         line=line, element="mesh", hint="simplify the mesh (fewer triangles)")
     return path
 
 
@@ -111,19 +115,47 @@ def visual_mesh(robot: Robot, visual: Visual, package_paths: Sequence[str] = ())
     return mesh
 
 
+PLACEHOLDER_COLOR = (0.9, 0.05, 0.05, 1.0)
+PLACEHOLDER_SIDE = 0.05  # metres: the stand-in of a mesh with no collision shape either
+MAX_MESH_BYTES = 256 << 20
+
+
+def placeholder_mesh(robot: Robot, link, visual: Visual):  # type: ignore[no-untyped-def]
+    """What stands for a mesh that cannot be read: the link's first primitive collision shape,
+    else a small cube at the visual's origin."""
+    import trimesh
+
+    for collision in link.collisions:
+        g = collision.geometry
+        if g is not None and g.kind in ("box", "cylinder", "sphere"):
+            mesh = visual_mesh(robot, Visual(collision.origin, g))
+            if mesh is not None:
+                return mesh
+    mesh = trimesh.creation.box(extents=[PLACEHOLDER_SIDE] * 3)
+    mesh.apply_transform(origin_matrix(visual.origin.xyz, visual.origin.rpy))
+    return mesh
+
+
 def robot_parts(tree: TFTree, package_paths: Sequence[str] = ()) -> list[Part]:
     """A :class:`Part` per drawable visual of every link, with the material's colour."""
     robot = tree.robot
     parts = []
+    warned: set[str] = set()
     for index, name in enumerate(tree.links):
         link = robot.link(name)
         if link is None:
             continue
         for number, visual in enumerate(link.visuals, 1):
-            mesh = visual_mesh(robot, visual, package_paths)
+            color = robot.material_rgba(visual) or DEFAULT_COLOR
+            try:
+                mesh = visual_mesh(robot, visual, package_paths)
+            except ModelError as exc:  # draw what can be drawn: a red stand-in, one warning per file
+                mesh, color = placeholder_mesh(robot, link, visual), PLACEHOLDER_COLOR
+                if exc.message not in warned:
+                    warned.add(exc.message)
+                    print(f"warning: {exc.message}; drawn as a red stand-in (link '{name}')", file=sys.stderr)
             if mesh is None:
                 continue
-            color = robot.material_rgba(visual) or DEFAULT_COLOR
             parts.append(Part(index, np.asarray(mesh.vertices, dtype=float), np.asarray(mesh.faces, dtype=np.int64),
                               tuple(float(c) for c in color), label=f"{name} visual {number}"))  # type: ignore[arg-type]
     return parts

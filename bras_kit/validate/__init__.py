@@ -8,7 +8,8 @@
 
 Every rule lives in the registry (:data:`RULES`), one module per family: :mod:`.structure`
 (BK1xx), :mod:`.joints` (BK2xx), :mod:`.pitfalls` (BK3xx), :mod:`.geometry` (BK4xx),
-:mod:`.inertia` (BK5xx). Words come from ``messages_en`` / ``messages_fr``.
+:mod:`.inertia` (BK5xx), :mod:`.package` (BK6xx, a whole ROS 2 package).
+Words come from ``messages_en`` / ``messages_fr``.
 """
 
 from __future__ import annotations
@@ -23,7 +24,7 @@ from typing import Any
 
 from ..errors import BrasKitError, ParameterError, XacroError, XMLSafetyError, XMLSyntaxError
 from ..model import Robot
-from . import geometry, inertia, joints, pitfalls, structure  # noqa: F401  (importing registers the rules)
+from . import geometry, inertia, joints, package, pitfalls, structure  # noqa: F401  (importing registers the rules)
 from .context import Context
 from .findings import UNREADABLE_CODES, FileResult, Finding, sort_key
 from .i18n import DEFAULT_LANGUAGE, LANGUAGES, check_language, default_language, word
@@ -31,7 +32,8 @@ from .registry import ERROR, INFO, RULES, WARNING, Hit, Rule, run_rules, select_
 
 __all__ = [
     "ERROR", "INFO", "LANGUAGES", "RULES", "UNREADABLE_CODES", "WARNING", "FileResult", "Finding",
-    "Rule", "check_robot", "collect_files", "default_language", "validate", "validate_path",
+    "Rule", "check_robot", "collect_files", "compare_generated", "default_language", "generated_pairs",
+    "validate", "validate_path",
 ]
 
 SOURCE_SUFFIXES = (".urdf", ".xacro")
@@ -143,6 +145,75 @@ def collect_files(paths: Iterable[str]) -> list[str]:
     return out
 
 
+def generated_pairs(paths: Sequence[str], given: Iterable[str]) -> dict[str, str]:
+    """``{urdf: xacro}`` for each ``X.urdf`` found in a folder beside ``X.urdf.xacro`` (or ``X.xacro``).
+
+    Files named explicitly in ``given`` are always checked themselves.
+    """
+    named = {os.path.abspath(p) for p in given if not os.path.isdir(p)}
+    present = {os.path.abspath(p) for p in paths}
+    pairs = {}
+    for path in paths:
+        full = os.path.abspath(path)
+        if not path.endswith(".urdf") or full in named:
+            continue
+        for candidate in (full + ".xacro", full[: -len(".urdf")] + ".xacro"):
+            if candidate in present:
+                pairs[path] = next(p for p in paths if os.path.abspath(p) == candidate)
+                break
+    return pairs
+
+
+def compare_generated(urdf: str, xacro: str, *, mappings: Mapping[str, str] | None = None,
+                      package_paths: Sequence[str] = (), lang: str = DEFAULT_LANGUAGE,
+                      select: Iterable[str] = (), ignore: Iterable[str] = ()) -> list[Finding]:
+    """BK126 (the URDF matches a fresh expansion of its xacro) or BK127 (it does not)."""
+    chosen = {rule.code for rule in _rules(select, ignore)}
+    if not chosen & {"BK126", "BK127"}:
+        return []
+    from ..xacrotools import expand_xacro
+    from ..xmlio import parse_xml, read_bytes
+
+    try:
+        expected = parse_xml(expand_xacro(xacro, mappings, package_paths), xacro)
+        actual = parse_xml(read_bytes(urdf), urdf)
+    except BrasKitError:
+        return []  # the xacro's own check (or the URDF's) reports why it cannot be read
+    difference = _tree_difference(actual, expected)
+    params = {"xacro": xacro, "urdf": urdf, "difference": difference or ""}
+    code = "BK126" if difference is None else "BK127"
+    return [word(RULES[code], Hit("file", None, None, params), lang)] if code in chosen else []
+
+
+def _tree_difference(a: Any, b: Any, where: str = "") -> str | None:
+    """The first difference between two XML trees (tags, attributes, numbers to 1e-9), or None."""
+    here = f"{where}/{a.tag}" + (f"[@name='{a.get('name')}']" if a.get("name") else "")
+    if a.tag != b.tag:
+        return f"{here}: <{a.tag}> instead of <{b.tag}>"
+    if set(a.attrib) != set(b.attrib):
+        return f"{here}: attributes {sorted(a.attrib)} instead of {sorted(b.attrib)}"
+    for key, value in a.attrib.items():
+        if not _same_value(value, b.attrib[key]):
+            return f"{here} {key}=\"{value}\" instead of \"{b.attrib[key]}\""
+    if len(a.children) != len(b.children):
+        return f"{here}: {len(a.children)} child elements instead of {len(b.children)}"
+    for x, y in zip(a.children, b.children):
+        found = _tree_difference(x, y, here)
+        if found:
+            return found
+    return None
+
+
+def _same_value(x: str, y: str) -> bool:
+    if x == y:
+        return True
+    try:
+        xs, ys = [float(v) for v in x.split()], [float(v) for v in y.split()]
+    except ValueError:
+        return " ".join(x.split()) == " ".join(y.split())
+    return len(xs) == len(ys) and all(abs(u - v) <= 1e-9 * max(1.0, abs(u), abs(v)) for u, v in zip(xs, ys))
+
+
 def load_for_validation(path: str, *, mappings: Mapping[str, str] | None = None,
                         package_paths: Sequence[str] = (), lang: str = DEFAULT_LANGUAGE) -> Robot | Finding:
     """The robot in ``path``, or the finding (BK100-BK103) saying why it cannot be read."""
@@ -170,12 +241,37 @@ def _unreadable(path: str, exc: BrasKitError, lang: str) -> Finding:
         hit = Hit("file", None, line, {"where": f" ({where.rstrip(': ')})" if where else ""}, variant)
         return _loader_finding("BK101", hit, lang)
     if isinstance(exc, XMLSyntaxError):
+        encoding = _encoding_problem(exc.path or path)
+        if encoding is not None:
+            at, byte, guess = encoding
+            return _loader_finding("BK100", Hit("file", None, at, {"at": at, "byte": byte, "guess": guess},
+                                                "encoding"), lang)
         detail = exc.message.removeprefix("not well-formed XML: ")
         return _loader_finding("BK100", Hit("file", None, line, {"detail": where + detail}), lang)
     if isinstance(exc, XacroError):
         detail = exc.message.removeprefix("xacro failed: ")
         return _loader_finding("BK102", Hit("file", None, line, {"detail": where + detail}, _xacro_kind(detail)), lang)
     return _loader_finding("BK103", Hit("file", None, line, {"path": path, "detail": exc.message}), lang)
+
+
+def _encoding_problem(path: str) -> tuple[int, str, str] | None:
+    """(line, byte, the byte read as Latin-1) when ``path`` is not UTF-8 and declares no other encoding: the usual cause of an
+    XML error on a line with accents (a file saved as Latin-1 or Windows-1252)."""
+    try:
+        with open(path, "rb") as handle:
+            data = handle.read(64 << 20)
+    except OSError:
+        return None
+    head = data[:200].lower()
+    if b"encoding=" in head and b"utf-8" not in head:
+        return None
+    try:
+        data.decode("utf-8")
+    except UnicodeDecodeError as exc:
+        line = data[:exc.start].count(b"\n") + 1
+        guess = data[exc.start:exc.start + 1].decode("latin-1")
+        return line, f"0x{data[exc.start]:02x}", guess
+    return None
 
 
 def _xacro_kind(message: str) -> str:
@@ -265,4 +361,4 @@ def _rules(select: Iterable[str], ignore: Iterable[str]) -> list[Rule]:
         return select_rules(select, ignore)
     except ValueError as exc:
         raise ParameterError(f"no rule code starts with '{exc}'",
-                             hint="codes look like BK301; families are BK1 to BK5 (bras-kit explain lists them)") from None
+                             hint="codes look like BK301; families are BK1 to BK6 (bras-kit explain lists them)") from None

@@ -109,6 +109,11 @@ editors still get a line to jump to. Other files on the same command line are st
 `--select` and `--ignore` take codes or prefixes (`BK3`, `BK301`); they never hide BK100-BK103.
 For `.xacro` files, lines point at the element with the same name in the xacro source when it is
 written there literally, and are left out otherwise.
+
+Given a ROS 2 package folder (one holding `package.xml` and `setup.py`, such as the one
+`bras-kit new` makes), `bras-kit validate PKGDIR` also applies the BK6xx rules to the package
+itself: `setup.py`, `package.xml`, the launch files, the `.rviz` configuration and the Python
+nodes, each finding at its file and line. Those files are read, never run.
 """
 
 

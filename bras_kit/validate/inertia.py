@@ -58,24 +58,74 @@ def _inertials(ctx: Context) -> Iterator[tuple[Link, Inertial]]:
             yield link, link.inertial
 
 
+def rigid_group(ctx: Context, link: Link) -> tuple[str, list[str]]:
+    """The link that heads ``link``'s rigid body (climbing fixed joints) and every link fused into it.
+
+    ROS tools (and physics engines) merge links joined by fixed joints into one body, so mass and
+    inertia are judged on that fused body, not on each frame link of it.
+    """
+    parent_joint, children = ctx.graph.parent_joint, ctx.graph.children
+    head = link.name or ""
+    while head in parent_joint and parent_joint[head].type == "fixed":
+        head = parent_joint[head].parent or ""
+    members, stack = [], [head]
+    while stack:
+        name = stack.pop()
+        members.append(name)
+        stack.extend(j.child or "" for j in children.get(name, []) if j.type == "fixed")
+    return head, members
+
+
+def moves(ctx: Context, head: str) -> bool:
+    """Whether the body headed by ``head`` moves relative to the world (it hangs from a moving joint)."""
+    joint = ctx.graph.parent_joint.get(head)
+    return joint is not None and joint.type != "fixed"
+
+
+def _fused_has(ctx: Context, link: Link, has: object) -> bool:
+    """Whether any link of ``link``'s rigid body passes ``has(link)``, or the body does not move."""
+    head, members = rigid_group(ctx, link)
+    if not moves(ctx, head):
+        return True
+    return any(has(ctx.links[name]) for name in members if name in ctx.links)  # type: ignore[operator]
+
+
+def _has_mass(link: Link) -> bool:
+    mass = link.inertial.mass if link.inertial is not None else None
+    return mass is not None and math.isfinite(mass) and mass > 0
+
+
 @rule("BK500", "mass-not-positive", ERROR)
 def mass_not_positive(ctx: Context) -> Iterator[Hit]:
+    """Negative mass is always wrong; zero mass only on a moving body whose fused links weigh nothing
+    (frame links such as ``tool0`` or ``panda_hand_tcp``, and the fixed base, may be massless)."""
     for link, inertial in _inertials(ctx):
         mass = inertial.mass
-        if mass is not None and math.isfinite(mass) and mass <= 0:
+        if mass is None or not math.isfinite(mass) or mass > 0:
+            continue
+        if mass < 0 or not _fused_has(ctx, link, _has_mass):
             yield hit("link", link.name, inertial.line, link=link.name, mass=mass)
 
 
 @rule("BK501", "inertia-not-positive-definite", ERROR)
 def inertia_not_positive_definite(ctx: Context) -> Iterator[Hit]:
+    """A tensor with a negative moment is always wrong. A zero or flat one (a moment of 0) is
+    wrong only on a moving body none of whose fused links has a positive-definite inertia: the
+    root of a fixed-base robot and frame links fused into a heavier link need none."""
+    definite = {body.link.name for body in bodies(ctx) if body.positive_definite}
     for body in bodies(ctx):
-        if not body.positive_definite:
-            variant = "zero" if not body.tensor.any() else ""
-            yield hit("link", body.link.name, body.inertial.line, variant, link=body.link.name,
-                      moments=body.moments)
+        if body.positive_definite:
+            continue
+        largest = max(abs(m) for m in body.moments)
+        negative = body.moments[0] < -max(1e-9 * largest, 1e-12)  # not rounding noise of a zero tensor
+        zero = not body.tensor.any()
+        if not negative and _fused_has(ctx, body.link, lambda link: link.name in definite):
+            continue
+        yield hit("link", body.link.name, body.inertial.line, "zero" if zero else "", link=body.link.name,
+                  moments=body.moments)
 
 
-@rule("BK502", "inertia-triangle-inequality", ERROR)
+@rule("BK502", "inertia-triangle-inequality", WARNING)
 def inertia_triangle_inequality(ctx: Context) -> Iterator[Hit]:
     for body in bodies(ctx):
         a, b, c = body.moments

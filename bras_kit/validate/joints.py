@@ -135,12 +135,24 @@ def prismatic_travel_implausible(ctx: Context) -> Iterator[Hit]:
                           limit=MAX_PRISMATIC_TRAVEL)
 
 
+MULTI_TURN = 4 * math.pi  # real joints turn up to two turns each way (ANYmal: ±3π, IRB 140 axis 6: ±400°)
+
+
+def looks_like_degrees(lower: float, upper: float) -> bool:
+    """Limits that are surely degrees: beyond two turns, or beyond one turn in whole numbers
+    (±90, ±180, ±10...). Multi-turn limits in radians (±3π, ±6.98) are not whole numbers."""
+    largest = max(abs(lower), abs(upper))
+    if largest > MULTI_TURN:
+        return True
+    return largest > MAX_REVOLUTE_ANGLE and float(lower).is_integer() and float(upper).is_integer()
+
+
 @rule("BK211", "revolute-limit-in-degrees", WARNING)
 def revolute_limit_in_degrees(ctx: Context) -> Iterator[Hit]:
     for joint in ctx.robot.joints:
         if joint.type == "revolute" and joint.limit is not None:
             lower, upper = joint.bounds()
-            if finite(lower, upper) and max(abs(lower), abs(upper)) > MAX_REVOLUTE_ANGLE:
+            if finite(lower, upper) and looks_like_degrees(lower, upper):
                 yield hit("joint", joint.name, joint.limit.line, joint=joint.name, lower=lower, upper=upper,
                           lower_rad=number(round(math.radians(lower), 4)),
                           upper_rad=number(round(math.radians(upper), 4)))

@@ -30,14 +30,15 @@ UI = {
     "family_pitfalls": "the tutorial's pitfalls",
     "family_geometry": "geometry (shapes, meshes, colours)",
     "family_inertia": "inertia (mass and inertia for simulation)",
+    "family_package": "the ROS 2 package (setup.py, launch file, RViz configuration, nodes)",
 }
 
 RULE_TEXTS: dict[str, T] = {
     # ------------------------------------------------------------------ BK1xx structure
     "BK100": T(
         title="the file is not well-formed XML",
-        message="not well-formed XML: {detail}",
-        hint="look at this line: a tag left open, a missing '/>' or a stray quote are the usual causes",
+        message={"": "not well-formed XML: {detail}", "encoding": "the file is not UTF-8 text: byte {byte} on line {at} would be '{guess}' in Latin-1, so the file was probably saved as Latin-1 or Windows-1252"},
+        hint={"": "look at this line: a tag left open, a missing '/>' or a stray quote are the usual causes", "encoding": 're-save the file as UTF-8 in your editor (or declare its encoding: <?xml version="1.0" encoding="ISO-8859-1"?>)'},
         explanation="""\
 The file could not be read as XML, so nothing else in it was checked. The line given is where
 the XML reader gave up; the mistake is often on that line or just above it: a tag that is never
@@ -105,6 +106,35 @@ This finding makes `bras-kit validate` exit with status 2.""",
 The path given to `bras-kit validate` does not exist, is not readable, or is a folder where a
 file was expected. Other paths on the same command line are still checked; the command then
 exits with status 2 so that scripts notice.""",
+    ),
+    "BK125": T(
+        title='the <?xml ?> declaration is not at the very start of the file',
+        message='the <?xml ...?> declaration is on line {at}, after blank lines or spaces: strict XML readers refuse the file',
+        hint='delete the blank lines and spaces before <?xml',
+        explanation="""\
+XML allows nothing, not even a blank line, before the `<?xml version="1.0"?>` declaration.
+urdfdom (`check_urdf`, robot_state_publisher) and pybullet read such a file anyway, so bras-kit
+reads it too and checks the rest; but stricter tools (Python's XML parsers, some editors and
+converters) refuse it. Remove whatever comes before `<?xml`.""",
+    ),
+    "BK126": T(
+        title='a URDF generated from a xacro file beside it',
+        message='this URDF was generated from {xacro}, which is checked instead; the two agree',
+        hint='edit {xacro} and regenerate this file rather than editing it by hand',
+        explanation="""\
+A ROS 2 package often holds both `bras.urdf.xacro` and the `bras.urdf` made from it. When
+`bras-kit validate` finds both in a folder it checks the xacro file only (every finding once,
+at the line you would edit) and compares the URDF with a fresh expansion of the xacro.""",
+    ),
+    "BK127": T(
+        title='a generated URDF no longer matches its xacro file',
+        message='this URDF differs from what {xacro} gives now ({difference}): it is out of date',
+        hint='regenerate it: bras-kit xacro {xacro} -o {urdf} --force',
+        explanation="""\
+When a folder holds `bras.urdf.xacro` and `bras.urdf`, the URDF is taken as generated from the
+xacro file. If the two disagree, the package installs and launches whichever file its launch
+file names, so RViz may show an older robot than the one you edited. Regenerate the URDF (or
+have the launch file run xacro itself).""",
     ),
     "BK124": T(
         title="xacro file with macros only",
@@ -443,8 +473,10 @@ limits were probably written in millimetres or centimetres.""",
         message="joint '{joint}': limits {lower}..{upper} exceed a full turn; URDF angles are radians",
         hint='in radians: lower="{lower_rad}" upper="{upper_rad}"',
         explanation="""\
-URDF angles are radians: a quarter turn is 1.5708, not 90. Limits beyond one full turn
-(6.283) on a revolute joint were almost certainly written in degrees.""",
+URDF angles are radians: a quarter turn is 1.5708, not 90. Real joints may turn more than
+once (an ANYmal leg ±3π, the last axis of an ABB IRB 140 ±400°, written 6.98 rad), so bras-kit
+says "degrees" only for limits beyond two full turns (12.57), or beyond one turn (6.283) when
+both are whole numbers (±90, ±180): radians that large are never round.""",
     ),
     "BK212": T(
         title="a fixed joint has an axis or limits",
@@ -478,11 +510,8 @@ for an arm bending sideways in RViz; writing the axis makes the intent visible."
                      "the child hangs {distance} m short of the segment's end",
             "beyond": "joint '{joint}' is at {coord}, {distance} m past the end of link '{link}' "
                       "(its {tag} runs {span}): the child floats in the air",
-            "outside": "joint '{joint}' at xyz {at} is {distance} m outside link '{link}' "
-                       "(its {tag} spans {span})",
         },
         hint={
-            "outside": "move the joint onto '{link}', e.g. {origin}",
             "": "put the joint at the end of '{link}': {origin}",
         },
         explanation="""\
@@ -491,11 +520,13 @@ sits at the end of the previous segment: the tutorial's elbow `coude` is at z = 
 upper arm `bras` is 0.6 m long. If the origin does not match the parent's length, the next
 segment starts inside the parent or floats away from it ("segments mal positionnés").
 
-bras-kit checks moving joints (revolute, continuous, prismatic) whose parent link has one box
-or cylinder visual, and says where the segment ends and which origin fits. A joint lying off
-to the side of its parent's shape is reported only when the child's shape does not touch the
-parent's either: links side by side on one axle, or a wheel under its chassis, are designs.
-Sensor mounts and tool frames on fixed joints are not checked.""",
+This is the tutorial's rule of thumb, so it is a warning, and bras-kit applies it only where
+the parent looks like the tutorial's segments: a revolute or continuous joint whose parent link
+has one box or cylinder visual clearly longer along one axis, with the joint on that axis and
+within a quarter of the segment's length of its ends. It then says where the segment ends and
+which origin fits (within 2 mm or 5 % of the length). Prismatic joints (a carriage anywhere on
+its rail), joints beside the parent's shape (motors on a chassis, a wheel under a cart) and
+fixed joints (sensor mounts, tool frames) are not checked.""",
     ),
     "BK302": T(
         title="a segment's visual does not start at its joint",
@@ -576,6 +607,16 @@ empty even though TF frames are published, one of the causes of "RViz reste vide
 itself can cause (the others are the Fixed Frame and Description Topic settings).""",
     ),
     # ------------------------------------------------------------------ BK4xx geometry
+    "BK308": T(
+        title='a moving link at the end of the chain has nothing to show',
+        message="link '{link}' moves with joint '{joint}' but has no <visual> and no child: moving '{joint}' changes nothing on screen",
+        hint="give '{link}' a <visual> (a small box or cylinder is enough), or make '{joint}' fixed if it is only a frame",
+        explanation="""\
+RViz draws a link only through its `<visual>`. A link that hangs from a moving joint, has no
+child and no visual can only be seen in the TF display: its slider in joint_state_publisher_gui
+moves an invisible frame, which looks like "the robot does not move". A tool frame that really
+is only a frame is better attached with a `fixed` joint.""",
+    ),
     "BK400": T(
         title="a visual or collision has no shape",
         message={
@@ -678,8 +719,10 @@ effort). Copying `ixx="0" iyy="0" izz="0"` is the usual cause.""",
         hint="no real body has these moments; recompute the inertia from the shape and mass",
         explanation="""\
 For any real body the principal moments of inertia satisfy A + B >= C. A tensor breaking this
-rule cannot come from any mass distribution; simulators may reject it. It usually means one
-value was mistyped or taken from another link.""",
+rule cannot come from any mass distribution. RViz and robot_state_publisher do not use inertia,
+so this is a warning, but physics engines may refuse the model (MuJoCo does unless told to
+balance inertias) or simulate it wrongly. It usually means one value was mistyped, rounded or
+taken from another link; many published robots carry such values.""",
     ),
     "BK503": T(
         title="inertia far from the link's shape",
@@ -732,3 +775,8 @@ about it at start-up. RViz is unaffected. Simulators that need it usually add a 
 link (`world` or `base_footprint`) with a fixed joint to the real base.""",
     ),
 }
+
+# BK6xx: the package rules keep their words next to them
+from .package.messages_en import RULE_TEXTS as _PACKAGE_TEXTS  # noqa: E402
+
+RULE_TEXTS.update(_PACKAGE_TEXTS)

@@ -30,14 +30,15 @@ UI = {
     "family_pitfalls": "pièges du tutoriel",
     "family_geometry": "géométrie (formes, maillages, couleurs)",
     "family_inertia": "inertie (masse et inertie pour la simulation)",
+    "family_package": "le paquet ROS 2 (setup.py, fichier de lancement, configuration RViz, nœuds)",
 }
 
 RULE_TEXTS: dict[str, T] = {
     # ------------------------------------------------------------------ BK1xx structure
     "BK100": T(
         title="le fichier n'est pas du XML bien formé",
-        message="XML mal formé : {detail}",
-        hint="regardez cette ligne : une balise non fermée, un '/>' oublié ou un guillemet en trop sont les causes habituelles",
+        message={"": "XML mal formé : {detail}", "encoding": "le fichier n'est pas du texte UTF-8 : l'octet {byte} de la ligne {at} serait '{guess}' en Latin-1, le fichier a donc sans doute été enregistré en Latin-1 ou Windows-1252"},
+        hint={"": "regardez cette ligne : une balise non fermée, un '/>' oublié ou un guillemet en trop sont les causes habituelles", "encoding": 'réenregistrez le fichier en UTF-8 dans votre éditeur (ou déclarez son encodage : <?xml version="1.0" encoding="ISO-8859-1"?>)'},
         explanation="""\
 Le fichier ne peut pas être lu comme du XML, donc rien d'autre n'y a été vérifié. La ligne
 indiquée est celle où le lecteur XML s'est arrêté ; l'erreur est souvent sur cette ligne ou
@@ -109,6 +110,35 @@ Ce constat fait sortir `bras-kit validate` avec le code 2.""",
 Le chemin donné à `bras-kit validate` n'existe pas, n'est pas lisible, ou désigne un dossier à
 la place d'un fichier. Les autres chemins de la même commande sont tout de même vérifiés ; la
 commande se termine ensuite avec le code 2 pour que les scripts le remarquent.""",
+    ),
+    "BK125": T(
+        title="la déclaration <?xml ?> n'est pas tout au début du fichier",
+        message='la déclaration <?xml ...?> est à la ligne {at}, après des lignes vides ou des espaces : les lecteurs XML stricts refusent le fichier',
+        hint='supprimez les lignes vides et les espaces avant <?xml',
+        explanation="""\
+XML n'autorise rien, pas même une ligne vide, avant la déclaration `<?xml version="1.0"?>`.
+urdfdom (`check_urdf`, robot_state_publisher) et pybullet lisent quand même un tel fichier :
+bras-kit le lit donc aussi et vérifie le reste ; mais des outils plus stricts (les lecteurs XML
+de Python, certains éditeurs et convertisseurs) le refusent. Supprimez ce qui précède `<?xml`.""",
+    ),
+    "BK126": T(
+        title='un URDF généré depuis un fichier xacro voisin',
+        message='cet URDF a été généré depuis {xacro}, qui est vérifié à sa place ; les deux concordent',
+        hint='modifiez {xacro} et régénérez ce fichier plutôt que de le retoucher à la main',
+        explanation="""\
+Un paquet ROS 2 contient souvent `bras.urdf.xacro` et le `bras.urdf` qui en est tiré. Quand
+`bras-kit validate` trouve les deux dans un dossier, il ne vérifie que le fichier xacro (chaque
+constat une seule fois, à la ligne à corriger) et compare l'URDF au développement du xacro.""",
+    ),
+    "BK127": T(
+        title='un URDF généré ne correspond plus à son fichier xacro',
+        message="cet URDF diffère de ce que donne maintenant {xacro} ({difference}) : il n'est plus à jour",
+        hint='régénérez-le : bras-kit xacro {xacro} -o {urdf} --force',
+        explanation="""\
+Quand un dossier contient `bras.urdf.xacro` et `bras.urdf`, l'URDF est considéré comme généré
+depuis le xacro. S'ils divergent, le paquet installe et lance le fichier que nomme le fichier de
+lancement : RViz peut alors montrer un robot plus ancien que celui que vous avez modifié.
+Régénérez l'URDF (ou faites lancer xacro par le fichier de lancement).""",
     ),
     "BK124": T(
         title="fichier xacro ne contenant que des macros",
@@ -464,9 +494,11 @@ sur un bras ; les limites ont probablement été écrites en millimètres ou en 
         message="articulation '{joint}' : les limites {lower}..{upper} dépassent un tour complet ; les angles URDF sont en radians",
         hint='en radians : lower="{lower_rad}" upper="{upper_rad}"',
         explanation="""\
-Les angles URDF sont en radians : un quart de tour vaut 1.5708, pas 90. Des limites au-delà d'un
-tour complet (6.283) sur une articulation revolute ont presque sûrement été écrites en
-degrés.""",
+Les angles d'un URDF sont en radians : un quart de tour vaut 1.5708, pas 90. De vraies
+articulations tournent parfois plus d'un tour (une patte d'ANYmal ±3π, le dernier axe d'un
+ABB IRB 140 ±400°, écrit 6.98 rad) : bras-kit ne parle donc de degrés que pour des limites
+au-delà de deux tours (12.57), ou au-delà d'un tour (6.283) quand les deux sont des nombres
+entiers (±90, ±180) : des radians aussi grands ne sont jamais ronds.""",
     ),
     "BK212": T(
         title="une articulation fixe a un axe ou des limites",
@@ -501,11 +533,8 @@ qui se plie de côté dans RViz ; écrire l'axe rend l'intention visible.""",
                      "l'enfant est accroché {distance} m avant le bout du segment",
             "beyond": "l'articulation '{joint}' est en {coord}, {distance} m après le bout du link '{link}' "
                       "(son {tag} occupe {span}) : l'enfant flotte dans le vide",
-            "outside": "l'articulation '{joint}', en xyz {at}, est à {distance} m en dehors du link '{link}' "
-                       "(son {tag} occupe {span})",
         },
         hint={
-            "outside": "ramenez l'articulation sur '{link}', par exemple {origin}",
             "": "placez l'articulation au bout de '{link}' : {origin}",
         },
         explanation="""\
@@ -515,12 +544,14 @@ z = 0.6 parce que le bras `bras` mesure 0.6 m. Si l'origine ne correspond pas à
 parent, le segment suivant démarre à l'intérieur du parent ou flotte à côté (« segments mal
 positionnés »).
 
-bras-kit vérifie les articulations mobiles (revolute, continuous, prismatic) dont le link
-parent a un seul visuel pavé (box) ou cylindre, et indique où finit le segment et quelle
-origine convient. Une articulation placée à côté de la forme de son parent n'est signalée que
-si la forme de l'enfant ne touche pas non plus celle du parent : des links côte à côte sur un
-même axe, ou une roue sous son châssis, sont voulus. Les supports de capteurs et repères
-d'outil sur des articulations fixes ne sont pas vérifiés.""",
+C'est la règle pratique du tutoriel : c'est donc un avertissement, et bras-kit ne l'applique
+que là où le parent ressemble aux segments du tutoriel : une articulation revolute ou continuous
+dont le link parent a un seul visuel pavé (box) ou cylindre nettement plus long selon un axe,
+l'articulation étant sur cet axe et à moins d'un quart de longueur de ses extrémités. Il indique
+alors où finit le segment et quelle origine convient (à 2 mm ou 5 % de la longueur près). Les
+articulations prismatiques (un chariot n'importe où sur son rail), celles placées à côté de la
+forme du parent (moteurs sur un châssis, roue sous un chariot) et les articulations fixes
+(supports de capteurs, repères d'outil) ne sont pas vérifiées.""",
     ),
     "BK302": T(
         title="le visuel d'un segment ne part pas de son articulation",
@@ -605,6 +636,16 @@ l'affichage reste vide alors que les repères TF sont bien publiés : c'est l'un
 Description Topic).""",
     ),
     # ------------------------------------------------------------------ BK4xx géométrie
+    "BK308": T(
+        title="un link mobile en bout de chaîne n'a rien à montrer",
+        message="le link '{link}' bouge avec l'articulation '{joint}' mais n'a ni <visual> ni enfant : bouger '{joint}' ne change rien à l'écran",
+        hint="donnez un <visual> à '{link}' (un petit pavé ou cylindre suffit), ou rendez '{joint}' fixe si ce n'est qu'un repère",
+        explanation="""\
+RViz ne dessine un link qu'à travers son `<visual>`. Un link accroché à une articulation
+mobile, sans enfant ni visuel, ne se voit que dans l'affichage TF : son curseur dans
+joint_state_publisher_gui déplace un repère invisible, ce qui ressemble à « le robot ne bouge
+pas ». Un repère d'outil qui n'est qu'un repère s'attache plutôt par une articulation `fixed`.""",
+    ),
     "BK400": T(
         title="un visuel ou une collision n'a pas de forme",
         message={
@@ -713,9 +754,12 @@ habituelle.""",
         message="link '{link}' : moments principaux {a}, {b}, {c} : la somme des deux plus petits est inférieure au plus grand",
         hint="aucun corps réel n'a ces moments ; recalculez l'inertie à partir de la forme et de la masse",
         explanation="""\
-Pour tout corps réel, les moments principaux d'inertie vérifient A + B >= C. Un tenseur qui
-enfreint cette règle ne peut venir d'aucune répartition de masse ; les simulateurs peuvent le
-refuser. En général, une valeur a été mal tapée ou reprise d'un autre link.""",
+Pour tout corps réel, les moments principaux d'inertie vérifient A + B >= C. Un tenseur qui ne
+la respecte pas ne peut venir d'aucune répartition de masse. RViz et robot_state_publisher
+n'utilisent pas l'inertie : c'est donc un avertissement, mais les moteurs physiques peuvent
+refuser le modèle (MuJoCo le fait, sauf si on lui demande d'équilibrer les inerties) ou le
+simuler faux. En général une valeur a été mal tapée, arrondie ou copiée d'un autre link ; bien
+des robots publiés en contiennent.""",
     ),
     "BK503": T(
         title="inertie très éloignée de la forme du link",
@@ -770,3 +814,8 @@ link racine sans masse (`world` ou `base_footprint`) relié à la vraie base par
 fixe.""",
     ),
 }
+
+# BK6xx: the package rules keep their words next to them
+from .package.messages_fr import RULE_TEXTS as _PACKAGE_TEXTS  # noqa: E402
+
+RULE_TEXTS.update(_PACKAGE_TEXTS)

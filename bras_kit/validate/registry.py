@@ -6,7 +6,7 @@ the numbers that describe it, never words. Wording comes later, in the user's la
 ``messages_en`` / ``messages_fr`` (see :mod:`bras_kit.validate.i18n`).
 
 Codes by family: BK1xx structure, BK2xx joints, BK3xx the tutorial's pitfalls, BK4xx geometry,
-BK5xx inertia. Codes never change meaning; a retired code is not reused.
+BK5xx inertia, BK6xx the whole ROS 2 package. Codes never change meaning; a retired code is not reused.
 """
 
 from __future__ import annotations
@@ -27,6 +27,7 @@ FAMILIES = {
     "BK3": "pitfalls",
     "BK4": "geometry",
     "BK5": "inertia",
+    "BK6": "package",
 }
 
 

@@ -16,6 +16,8 @@ loader_rule("BK101", "xml-unsafe")
 loader_rule("BK102", "xacro-failed")
 loader_rule("BK103", "file-unreadable")
 loader_rule("BK124", "xacro-macro-library", INFO)
+loader_rule("BK126", "urdf-generated-from-xacro", INFO)
+loader_rule("BK127", "generated-urdf-out-of-date", WARNING)
 
 MAX_SUGGESTIONS = 20  # close-name searches per rule and file (each is linear in the names)
 
@@ -66,6 +68,12 @@ def root_not_robot(ctx: Context) -> Iterator[Hit]:
 def robot_name_missing(ctx: Context) -> Iterator[Hit]:
     if ctx.is_robot and not (ctx.robot.name or "").strip():
         yield hit("robot", None, ctx.robot.line)
+
+
+@rule("BK125", "xml-declaration-not-first", WARNING)
+def xml_declaration_not_first(ctx: Context) -> Iterator[Hit]:
+    for issue in ctx.issues("late_xml_declaration"):
+        yield hit("file", None, issue.line, at=issue.line)
 
 
 @rule("BK106", "no-links", ERROR)

@@ -17,6 +17,7 @@ _MODULES = [
     "l08_pitfalls",
     "l09_reach",
     "l10_xacro",
+    "l11_physics",
 ]
 
 

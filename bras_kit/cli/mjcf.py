@@ -1,0 +1,81 @@
+"""bras-kit mjcf: write the MuJoCo model bras-kit builds from a URDF, to open in MuJoCo's own viewer.
+
+Meshes are written next to the model in FILE_meshes/ (DAE converted to STL), so the folder is
+self-contained: ``python -m mujoco.viewer --mjcf=arm.xml``.
+"""
+
+from __future__ import annotations
+
+import argparse
+import os
+import sys
+
+from ..errors import BrasKitError
+from ._common import add_force_argument, add_model_arguments, check_writable, write_text
+
+_EPILOG = """\
+examples:
+  bras-kit mjcf --inertials                     print the tutorial arm's MJCF
+  bras-kit mjcf --inertials -o arm.xml          then: python -m mujoco.viewer --mjcf=arm.xml
+  bras-kit mjcf robot.urdf --package-path ws/src -o robot.xml
+"""
+
+
+def configure(parser: argparse.ArgumentParser) -> None:
+    parser.formatter_class = argparse.RawDescriptionHelpFormatter
+    parser.epilog = _EPILOG
+    add_model_arguments(parser)
+    parser.add_argument("--control", choices=("none", "pd", "pd+gravity"), default="pd",
+                        help="motors: none, PD servos (default) or PD servos with gravity compensation")
+    parser.add_argument("--kp", type=float, default=None, metavar="GAIN", help="motor stiffness, N·m/rad (default: 100)")
+    parser.add_argument("--kd", type=float, default=None, metavar="GAIN", help="motor damping, N·m·s/rad (default: 10)")
+    parser.add_argument("--lang", choices=("fr", "en"), default=None, help="language of the diagnostics")
+    parser.add_argument("-o", "--output", metavar="FILE", help="write the MJCF to FILE (meshes in FILE_meshes/)")
+    add_force_argument(parser)
+
+
+def run(args: argparse.Namespace) -> int:
+    from ..physics import mjcf
+    from ..physics.controllers import gain_vector
+    from ..physics.diagnostics import check_physics_ready, physics_notes
+    from ..validate.i18n import default_language
+
+    lang = args.lang or default_language()
+    if args.output and args.output != "-":
+        check_writable(args.output, args.force)
+    robot = load_model(args)
+    check_physics_ready(robot, lang)
+    kp = mjcf.DEFAULT_KP if args.kp is None else float(gain_vector(args.kp, ["all"], mjcf.DEFAULT_KP, "kp")[0])
+    kd = mjcf.DEFAULT_KD if args.kd is None else float(gain_vector(args.kd, ["all"], mjcf.DEFAULT_KD, "kd")[0])
+    built = mjcf.build_mjcf(robot, package_paths=args.package_path, kp=kp, kd=kd, control=args.control)
+    for note in physics_notes(robot, built, lang, args.package_path):
+        print(f"{note.level}: {note.text}", file=sys.stderr)
+    if not args.output or args.output == "-":
+        if built.assets:
+            print("note: the meshes are not printed; write with -o FILE to get them in FILE_meshes/", file=sys.stderr)
+        write_text(None, built.xml, args.force)
+        return 0
+    stem = os.path.splitext(os.path.basename(args.output))[0]
+    folder = f"{stem}_meshes"
+    if built.assets:
+        check_writable(os.path.join(os.path.dirname(args.output), folder), args.force)
+    text = built.xml_with_meshdir(folder) if built.assets else built.xml
+    write_text(args.output, text, args.force)
+    if built.assets:
+        target = os.path.join(os.path.dirname(args.output), folder)
+        try:
+            os.makedirs(target, exist_ok=True)
+            for asset in built.assets.values():
+                with open(os.path.join(target, asset.name), "wb") as handle:
+                    handle.write(asset.data)
+        except OSError as exc:
+            raise BrasKitError(f"cannot write {exc.filename or target}: {exc.strerror or exc}",
+                               hint="check the folder is writable and has space") from None
+        print(f"wrote {len(built.assets)} meshes in {target}/", file=sys.stderr)
+    return 0
+
+
+def load_model(args: argparse.Namespace):  # type: ignore[no-untyped-def]
+    from ._common import load_model as load
+
+    return load(args)

@@ -1,0 +1,137 @@
+"""bras-kit simulate: the arm under gravity in MuJoCo, motors limited by <limit effort>.
+
+Prints, per joint, the tracking error, the peak torque, the share of time at the torque limit
+and, in plain words, which motor is too weak. Writes the measured joint states (CSV/JSON with an
+``effort`` column), a GIF drawn by bras-kit's own renderer and a torque/tracking plot.
+"""
+
+from __future__ import annotations
+
+import argparse
+import os
+import sys
+
+from ..errors import BrasKitError, ParameterError
+from ._common import (
+    add_force_argument,
+    add_model_arguments,
+    check_writable,
+    joint_values,
+    load_model,
+    write_text,
+)
+
+NUDGE = 0.05  # rad: the upright arm is balanced at 0; motors off, it needs a push to fall
+
+_EPILOG = """\
+control:
+  none         motors off: the arm falls from --start and comes to rest on its limits (or the floor)
+  pd           motors follow the motion: torque = kp (target - q) + kd (target speed - speed),
+               clipped to each joint's <limit effort>
+  pd+gravity   the same plus gravity compensation (inside the same effort clip)
+
+examples:
+  bras-kit simulate --inertials                                 track the tutorial's sine
+  bras-kit simulate --inertials --control none --gif fall.gif   drop the arm
+  bras-kit simulate --inertials --param epaule_effort=2          the shoulder is too weak
+  bras-kit simulate --inertials --control pd+gravity -o states.csv --plot torques.png
+"""
+
+
+def configure(parser: argparse.ArgumentParser) -> None:
+    parser.formatter_class = argparse.RawDescriptionHelpFormatter
+    parser.epilog = _EPILOG
+    add_model_arguments(parser)
+    parser.add_argument("-m", "--motion", action="append", default=[], metavar="SPEC",
+                        help="tutorial, JOINT=FORMULA or a waypoint file (repeatable; default: tutorial)")
+    parser.add_argument("--control", choices=("none", "pd", "pd+gravity"), default="pd",
+                        help="how the motors behave (default: pd)")
+    parser.add_argument("--kp", type=float, default=None, metavar="GAIN",
+                        help="stiffness of every motor, N·m/rad (default: 100)")
+    parser.add_argument("--kd", type=float, default=None, metavar="GAIN",
+                        help="damping of every motor, N·m·s/rad (default: 10)")
+    parser.add_argument("--start", action="append", default=[], metavar="JOINT=VALUE",
+                        help="pose at t=0, at rest (default: the motion's first pose; "
+                             f"with --control none, {NUDGE:g} rad on every joint)")
+    parser.add_argument("--duration", type=float, metavar="S",
+                        help="seconds to simulate (default: the last waypoint's time, else 10)")
+    parser.add_argument("--rate", type=float, default=20.0, metavar="HZ",
+                        help="samples kept per second for files and the GIF (default: 20)")
+    parser.add_argument("--timestep", type=float, default=None, metavar="S", help="physics time step (default: 0.002)")
+    parser.add_argument("--integrator", choices=("implicitfast", "implicit", "RK4", "Euler"), default=None,
+                        help="MuJoCo integrator (default: implicitfast)")
+    parser.add_argument("--damping", type=float, default=None, metavar="B",
+                        help="joint friction, N·m·s/rad (default: 0.05; 0 for none)")
+    parser.add_argument("--gif", metavar="FILE", help="draw the simulated motion as a GIF (bras-kit's renderer)")
+    parser.add_argument("-o", "--output", metavar="FILE",
+                        help="write the measured joint states: .csv (time,name,position,velocity,effort) or .json")
+    parser.add_argument("--plot", metavar="FILE", help="plot positions and torques with the effort limits (.png/.svg/.pdf)")
+    parser.add_argument("--strict", action="store_true", help="exit with status 1 when a motor is too weak")
+    parser.add_argument("--lang", choices=("fr", "en"), default=None, help="language of the report")
+    add_force_argument(parser)
+
+
+def _output_format(path: str) -> str:
+    suffix = os.path.splitext(path)[1].lower()
+    if path == "-" or suffix == ".csv":
+        return "csv"
+    if suffix == ".json":
+        return "json"
+    raise ParameterError(f"cannot tell the format of '{path}'", hint="end the file name in .csv or .json")
+
+
+def run(args: argparse.Namespace) -> int:
+    from ..motion import motion_from_specs, states_to_csv, states_to_json
+    from ..physics import mjcf
+    from ..physics.diagnostics import check_physics_ready, physics_notes, report_text
+    from ..physics.run import simulate
+    from ..validate.i18n import default_language
+
+    lang = args.lang or default_language()
+    fmt = _output_format(args.output) if args.output else None
+    if args.plot:
+        from ..diagrams.output import FIGURE_FORMATS, output_suffix
+
+        output_suffix(args.plot, FIGURE_FORMATS)
+    if args.gif and not args.gif.lower().endswith(".gif"):
+        raise ParameterError(f"cannot write '{args.gif}' as a GIF", hint="end the file name in .gif")
+    for path in (args.output, args.plot, args.gif):
+        if path and path != "-":
+            check_writable(path, args.force)
+    robot = load_model(args)
+    check_physics_ready(robot, lang)
+    motion = motion_from_specs(robot, args.motion)
+    start = joint_values(args.start)
+    if args.control == "none" and not start:
+        from ..kinematics import tf_tree
+
+        start = dict.fromkeys(tf_tree(robot).dof, NUDGE)
+    states = simulate(robot, motion, control=args.control,
+                      kp=mjcf.DEFAULT_KP if args.kp is None else args.kp,
+                      kd=mjcf.DEFAULT_KD if args.kd is None else args.kd,
+                      duration=args.duration, rate=args.rate, start=start or None,
+                      timestep=mjcf.DEFAULT_TIMESTEP if args.timestep is None else args.timestep,
+                      integrator=args.integrator or mjcf.DEFAULT_INTEGRATOR,
+                      damping=mjcf.DEFAULT_DAMPING if args.damping is None else args.damping,
+                      package_paths=args.package_path)
+    for note in physics_notes(robot, states.model, lang, args.package_path):  # type: ignore[arg-type]
+        print(f"{note.level}: {note.text}", file=sys.stderr)
+    print(report_text(robot, states, lang))
+    try:
+        if fmt is not None:
+            write_text(args.output, states_to_json(states) if fmt == "json" else states_to_csv(states), args.force)
+        if args.plot:
+            from ..physics.plot import save_torque_plot
+
+            save_torque_plot(robot, states, args.plot, lang)
+            print(f"wrote {args.plot}", file=sys.stderr)
+        if args.gif:
+            from ..render import render_motion, save_gif
+
+            with render_motion(robot, states, package_paths=tuple(args.package_path)) as frames:
+                count = save_gif(frames, args.gif, fps=args.rate)
+            print(f"wrote {args.gif}: {count} frames at {args.rate:g} fps", file=sys.stderr)
+    except OSError as exc:
+        raise BrasKitError(f"cannot write {exc.filename or 'the output'}: {exc.strerror or exc}",
+                           hint="check the folder exists, is writable and has space") from None
+    return 1 if args.strict and states.weak_joints else 0

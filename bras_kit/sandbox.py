@@ -1,0 +1,195 @@
+"""Run a function in a forked child process with limits on CPU time, memory and wall time.
+
+This is the second wall around untrusted input (the first is the allow-list xacro
+evaluator): if a bug lets a file hang or eat memory, the child is stopped by the kernel
+(``RLIMIT_CPU``, ``RLIMIT_AS``) or killed by the parent when the wall-clock time runs out,
+and the caller gets a clean :class:`ResourceLimitError`.
+
+::
+
+    from bras_kit.sandbox import run_limited
+    text = run_limited(expand, path, cpu_seconds=20, memory_bytes=2 << 30, wall_seconds=30)
+
+The function and its arguments are inherited through ``fork`` (nothing is pickled on the
+way in); the result, or the :class:`~bras_kit.errors.BrasKitError` it raised, comes back
+pickled through a pipe. Any other exception in the child becomes a ``BrasKitError``.
+On platforms without ``fork`` the function runs in-process (with no second wall).
+"""
+
+from __future__ import annotations
+
+import os
+import pickle
+import select
+import signal
+import sys
+import time
+from collections.abc import Callable
+from typing import Any, TypeVar
+
+from .errors import BrasKitError
+
+T = TypeVar("T")
+
+DEFAULT_CPU_SECONDS = 30
+DEFAULT_WALL_SECONDS = 45.0
+DEFAULT_MEMORY_BYTES = 2 << 30  # on top of what the process already maps
+MAX_RESULT_BYTES = 256 << 20
+
+
+class ResourceLimitError(BrasKitError):
+    """The child ran out of time or memory, or died."""
+
+
+def available() -> bool:
+    return hasattr(os, "fork") and sys.platform != "win32"
+
+
+def _mapped_bytes() -> int:
+    """Address space the process maps now (children start with the same)."""
+    try:
+        with open("/proc/self/statm") as handle:
+            return int(handle.read().split()[0]) * os.sysconf("SC_PAGE_SIZE")
+    except (OSError, ValueError, IndexError):
+        return 0
+
+
+def _child(write_fd: int, function: Callable[..., Any], args: tuple[Any, ...], kwargs: dict[str, Any],
+           cpu_seconds: int, memory_bytes: int) -> None:
+    import resource
+
+    status = 0
+    try:
+        resource.setrlimit(resource.RLIMIT_CPU, (cpu_seconds, cpu_seconds + 1))
+        limit = _mapped_bytes() + memory_bytes
+        resource.setrlimit(resource.RLIMIT_AS, (limit, limit))
+        resource.setrlimit(resource.RLIMIT_CORE, (0, 0))
+        try:
+            payload = ("ok", function(*args, **kwargs))
+        except BrasKitError as exc:
+            payload = ("error", _error_fields(exc))
+        except MemoryError:
+            payload = ("limit", "memory")
+        except RecursionError:
+            payload = ("limit", "recursion")
+        except BaseException as exc:  # noqa: BLE001 - anything else is reported, not raised
+            payload = ("crash", f"{type(exc).__name__}: {exc}"[:500])
+        try:
+            data = pickle.dumps(payload, protocol=pickle.HIGHEST_PROTOCOL)
+        except Exception as exc:  # noqa: BLE001
+            data = pickle.dumps(("crash", f"result cannot be sent back: {exc}"[:500]))
+        view = memoryview(data)
+        while view:
+            written = os.write(write_fd, view[:1 << 20])
+            view = view[written:]
+    except MemoryError:
+        status = 3
+    except BaseException:  # noqa: BLE001
+        status = 4
+    finally:
+        os._exit(status)
+
+
+def _error_fields(exc: BrasKitError) -> tuple[str, str, dict[str, Any]]:
+    fields = {k: getattr(exc, k, None) for k in ("path", "line", "element", "hint")}
+    extra = {k: v for k, v in vars(exc).items() if k not in fields and k != "message"
+             and isinstance(v, (str, int, float, type(None)))}
+    return type(exc).__module__, type(exc).__qualname__, {"message": exc.message, **fields, "extra": extra}
+
+
+def _rebuild_error(module: str, name: str, fields: dict[str, Any]) -> BrasKitError:
+    import importlib
+
+    cls: Any = BrasKitError
+    try:
+        found = importlib.import_module(module)
+        for part in name.split("."):
+            found = getattr(found, part)
+        if isinstance(found, type) and issubclass(found, BrasKitError):
+            cls = found
+    except (ImportError, AttributeError):
+        pass
+    extra = fields.pop("extra", {})
+    try:
+        error = cls(fields.pop("message"), **fields)
+    except TypeError:
+        error = BrasKitError(str(fields.get("message")))
+    for key, value in extra.items():
+        setattr(error, key, value)
+    return error
+
+
+def run_limited(function: Callable[..., T], *args: Any, cpu_seconds: int = DEFAULT_CPU_SECONDS,
+                memory_bytes: int = DEFAULT_MEMORY_BYTES, wall_seconds: float = DEFAULT_WALL_SECONDS,
+                what: str = "this file", **kwargs: Any) -> T:
+    """``function(*args, **kwargs)`` in a child process under limits; its result or its error.
+
+    ``what`` names the work in messages ("expanding bras.urdf.xacro").
+    """
+    if not available():
+        return function(*args, **kwargs)
+    read_fd, write_fd = os.pipe()
+    sys.stdout.flush()
+    sys.stderr.flush()
+    pid = os.fork()
+    if pid == 0:  # the child
+        os.close(read_fd)
+        _child(write_fd, function, args, kwargs, cpu_seconds, memory_bytes)
+    os.close(write_fd)
+    chunks: list[bytes] = []
+    size = 0
+    deadline = time.monotonic() + wall_seconds
+    timed_out = too_big = False
+    try:
+        while True:
+            left = deadline - time.monotonic()
+            if left <= 0:
+                timed_out = True
+                break
+            ready, _, _ = select.select([read_fd], [], [], min(left, 1.0))
+            if not ready:
+                continue
+            chunk = os.read(read_fd, 1 << 20)
+            if not chunk:
+                break
+            size += len(chunk)
+            if size > MAX_RESULT_BYTES:
+                too_big = True
+                break
+            chunks.append(chunk)
+    finally:
+        os.close(read_fd)
+        if timed_out or too_big:
+            _kill(pid)
+        _, status = os.waitpid(pid, 0)
+    if timed_out:
+        raise ResourceLimitError(f"{what} took more than {wall_seconds:g} s and was stopped",
+                                 hint="the file may loop or recurse without end; simplify it")
+    if too_big:
+        raise ResourceLimitError(f"{what} made a result larger than {MAX_RESULT_BYTES >> 20} MiB and was stopped")
+    if os.WIFSIGNALED(status):
+        sig = os.WTERMSIG(status)
+        if sig in (signal.SIGXCPU, signal.SIGKILL):
+            raise ResourceLimitError(f"{what} used more than {cpu_seconds} s of CPU and was stopped",
+                                     hint="the file may loop or recurse without end; simplify it")
+        raise ResourceLimitError(f"{what} stopped the worker process (signal {sig})",
+                                 hint="it may need more memory than allowed; simplify the file")
+    if not chunks:
+        raise ResourceLimitError(f"{what} ran out of memory and was stopped",
+                                 hint=f"the limit is {memory_bytes >> 20} MiB above the program's own size")
+    kind, value = pickle.loads(b"".join(chunks))  # noqa: S301 - our own child's bytes
+    if kind == "ok":
+        return value  # type: ignore[no-any-return]
+    if kind == "error":
+        raise _rebuild_error(*value)
+    if kind == "limit":
+        raise ResourceLimitError(f"{what} needed more {value} than allowed and was stopped",
+                                 hint="simplify the file (no huge values, no deep recursion)")
+    raise BrasKitError(f"{what} failed: {value}")
+
+
+def _kill(pid: int) -> None:
+    try:
+        os.kill(pid, signal.SIGKILL)
+    except ProcessLookupError:
+        pass

@@ -1,0 +1,68 @@
+"""Package rules (BK6xx): a whole ROS 2 ament_python package, like the one ``bras-kit new`` makes.
+
+::
+
+    from bras_kit.validate.package import validate_package
+    results = validate_package("bras_description", lang="fr")   # list of FileResult, one per file
+
+Nothing in the package is run: ``setup.py``, launch files and nodes are read with :mod:`ast`,
+``.rviz`` files as YAML, ``package.xml`` with the safe XML reader. The robot description
+itself is checked by the URDF rules (``bras-kit validate PKGDIR`` collects its ``.urdf`` and
+``.xacro`` files as usual); these rules only read it to know the links, joints and limits.
+"""
+
+from __future__ import annotations
+
+import os
+from collections.abc import Iterable
+
+from ..findings import FileResult, Finding, sort_key
+from ..i18n import DEFAULT_LANGUAGE, check_language, word
+from ..registry import select_rules
+from .rules import PACKAGE_CHECKS  # importing registers the rules
+from .sources import PACKAGE_XML, SETUP_PY, Package
+
+__all__ = ["Package", "find_packages", "is_package", "validate_package"]
+
+
+def is_package(path: str) -> bool:
+    """A folder holding ``package.xml`` and ``setup.py`` (an ament_python package)."""
+    return os.path.isfile(os.path.join(path, PACKAGE_XML)) and os.path.isfile(os.path.join(path, SETUP_PY))
+
+
+def find_packages(paths: Iterable[str]) -> list[str]:
+    """The ament_python packages among ``paths`` and below them (hidden folders skipped)."""
+    out: list[str] = []
+    for path in paths:
+        if not os.path.isdir(path):
+            continue
+        for folder, dirs, _ in os.walk(path):
+            dirs[:] = sorted(d for d in dirs if not d.startswith("."))
+            if is_package(folder):
+                out.append(folder)
+                dirs[:] = []  # packages do not nest
+    return out
+
+
+def validate_package(path: str, *, lang: str = DEFAULT_LANGUAGE, select: Iterable[str] = (),
+                     ignore: Iterable[str] = ()) -> list[FileResult]:
+    """The package rules' findings, one :class:`FileResult` per file read or with a finding
+    (in name order; a file the rules read and found clean has an empty result).
+
+    ``select``/``ignore`` are code prefixes as for :func:`bras_kit.validate.validate`; URDF
+    rule codes among them are simply not package rules. Unknown prefixes raise ValueError.
+    """
+    check_language(lang)
+    package = Package(path)
+    by_file: dict[str, list[Finding]] = {}
+    for chosen in select_rules(select, ignore):
+        check = PACKAGE_CHECKS.get(chosen.code)
+        if check is None:
+            continue
+        for found in check(package):
+            file = str(found.params.get("file", ""))
+            by_file.setdefault(file, []).append(word(chosen, found, lang))
+    for file in package.read:
+        by_file.setdefault(file, [])
+    return [FileResult(package.path(file), sorted(findings, key=sort_key))
+            for file, findings in sorted(by_file.items())]

@@ -1,0 +1,406 @@
+"""BK6xx: the whole ROS 2 package, for the three pitfalls a URDF file alone cannot show.
+
+* "file not found" at launch (BK600-BK606): what ``setup.py`` installs, what the launch file
+  opens, the ament index marker, the names, the dependencies, the maintainer's email.
+* "RViz reste vide" (BK610-BK613): the ``.rviz`` configuration the launch file gives RViz.
+* "Le robot apparaît mais ne bouge pas" (BK620-BK623): who publishes ``/joint_states``, with
+  which names and within which limits, and whether ``ros2 run`` can find the node.
+
+Every hit carries ``file`` (relative to the package folder): the finding is reported there.
+"""
+
+from __future__ import annotations
+
+import os
+import re
+from collections.abc import Callable, Iterable, Iterator
+from typing import Any
+
+from ..registry import ERROR, INFO, WARNING, Hit, hit, rule
+from .sources import (
+    INDEX_FOLDER,
+    JOINT_STATE_PUBLISHERS,
+    PACKAGE_XML,
+    SETUP_PY,
+    NodeCall,
+    Package,
+    Publisher,
+    share_targets,
+)
+from .staticpy import ShareFile, known
+
+# catkin_pkg's own test of a maintainer's email (catkin_pkg.package.Person.validate)
+EMAIL = re.compile(r"^[-a-zA-Z0-9_%+]+(\.[-a-zA-Z0-9_%+]+)*@[-a-zA-Z0-9%]+(\.[-a-zA-Z0-9%]+)*\.[a-zA-Z]{2,}$")
+REQUIRED_FOLDERS = (("urdf", (".urdf", ".xacro")), ("launch", (".launch.py", "_launch.py")))
+ROBOT_DESCRIPTION = "/robot_description"
+MOTION_SECONDS = 60.0  # how long a node's sine formulas are followed (every tutorial wave repeats within)
+
+PackageCheck = Callable[[Package], Iterable[Hit]]
+PACKAGE_CHECKS: dict[str, PackageCheck] = {}  # code -> the check, called with a Package
+
+
+def package_rule(code: str, name: str, severity: str) -> Callable[[PackageCheck], PackageCheck]:
+    """Register a package rule: it runs on a :class:`Package`, never on a single robot file."""
+
+    def decorate(check: PackageCheck) -> PackageCheck:
+        def on_context(context: Any) -> Iterable[Hit]:
+            return check(context) if isinstance(context, Package) else ()
+
+        rule(code, name, severity)(on_context)
+        PACKAGE_CHECKS[code] = check
+        return check
+
+    return decorate
+
+
+def _at(file: str, line: int | None, variant: str = "", **params: object) -> Hit:
+    return hit("file", None, line, variant, file=file, **params)
+
+
+# ---------------------------------------------------------------- "file not found"
+
+
+@package_rule("BK600", "package-file-unreadable", ERROR)
+def package_file_unreadable(pkg: Package) -> Iterator[Hit]:
+    # reading everything once records the files that could not be read
+    pkg.manifest, pkg.setup, pkg.launch_files, pkg.publishers  # noqa: B018
+    for source, _, _ in _rviz_files(pkg):
+        pkg.rviz(source)
+    for problem in pkg.problems:
+        variant = "missing" if problem.detail == "missing" else ""
+        yield _at(problem.path, _inside(pkg, problem.path, problem.line), variant, detail=problem.detail)
+
+
+def _inside(pkg: Package, relative: str, line: int | None) -> int | None:
+    """``line``, or the file's last line when a parser points past the end ("no element found")."""
+    if line is None or line <= 1:
+        return line
+    try:
+        with open(os.path.join(pkg.root, relative), "rb") as handle:
+            count = len(handle.read().splitlines())
+    except OSError:
+        return line
+    return min(line, max(count, 1))
+
+
+@package_rule("BK601", "folder-not-installed", ERROR)
+def folder_not_installed(pkg: Package) -> Iterator[Hit]:
+    installed = pkg.installed()
+    if installed is None or pkg.setup is None:
+        return
+    sources = set(installed.values())
+    for folder, suffixes in REQUIRED_FOLDERS:
+        files = pkg.files(folder, suffixes)
+        left = [f for f in files if f not in sources]
+        if left:
+            pattern = next((f"*{s}" for s in suffixes if all(f.endswith(s) for f in left)), "*")
+            yield _at(SETUP_PY, pkg.setup.data_files_line, "all" if len(left) == len(files) else "some",
+                      folder=folder, files=left, package=pkg.name,
+                      entry=f"(os.path.join('share', package_name, '{folder}'), glob('{folder}/{pattern}'))")
+
+
+@package_rule("BK602", "launch-opens-uninstalled-file", ERROR)
+def launch_opens_uninstalled_file(pkg: Package) -> Iterator[Hit]:
+    installed = pkg.installed()
+    if installed is None:
+        return
+    for launch, share, line in share_targets(pkg):
+        if share.relative in installed or any(k.startswith(share.relative.rstrip("/") + "/") for k in installed):
+            continue
+        folder = os.path.dirname(share.relative)
+        if folder in dict(REQUIRED_FOLDERS) and not any(k.startswith(folder + "/") for k in installed):
+            continue  # BK601 already says the whole folder is not installed
+        there = sorted(k for k in installed if os.path.dirname(k) == folder)
+        exists = os.path.isfile(os.path.join(pkg.root, share.relative))
+        yield _at(launch.path, line, "exists" if exists else ("other" if there else ""),
+                  path=share.relative, package=pkg.name, installed=there or ["-"], folder=folder or ".")
+
+
+@package_rule("BK603", "ament-index-marker-missing", ERROR)
+def ament_index_marker_missing(pkg: Package) -> Iterator[Hit]:
+    name = pkg.name
+    marker = f"resource/{name}"
+    if not os.path.isfile(os.path.join(pkg.root, marker)):
+        yield _at(marker, None, "file", package=name, marker=marker)
+    setup = pkg.setup
+    if setup is None or setup.data_files is None:
+        return
+    registered = any(os.path.normpath(e.destination).replace(os.sep, "/") == INDEX_FOLDER
+                     and marker in e.sources for e in setup.data_files)
+    if not registered:
+        yield _at(SETUP_PY, setup.data_files_line, "entry", package=name, marker=marker)
+
+
+@package_rule("BK604", "package-name-mismatch", ERROR)
+def package_name_mismatch(pkg: Package) -> Iterator[Hit]:
+    manifest, setup = pkg.manifest, pkg.setup
+    if manifest is None or setup is None or not isinstance(setup.name, str) or manifest.name is None:
+        return
+    if manifest.name != setup.name:
+        yield _at(PACKAGE_XML, manifest.name_line, xml_name=manifest.name, setup_name=setup.name,
+                  setup_line=setup.name_line)
+
+
+@package_rule("BK605", "missing-exec-depend", WARNING)
+def missing_exec_depend(pkg: Package) -> Iterator[Hit]:
+    manifest = pkg.manifest
+    if manifest is None:
+        return
+    seen: set[str] = set()
+    for launch in pkg.launch_files:
+        for node in launch.nodes:
+            dependency = node.package
+            if not isinstance(dependency, str) or dependency == pkg.name or dependency in seen:
+                continue
+            seen.add(dependency)
+            if dependency not in manifest.exec_depends:
+                yield _at(PACKAGE_XML, manifest.depends_line or manifest.line, dependency=dependency,
+                          launch=launch.path, launch_line=node.line)
+
+
+@package_rule("BK606", "invalid-maintainer-email", ERROR)
+def invalid_maintainer_email(pkg: Package) -> Iterator[Hit]:
+    manifest = pkg.manifest
+    if manifest is None:
+        return
+    if not manifest.maintainers:
+        yield _at(PACKAGE_XML, manifest.line, "none")
+    for email, name, line in manifest.maintainers:
+        if not email:
+            yield _at(PACKAGE_XML, line, "missing", maintainer=name)
+        elif not EMAIL.match(email):
+            yield _at(PACKAGE_XML, line, "", maintainer=name, email=email)
+
+
+# ---------------------------------------------------------------- "RViz reste vide"
+
+
+def _rviz_starts(pkg: Package) -> Iterator[tuple[str, NodeCall]]:
+    for launch in pkg.launch_files:
+        for node in launch.nodes:
+            if node.package == "rviz2":
+                yield launch.path, node
+
+
+def _config_argument(node: NodeCall) -> Any:
+    """What follows ``-d`` in the node's arguments: a ShareFile, another value, or None (no -d)."""
+    arguments = node.arguments
+    if not isinstance(arguments, (list, tuple)):
+        return None
+    for k, item in enumerate(arguments):
+        if item == "-d" and k + 1 < len(arguments):
+            return arguments[k + 1]
+        if isinstance(item, str) and item.startswith("-d") and len(item) > 2:
+            return item[2:].strip()
+    return None
+
+
+def _rviz_files(pkg: Package) -> list[tuple[str, str, int]]:
+    """(source .rviz, launch file, line) for each -d of this package that the package holds."""
+    installed = pkg.installed() or {}
+    out = []
+    for path, node in _rviz_starts(pkg):
+        target = _config_argument(node)
+        if isinstance(target, ShareFile) and target.package == pkg.name:
+            source = installed.get(target.relative, target.relative)
+            if os.path.isfile(os.path.join(pkg.root, source)):
+                out.append((source, path, node.line))
+    return out
+
+
+def _rviz_lines(lines: list[str], key: str, start: int = 0) -> int | None:
+    for k in range(start, len(lines)):
+        if lines[k].strip().startswith(key):
+            return k + 1
+    return None
+
+
+def _displays(data: dict[str, Any]) -> list[dict[str, Any]]:
+    manager = data.get("Visualization Manager")
+    displays = manager.get("Displays") if isinstance(manager, dict) else None
+    return [d for d in displays or [] if isinstance(d, dict)]
+
+
+@package_rule("BK610", "rviz-fixed-frame-not-a-link", ERROR)
+def rviz_fixed_frame_not_a_link(pkg: Package) -> Iterator[Hit]:
+    robot = pkg.robot
+    if robot is None:
+        return
+    links = [link.name for link in robot.links if link.name]
+    if any(launch.includes for launch in pkg.launch_files):
+        return  # other frames may be published (static transforms, included launch files)
+    for source, _, _ in _rviz_files(pkg):
+        parsed = pkg.rviz(source)
+        if parsed is None:
+            continue
+        data, lines = parsed
+        manager = data.get("Visualization Manager")
+        options = manager.get("Global Options") if isinstance(manager, dict) else None
+        frame = options.get("Fixed Frame") if isinstance(options, dict) else None
+        if frame is None:
+            yield _at(source, _rviz_lines(lines, "Global Options:"), "missing", root=links[0] if links else "base")
+        elif str(frame) not in links:
+            yield _at(source, _rviz_lines(lines, "Fixed Frame:"), frame=str(frame), links=links,
+                      root=_root(robot) or (links[0] if links else "base"))
+
+
+def _root(robot: Any) -> str | None:
+    children = {j.child for j in robot.joints}
+    return next((link.name for link in robot.links if link.name and link.name not in children), None)
+
+
+@package_rule("BK611", "rviz-robot-model-not-shown", ERROR)
+def rviz_robot_model_not_shown(pkg: Package) -> Iterator[Hit]:
+    for source, _, _ in _rviz_files(pkg):
+        parsed = pkg.rviz(source)
+        if parsed is None:
+            continue
+        data, lines = parsed
+        models = [d for d in _displays(data) if str(d.get("Class", "")).endswith("/RobotModel")]
+        if not models:
+            yield _at(source, _rviz_lines(lines, "Displays:"), "missing")
+            continue
+        model = models[0]
+        start = (_rviz_lines(lines, "Class: rviz_default_plugins/RobotModel") or 1) - 1
+        if model.get("Enabled") is False or model.get("Value") is False:
+            yield _at(source, start + 1, "disabled")
+        if str(model.get("Description Source", "Topic")) != "Topic":
+            continue
+        topic = model.get("Description Topic")
+        value = topic.get("Value") if isinstance(topic, dict) else topic
+        if value != ROBOT_DESCRIPTION:
+            line = _rviz_lines(lines, "Description Topic:", start) or start + 1
+            yield _at(source, line, "topic", topic=str(value if value is not None else ""))
+
+
+@package_rule("BK612", "rviz-no-tf-display", INFO)
+def rviz_no_tf_display(pkg: Package) -> Iterator[Hit]:
+    for source, _, _ in _rviz_files(pkg):
+        parsed = pkg.rviz(source)
+        if parsed is None:
+            continue
+        data, lines = parsed
+        if not any(str(d.get("Class", "")).endswith("/TF") for d in _displays(data)):
+            yield _at(source, _rviz_lines(lines, "Displays:"))
+
+
+@package_rule("BK613", "rviz-without-configuration", INFO)
+def rviz_without_configuration(pkg: Package) -> Iterator[Hit]:
+    for path, node in _rviz_starts(pkg):
+        if not known(node.arguments) or _config_argument(node) is not None:
+            continue
+        configs = pkg.files("rviz", (".rviz",))
+        yield _at(path, node.line, "unused" if configs else "", config=configs[0] if configs else "",
+                  package=pkg.name)
+
+
+# ---------------------------------------------------------------- "le robot ne bouge pas"
+
+
+def _own_executables(pkg: Package) -> list[tuple[str, NodeCall]]:
+    return [(launch.path, node) for launch in pkg.launch_files for node in launch.nodes
+            if node.package == pkg.name]
+
+
+def _publisher_for(pkg: Package, executable: Any) -> Publisher | None:
+    scripts = pkg.setup.scripts if pkg.setup is not None else None
+    for script in scripts or []:
+        if script.name == executable:
+            return next((p for p in pkg.publishers if p.module == script.module), None)
+    return None
+
+
+@package_rule("BK620", "no-joint-state-source", ERROR)
+def no_joint_state_source(pkg: Package) -> Iterator[Hit]:
+    for launch in pkg.launch_files:
+        nodes = launch.nodes
+        starts_rsp = any(n.package == "robot_state_publisher" for n in nodes)
+        if not starts_rsp or launch.includes:
+            continue  # another launch file or process may publish the joint states
+        if any(n.package in JOINT_STATE_PUBLISHERS or not isinstance(n.package, str) for n in nodes):
+            continue
+        own = [n for n in nodes if n.package == pkg.name]
+        if any(not isinstance(n.executable, str) or _publisher_for(pkg, n.executable) is not None for n in own):
+            continue
+        line = next(n.line for n in nodes if n.package == "robot_state_publisher")
+        movable = [j.name for j in pkg.robot.movable_joints()] if pkg.robot is not None else []
+        yield _at(launch.path, line, "nodes" if pkg.publishers else "", joints=movable or ["?"],
+                  node=pkg.publishers[0].module if pkg.publishers else "")
+
+
+@package_rule("BK621", "joint-state-names-mismatch", ERROR)
+def joint_state_names_mismatch(pkg: Package) -> Iterator[Hit]:
+    robot = pkg.robot
+    if robot is None:
+        return
+    movable = [j.name for j in robot.movable_joints() if j.name]
+    for publisher in pkg.publishers:
+        if publisher.names is None:
+            continue
+        unknown = [n for n in publisher.names if n not in movable]
+        missing = [n for n in movable if n not in publisher.names]
+        line = publisher.names_line or publisher.line
+        if unknown:
+            yield _at(publisher.path, line, "unknown", names=unknown, joints=movable)
+        if missing:
+            yield _at(publisher.path, line, "missing", names=missing, published=publisher.names or ["-"])
+
+
+@package_rule("BK622", "node-entry-point-missing", ERROR)
+def node_entry_point_missing(pkg: Package) -> Iterator[Hit]:
+    setup = pkg.setup
+    if setup is None or setup.scripts is None:
+        return
+    scripts = {s.name: s for s in setup.scripts}
+    for path, node in _own_executables(pkg):
+        if isinstance(node.executable, str) and node.executable not in scripts:
+            yield _at(path, node.line, "launch", executable=node.executable, package=pkg.name,
+                      entry=_entry_text(node.executable, f"{pkg.name}.{node.executable}"))
+    listed = {s.module for s in setup.scripts}
+    for publisher in pkg.publishers:
+        if publisher.has_main and publisher.module not in listed:
+            executable = publisher.module.rsplit(".", 1)[-1]
+            yield _at(SETUP_PY, setup.scripts_line, "node", module=publisher.module, node_file=publisher.path,
+                      package=pkg.name, executable=executable, entry=_entry_text(executable, publisher.module))
+    for script in setup.scripts:
+        tree = pkg.module_tree(script.module)
+        if tree is None:
+            yield _at(SETUP_PY, script.line, "module", executable=script.name, module=script.module)
+        elif script.function and not any(getattr(n, "name", None) == script.function for n in tree.body):
+            yield _at(SETUP_PY, script.line, "function", executable=script.name, module=script.module,
+                      function=script.function)
+
+
+def _entry_text(executable: str, module: str) -> str:
+    return f"'{executable} = {module}:main'"
+
+
+@package_rule("BK623", "node-motion-outside-limits", ERROR)
+def node_motion_outside_limits(pkg: Package) -> Iterator[Hit]:
+    robot = pkg.robot
+    if robot is None:
+        return
+    movable = {j.name for j in robot.movable_joints()}
+    for publisher in pkg.publishers:
+        formulas = {joint: text for joint, text in publisher.formulas.items() if joint in movable}
+        for joint, text, violation in _violations(robot, formulas):
+            yield _at(publisher.path, publisher.formulas_line or publisher.line, violation.side,
+                      joint=joint, formula=text, value=round(violation.value, 3), time=round(violation.time, 2),
+                      bound=violation.bound, unit=violation.unit)
+
+
+def _violations(robot: Any, formulas: dict[str, str]) -> Iterator[tuple[str, str, Any]]:
+    """Position limit violations of each formula, followed with the motion module's checks."""
+    if not formulas:
+        return
+    from ...errors import BrasKitError
+    from ...motion import check_limits, motion_from_specs, sample
+
+    for joint, text in formulas.items():
+        try:
+            states = sample(motion_from_specs(robot, [f"{joint}={text}"]), duration=MOTION_SECONDS)
+        except BrasKitError:
+            continue  # not a formula the motion module accepts: not literal enough to judge
+        for violation in check_limits(robot, states):
+            if violation.kind == "position" and violation.joint == joint:
+                yield joint, text, violation

@@ -1,0 +1,237 @@
+"""Physics with MuJoCo, checked against physics worked out by hand (not against the code under test).
+
+Integrators and time steps used: the pendulum period with bras-kit's default (implicitfast,
+2 ms); the energy balance with RK4 at 1 ms (implicitfast damps, by design, and would lose energy);
+everything else with the defaults.
+"""
+
+from __future__ import annotations
+
+import math
+
+import numpy as np
+import pytest
+
+from bras_kit.authoring import arm
+from bras_kit.errors import ModelError
+from bras_kit.model import robot_from_xml
+from bras_kit.motion import pose_motion
+from bras_kit.physics import build_mjcf, simulate
+from bras_kit.xmlio import parse_xml
+
+G = 9.81  # MuJoCo's default gravity, m/s^2
+# the tutorial arm's defaults (templates/robot/bras.urdf.xacro): masses, lengths, efforts
+M1, L1, M2, L2 = 1.0, 0.6, 0.5, 0.5
+EFFORT = 10.0
+
+# --- a single pendulum --------------------------------------------------------------------------------------------
+MASS, D, SIDE, LENGTH = 2.0, 0.3, 0.05, 0.6  # kg, pivot -> centre of mass (m), box section and length (m)
+I_COM = MASS / 12 * (SIDE ** 2 + LENGTH ** 2)  # solid box about its centre, axis across the long side
+I_PIVOT = I_COM + MASS * D ** 2  # parallel axes
+PERIOD = 2 * math.pi * math.sqrt(I_PIVOT / (MASS * G * D))
+THETA0 = 0.05  # rad: small enough that the period grows by only theta0^2/16 = 0.016 %
+
+
+def _pendulum():
+    text = f"""<robot name="pendule">
+  <link name="support"/>
+  <link name="tige">
+    <inertial><origin xyz="0 0 {-D}"/><mass value="{MASS}"/>
+      <inertia ixx="{I_COM}" ixy="0" ixz="0" iyy="{I_COM}" iyz="0" izz="{MASS / 6 * SIDE ** 2}"/></inertial>
+    <visual><origin xyz="0 0 {-D}"/><geometry><box size="{SIDE} {SIDE} {LENGTH}"/></geometry></visual>
+  </link>
+  <joint name="pivot" type="continuous"><parent link="support"/><child link="tige"/>
+    <origin xyz="0 0 1"/><axis xyz="0 1 0"/></joint>
+</robot>"""
+    return robot_from_xml(parse_xml(text, "pendule.urdf"), "pendule.urdf", text)
+
+
+def _crossings(times: np.ndarray, values: np.ndarray) -> np.ndarray:
+    """Times where ``values`` goes from negative to positive, linearly interpolated."""
+    k = np.nonzero((values[:-1] < 0) & (values[1:] >= 0))[0]
+    return times[k] - values[k] * (times[k + 1] - times[k]) / (values[k + 1] - values[k])
+
+
+def test_pendulum_period_matches_the_compound_pendulum_formula():
+    states = simulate(_pendulum(), pose_motion(_pendulum()), control="none", start={"pivot": THETA0},
+                      duration=10 * PERIOD, rate=1000, damping=0)
+    assert states.integrator == "implicitfast" and states.timestep == 0.002
+    up = _crossings(states.times, states.positions[:, 0])
+    measured = float(np.mean(np.diff(up)))
+    expected = PERIOD * (1 + THETA0 ** 2 / 16)
+    assert len(up) >= 9
+    assert measured == pytest.approx(expected, rel=0.005)
+
+
+def test_pendulum_energy_is_conserved_over_ten_periods():
+    states = simulate(_pendulum(), pose_motion(_pendulum()), control="none", start={"pivot": THETA0},
+                      duration=10 * PERIOD, rate=200, damping=0, integrator="RK4", timestep=0.001)
+    theta, omega = states.positions[:, 0], states.velocities[:, 0]
+    energy = 0.5 * I_PIVOT * omega ** 2 + MASS * G * D * (1 - np.cos(theta))
+    e0 = MASS * G * D * (1 - math.cos(THETA0))
+    assert np.max(np.abs(energy - e0)) / e0 < 1e-3
+    assert np.max(np.abs(theta)) == pytest.approx(THETA0, rel=1e-3)  # it swings back to where it started
+
+
+# --- the tutorial arm held by its motors ---------------------------------------------------------------------------
+
+def _holding_torques(q1: float, q2: float) -> tuple[float, float]:
+    """Torque the motors must give to hold the arm: minus the sum over child bodies of m g x lever arm.
+
+    Axes are y; a positive angle tilts a segment towards +x, where gravity pulls it further.
+    """
+    elbow_x = L1 * math.sin(q1)
+    forearm_x = elbow_x + L2 / 2 * math.sin(q1 + q2)
+    shoulder = M1 * G * (L1 / 2) * math.sin(q1) + M2 * G * forearm_x
+    elbow = M2 * G * (L2 / 2) * math.sin(q1 + q2)
+    return -shoulder, -elbow
+
+
+POSES = [(0.5, 0.3), (-1.0, 1.2), (1.2, -0.8), (0.0, 1.5), (-0.4, -1.1)]
+
+
+@pytest.mark.parametrize("pose", POSES, ids=[f"{a}_{b}" for a, b in POSES])
+def test_gravity_compensation_holds_the_arm_with_the_hand_computed_torques(pose):
+    robot = arm(inertials=True)
+    config = {"epaule": pose[0], "coude": pose[1]}
+    states = simulate(robot, pose_motion(robot, config), control="pd+gravity", duration=2.0)
+    assert np.max(np.abs(states.positions - np.array(pose))) < 1e-6
+    expected = _holding_torques(*pose)
+    assert states.efforts[-1] == pytest.approx(expected, abs=1e-6)
+
+
+def test_plain_pd_sags_under_gravity_by_torque_over_stiffness():
+    robot = arm(inertials=True)
+    states = simulate(robot, pose_motion(robot, {"epaule": 0.0, "coude": 0.6}), control="pd", duration=4.0)
+    # at rest the motor torque kp * error balances gravity: error = holding torque / kp (small-angle check)
+    hold = np.array(_holding_torques(*states.positions[-1]))
+    error = np.array([0.0, 0.6]) - states.positions[-1]
+    assert error * 100.0 == pytest.approx(hold, abs=1e-4)
+    assert np.all(np.abs(error) > 1e-3)
+
+
+@pytest.mark.parametrize("params", [{}, {"epaule_effort": 2}, {"coude_effort": 0.5}])
+@pytest.mark.parametrize("control", ["pd", "pd+gravity"])
+def test_motor_torques_never_exceed_effort(control, params):
+    robot = arm(inertials=True, params=params)
+    states = simulate(robot, control=control, duration=6.0)
+    limits = np.array([params.get("epaule_effort", EFFORT), params.get("coude_effort", EFFORT)])
+    assert np.all(np.abs(states.efforts) <= limits * (1 + 1e-9))
+
+
+# MuJoCo's joint limits are soft (default solref: 0.02 s time constant, critically damped), so a joint
+# hitting its stop goes past it by about speed x time constant before it is pushed back. Bound stated:
+# 0.02 s x the fastest speed reached, plus 0.005 rad for the weight resting on the stop.
+LIMIT_SOFTNESS_S, LIMIT_REST = 0.02, 0.005
+
+
+def test_dropped_arm_comes_to_rest_on_its_shoulder_limit_within_the_softness_bound():
+    robot = arm(params={"coude_lower": -0.01, "coude_upper": 0.01, "bras_mass": 1.0}, inertials=True)
+    states = simulate(robot, pose_motion(robot), control="none", start={"epaule": 0.3}, duration=6.0, rate=500)
+    upper = 1.57
+    speed = float(np.max(np.abs(states.velocities[:, 0])))
+    past = float(np.max(states.positions[:, 0] - upper))
+    assert past <= LIMIT_SOFTNESS_S * speed + LIMIT_REST
+    assert states.positions[-1, 0] == pytest.approx(upper, abs=LIMIT_REST)
+    assert abs(states.velocities[-1, 0]) < 1e-3
+    assert states.joint_report("epaule").final_position == pytest.approx(upper, abs=LIMIT_REST)
+
+
+def test_weak_shoulder_is_reported_and_strong_elbow_is_not():
+    robot = arm(inertials=True, params={"epaule_effort": 2})
+    states = simulate(robot, control="pd", duration=10.0)
+    shoulder, elbow = states.joint_report("epaule"), states.joint_report("coude")
+    # holding the arm straight out at the sine's peak (0.8 rad) needs more than 2 N.m
+    assert -_holding_torques(0.8, 0.0)[0] > 2.0
+    assert shoulder.weak and shoulder.needed_peak > 2.0 and shoulder.share_at_limit > 0.5
+    assert not elbow.weak
+    assert states.weak_joints == ["epaule"]
+
+
+def test_strong_motors_track_the_sine_closely_with_gravity_compensation():
+    states = simulate(arm(inertials=True), control="pd+gravity", duration=10.0)
+    assert not states.weak_joints
+    assert all(r.error_max < 0.05 and r.share_at_limit == 0 for r in states.report)
+
+
+# --- building the model ----------------------------------------------------------------------------------------------
+
+VARIANTS = {
+    "inertials": {"inertials": True},
+    "wrist-inertials": {"wrist": True, "inertials": True},
+    "long-bras": {"inertials": True, "params": {"bras_length": 0.8, "bras_mass": 3}},
+    "narrow-limits": {"wrist": True, "inertials": True, "params": {"coude_lower": -0.5, "coude_upper": 0.5}},
+}
+
+
+@pytest.mark.parametrize("options", VARIANTS.values(), ids=VARIANTS.keys())
+def test_every_variant_builds_with_one_body_per_link_and_one_motor_per_joint(options):
+    import mujoco
+
+    robot = arm(**options)
+    model = build_mjcf(robot).compile()
+    links = [link.name for link in robot.links]
+    assert [mujoco.mj_id2name(model, mujoco.mjtObj.mjOBJ_BODY, b) for b in range(1, model.nbody)] == links
+    assert model.nu == len(links) - 1
+    masses = {"base": 2.0, "bras": 1.0, "avant_bras": 0.5, "poignet": 0.2}
+    masses.update({k.removesuffix("_mass"): float(v) for k, v in options.get("params", {}).items() if k.endswith("_mass")})
+    assert list(model.body_mass[1:]) == pytest.approx([masses[n] for n in links])
+    assert model.actuator_forcerange[:, 1] == pytest.approx([EFFORT, EFFORT, 5.0][:model.nu])
+
+
+def test_arm_without_inertials_is_refused_with_a_hint():
+    with pytest.raises(ModelError) as info:
+        build_mjcf(arm())
+    assert "bras" in info.value.message and "--inertials" in info.value.hint
+
+
+def test_collision_only_link_weighs_as_water():
+    import mujoco
+
+    model = build_mjcf(arm(collisions=True)).compile()
+    bras = mujoco.mj_name2id(model, mujoco.mjtObj.mjOBJ_BODY, "bras")
+    assert model.body_mass[bras] == pytest.approx(1000 * 0.08 * 0.08 * 0.6)  # box volume x 1000 kg/m^3
+
+
+def test_floor_is_under_the_base_and_touching_segments_are_excluded():
+    built = build_mjcf(arm(inertials=True))
+    assert built.floor_z == pytest.approx(-0.05)  # half the base cylinder's 0.1 m height
+    assert 'type="plane"' in built.xml and 'pos="0 0 -0.05"' in built.xml
+    assert [(p, c) for p, c, _ in built.excluded] == [("base", "bras"), ("bras", "avant_bras")]
+    assert '<exclude body1="base" body2="bras"/>' in built.xml
+
+
+def test_collisions_match_the_visuals_in_the_template():
+    robot = arm(collisions=True, wrist=True)
+    for link in robot.links:
+        assert len(link.collisions) == len(link.visuals) == 1
+        assert link.collisions[0].geometry == link.visuals[0].geometry.__class__(
+            **{**link.visuals[0].geometry.__dict__, "line": link.collisions[0].geometry.line})
+        assert link.collisions[0].origin.xyz == link.visuals[0].origin.xyz
+    assert all(link.collisions for link in arm(inertials=True).links)
+
+
+@pytest.mark.parametrize("options", [{"collisions": True}, {"collisions": True, "wrist": True},
+                                     {"inertials": True, "wrist": True}], ids=["collisions", "wrist", "inertials"])
+def test_urdf_with_collisions_passes_check_urdf(tmp_path, options):
+    import shutil
+    import subprocess
+
+    from bras_kit.authoring import arm_urdf
+
+    program = shutil.which("check_urdf")
+    assert program, "check_urdf (liburdfdom-tools) is missing"
+    path = tmp_path / "bras.urdf"
+    path.write_text(arm_urdf(**options))
+    result = subprocess.run([program, str(path)], capture_output=True, text=True, timeout=60)
+    assert result.returncode == 0 and "Successfully Parsed XML" in result.stdout, result.stdout + result.stderr
+    assert path.read_text().count("<collision>") == (4 if options.get("wrist") else 3)
+
+
+def test_missing_inertials_are_explained_in_french():
+    from bras_kit.physics.diagnostics import check_physics_ready
+
+    with pytest.raises(ModelError) as info:
+        check_physics_ready(arm(), "fr")
+    assert "n'a pas d'<inertial>" in info.value.message and "--inertials" in info.value.hint
+    check_physics_ready(arm(inertials=True), "fr")  # nothing to say
