@@ -65,6 +65,8 @@ _LAZY = {
     "jacobian": "bras_kit.ik",
     "simulate": "bras_kit.physics",
     "build_mjcf": "bras_kit.physics",
+    "view": "bras_kit.view",
+    "set_language": "bras_kit.i18n",
 }
 
 

@@ -26,17 +26,19 @@ class BrasKitError(Exception):
         self.hint = hint
 
     def __str__(self) -> str:
+        from .i18n import _, translate_message
+
         where = ""
         if self.path:
             where = str(self.path)
             if self.line:
                 where += f":{self.line}"
             where += ": "
-        text = where + self.message
+        text = where + translate_message(self.message)
         if self.element:
-            text += f" (in <{self.element}>)"
+            text += " " + _("(in <{}>)").format(self.element)
         if self.hint:
-            text += f"\n  hint: {self.hint}"
+            text += f"\n  {_('hint')}: {translate_message(self.hint)}"
         return text
 
 
@@ -58,6 +60,15 @@ class XacroError(BrasKitError):
 
 class ParameterError(BrasKitError):
     """A template parameter, joint value or command-line value is unknown or malformed."""
+
+
+class UnknownJointError(ParameterError):
+    """A name given as a joint is not a movable joint of this robot (``joint`` holds the name);
+    the command line adds what the name is instead (a template parameter, the wrist...)."""
+
+    def __init__(self, message: str, joint: str, **where: object) -> None:
+        super().__init__(message, **where)  # type: ignore[arg-type]
+        self.joint = joint
 
 
 class UnsafeExpressionError(BrasKitError):

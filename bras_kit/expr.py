@@ -16,6 +16,7 @@ import ast
 import builtins
 import difflib
 import math
+import re
 from collections.abc import Callable
 from dataclasses import dataclass
 
@@ -190,6 +191,43 @@ def compile_expression(text: str, *, prefix: str = "") -> Expression:
     return Expression(text=source, uses_t=uses_t, _node=node)
 
 
+def _decimal_comma(node: ast.Tuple) -> bool:
+    """``1,2*sin(t)`` parses as the tuple (1, 2*sin(t)): a French decimal comma, not a tuple."""
+    first = node.elts[0] if node.elts else None
+    while isinstance(first, ast.BinOp):
+        first = first.right
+    return isinstance(first, ast.Constant) and isinstance(first.value, int)
+
+
+_DEGREES = re.compile(r"^([-+]?(?:\d+(?:[.,]\d*)?|[.,]\d+))\s*(?:deg|degrees?|°)$", re.IGNORECASE)
+_COMMA_NUMBER = re.compile(r"^[-+]?\d*,\d+$")
+
+
+def parse_joint_value(text: str) -> float:
+    """A joint value as learners type it: ``0.5``, ``1,5`` (decimal comma), ``pi/2``,
+    ``-0.5*pi``, ``90deg`` (degrees said explicitly). Radians (metres for prismatic joints)
+    unless ``deg`` says otherwise; the result is finite. Formulas of ``t`` are refused."""
+    raw = text.strip()
+    degrees = _DEGREES.match(raw)
+    if degrees:
+        value = math.radians(float(degrees.group(1).replace(",", ".")))
+    else:
+        if _COMMA_NUMBER.match(raw):
+            raw = raw.replace(",", ".")
+        try:
+            value = float(raw)
+        except ValueError:
+            expression = compile_expression(raw)
+            if expression.uses_t:
+                raise ParameterError(f"'{raw}' depends on the time t: a joint value is one number",
+                                     hint="give a number such as 0.5, pi/2 or 90deg; formulas of t go in --motion") from None
+            value = float(expression(0.0))
+    if not math.isfinite(value):
+        raise ParameterError(f"'{text}' is not a finite number",
+                             hint="give a number such as 0.5, pi/2 or 90deg")
+    return value
+
+
 _SHOWN = 72  # longest excerpt of a formula shown above the caret
 
 
@@ -241,6 +279,10 @@ class _Compiler:
         if isinstance(node, (ast.Attribute, ast.Subscript)):
             # point at the '.' or '[' rather than at the start of the object
             raise self.fail(node, _REFUSED[type(node)], byte_offset=node.value.end_col_offset)
+        if isinstance(node, ast.Tuple) and _decimal_comma(node):
+            raise self.fail(node, "a comma cannot be a decimal point in a formula",
+                            hint="write 1.2 with a dot: in a formula the comma separates the "
+                                 "arguments of a function, as in atan2(y, x)")
         if type(node) in _REFUSED:
             raise self.fail(node, _REFUSED[type(node)])
         if isinstance(node, ast.Compare):

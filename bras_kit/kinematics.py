@@ -13,7 +13,7 @@ from dataclasses import dataclass
 
 import numpy as np
 
-from .errors import ModelError, ParameterError
+from .errors import ModelError, ParameterError, UnknownJointError
 from .model import MOVABLE_TYPES, Joint, Robot
 
 # ---------------------------------------------------------------- rotations
@@ -173,7 +173,7 @@ class TFTree:
             if name not in self._dof_index:  # type: ignore[attr-defined]
                 joint = self.robot.joint(name)
                 why = f"joint '{name}' is {joint.type} and cannot be set" if joint else f"unknown joint '{name}'"
-                raise ParameterError(why, hint="movable joints: " + (", ".join(self.dof) or "none"))
+                raise UnknownJointError(why, name, hint="movable joints: " + (", ".join(self.dof) or "none"))
             q[self._dof_index[name]] = float(value)  # type: ignore[attr-defined]
         return q
 

@@ -23,6 +23,7 @@ from collections.abc import Callable, Iterator
 from typing import Any
 
 from .errors import BrasKitError, OutputExistsError
+from .i18n import _
 
 STDOUT = "-"
 
@@ -111,7 +112,7 @@ def write_to(path: str, force: bool, writer: Callable[[str], Any], *, make_paren
     with staged(path, force, make_parents=make_parents, option=option) as temporary:
         result = writer(temporary)
     if announce:
-        print(f"wrote {path}", file=sys.stderr)
+        print(_("wrote {path}").format(path=path), file=sys.stderr)
     return result
 
 

@@ -117,6 +117,20 @@ def package_origin(name: str) -> str | None:
     return _FOUND.get(name)
 
 
+def packages_used() -> dict[str, str]:
+    """Every package found so far, name -> folder (``$(find)`` and ``package://``)."""
+    return dict(sorted(_FOUND.items()))
+
+
+def describe_package_folder(name: str, folder: str) -> str:
+    """``name -> folder``, saying when the folder was taken by its name alone (no package.xml)."""
+    from .i18n import _
+
+    if os.path.isfile(os.path.join(folder, "package.xml")) or os.path.basename(os.path.dirname(folder)) == "share":
+        return _("package '{name}': {folder}").format(name=name, folder=folder)
+    return _("package '{name}': {folder} (no package.xml: found by its folder name)").format(name=name, folder=folder)
+
+
 def _locate(path: str, message: str, extra: Iterable[str] = ()) -> int | None:
     """Best guess at the line of ``path`` an xacro error is about, from the names it quotes."""
     tokens = list(extra) + re.findall(r"['\"]([^'\"]{1,80})['\"]", message)
@@ -175,10 +189,17 @@ def expand_xacro(
     if sandbox:
         from .sandbox import run_limited
 
-        return run_limited(_expand, path, dict(mappings or {}), tuple(package_paths),
-                           cpu_seconds=SANDBOX_CPU_SECONDS, memory_bytes=SANDBOX_MEMORY_BYTES,
-                           wall_seconds=SANDBOX_WALL_SECONDS, what=f"expanding {path}")
+        text, found = run_limited(_expand_and_report, path, dict(mappings or {}), tuple(package_paths),
+                                  cpu_seconds=SANDBOX_CPU_SECONDS, memory_bytes=SANDBOX_MEMORY_BYTES,
+                                  wall_seconds=SANDBOX_WALL_SECONDS, what=f"expanding {path}")
+        _FOUND.update(found)  # the child found the packages: remember them here, for --verbose
+        return text
     return _expand(path, dict(mappings or {}), tuple(package_paths))
+
+
+def _expand_and_report(path: str, mappings: Mapping[str, str],
+                       package_paths: tuple[str, ...]) -> tuple[str, dict[str, str]]:
+    return _expand(path, mappings, package_paths), dict(_FOUND)
 
 
 def _is_builtin_template(path: str) -> bool:

@@ -7,6 +7,18 @@ import os
 import pytest
 
 os.environ.setdefault("PYOPENGL_PLATFORM", "egl")
+for _variable in ("BRAS_KIT_LANG", "LC_ALL", "LC_MESSAGES", "LANG", "LANGUAGE"):
+    os.environ.pop(_variable, None)  # English unless a test asks for French
+
+
+@pytest.fixture(autouse=True)
+def _english_by_default():
+    """A command run with --lang fr sets the process's language: each test starts from the default."""
+    from bras_kit import i18n
+
+    i18n._language.clear()
+    yield
+    i18n._language.clear()
 
 
 @pytest.fixture(scope="session")

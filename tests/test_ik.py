@@ -531,3 +531,26 @@ def test_reaching_motion_samples_like_any_motion_and_passes_the_limit_check(wris
     np.testing.assert_allclose(states.positions, motion.positions(states.times), atol=1e-15)
     np.testing.assert_allclose(states.velocities, motion.velocities(states.times), atol=1e-15)
     assert check_limits(wrist_robot, states) == []
+
+
+def _reachable_by_hand(x: np.ndarray, z: np.ndarray, l1: float, l2: float, q1: float, q2: float) -> np.ndarray:
+    """Points (shoulder frame) some pose with |epaule| <= q1, |coude| <= q2 reaches: law of cosines."""
+    r2 = x * x + z * z
+    c = (r2 - l1 * l1 - l2 * l2) / (2 * l1 * l2)
+    ok = np.zeros_like(x, dtype=bool)
+    inside = np.abs(c) <= 1
+    for sign in (1, -1):
+        elbow = sign * np.arccos(np.clip(c, -1, 1))
+        shoulder = np.arctan2(x, z) - np.arctan2(l2 * np.sin(elbow), l1 + l2 * np.cos(elbow))
+        shoulder = (shoulder + np.pi) % (2 * np.pi) - np.pi
+        ok |= inside & (np.abs(elbow) <= q2) & (np.abs(shoulder) <= q1)
+    return ok
+
+
+def test_workspace_areas_agree_with_the_exact_regions(tutorial_tree):
+    _, _, summary = workspace_figure(tutorial_tree, 100_000)
+    assert summary.area_without_limits == pytest.approx(math.pi * (1.1 ** 2 - 0.1 ** 2), rel=0.015)
+    grid = np.linspace(-1.1, 1.1, 2001)
+    x, z = np.meshgrid(grid, grid)
+    exact = _reachable_by_hand(x, z, 0.6, 0.5, 1.57, 2.0).mean() * 2.2 ** 2
+    assert summary.area_within_limits == pytest.approx(exact, rel=0.02)

@@ -14,7 +14,8 @@ import sys
 from collections.abc import Sequence
 
 from .. import __version__
-from ..errors import BrasKitError
+from ..errors import BrasKitError, UnknownJointError
+from ..i18n import LANGUAGES, _, set_language, translate_message
 
 # name -> one-line help. The module is bras_kit.cli.<name> (``xacro`` lives in ``xacro_cmd``).
 COMMANDS: dict[str, str] = {
@@ -34,69 +35,141 @@ COMMANDS: dict[str, str] = {
     "workspace": "draw the region the tip can reach within the joint limits",
     "simulate": "physics with MuJoCo: gravity, motors limited by effort, collisions",
     "mjcf": "write the MuJoCo model (MJCF) bras-kit builds from the URDF",
+    "view": "the arm live in the browser: sliders, TF frames, motion playback, reload on save",
 }
 
 _MODULES = {"xacro": "xacro_cmd"}
+_SUBPARSERS: dict[str, argparse.ArgumentParser] = {}
 
 
 def _command_module(name: str):  # type: ignore[no-untyped-def]
     return importlib.import_module(f"{__name__}.{_MODULES.get(name, name)}")
 
 
+class _Formatter(argparse.RawDescriptionHelpFormatter):
+    """Help in the chosen language: descriptions, epilogs, group titles and option help go
+    through the ``cli`` catalog (argparse's own words through :func:`_localise_argparse`)."""
+
+    def _format_text(self, text: str) -> str:
+        return super()._format_text(translate_message(text))
+
+    def start_section(self, heading: str | None) -> None:
+        super().start_section(translate_message(heading) if heading else heading)
+
+    def _get_help_string(self, action: argparse.Action) -> str | None:
+        return translate_message(action.help) if action.help else action.help
+
+
+def _localise_argparse() -> None:
+    """argparse looks its words up through its module globals ``_`` and ``ngettext``."""
+    argparse._ = lambda text: translate_message(text)  # type: ignore[attr-defined]
+    argparse.ngettext = lambda one, many, n: translate_message(one if n == 1 else many)  # type: ignore[attr-defined]
+
+
+def _add_language(parser: argparse.ArgumentParser) -> None:
+    if "--lang" not in parser._option_string_actions:
+        parser.add_argument("--lang", choices=LANGUAGES, default=None,
+                            help="language of messages and pictures (default: BRAS_KIT_LANG, "
+                            "else French when the locale is French)")
+
+
 def build_parser(selected: str | None) -> argparse.ArgumentParser:
+    _localise_argparse()
     parser = argparse.ArgumentParser(
         prog="bras-kit",
         description="Describe, check, move and show a robot arm without ROS "
         "(the arm of the tutorial 'Simuler un bras robotisé avec ROS 2').",
         epilog="Run 'bras-kit COMMAND --help' for a command's options. "
         "Start with 'bras-kit demo'.",
+        formatter_class=_Formatter,
     )
-    parser.add_argument("--version", action="version", version=f"bras-kit {__version__}")
+    parser.add_argument("--version", action="version", version=f"bras-kit {__version__}",
+                        help="show the version and exit")
+    _add_language(parser)
     sub = parser.add_subparsers(dest="command", metavar="COMMAND", title="commands")
     for name, summary in COMMANDS.items():
-        command_parser = sub.add_parser(name, help=summary, description=summary[0].upper() + summary[1:] + ".")
+        command_parser = sub.add_parser(name, help=summary, description=summary[0].upper() + summary[1:] + ".",
+                                        formatter_class=_Formatter)
+        _SUBPARSERS[name] = command_parser
         if name == selected:
             _command_module(name).configure(command_parser)
+            command_parser.formatter_class = _Formatter
+            _add_language(command_parser)
     return parser
 
 
 def _selected_command(argv: Sequence[str]) -> str | None:
+    skip = False
     for arg in argv:
+        if skip:
+            skip = False
+            continue
+        if arg == "--lang":
+            skip = True
+            continue
         if not arg.startswith("-"):
             return arg if arg in COMMANDS else None
     return None
 
 
+def _language_in(argv: Sequence[str]) -> str | None:
+    """The value of ``--lang`` wherever it stands (before or after the command name)."""
+    found = None
+    for i, arg in enumerate(argv):
+        if arg == "--":
+            break
+        if arg == "--lang" and i + 1 < len(argv):
+            found = argv[i + 1]
+        elif arg.startswith("--lang="):
+            found = arg.split("=", 1)[1]
+    return found if found in LANGUAGES else None
+
+
 def main(argv: Sequence[str] | None = None) -> int:
     argv = list(sys.argv[1:] if argv is None else argv)
+    try:
+        lang = set_language(_language_in(argv))
+    except BrasKitError as exc:  # BRAS_KIT_LANG holds an unknown language
+        print(f"bras-kit: {_('error')}: {exc}", file=sys.stderr)
+        return 2
     selected = _selected_command(argv)
     parser = build_parser(selected)
-    args = parser.parse_args(argv)
+    args, extra = parser.parse_known_args(argv)
+    if extra:  # the command's own usage, not the top-level one
+        target = _SUBPARSERS.get(args.command or "", parser)
+        target.error(translate_message("unrecognized arguments: %s") % " ".join(extra))
     if args.command is None:
         parser.print_help()
         return 0
+    args.lang = lang
+    command = args.command
     try:
-        return int(_command_module(args.command).run(args) or 0)
+        return int(_command_module(command).run(args) or 0)
+    except UnknownJointError as exc:
+        from ._common import joint_name_hint
+
+        exc.hint = joint_name_hint(exc.joint, exc.hint)
+        _fail(command, str(exc))
     except BrasKitError as exc:
-        print(f"bras-kit {args.command}: error: {exc}", file=sys.stderr)
-        return 2
+        _fail(command, str(exc))
     except KeyboardInterrupt:
-        print("interrupted", file=sys.stderr)
+        print(_("interrupted"), file=sys.stderr)
         return 130
     except BrokenPipeError:
         return 0
     except MemoryError:
-        print(f"bras-kit {args.command}: error: out of memory: the input is too large for this machine",
-              file=sys.stderr)
-        return 2
+        _fail(command, _("out of memory: the input is too large for this machine"))
     except OSError as exc:  # a file problem no command caught: still one line, never a traceback
         where = f"{exc.filename}: " if getattr(exc, "filename", None) else ""
-        print(f"bras-kit {args.command}: error: {where}{exc.strerror or exc}", file=sys.stderr)
-        return 2
+        _fail(command, where + translate_message(str(exc.strerror or exc)))
     except Exception as exc:  # a bug: say so in one line; BRAS_KIT_DEBUG=1 shows the traceback
         if os.environ.get("BRAS_KIT_DEBUG"):
             raise
-        print(f"bras-kit {args.command}: internal error: {type(exc).__name__}: {exc}\n"
-              "  hint: this is a bug in bras-kit; run again with BRAS_KIT_DEBUG=1 and report the traceback",
+        print(f"bras-kit {command}: {_('internal error')}: {type(exc).__name__}: {exc}\n  {_('hint')}: "
+              + _("this is a bug in bras-kit; run again with BRAS_KIT_DEBUG=1 and report the traceback"),
               file=sys.stderr)
-        return 2
+    return 2
+
+
+def _fail(command: str, text: str) -> None:
+    print(f"bras-kit {command}: {_('error')}: {text}", file=sys.stderr)

@@ -3,12 +3,11 @@
 from __future__ import annotations
 
 import argparse
-import math
 import sys
 from collections.abc import Callable, Iterable, Mapping
 from typing import Any
 
-from ..errors import ParameterError
+from ..errors import BrasKitError, ParameterError
 
 
 def add_model_arguments(parser: argparse.ArgumentParser, *, variants: bool = True) -> None:
@@ -56,20 +55,21 @@ def load_model(args: argparse.Namespace):  # type: ignore[no-untyped-def]
 
 
 def joint_values(items: Iterable[str]) -> dict[str, float]:
-    """``["epaule=0.5"]`` -> ``{"epaule": 0.5}``, with a clear error for a bad value."""
+    """``["epaule=0.5", "coude=pi/2", "poignet=90deg"]`` -> radians by joint name, with a clear
+    error for a bad value (the one parser of joint values: --set, --pose, --from, --start)."""
     from ..authoring import parse_assignments
+    from ..expr import parse_joint_value
 
     values = {}
     for name, text in parse_assignments(items, "joint value").items():
         try:
-            value = float(text)
-        except ValueError:
-            raise ParameterError(f"{name}={text!r}: the joint value is not a number",
-                                 hint="give radians for revolute joints and metres for prismatic ones") from None
-        if not math.isfinite(value):
-            raise ParameterError(f"{name}={text!r}: a joint value must be a finite number",
-                                 hint="give radians for revolute joints and metres for prismatic ones")
-        values[name] = value
+            values[name] = parse_joint_value(text)
+        except BrasKitError as exc:
+            detail = exc.message.split("\n")[0]
+            why = detail if "time t" in detail else f"the joint value is not a number ({detail})"
+            raise ParameterError(f"{name}={text!r}: {why}",
+                                 hint="give radians for revolute joints and metres for prismatic ones: "
+                                      "0.5, 1,5, pi/2, -0.5*pi, or degrees said explicitly: 90deg") from None
     return values
 
 
@@ -99,7 +99,39 @@ def save_with(path: str, force: bool, writer: Callable[[str], Any], **options: A
 
 
 def warn(message: str) -> None:
-    print(f"warning: {message}", file=sys.stderr)
+    from ..i18n import _, translate_message
+
+    print(f"{_('warning')}: {translate_message(message)}", file=sys.stderr)
+
+
+def warn_out_of_limits(tree: Any, config: Mapping[str, float], consequence: str = "") -> None:
+    """One warning per value past its joint's limits; a value that reads as degrees says so."""
+    from ..i18n import _
+    from ..motion import value_in_degrees
+
+    for name, value, lower, upper in tree.out_of_limits(config):
+        if value > upper:
+            text = _("{name}={value:g} is above its upper limit {limit:g} by {excess:.4g}").format(
+                name=name, value=value, limit=upper, excess=value - upper)
+        else:
+            text = _("{name}={value:g} is below its lower limit {limit:g} by {excess:.4g}").format(
+                name=name, value=value, limit=lower, excess=lower - value)
+        if value_in_degrees(tree.robot.joint(name), value):
+            text += "; " + _("it looks like degrees: write {name}={value:g}deg").format(name=name, value=value)
+        warn(text + (f" ({consequence})" if consequence else ""))
+
+
+def joint_name_hint(name: str, hint: str | None) -> str | None:
+    """What a name given as a joint is instead: a template parameter, the wrist of the exercise."""
+    from ..authoring import template_parameters
+    from ..i18n import _
+
+    if name in template_parameters():
+        return _("'{name}' is a template parameter of the built-in arm, not a joint: use --param {name}=VALUE"
+                 ).format(name=name)
+    if name == "poignet":
+        return _("'poignet' is the wrist of the tutorial's exercise: add --wrist to use the arm that has it")
+    return hint
 
 
 def format_config(config: Mapping[str, float]) -> str:

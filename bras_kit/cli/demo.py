@@ -7,6 +7,7 @@ import os
 import sys
 import time
 
+from ..i18n import _
 from ._common import add_force_argument
 
 DEMO_POSE = {"epaule": 0.8, "coude": 1.2}
@@ -46,8 +47,9 @@ def run(args: argparse.Namespace) -> int:
     owned = _claim(outdir, args.force)
     size = parse_size(args.size)
     robot = arm(wrist=args.wrist)
-    variant = "with the wrist 'poignet'" if args.wrist else "epaule + coude"
-    print(f"bras-kit demo: the tutorial arm '{robot.name}' ({variant}) -> {outdir}/")
+    variant = _("with the wrist 'poignet'") if args.wrist else "epaule + coude"
+    print(_("bras-kit demo: the tutorial arm '{name}' ({variant}) -> {folder}/").format(
+        name=robot.name, variant=variant, folder=outdir))
     made: list[str] = []
 
     def save(name: str, writer) -> str:  # type: ignore[no-untyped-def]
@@ -57,43 +59,48 @@ def run(args: argparse.Namespace) -> int:
         _remember(outdir, owned | set(made))
         return path
 
-    start = _step("scaffolding the ROS 2 package")
+    start = _step(_("scaffolding the ROS 2 package"))
     package_dir = os.path.join(outdir, "bras_description")
-    scaffold_package(package_dir, wrist=args.wrist, force=args.force or "bras_description" in owned)
+    scaffold_package(package_dir, wrist=args.wrist, force=args.force or "bras_description" in owned, lang=args.lang)
     made.append("bras_description")
     _remember(outdir, owned | set(made))
     _done(start, package_dir + "/")
 
-    start = _step("validating the URDF")
-    findings = validate(robot)
+    start = _step(_("validating the URDF"))
+    findings = validate(robot, lang=args.lang)
     problems = [f for f in findings if f.severity in ("error", "warning")]
-    print(f" {len(problems)} errors or warnings ({time.perf_counter() - start:.1f} s)")
+    print(" " + _("{count} errors or warnings ({seconds:.1f} s)").format(
+        count=len(problems), seconds=time.perf_counter() - start))
     for finding in problems:
-        print(f"    {finding.code} {finding.severity}: {finding.message}")
+        print(f"    {finding.code} {_(finding.severity)}: {finding.message}")
 
-    start = _step(f"rendering the pose {', '.join(f'{k}={v}' for k, v in DEMO_POSE.items())} with TF axes")
+    start = _step(_("rendering the pose {pose} with TF axes").format(
+        pose=", ".join(f"{k}={v}" for k, v in DEMO_POSE.items())))
     picture = render_pose(robot, DEMO_POSE, size=size, tf=True, backend=args.backend)
     pose_png = save("pose.png", lambda path: save_png(picture, path))
     _done(start, pose_png)
 
-    start = _step(f"animating the tutorial motion ({args.duration:g} s at {args.fps:g} fps)")
+    start = _step(_("animating the tutorial motion ({duration:g} s at {fps:g} fps)").format(
+        duration=args.duration, fps=args.fps))
     states = sample_loop(tutorial_motion(robot), args.duration, args.fps)
     gif = save(f"{robot.name}.gif",
                lambda path: save_gif(render_motion(robot, states, size=size, backend=args.backend), path, fps=args.fps))
     _done(start, gif)
     for violation in check_limits(robot, states):
-        print(f"    warning: {violation.joint} leaves its {violation.kind} limit at t={violation.time:.2f} s")
+        print("    " + _("warning") + ": " + _("{joint} leaves its {kind} limit at t={time:.2f} s").format(
+            joint=violation.joint, kind=_(violation.kind), time=violation.time))
 
-    start = _step("drawing the frame tree")
+    start = _step(_("drawing the frame tree"))
     frames_pdf = save("frames.pdf", lambda path: frame_diagram(robot, DEMO_POSE, path=path))
     save("frames.png", lambda path: frame_diagram(robot, DEMO_POSE, path=path))
     _done(start, frames_pdf + " (+ .png)")
 
-    start = _step("plotting joint angles and the tip path")
+    start = _step(_("plotting joint angles and the tip path"))
     plot_png = save("motion.png", lambda path: plot_motion(robot, states, path=path))
     _done(start, plot_png)
 
-    print(f"done. Open {gif} to see the arm move; build {package_dir} with colcon on a ROS 2 machine.")
+    print(_("done. Open {gif} to see the arm move; build {package} with colcon on a ROS 2 machine.").format(
+        gif=gif, package=package_dir))
     sys.stdout.flush()
     return 1 if any(f.severity == "error" for f in findings) else 0
 

@@ -9,8 +9,6 @@ import sys
 def configure(parser: argparse.ArgumentParser) -> None:
     parser.add_argument("code", nargs="?", metavar="CODE",
                         help="a rule code (BK301) or name (joint-not-at-segment-end); omit to list every rule")
-    parser.add_argument("--lang", choices=("en", "fr"), default=None,
-                        help="language (default: from LC_ALL/LC_MESSAGES/LANG, French if it starts with fr)")
 
 
 def run(args: argparse.Namespace) -> int:
@@ -21,5 +19,6 @@ def run(args: argparse.Namespace) -> int:
     if args.code is None:
         sys.stdout.write(rule_list_text(lang))
         return 0
-    sys.stdout.write(explain_text(find_rule(args.code), lang))
+    text = explain_text(find_rule(args.code), lang)
+    sys.stdout.write(text if text.endswith("\n") else text + "\n")
     return 0

@@ -6,7 +6,7 @@ import argparse
 import json
 import math
 
-from ._common import add_model_arguments, joint_values, warn
+from ._common import add_model_arguments, joint_values, warn, warn_out_of_limits
 
 
 def configure(parser: argparse.ArgumentParser) -> None:
@@ -43,10 +43,7 @@ def run(args: argparse.Namespace) -> int:
     tree = tf_tree(robot)
     config = joint_values(args.values)
     tree.config_vector(config)  # unknown joint names fail here, before any output
-    for name, value, lower, upper in tree.out_of_limits(config):
-        side = f"above its upper limit {upper:g} by {value - upper:.4g}" if value > upper else \
-            f"below its lower limit {lower:g} by {lower - value:.4g}"
-        warn(f"{name}={value:g} is {side}")
+    warn_out_of_limits(tree, config)
     for name in tree.unsupported_joints:
         warn(f"joint '{name}' is floating or planar: its child is shown at the joint origin, not moved")
     full = {name: float(config.get(name, 0.0)) for name in tree.dof}

@@ -11,6 +11,7 @@ import os
 import sys
 
 from ..errors import BrasKitError
+from ..i18n import _
 from ._common import add_force_argument, add_model_arguments, check_writable, write_text
 
 _EPILOG = """\
@@ -29,7 +30,6 @@ def configure(parser: argparse.ArgumentParser) -> None:
                         help="motors: none, PD servos (default) or PD servos with gravity compensation")
     parser.add_argument("--kp", type=float, default=None, metavar="GAIN", help="motor stiffness, N·m/rad (default: 100)")
     parser.add_argument("--kd", type=float, default=None, metavar="GAIN", help="motor damping, N·m·s/rad (default: 10)")
-    parser.add_argument("--lang", choices=("fr", "en"), default=None, help="language of the diagnostics")
     parser.add_argument("-o", "--output", metavar="FILE", help="write the MJCF to FILE (meshes in FILE_meshes/)")
     add_force_argument(parser)
 
@@ -49,10 +49,10 @@ def run(args: argparse.Namespace) -> int:
     kd = mjcf.DEFAULT_KD if args.kd is None else float(gain_vector(args.kd, ["all"], mjcf.DEFAULT_KD, "kd")[0])
     built = mjcf.build_mjcf(robot, package_paths=args.package_path, kp=kp, kd=kd, control=args.control)
     for note in physics_notes(robot, built, lang, args.package_path):
-        print(f"{note.level}: {note.text}", file=sys.stderr)
+        print(f"{_(note.level)}: {note.text}", file=sys.stderr)
     if not args.output or args.output == "-":
         if built.assets:
-            print("note: the meshes are not printed; write with -o FILE to get them in FILE_meshes/", file=sys.stderr)
+            print(_("note: the meshes are not printed; write with -o FILE to get them in FILE_meshes/"), file=sys.stderr)
         write_text(None, built.xml, args.force)
         return 0
     stem = os.path.splitext(os.path.basename(args.output))[0]
@@ -71,7 +71,7 @@ def run(args: argparse.Namespace) -> int:
         except OSError as exc:
             raise BrasKitError(f"cannot write {exc.filename or target}: {exc.strerror or exc}",
                                hint="check the folder is writable and has space") from None
-        print(f"wrote {len(built.assets)} meshes in {target}/", file=sys.stderr)
+        print(_("wrote {count} meshes in {folder}/").format(count=len(built.assets), folder=target), file=sys.stderr)
     return 0
 
 

@@ -14,6 +14,7 @@ import os
 import sys
 
 from ..errors import ParameterError
+from ..i18n import _
 from ._common import (
     add_force_argument,
     add_model_arguments,
@@ -123,16 +124,16 @@ def run(args: argparse.Namespace) -> int:
     for segment in segments[:10]:
         warn(describe_segment(segment))
     if len(segments) > 10:
-        warn(f"... and {len(segments) - 10} more waypoint segments too fast")
+        warn(_("... and {count} more waypoint segments too fast").format(count=len(segments) - 10))
     reported = {s.joint for s in segments}
     for v in clamped:
-        warn("clamped: " + describe_violation(v))
+        warn(_("clamped") + ": " + describe_violation(v))
     for v in violations:
         if v.kind == "velocity" and v.joint in reported:
             continue  # already named segment by segment
         warn(describe_violation(v))
     if any(v.kind == "position" for v in violations):
-        print("  hint: pass --clamp to keep positions inside the limits, or lower the amplitude",
+        print("  " + _("hint") + ": " + _("pass --clamp to keep positions inside the limits, or lower the amplitude"),
               file=sys.stderr)
     if fmt is None:
         print(_summary(robot, motion, states, violations, clamped, rate))
@@ -146,20 +147,21 @@ def _summary(robot, motion, states, violations, clamped, rate: float) -> str:  #
     from ..motion import joint_unit
 
     duration = float(states.times[-1]) if len(states) else 0.0
-    lines = [f"motion: {motion.label or 'fixed pose'}; {duration:g} s at {rate:g} Hz, "
-             f"{len(states)} samples x {len(states.names)} joints"]
+    lines = [_("motion: {label}; {duration:g} s at {rate:g} Hz, {samples} samples x {joints} joints").format(
+        label=motion.label or _("fixed pose"), duration=duration, rate=rate, samples=len(states),
+        joints=len(states.names))]
     if not states.names:
-        lines.append("the robot has no movable joint")
+        lines.append(_("the robot has no movable joint"))
         return "\n".join(lines)
-    header = ("joint", "min", "max", "lower", "upper", "max|vel|", "vel.limit", "limits", "source")
+    header = (_("joint"), "min", "max", _("lower"), _("upper"), "max|vel|", _("vel.limit"), _("limits"), _("source"))
     rows = [header]
     sources = motion.sources()
     for k, name in enumerate(states.names):
         joint = robot.joint(name)
         lower, upper = joint.bounds() if joint else (float("-inf"), float("inf"))
         speed = joint.limit.velocity if joint is not None and joint.limit is not None else None
-        status = [f"clamped ({v.side})" for v in clamped if v.joint == name]
-        status += [("too fast" if v.kind == "velocity" else f"past {v.side}")
+        status = [_("clamped ({side})").format(side=_(v.side)) for v in clamped if v.joint == name]
+        status += [(_("too fast") if v.kind == "velocity" else _("past {side}").format(side=_(v.side)))
                    for v in violations if v.joint == name]
         unit = joint_unit(joint)
         rows.append((
@@ -169,7 +171,7 @@ def _summary(robot, motion, states, violations, clamped, rate: float) -> str:  #
             f"{lower:g}", f"{upper:g}",
             f"{abs(states.velocities[:, k]).max():.3f}",
             f"{speed:g} {unit}/s" if speed else "-",
-            ", ".join(status) or "ok",
+            ", ".join(status) or _("ok"),
             sources.get(name, ""),
         ))
     widths = [max(len(row[i]) for row in rows) for i in range(len(header))]
@@ -178,6 +180,6 @@ def _summary(robot, motion, states, violations, clamped, rate: float) -> str:  #
                  for i, (cell, width) in enumerate(zip(row, widths))]
         lines.append("  ".join(cells).rstrip())
     problems = len(violations)
-    lines.append("all within limits" if not problems else
-                 f"{problems} limit violation{'s' if problems != 1 else ''} (see the warnings above)")
+    lines.append(_("all within limits") if not problems else
+                 _("{count} limit violations (see the warnings above)").format(count=problems))
     return "\n".join(lines)

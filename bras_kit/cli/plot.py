@@ -5,6 +5,7 @@ from __future__ import annotations
 import argparse
 import sys
 
+from ..i18n import _
 from ._common import add_force_argument, add_model_arguments, joint_values, warn
 
 DEFAULT_OUTPUT = "plot.png"
@@ -40,8 +41,9 @@ def run(args: argparse.Namespace) -> int:
     save_with(output, args.force, lambda temporary: plot_motion(robot, states, path=temporary), announce=False)
     link, offset = tip_point(robot)
     duration = float(states.times[-1]) if len(states.times) else 0.0
-    print(f"wrote {output}: {len(states.times)} sample{'s' if len(states.times) != 1 else ''} over {duration:g} s; "
-          f"tip = '{link}' + ({', '.join(f'{v:g}' for v in offset)})", file=sys.stderr)
+    print(_("wrote {path}: {count} samples over {duration:g} s; tip = '{link}' + ({offset})").format(
+        path=output, count=len(states.times), duration=duration, link=link,
+        offset=", ".join(f"{v:g}" for v in offset)), file=sys.stderr)
     for violation in check_limits(robot, states):
         warn(describe_violation(violation))
     return 0

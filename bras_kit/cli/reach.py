@@ -9,8 +9,10 @@ from __future__ import annotations
 import argparse
 import math
 import re
+import sys
 import textwrap
 
+from ..i18n import _
 from ._common import add_force_argument, add_model_arguments, check_writable, joint_values, warn
 
 # argparse takes "-0.3" for a positional only in its plain forms; widen that to "-1e-3",
@@ -118,7 +120,8 @@ def run(args: argparse.Namespace) -> int:
     start = joint_values(args.start)
     tree.config_vector(start)  # unknown joint names fail here
     for name, value, lower, upper in tree.out_of_limits(start):
-        warn(f"the start pose has {name}={value:g}, outside its limits {lower:g}..{upper:g}")
+        warn(_("the start pose has {name}={value:g}, outside its limits {lower:g}..{upper:g}").format(
+            name=name, value=value, lower=lower, upper=upper))
     chain = serial_chain(tree, args.link, args.tip_offset)
     rotation = rpy_to_matrix(args.rpy) if args.rpy else None
     result = solve_ik(tree, (args.x, args.y, args.z), rotation=rotation, tip_link=chain.tip_link,
@@ -129,7 +132,7 @@ def run(args: argparse.Namespace) -> int:
         motion = reach_motion(tree, start, result.joints, args.duration)
         violations = motion_violations(tree, motion)
     elif args.duration is not None or args.gif:
-        warn("no move: the target is not reached")
+        warn(_("no move: the target is not reached"))
     if motion is not None and args.gif:
         _write_gif(robot, motion, args.gif, args.force)
     code = 0 if result.reachable and not result.singular and not violations else 1
@@ -154,39 +157,45 @@ def run(args: argparse.Namespace) -> int:
         print(json.dumps(data, indent=2))
         return code
 
-    print(f"target     {_point_text(result.target)}  (tip: {tip_text})")
-    how = result.method + (f", elbow {result.elbow}" if result.elbow else "")
+    print(f"{_('target'):10s} {_point_text(result.target)}  ({_('tip')}: {tip_text})")
+    how = _(result.method) + (", " + _("elbow {side}").format(side=_(result.elbow)) if result.elbow else "")
     if result.method == "numeric":
-        how += f", {result.iterations} iterations"
-    print(f"{'reached' if result.reachable else 'NOT reached':10s} ({how})")
+        how += ", " + _("{count} iterations").format(count=result.iterations)
+    print(f"{_('reached') if result.reachable else _('NOT reached'):10s} ({how})")
     if result.reason != "ok":
         print(textwrap.fill(result.message, 100, initial_indent=" " * 11, subsequent_indent=" " * 13))
-    print("joints" if result.reachable else "closest pose within the limits")
+    print(_("joints") if result.reachable else _("closest pose within the limits"))
     for name in tree.dof:
         joint = robot.joint(name)
         low, high = joint.bounds() if joint is not None else (-math.inf, math.inf)
-        print(f"  {name:12s} {_angle(result.joints[name], units[name])}   limits {low:g} .. {high:g}")
-    print(f"tip        {_point_text(result.tip)}, {result.residual:.3g} m from the target"
-          + (f", orientation off by {result.rotation_residual:.3g} rad" if result.rotation_residual is not None else ""))
+        print(f"  {name:12s} {_angle(result.joints[name], units[name])}   {_('limits')} {low:g} .. {high:g}")
+    print(f"{_('tip'):10s} {_point_text(result.tip)}, " + _("{distance:.3g} m from the target").format(distance=result.residual)
+          + (", " + _("orientation off by {angle:.3g} rad").format(angle=result.rotation_residual)
+             if result.rotation_residual is not None else ""))
     for solution in result.solutions:
         if result.reachable and solution.elbow == result.elbow:
             continue
-        state = "within the limits" if solution.within_limits else \
-            "past the limits: " + "; ".join(v.describe() for v in solution.violations)
+        state = _("within the limits") if solution.within_limits else \
+            _("past the limits") + ": " + "; ".join(v.describe() for v in solution.violations)
         values = ", ".join(f"{n}={solution.joints[n]:+.4f}" for n in tree.dof)
-        print(f"elbow {solution.elbow:4s} {values} ({state})")
+        print(_("elbow {side}").format(side=f"{_(solution.elbow):4s}") + f" {values} ({state})")
     if motion is not None:
         peaks = []
         for name, peak in zip(tree.dof, motion.peak_velocities()):
             joint = robot.joint(name)
             limit = joint.limit.velocity if joint is not None and joint.limit is not None else None
-            peaks.append(f"{name} {peak:.3g}" + (f" of {limit:g}" if limit else "") + f" {units[name]}/s")
-        print(f"move       {motion.duration:.3f} s from {format_config(start)} (quintic); "
-              f"peak speed {', '.join(peaks)}")
+            peaks.append(f"{name} {peak:.3g}" + (" " + _("of {limit:g}").format(limit=limit) if limit else "")
+                         + f" {units[name]}/s")
+        print(f"{_('move'):10s} " + _("{duration:.3f} s from {start} (quintic); peak speed {peaks}").format(
+            duration=motion.duration, start=format_config(start), peaks=", ".join(peaks)))
         if violations:
-            print("           leaves the limits: " + "; ".join(v.describe() for v in violations))
+            print(" " * 11 + _("leaves the limits") + ": " + "; ".join(v.describe() for v in violations))
         else:
-            print("           within the position and velocity limits")
+            print(" " * 11 + _("within the position and velocity limits"))
         if args.gif:
-            print(f"wrote {args.gif}")
+            print(_("wrote {path}").format(path=args.gif))
+    if code and result.reachable:  # reached, yet exit 1: say why, so a script's failure is explained
+        why = _("the target is reached at a singular pose (a small move of the target needs a large joint move)") \
+            if result.singular else _("the move there leaves the joint limits")
+        print(_("exit code 1: {why}").format(why=why), file=sys.stderr)
     return code

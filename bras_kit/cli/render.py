@@ -14,6 +14,7 @@ import sys
 from collections.abc import Iterable, Iterator
 from typing import TYPE_CHECKING
 
+from ..i18n import _
 from ._common import (
     add_force_argument,
     add_model_arguments,
@@ -22,6 +23,7 @@ from ._common import (
     joint_values,
     load_model,
     warn,
+    warn_out_of_limits,
 )
 
 if TYPE_CHECKING:
@@ -126,15 +128,18 @@ def run(args: argparse.Namespace) -> int:
                 antialias=args.antialias, package_paths=tuple(args.package_path))
     options = render_options(**opts)  # bad values fail before the model is even loaded
     robot = load_model(args)
-    if not (math.isfinite(args.fps) and 0 < args.fps <= 120):
-        raise ParameterError(f"--fps {args.fps:g} is out of range", hint="give frames per second between 0 and 120")
+    if not (math.isfinite(args.fps) and 1 <= args.fps <= 120):
+        raise ParameterError(f"--fps {args.fps:g} is out of range", hint="give frames per second between 1 and 120, e.g. 20")
+    for option, path, suffix in (("--gif", args.gif, ".gif"), ("--mp4", args.mp4, ".mp4")):
+        if path and path != "-" and not path.lower().endswith(suffix):
+            raise ParameterError(f"{option} {path}: the file name does not end in {suffix}",
+                                 hint=f"name the file like {option} arm{suffix} (the format follows the option)")
     if args.duration is not None and not (math.isfinite(args.duration) and args.duration > 0):
         raise ParameterError(f"--duration {args.duration:g} is not a positive time", hint="give seconds, e.g. 10")
     tree = tf_tree(robot)
     set_values = joint_values(args.set_values)
     tree.config_vector(set_values)  # unknown joints fail before anything is drawn
-    for name, value, lower, upper in tree.out_of_limits(set_values):
-        warn(f"{name}={value:g} is outside its limits [{lower:g}, {upper:g}] (drawn anyway)")
+    warn_out_of_limits(tree, set_values, _("drawn anyway"))
 
     stem = _file_name(robot.name)
     animated = args.gif is not None or args.mp4 is not None or args.frames_dir is not None
@@ -152,6 +157,11 @@ def run(args: argparse.Namespace) -> int:
     if args.mp4 == "":
         args.mp4 = f"{stem}.mp4"
         defaulted.append(args.mp4)
+    if args.output == "-" and not animated:  # a PNG on standard output: bras-kit render -o - | ...
+        with Renderer(robot, fit=set_values, **opts) as renderer:
+            save_png(renderer.render(set_values), sys.stdout.buffer)
+        sys.stdout.flush()
+        return 0
     if args.output is not None and not args.output.lower().endswith(PICTURE_SUFFIXES):
         raise ParameterError(f"-o {args.output}: cannot tell the picture format from the name",
                              hint="end the name with " + ", ".join(PICTURE_SUFFIXES))
@@ -220,5 +230,5 @@ def _writing() -> Iterator[None]:
 
 
 def _report(path: str, details: str, defaulted: bool) -> None:
-    where = " in the current folder (choose the name with the output option)" if defaulted else ""
-    print(f"wrote {path}{where}: {details}", file=sys.stderr)
+    where = " " + _("in the current folder (choose the name with the output option)") if defaulted else ""
+    print(_("wrote {path}").format(path=path) + f"{where}: {details}", file=sys.stderr)

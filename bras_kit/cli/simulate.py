@@ -12,6 +12,7 @@ import os
 import sys
 
 from ..errors import BrasKitError, ParameterError
+from ..i18n import _
 from ._common import (
     add_force_argument,
     add_model_arguments,
@@ -67,7 +68,6 @@ def configure(parser: argparse.ArgumentParser) -> None:
                         help="write the measured joint states: .csv (time,name,position,velocity,effort) or .json")
     parser.add_argument("--plot", metavar="FILE", help="plot positions and torques with the effort limits (.png/.svg/.pdf)")
     parser.add_argument("--strict", action="store_true", help="exit with status 1 when a motor is too weak")
-    parser.add_argument("--lang", choices=("fr", "en"), default=None, help="language of the report")
     add_force_argument(parser)
 
 
@@ -115,7 +115,7 @@ def run(args: argparse.Namespace) -> int:
                       damping=mjcf.DEFAULT_DAMPING if args.damping is None else args.damping,
                       package_paths=args.package_path)
     for note in physics_notes(robot, states.model, lang, args.package_path):  # type: ignore[arg-type]
-        print(f"{note.level}: {note.text}", file=sys.stderr)
+        print(f"{_(note.level)}: {note.text}", file=sys.stderr)
     print(report_text(robot, states, lang))
     try:
         if fmt is not None:
@@ -124,13 +124,14 @@ def run(args: argparse.Namespace) -> int:
             from ..physics.plot import save_torque_plot
 
             save_torque_plot(robot, states, args.plot, lang)
-            print(f"wrote {args.plot}", file=sys.stderr)
+            print(_("wrote {path}").format(path=args.plot), file=sys.stderr)
         if args.gif:
             from ..render import render_motion, save_gif
 
             with render_motion(robot, states, package_paths=tuple(args.package_path)) as frames:
                 count = save_gif(frames, args.gif, fps=args.rate)
-            print(f"wrote {args.gif}: {count} frames at {args.rate:g} fps", file=sys.stderr)
+            print(_("wrote {path}: {count} frames at {fps:g} fps").format(path=args.gif, count=count, fps=args.rate),
+                  file=sys.stderr)
     except OSError as exc:
         raise BrasKitError(f"cannot write {exc.filename or 'the output'}: {exc.strerror or exc}",
                            hint="check the folder exists, is writable and has space") from None

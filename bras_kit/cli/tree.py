@@ -5,7 +5,7 @@ from __future__ import annotations
 import argparse
 import sys
 
-from ._common import add_model_arguments, joint_values, warn
+from ._common import add_model_arguments, joint_values, warn, warn_out_of_limits
 
 
 def configure(parser: argparse.ArgumentParser) -> None:
@@ -40,8 +40,7 @@ def run(args: argparse.Namespace) -> int:
         text = text.encode(encoding, errors="replace").decode(encoding)
     sys.stdout.write(text)
     tree = tf_tree(robot)
-    for name, value, lower, upper in tree.out_of_limits(config):
-        warn(f"{name}={value:g} is outside its limits {lower:g}..{upper:g}")
+    warn_out_of_limits(tree, config)
     for name in tree.unsupported_joints:
         warn(f"joint '{name}' is floating or planar: bras-kit keeps its child at the joint origin")
     return 0

@@ -30,10 +30,8 @@ def configure(parser: argparse.ArgumentParser) -> None:
                         "is also checked as a ROS 2 package (default: the built-in tutorial arm)")
     parser.add_argument("--format", choices=("text", "json"), default="text",
                         help="text for people (default), json for programs")
-    parser.add_argument("--lang", choices=("en", "fr"), default=None,
-                        help="language of messages (default: from LC_ALL/LC_MESSAGES/LANG, French if it starts with fr)")
     parser.add_argument("--strict", action="store_true", help="warnings also fail (exit 1)")
-    parser.add_argument("--pose", action="append", default=[], metavar="JOINT=VALUE",
+    parser.add_argument("--set", "--pose", dest="pose", action="append", default=[], metavar="JOINT=VALUE",
                         help="check this joint value against its limits (radians or metres; repeatable, "
                         "or comma-separated: --pose epaule=0.5,coude=2.5)")
     parser.add_argument("--motion", action="append", default=[], metavar="SPEC",
@@ -49,10 +47,27 @@ def configure(parser: argparse.ArgumentParser) -> None:
                         help="folder holding ROS packages, for $(find pkg) and package:// meshes (repeatable)")
     parser.add_argument("--xacro-arg", action="append", default=[], metavar="NAME:=VALUE",
                         help="xacro argument for .xacro files (repeatable)")
+    parser.add_argument("-v", "--verbose", action="store_true",
+                        help="also say which folder each ROS package ($(find), package://) was taken from")
     parser.add_argument("--wrist", action="store_true", help="built-in arm: with the wrist joint 'poignet'")
     parser.add_argument("--inertials", action="store_true", help="built-in arm: with <inertial> on every link")
     parser.add_argument("--param", action="append", default=[], metavar="NAME=VALUE",
                         help="built-in arm: change a template parameter (e.g. bras_length=0.8)")
+
+
+def _print_packages() -> None:
+    from ..xacrotools import describe_package_folder, packages_used
+
+    for name, folder in packages_used().items():
+        print(describe_package_folder(name, folder), file=sys.stderr)
+
+
+def _assignments(items: list[str]) -> list[str]:
+    """``["epaule=0.5,coude=1,5"]`` -> ``["epaule=0.5", "coude=1,5"]``: a comma starts a new
+    assignment only before ``NAME=``, so a French decimal comma stays in its value."""
+    import re
+
+    return [part for item in items for part in re.split(r",(?=\s*[A-Za-z_][\w.-]*\s*=)", item) if part.strip()]
 
 
 def _codes(items: list[str]) -> list[str]:
@@ -87,7 +102,7 @@ def run(args: argparse.Namespace) -> int:
     except ValueError as exc:
         raise ParameterError(f"--select/--ignore: no rule code starts with '{exc}'",
                              hint="codes look like BK301; 'bras-kit explain' lists them all") from None
-    pose = joint_values(_codes(args.pose))
+    pose = joint_values(_assignments(args.pose))
     if args.duration is not None and not args.duration > 0:
         raise ParameterError(f"--duration {args.duration:g}: must be a positive number of seconds")
     options = dict(pose=pose or None, motion=args.motion or None, duration=args.duration, lang=lang,
@@ -119,4 +134,6 @@ def run(args: argparse.Namespace) -> int:
         sys.stdout.write(format_json(results, strict=args.strict))
     else:
         sys.stdout.write(format_text(results, lang, colour=_use_colour()))
+    if args.verbose:
+        _print_packages()
     return exit_code(results, strict=args.strict)

@@ -5,6 +5,7 @@ from __future__ import annotations
 import argparse
 import os
 
+from ..i18n import _
 from ._common import add_force_argument, add_model_arguments, check_writable, save_with
 
 FORMATS = (".png", ".svg", ".pdf")
@@ -36,11 +37,11 @@ def run(args: argparse.Namespace) -> int:
         raise ParameterError(f"--samples {args.samples} is out of range", hint="give a number from 1 to 5000000")
     check_writable(args.output, args.force)
     tree = tf_tree(load_model(args))
-    figure, _, summary = workspace_figure(tree, args.samples, tip_link=args.link, tip_offset=args.tip_offset)
+    figure, _axes, summary = workspace_figure(tree, args.samples, tip_link=args.link, tip_offset=args.tip_offset)
     save_with(args.output, args.force, figure.savefig, announce=False)
     h, v = summary.axes
-    print(f"tip region in the {h}-{v} plane: {summary.area_within_limits:.3f} m^2 within the joint limits, "
-          f"{summary.area_without_limits:.3f} m^2 if every joint turned freely; "
-          f"farthest tip {summary.max_reach:.3f} m from the first joint")
-    print(f"wrote {args.output}")
+    print(_("tip region in the {h}-{v} plane: {inside:.3f} m^2 within the joint limits, {free:.3f} m^2 if "
+            "every joint turned freely; farthest tip {reach:.3f} m from the first joint").format(
+        h=h, v=v, inside=summary.area_within_limits, free=summary.area_without_limits, reach=summary.max_reach))
+    print(_("wrote {path}").format(path=args.output))
     return 0

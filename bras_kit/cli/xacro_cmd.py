@@ -14,6 +14,8 @@ def configure(parser: argparse.ArgumentParser) -> None:
     parser.add_argument("--package-path", action="append", default=[], metavar="DIR",
                         help="a folder holding packages, a package, or an install share/ tree, "
                         "for $(find pkg) (repeatable; also $BRAS_KIT_PACKAGE_PATH)")
+    parser.add_argument("-v", "--verbose", action="store_true",
+                        help="say which folder each $(find pkg) was taken from")
     add_force_argument(parser)
 
 
@@ -23,4 +25,11 @@ def run(args: argparse.Namespace) -> int:
 
     text = expand_xacro(args.file, xacro_mappings(args.mappings), args.package_path)
     write_text(args.output, text, args.force)
+    if args.verbose:
+        import sys
+
+        from ..xacrotools import describe_package_folder, packages_used
+
+        for name, folder in packages_used().items():
+            print(describe_package_folder(name, folder), file=sys.stderr)
     return 0

@@ -5,6 +5,7 @@ from __future__ import annotations
 import math
 from collections.abc import Mapping, Sequence
 
+from ..i18n import _
 from ..kinematics import TFTree
 from ..model import Joint
 from ..motion import joint_unit
@@ -34,53 +35,53 @@ def _range_text(joint: Joint, separator: str = "..") -> str | None:
     """``-1.57..1.57`` for a bounded joint, None when there is nothing to show."""
     if joint.type in ("revolute", "prismatic"):
         if joint.limit is None:
-            return "no <limit>"
+            return _("no <limit>")
         return f"{format_number(joint.limit.lower)}{separator}{format_number(joint.limit.upper)}"
     return None
 
 
 def _axis_text(joint: Joint) -> str:
     text = format_vector(joint.axis_or_default)
-    return text if joint.axis is not None else text + " (default)"
+    return text if joint.axis is not None else text + " (" + _("default") + ")"
 
 
 def joint_summary(joint: Joint) -> str:
     """One line about a joint: ``revolute, axis 0 1 0, -1.57..1.57``."""
-    parts = [joint.type or "no type"]
+    parts = [joint.type or _("no type")]
     if joint.type in ("revolute", "continuous", "prismatic"):
-        parts.append("axis " + _axis_text(joint))
+        parts.append(_("axis") + " " + _axis_text(joint))
     limits = _range_text(joint)
     if limits is not None:
         parts.append(limits)
     if joint.mimic is not None:
-        parts.append(f"mimics {joint.mimic.joint}")
+        parts.append(_("mimics {joint}").format(joint=joint.mimic.joint))
     return ", ".join(parts)
 
 
 def joint_label_lines(joint: Joint, value: float | None = None) -> list[str]:
     """The detail lines under a joint's name in the frame diagram (origin, axis, limits, value)."""
-    lines = [joint.type or "no type"]
+    lines = [joint.type or _("no type")]
     if joint.mimic is not None:
-        lines[0] += (f", mimics {joint.mimic.joint} x{format_number(joint.mimic.multiplier)}"
+        lines[0] += (", " + _("mimics {joint}").format(joint=joint.mimic.joint) + f" x{format_number(joint.mimic.multiplier)}"
                      f" {'+' if joint.mimic.offset >= 0 else '-'}{format_number(abs(joint.mimic.offset))}")
     lines.append("xyz " + format_vector(joint.origin.xyz))
     lines.append("rpy " + format_vector(joint.origin.rpy))
     if joint.type in ("revolute", "continuous", "prismatic"):
-        lines.append("axis " + _axis_text(joint))
+        lines.append(_("axis") + " " + _axis_text(joint))
     limits = _range_text(joint, " .. ")
     if limits is not None:
-        lines.append(f"limits {limits} {joint_unit(joint)}" if joint.limit is not None else limits)
+        lines.append(f"{_('limits')} {limits} {joint_unit(joint)}" if joint.limit is not None else limits)
     elif joint.type == "continuous":
-        lines.append("no position limits")
+        lines.append(_("no position limits"))
     if joint.limit is not None and joint.type in ("revolute", "continuous", "prismatic"):
-        lines.append(f"effort {format_number(joint.limit.effort)}, "
-                     f"velocity {format_number(joint.limit.velocity)}")
+        lines.append(f"{_('effort')} {format_number(joint.limit.effort)}, "
+                     f"{_('velocity')} {format_number(joint.limit.velocity)}")
     if value is not None:
-        text = f"value {format_number(value)} {joint_unit(joint)}"
+        text = f"{_('value')} {format_number(value)} {joint_unit(joint)}"
         if joint.type != "prismatic":
             text += f" ({format_number(math.degrees(value))} deg)"
         if beyond_limits(joint, value):
-            text += " OUT OF LIMITS"
+            text += " " + _("OUT OF LIMITS")
         lines.append(text)
     return lines
 

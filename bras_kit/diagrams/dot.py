@@ -6,6 +6,7 @@ from collections.abc import Mapping
 
 import numpy as np
 
+from ..i18n import _
 from ..kinematics import TFTree, fk_batch, tf_tree
 from ..model import Joint, Robot
 from ._labels import beyond_limits, format_number, format_vector, joint_label_lines, joint_values
@@ -20,17 +21,17 @@ def pose_facts(tree: TFTree, config: Mapping[str, float] | None) -> tuple[dict[s
 
 def graph_title(robot: Robot, tree: TFTree, config: Mapping[str, float] | None) -> str:
     joints = len(tree.links) - 1
-    title = (f"{robot.name or 'robot'}: frame tree, {len(tree.links)} links, {joints} joints "
-             f"({len(tree.dof)} movable)")
+    title = _("{robot}: frame tree, {links} links, {joints} joints ({movable} movable)").format(
+        robot=robot.name or "robot", links=len(tree.links), joints=joints, movable=len(tree.dof))
     if config:
-        title += "\npose: " + ", ".join(f"{k}={format_number(v)}" for k, v in config.items())
+        title += "\n" + _("pose") + ": " + ", ".join(f"{k}={format_number(v)}" for k, v in config.items())
     return title
 
 
 def link_label(name: str, position: np.ndarray | None) -> str:
     if position is None:
         return name
-    return f"{name}\nat {format_vector(position.tolist())}"
+    return f"{name}\n" + _("at {position}").format(position=format_vector(position.tolist()))
 
 
 def joint_label(joint: Joint, value: float | None) -> list[str]:

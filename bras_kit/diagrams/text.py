@@ -5,6 +5,7 @@ from __future__ import annotations
 from collections.abc import Mapping
 from dataclasses import dataclass
 
+from ..i18n import _
 from ..kinematics import tf_tree
 from ..model import Robot
 from ._labels import beyond_limits, format_number, joint_summary, joint_values
@@ -54,8 +55,8 @@ def tree_text(robot: Robot, config: Mapping[str, float] | None = None, *, ascii:
             value = values[joint.name]  # type: ignore[index]
             text += f" = {format_number(value)}"
             if beyond_limits(joint, value):
-                text += " (out of limits)"
-        deep = f"[depth {depth}] " if depth > MAX_INDENT else ""
+                text += " (" + _("out of limits") + ")"
+        deep = "[" + _("depth {depth}").format(depth=depth) + "] " if depth > MAX_INDENT else ""
         lines.append(f"{prefix}{deep}{glyphs.last if last else glyphs.branch}{text} {glyphs.arrow} {tree.links[index]}")
         below = prefix if depth >= MAX_INDENT else prefix + (glyphs.blank if last else glyphs.pipe)
         kids = children[index]

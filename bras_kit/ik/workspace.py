@@ -9,6 +9,7 @@ from typing import Any
 import numpy as np
 
 from ..errors import ParameterError
+from ..i18n import _
 from ..kinematics import TFTree, fk_batch
 from ..model import Robot
 from ._inputs import Vector, _as_tree
@@ -45,7 +46,7 @@ def workspace_points(model: TFTree | Robot, samples: int = 100_000, *, limits: b
 
 def _occupancy(points: np.ndarray, x_edges: np.ndarray, y_edges: np.ndarray) -> np.ndarray:
     """Cells holding at least one point, with one-cell holes closed (dilate then erode)."""
-    counts, _, _ = np.histogram2d(points[:, 0], points[:, 1], bins=(x_edges, y_edges))
+    counts, _xs, _ys = np.histogram2d(points[:, 0], points[:, 1], bins=(x_edges, y_edges))
     cells = counts > 0
 
     def shift_any(grid: np.ndarray) -> np.ndarray:
@@ -58,6 +59,15 @@ def _occupancy(points: np.ndarray, x_edges: np.ndarray, y_edges: np.ndarray) -> 
 
     dilated = shift_any(cells)
     return cells | ~shift_any(~dilated)
+
+
+def _area(cells: np.ndarray, cell_area: float) -> float:
+    """Area of a region drawn as occupied cells: a cell on the border (a side touching an empty
+    cell) is on average half inside a smooth boundary, so it counts one half."""
+    padded = np.pad(cells, 1)
+    inner = cells & padded[:-2, 1:-1] & padded[2:, 1:-1] & padded[1:-1, :-2] & padded[1:-1, 2:]
+    border = cells & ~inner
+    return float((inner.sum() + 0.5 * border.sum()) * cell_area)
 
 
 @dataclass
@@ -140,9 +150,9 @@ def workspace_figure(model: TFTree | Robot, samples: int = 100_000, *, tip_link:
         else:
             continue
         axes.add_patch(Rectangle((centre[h] - w / 2, centre[v] - hh / 2), w, hh, facecolor=(0.5, 0.5, 0.5),
-                                 edgecolor="black", linewidth=0.8, zorder=3, label="base"))
+                                 edgecolor="black", linewidth=0.8, zorder=3, label=_("base")))
     axes.plot(arm_points[:, h], arm_points[:, v], "-", color=(0.95, 0.5, 0.1), linewidth=3, zorder=4,
-              label="arm at zero pose")
+              label=_("arm at zero pose"))
     axes.plot(arm_points[1:-1, h], arm_points[1:-1, v], "o", color="black", markersize=5, zorder=5)
     axes.plot(arm_points[-1, h], arm_points[-1, v], "*", color="black", markersize=9, zorder=5)
     shoulder = arm_points[1] if len(arm_points) > 2 else arm_points[0]
@@ -154,12 +164,13 @@ def workspace_figure(model: TFTree | Robot, samples: int = 100_000, *, tip_link:
     axes.set_ylabel(f"{names[v]} (m)")
     axes.grid(True, linewidth=0.3, alpha=0.5, zorder=0)
     tip_text = f"{link} + ({', '.join(f'{c:g}' for c in offset)})"
-    axes.set_title(f"Workspace of {tree.robot.name or 'robot'}: tip {tip_text}", fontsize=10)
-    handles: list[Any] = [Patch(facecolor=free_colour, label="reachable if joints turned freely"),
-               Patch(facecolor=bounded_colour, label="reachable within the joint limits")]
+    axes.set_title(_("Workspace of {robot}: tip {tip}").format(robot=tree.robot.name or "robot", tip=tip_text),
+                   fontsize=10)
+    handles: list[Any] = [Patch(facecolor=free_colour, label=_("reachable if joints turned freely")),
+                          Patch(facecolor=bounded_colour, label=_("reachable within the joint limits"))]
     handles += axes.get_legend_handles_labels()[0]
     axes.legend(handles=handles, loc="lower left", fontsize=8, framealpha=0.9)
     figure.tight_layout()
-    summary = WorkspaceSummary((names[h], names[v]), float(bounded_cells.sum() * cell_area),
-                               float(free_cells.sum() * cell_area), reach, samples)
+    summary = WorkspaceSummary((names[h], names[v]), _area(bounded_cells, cell_area),
+                               _area(free_cells, cell_area), reach, samples)
     return figure, axes, summary

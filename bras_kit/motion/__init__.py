@@ -23,7 +23,15 @@ from .core import (
     sample_loop,
 )
 from .interpolation import INTERPOLATIONS
-from .limits import TOLERANCE, LimitViolation, check_limits, clamp, describe_violation, joint_unit
+from .limits import (
+    TOLERANCE,
+    LimitViolation,
+    check_limits,
+    clamp,
+    describe_violation,
+    joint_unit,
+    value_in_degrees,
+)
 from .sources import (
     TUTORIAL_FORMULAS,
     formula_motion,
@@ -62,6 +70,7 @@ __all__ = [
     "describe_violation",
     "formula_motion",
     "joint_unit",
+    "value_in_degrees",
     "motion_from_specs",
     "pose_motion",
     "read_states",

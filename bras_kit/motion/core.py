@@ -12,7 +12,7 @@ from dataclasses import dataclass
 
 import numpy as np
 
-from ..errors import ParameterError
+from ..errors import ParameterError, UnknownJointError
 from ..kinematics import TFTree
 
 DEFAULT_RATE = 20.0  # Hz, like the tutorial's animation node (a 0.05 s timer)
@@ -42,7 +42,7 @@ class JointStates:
         try:
             return self.names.index(joint)
         except ValueError:
-            raise ParameterError(f"unknown joint '{joint}'", hint="joints: " + ", ".join(self.names)) from None
+            raise UnknownJointError(f"unknown joint '{joint}'", joint, hint="joints: " + ", ".join(self.names)) from None
 
     def config(self, index: int) -> dict[str, float]:
         """The joint values of sample ``index`` by name."""
@@ -117,7 +117,7 @@ def check_joint(tree: TFTree, name: str, path: str | None = None, line: int | No
         why = f"joint '{name}' mimics '{joint.mimic.joint}' and follows it: it cannot be driven"
     else:
         why = f"joint '{name}' is {joint.type} and cannot move"
-    raise ParameterError(why, path=path, line=line, hint="movable joints: " + (", ".join(tree.dof) or "none"))
+    raise UnknownJointError(why, name, path=path, line=line, hint="movable joints: " + (", ".join(tree.dof) or "none"))
 
 
 def sample_count(duration: float, rate: float) -> int:

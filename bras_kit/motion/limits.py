@@ -48,6 +48,18 @@ def speed_limit(joint: Joint | None) -> float | None:
     return float(joint.limit.velocity)
 
 
+def value_in_degrees(joint: Joint | None, value: float) -> bool:
+    """A revolute joint's value past its limits that fits them once read as degrees (``coude=90``):
+    the learner surely typed degrees. Radians past two turns, or whole numbers of 10 or more."""
+    if joint is None or joint.type != "revolute" or joint.limit is None:
+        return False
+    lower, upper = joint.bounds()
+    if lower <= value <= upper or abs(value) > 360:
+        return False
+    looks = abs(value) > 2 * math.pi or (abs(value) >= 10 and float(value).is_integer())
+    return looks and lower <= math.radians(value) <= upper
+
+
 def check_limits(robot: Robot, states: JointStates, tolerance: float = TOLERANCE) -> list[LimitViolation]:
     """Positions past lower/upper and speeds past the velocity limit, per joint.
 

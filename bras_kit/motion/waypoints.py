@@ -44,6 +44,14 @@ def read_waypoints(path: str, tree: TFTree | Robot, interpolation: str | None = 
     except (OSError, UnicodeDecodeError) as exc:
         raise ParameterError(f"cannot read the waypoint file: {exc}", path=path,
                              hint="waypoint files are UTF-8 text") from None
+    states = _joint_states_in(text, path, suffix)
+    if states is not None:  # a file written by bras-kit motion/simulate, or a recorded /joint_states
+        for name in states.names:
+            check_joint(tree, name, path)
+        times = [float(t) - float(states.times[0]) for t in states.times]
+        _check_times(times, [None] * len(times), path)
+        return Waypoints(np.asarray(times), list(states.names), np.asarray(states.positions, dtype=float),
+                         interpolation or "linear", path, tuple([None] * len(times)))
     if suffix == ".csv":
         times, joints, values, lines, written = _parse_csv(text, path, tree)
     else:
@@ -53,12 +61,44 @@ def read_waypoints(path: str, tree: TFTree | Robot, interpolation: str | None = 
                      interpolation or written or "linear", path, tuple(lines))
 
 
-def _number(text: str, decimal_comma: bool = False) -> float | None:
-    try:
-        value = float(text.replace(",", ".") if decimal_comma else text)
-    except ValueError:
+TIME_COLUMNS = ("time", "temps")  # the time column, in English or French
+
+
+def _joint_states_in(text: str, path: str, suffix: str):  # type: ignore[no-untyped-def]
+    """The joint states when the file holds messages (time, name, position...), else None."""
+    from .states_io import _states_from_csv, _states_from_json
+
+    if suffix == ".csv":
+        lines = text.splitlines()
+        at = next((k for k, line in enumerate(lines) if line.strip() and not line.lstrip().startswith("#")), None)
+        if at is None:
+            return None
+        cells = [c.strip().lower() for c in lines[at].split(",")]
+        if len(cells) >= 3 and cells[0] in TIME_COLUMNS and cells[1:3] == ["name", "position"]:
+            header = ",".join(["time", *cells[1:]])  # temps,name,position,... reads as time,...
+            return _states_from_csv("\n".join([header, *lines[at + 1:]]), path)
         return None
-    return value if math.isfinite(value) else None
+    if suffix == ".json":
+        import json
+
+        try:
+            data = json.loads(text)
+        except json.JSONDecodeError:
+            return None
+        if isinstance(data, list) and data and isinstance(data[0], dict) and "name" in data[0]:
+            return _states_from_json(text, path)
+    return None
+
+
+def _number(text: str, decimal_comma: bool = False) -> float | None:
+    """The one parser of joint values (``0.5``, ``1,5``, ``pi/2``, ``90deg``), None if not one."""
+    from ..errors import BrasKitError
+    from ..expr import parse_joint_value
+
+    try:
+        return parse_joint_value(text.replace(",", ".") if decimal_comma else text)
+    except BrasKitError:
+        return None
 
 
 def _parse_csv(text: str, path: str, tree: TFTree):  # type: ignore[no-untyped-def]
@@ -105,7 +145,7 @@ def _parse_csv(text: str, path: str, tree: TFTree):  # type: ignore[no-untyped-d
 
 
 def _check_header(header: list[str], path: str, line: int, tree: TFTree) -> None:
-    if header[0].lower() != "time":
+    if header[0].lower() not in TIME_COLUMNS:
         raise ParameterError(f"the first column is '{header[0]}', not 'time'", path=path, line=line,
                              hint="start the file with a header such as time," + ",".join(tree.dof))
     if len(header) < 2:

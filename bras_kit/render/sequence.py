@@ -312,4 +312,4 @@ def gif_bytes(frames: Iterable[np.ndarray], fps: float = 20.0) -> bytes:
 
 def _check_fps(fps: float) -> None:
     if not (isinstance(fps, (int, float)) and 0 < fps <= 120):
-        raise ParameterError(f"fps {fps!r} is out of range", hint="give frames per second between 0 and 120, e.g. 20")
+        raise ParameterError(f"fps {fps!r} is out of range", hint="give frames per second between 1 and 120, e.g. 20")

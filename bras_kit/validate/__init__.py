@@ -219,9 +219,11 @@ def load_for_validation(path: str, *, mappings: Mapping[str, str] | None = None,
     """The robot in ``path``, or the finding (BK100-BK103) saying why it cannot be read."""
     from ..authoring import load
 
-    if os.path.isdir(path):
+    if path == "-":  # standard input: bras-kit urdf | bras-kit validate -
+        pass
+    elif os.path.isdir(path):
         return _loader_finding("BK103", Hit("file", None, None, {"path": path}, "folder"), lang)
-    if not os.path.exists(path):
+    elif not os.path.exists(path):
         return _loader_finding("BK103", Hit("file", None, None, {"path": path}, "missing"), lang)
     try:
         return load(path, mappings=mappings, package_paths=package_paths)

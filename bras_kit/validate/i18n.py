@@ -11,7 +11,6 @@ either language from the same facts.
 from __future__ import annotations
 
 import importlib
-import os
 from collections.abc import Mapping
 from dataclasses import dataclass
 from typing import Any
@@ -36,13 +35,10 @@ class RuleText:
 
 
 def default_language(environ: Mapping[str, str] | None = None) -> str:
-    """``fr`` when the locale says French (LC_ALL, then LC_MESSAGES, then LANG), else ``en``."""
-    env = os.environ if environ is None else environ
-    for var in ("LC_ALL", "LC_MESSAGES", "LANG"):
-        value = env.get(var, "")
-        if value:
-            return "fr" if value.lower().startswith("fr") else DEFAULT_LANGUAGE
-    return DEFAULT_LANGUAGE
+    """``BRAS_KIT_LANG``, else ``fr`` when the locale says French (LC_ALL, LC_MESSAGES, LANG), else ``en``."""
+    from ..i18n import resolve_language
+
+    return resolve_language(None, environ)
 
 
 def check_language(lang: str) -> str:

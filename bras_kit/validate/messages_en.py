@@ -549,9 +549,15 @@ pokes backwards; with a wrong value a gap or an overlap appears at the joint."""
         title="a pose is outside the joint limits",
         message={
             "upper": "joint '{joint}' = {value} {unit} is {excess} {unit} above its upper limit {bound}",
+            "degrees-upper": "joint '{joint}' = {value} {unit} is {excess} {unit} above its upper limit {bound}",
             "lower": "joint '{joint}' = {value} {unit} is {excess} {unit} below its lower limit {bound}",
+            "degrees-lower": "joint '{joint}' = {value} {unit} is {excess} {unit} below its lower limit {bound}",
         },
-        hint="stay within {lower}..{upper} {unit}, or widen the <limit> if the mechanism allows it",
+        hint={
+            "": "stay within {lower}..{upper} {unit}, or widen the <limit> if the mechanism allows it",
+            "degrees-upper": "{value} looks like degrees: write {value}deg ({degrees} rad); otherwise stay within {lower}..{upper} {unit}",
+            "degrees-lower": "{value} looks like degrees: write {value}deg ({degrees} rad); otherwise stay within {lower}..{upper} {unit}",
+        },
         explanation="""\
 The pose given with `--pose` puts a joint past one of its end stops. robot_state_publisher
 draws the pose anyway, but a real arm or a controller would stop at the limit

@@ -539,8 +539,8 @@ qui se plie de côté dans RViz ; écrire l'axe rend l'intention visible.""",
         },
         explanation="""\
 L'`<origin>` d'une articulation place le link enfant dans le repère du link parent. Sur un bras,
-chaque articulation se trouve au bout du segment précédent : le coude `coude` du tutoriel est en
-z = 0.6 parce que le bras `bras` mesure 0.6 m. Si l'origine ne correspond pas à la longueur du
+chaque articulation se trouve au bout du segment précédent : l'articulation `coude` du tutoriel
+est en z = 0.6 parce que le segment `bras` mesure 0.6 m. Si l'origine ne correspond pas à la longueur du
 parent, le segment suivant démarre à l'intérieur du parent ou flotte à côté (« segments mal
 positionnés »).
 
@@ -575,9 +575,15 @@ un vide ou un chevauchement apparaît à l'articulation.""",
         title="une pose sort des limites d'une articulation",
         message={
             "upper": "articulation '{joint}' = {value} {unit} : {excess} {unit} au-dessus de sa limite haute {bound}",
+            "degrees-upper": "articulation '{joint}' = {value} {unit} : {excess} {unit} au-dessus de sa limite haute {bound}",
             "lower": "articulation '{joint}' = {value} {unit} : {excess} {unit} en dessous de sa limite basse {bound}",
+            "degrees-lower": "articulation '{joint}' = {value} {unit} : {excess} {unit} en dessous de sa limite basse {bound}",
         },
-        hint="restez entre {lower} et {upper} {unit}, ou élargissez le <limit> si le mécanisme le permet",
+        hint={
+            "": "restez entre {lower} et {upper} {unit}, ou élargissez le <limit> si le mécanisme le permet",
+            "degrees-upper": "{value} ressemble à des degrés : écrivez {value}deg ({degrees} rad) ; sinon restez entre {lower} et {upper} {unit}",
+            "degrees-lower": "{value} ressemble à des degrés : écrivez {value}deg ({degrees} rad) ; sinon restez entre {lower} et {upper} {unit}",
+        },
         explanation="""\
 La pose donnée par `--pose` amène une articulation au-delà d'une de ses butées.
 robot_state_publisher l'affiche quand même, mais un vrai bras ou un contrôleur s'arrêterait à la

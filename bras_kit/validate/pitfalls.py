@@ -146,8 +146,12 @@ def pose_outside_limits(ctx: Context) -> Iterator[Hit]:
             continue
         lower, upper = joint.bounds()
         if value > upper + LIMIT_TOLERANCE or value < lower - LIMIT_TOLERANCE:
+            from ..motion import value_in_degrees
+
             above = value > upper
-            yield hit("joint", name, _limit_line(joint), "upper" if above else "lower", joint=name,
+            side = "upper" if above else "lower"
+            variant = f"degrees-{side}" if value_in_degrees(joint, value) else side
+            yield hit("joint", name, _limit_line(joint), variant, joint=name, degrees=round(math.radians(value), 4),
                       value=float(value), bound=upper if above else lower,
                       excess=value - upper if above else lower - value, lower=lower, upper=upper,
                       unit=unit(joint))

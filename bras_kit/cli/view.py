@@ -1,0 +1,108 @@
+"""bras-kit view: the arm live in the browser, like RViz with the slider window, reloaded
+when the file is saved."""
+
+from __future__ import annotations
+
+import argparse
+import os
+import sys
+
+from ..i18n import _
+from ._common import add_force_argument, add_model_arguments
+
+EPILOG = """\
+examples:
+  bras-kit view                              the tutorial arm, sliders for epaule and coude
+  bras-kit view urdf/bras.urdf.xacro         your file; save it and the page reloads
+  bras-kit view --motion tutorial            play the tutorial's motion (play/pause/speed)
+  bras-kit view --export bras.html           one HTML file replaying the motion, no server
+"""
+
+
+def configure(parser: argparse.ArgumentParser) -> None:
+    parser.epilog = EPILOG
+    add_model_arguments(parser)
+    parser.add_argument("-m", "--motion", action="append", default=[], metavar="SPEC",
+                        help="a motion to play: 'tutorial', JOINT=FORMULA or a waypoint/joint-state file (repeatable)")
+    parser.add_argument("--port", type=int, default=8080, help="port of the page (default 8080; the next free one if taken)")
+    parser.add_argument("--host", default="127.0.0.1",
+                        help="address to listen on (default 127.0.0.1: this computer only)")
+    parser.add_argument("--no-browser", action="store_true", help="print the address without opening a browser")
+    parser.add_argument("--export", metavar="HTML",
+                        help="write one self-contained HTML file replaying the motion, then stop")
+    parser.add_argument("--duration", type=float, default=None, metavar="S",
+                        help="with --export: seconds of motion (default: the motion's length, else 10)")
+    parser.add_argument("--fps", type=float, default=20.0, help="with --export: frames per second (default 20)")
+    add_force_argument(parser)
+
+
+def run(args: argparse.Namespace) -> int:
+    from ..authoring import arm, parse_assignments
+    from ..errors import ParameterError
+    from ._common import xacro_mappings
+
+    if not 1 <= args.port <= 65535:
+        raise ParameterError(f"--port {args.port} is out of range", hint="give a port between 1024 and 65535, e.g. 8080")
+    if args.file is not None and (args.wrist or args.inertials or args.param or args.collisions):
+        raise ParameterError("--wrist, --inertials, --collisions and --param apply to the built-in arm only",
+                             hint="drop FILE to use the built-in arm, or edit your file")
+    from ..view import Source
+
+    if args.file is None:
+        source = Source(robot=arm(wrist=args.wrist, inertials=args.inertials, params=parse_assignments(args.param),
+                                  collisions=args.collisions), package_paths=tuple(args.package_path))
+    else:
+        source = Source(path=args.file, mappings=xacro_mappings(args.xacro_arg),
+                        package_paths=tuple(args.package_path))
+    if args.export:
+        return _export(args, source)
+    return _serve(args, source)
+
+
+def _export(args: argparse.Namespace, source: object) -> int:
+    from ..errors import ParameterError
+    from ..motion import motion_from_specs, sample
+    from ..outputs import write_text
+    from ..view import export_html
+    from ._common import check_writable
+
+    if not 1 <= args.fps <= 120:
+        raise ParameterError(f"--fps {args.fps:g} is out of range", hint="give frames per second between 1 and 120, e.g. 20")
+    check_writable(args.export, args.force, option="--export")
+    robot = source.load()  # type: ignore[attr-defined]
+    motion = motion_from_specs(robot, args.motion)
+    states = sample(motion, args.duration if args.duration is not None else (motion.duration or 10.0), args.fps)
+    page = export_html(robot, states, package_paths=source.package_paths)  # type: ignore[attr-defined]
+    write_text(args.export, page, args.force, announce=False)
+    print(_("wrote {path}: {count} frames of {label}, open it in a browser (no server needed)").format(
+        path=args.export, count=len(states.times), label=motion.label or "motion"), file=sys.stderr)
+    return 0
+
+
+def _serve(args: argparse.Namespace, source: object) -> int:
+    from ..view import Viewer
+
+    if args.host not in ("127.0.0.1", "localhost", "::1"):
+        print(_("warning") + ": " + _("listening on {host}: anyone who can reach this computer can see and move "
+                                     "the arm").format(host=args.host), file=sys.stderr)
+    viewer = Viewer(source, host=args.host, port=args.port, lang=args.lang, motion_specs=args.motion)  # type: ignore[arg-type]
+    try:
+        print(_("bras-kit view: {url} (Ctrl-C to stop)").format(url=viewer.url), flush=True)
+        if source.path:  # type: ignore[attr-defined]
+            print(_("watching {path}: save it and the page reloads").format(path=source.path),  # type: ignore[attr-defined]
+                  file=sys.stderr, flush=True)
+        if not args.no_browser and _has_screen():
+            import webbrowser
+
+            webbrowser.open(viewer.url)
+        viewer.wait()
+    finally:
+        viewer.stop()
+    return 0
+
+
+def _has_screen() -> bool:
+    """A graphical browser can open: a desktop session (not SSH into a server)."""
+    if sys.platform in ("darwin", "win32"):
+        return True
+    return bool(os.environ.get("DISPLAY") or os.environ.get("WAYLAND_DISPLAY"))

@@ -1,0 +1,67 @@
+"""One self-contained HTML file that replays a motion in 3D with no server: viser's scene
+serializer and its client, which ships inside the viser wheel (nothing is fetched online)."""
+
+from __future__ import annotations
+
+from typing import Any
+
+import numpy as np
+
+from ..model import Robot
+from .model import view_model, wxyz
+from .session import ROOT, _nice
+from .viewer import never_share, quiet
+
+
+def export_html(robot: Robot, states: Any, *, package_paths: tuple[str, ...] = (),
+                frames: bool = True, names: bool = True) -> str:
+    """The HTML page replaying ``states`` (a :class:`~bras_kit.motion.JointStates`) on ``robot``."""
+    import viser
+
+    model = view_model(robot, package_paths)
+    times = np.asarray(states.times, dtype=float)
+    positions = np.asarray(states.positions, dtype=float)
+    names_in_states = list(states.names)
+    with quiet():
+        server = viser.ViserServer(host="127.0.0.1", port=_free_port(), verbose=False)
+    never_share(server)
+    try:
+        scene = server.scene
+        length = 0.12 * model.scale
+        scene.add_grid(f"{ROOT}/grid", width=4 * model.scale, height=4 * model.scale,
+                       cell_size=_nice(model.scale / 5), section_size=_nice(model.scale))
+        handles = []
+        for index, link in enumerate(model.tree.links):
+            handles.append(scene.add_frame(f"{ROOT}/link{index}", axes_length=length, axes_radius=length / 22,
+                                           origin_radius=length / 10, show_axes=frames))
+            if names:
+                scene.add_label(f"{ROOT}/link{index}/name", link, font_screen_scale=0.8, anchor="bottom-left")
+        for k, mesh in enumerate(model.visuals):
+            scene.add_mesh_simple(f"{ROOT}/link{mesh.link}/visual{k}", mesh.vertices.astype(np.float32),
+                                  mesh.faces.astype(np.uint32), color=mesh.color,
+                                  opacity=None if mesh.opacity >= 1.0 else mesh.opacity)
+
+        def place(row: np.ndarray) -> None:
+            for frame, pose in zip(handles, model.poses(dict(zip(names_in_states, row)))):
+                frame.position = pose[:3, 3]
+                frame.wxyz = wxyz(pose[:3, :3])
+
+        place(positions[0] if len(positions) else np.zeros(0))
+        serializer = server.get_scene_serializer()
+        for k in range(1, len(times)):
+            serializer.insert_sleep(float(times[k] - times[k - 1]))
+            place(positions[k])
+        if len(times) > 1:
+            serializer.insert_sleep(float(times[1] - times[0]))
+        return serializer.as_html()
+    finally:
+        with quiet():
+            server.stop()
+
+
+def _free_port() -> int:
+    import socket
+
+    with socket.socket() as probe:
+        probe.bind(("127.0.0.1", 0))
+        return int(probe.getsockname()[1])

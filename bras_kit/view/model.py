@@ -1,0 +1,124 @@
+"""What the viewer shows of a robot, computed once from the model: the meshes of every link
+(the renderer's own, so the browser and the pictures agree), the joints a slider moves, and
+the link poses for a set of joint values. No XML is read here."""
+
+from __future__ import annotations
+
+import math
+from collections.abc import Mapping, Sequence
+from dataclasses import dataclass, field
+
+import numpy as np
+
+from ..kinematics import TFTree, fk_batch, tf_tree
+from ..model import Robot, Visual
+
+Color = tuple[int, int, int]
+COLLISION_COLOR: Color = (90, 160, 90)
+
+
+@dataclass(frozen=True)
+class Mesh:
+    """Triangles fixed to link ``link`` (an index in ``tree.links``), in that link's frame."""
+
+    link: int
+    vertices: np.ndarray
+    faces: np.ndarray
+    color: Color
+    opacity: float = 1.0
+
+
+@dataclass(frozen=True)
+class Slider:
+    """A movable joint as the slider window shows it: bounds, and its unit."""
+
+    joint: str
+    lower: float
+    upper: float
+    unit: str  # "rad" or "m"
+
+
+@dataclass
+class ViewModel:
+    robot: Robot
+    tree: TFTree
+    visuals: list[Mesh]
+    collisions: list[Mesh]
+    sliders: list[Slider]
+    tip_link: int
+    tip_offset: np.ndarray
+    scale: float  # metres: the size of the robot, for triads, labels and the grid
+    _zero: np.ndarray = field(init=False, repr=False)
+
+    def __post_init__(self) -> None:
+        self._zero = np.zeros(len(self.tree.dof))
+
+    def config_vector(self, values: Mapping[str, float]) -> np.ndarray:
+        q = self._zero.copy()
+        for k, name in enumerate(self.tree.dof):
+            if name in values:
+                q[k] = float(values[name])
+        return q
+
+    def poses(self, values: Mapping[str, float], fixed_frame: int = 0) -> np.ndarray:
+        """Each link's 4x4 pose in the frame of link ``fixed_frame`` (RViz's Fixed Frame)."""
+        world = fk_batch(self.tree, self.config_vector(values))
+        if fixed_frame:
+            world = np.linalg.inv(world[fixed_frame]) @ world
+        return world
+
+    def tip(self, poses: np.ndarray) -> np.ndarray:
+        pose = poses[self.tip_link]
+        return pose[:3, :3] @ self.tip_offset + pose[:3, 3]
+
+    def out_of_limits(self, values: Mapping[str, float]) -> set[str]:
+        return {s.joint for s in self.sliders
+                if s.joint in values and not s.lower - 1e-9 <= values[s.joint] <= s.upper + 1e-9}
+
+
+def _rgb(color: Sequence[float]) -> Color:
+    return tuple(int(round(255 * min(max(float(c), 0.0), 1.0))) for c in color[:3])  # type: ignore[return-value]
+
+
+def view_model(robot: Robot, package_paths: Sequence[str] = ()) -> ViewModel:
+    """The robot ready to show: visual and collision meshes per link, sliders, the tool tip."""
+    from ..render.scene import placeholder_mesh, robot_parts, visual_mesh
+    from ..tip import tool_tip
+
+    tree = tf_tree(robot)
+    visuals = [Mesh(p.link, p.vertices, p.faces, _rgb(p.color), float(p.color[3]) if len(p.color) > 3 else 1.0)
+               for p in robot_parts(tree, package_paths)]
+    collisions = []
+    for index, name in enumerate(tree.links):
+        link = robot.link(name)
+        for collision in link.collisions if link is not None else []:
+            shape = Visual(collision.origin, collision.geometry)
+            try:
+                mesh = visual_mesh(robot, shape, package_paths)
+            except Exception:  # an unreadable collision mesh: its stand-in, as in pictures
+                mesh = placeholder_mesh(robot, link, shape)
+            if mesh is not None:
+                collisions.append(Mesh(index, np.asarray(mesh.vertices, float), np.asarray(mesh.faces, np.int64),
+                                       COLLISION_COLOR, 0.6))
+    sliders = []
+    for joint in tree.dof_joints():
+        lower, upper = joint.bounds()
+        if not (math.isfinite(lower) and math.isfinite(upper)):
+            lower, upper = -math.pi, math.pi  # continuous joints: one turn each way
+        sliders.append(Slider(joint.name or "?", float(lower), float(upper),
+                              "m" if joint.type == "prismatic" else "rad"))
+    tip_name, tip_offset = tool_tip(tree)
+    zero = fk_batch(tree, np.zeros(len(tree.dof)))
+    points = [zero[m.link][:3, :3] @ m.vertices.T + zero[m.link][:3, 3:4] for m in visuals]
+    corners = np.hstack(points) if points else zero[:, :3, 3].T
+    span = float(np.max(np.ptp(corners, axis=1))) if corners.size else 1.0
+    return ViewModel(robot, tree, visuals, collisions, sliders, tree.index(tip_name),
+                     np.asarray(tip_offset, float), max(span, 0.05))
+
+
+def wxyz(matrix: np.ndarray) -> tuple[float, float, float, float]:
+    """viser's quaternion order (w, x, y, z) of a rotation matrix."""
+    from ..kinematics import matrix_to_quat_xyzw
+
+    x, y, z, w = matrix_to_quat_xyzw(matrix)
+    return (w, x, y, z)

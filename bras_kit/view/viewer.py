@@ -1,0 +1,223 @@
+"""The live viewer: a viser server on 127.0.0.1 showing the arm, one Session per browser, the
+motion player and the file watcher that reloads the model when the learner saves."""
+
+from __future__ import annotations
+
+import contextlib
+import os
+import threading
+import time
+from collections.abc import Callable, Iterator, Sequence
+from dataclasses import dataclass, field
+from typing import Any
+
+from ..errors import BrasKitError
+from ..model import Robot
+from .model import ViewModel, view_model
+from .session import Session
+
+LOCAL_HOST = "127.0.0.1"
+TICK_SECONDS = 1 / 30  # playback frame period
+WATCH_SECONDS = 0.25  # how often the files are looked at
+MAX_WATCHED = 2000  # files under the folder of FILE
+WATCHED_SUFFIXES = (".urdf", ".xacro", ".yaml", ".yml")
+
+
+@dataclass
+class Source:
+    """Where the model comes from: a file (reloaded when it changes) or a ready robot."""
+
+    path: str | None = None
+    robot: Robot | None = None
+    mappings: dict[str, str] = field(default_factory=dict)
+    package_paths: tuple[str, ...] = ()
+
+    def load(self) -> Robot:
+        if self.path is None:
+            assert self.robot is not None
+            return self.robot
+        from ..authoring import load
+
+        return load(self.path, mappings=self.mappings, package_paths=self.package_paths)
+
+    def watched(self) -> list[str]:
+        """The file and the robot files beside it (what a xacro includes usually lives there)."""
+        if self.path is None:
+            return []
+        found = [os.path.abspath(self.path)]
+        folder = os.path.dirname(os.path.abspath(self.path))
+        for root, dirs, files in os.walk(folder):
+            dirs[:] = sorted(d for d in dirs if not d.startswith("."))
+            found += [os.path.join(root, f) for f in sorted(files) if f.endswith(WATCHED_SUFFIXES)]
+            if len(found) > MAX_WATCHED:
+                break
+        return sorted(set(found))[:MAX_WATCHED]
+
+
+class Viewer:
+    """Serve ``source`` at ``http://host:port``; :meth:`stop` ends it (also a context manager)."""
+
+    def __init__(self, source: Source, *, host: str = LOCAL_HOST, port: int = 8080, lang: str = "en",
+                 motion_specs: Sequence[str] = (), loop_seconds: float = 10.0, watch: bool = True) -> None:
+        import viser
+
+        from ..i18n import translator
+
+        self.source = source
+        self.lang = lang
+        self.t = translator(lang, "view")
+        self.motion_specs = list(motion_specs)
+        self.loop_seconds = loop_seconds
+        self.error: str | None = None
+        self.findings: list[Any] = []
+        self.reloads = 0
+        self.loaded_at = time.time()
+        self.model: ViewModel = self._build(source.load())  # a first model that cannot load is an error
+        self.source_label = source.path or self.t("built-in tutorial arm")
+        self._check(self.model.robot)
+        self.sessions: dict[int, Session] = {}
+        self._lock = threading.RLock()
+        self._stopping = threading.Event()
+        with quiet():
+            self.server = viser.ViserServer(host=host, port=port, verbose=False)
+        never_share(self.server)
+        self.server.gui.configure_theme(control_width="large", show_share_button=False)
+        self._frame_camera(self.model)
+        self.server.on_client_connect(self._connect)
+        self.server.on_client_disconnect(self._disconnect)
+        self._threads = [threading.Thread(target=self._play_loop, daemon=True, name="bras-kit-play")]
+        if watch and source.path is not None:
+            self._threads.append(threading.Thread(target=self._watch_loop, daemon=True, name="bras-kit-watch"))
+        for thread in self._threads:
+            thread.start()
+
+    # -- model ---------------------------------------------------------------------------------
+    def _build(self, robot: Robot) -> ViewModel:
+        model = view_model(robot, self.source.package_paths)
+        self.motion = self._motion(robot)
+        return model
+
+    def _motion(self, robot: Robot) -> Any:
+        from ..motion import motion_from_specs
+
+        return motion_from_specs(robot, self.motion_specs) if self.motion_specs else None
+
+    def _check(self, robot: Robot) -> None:
+        from ..validate import validate
+
+        self.findings = validate(robot, lang=self.lang, package_paths=self.source.package_paths)
+
+    def reload(self) -> bool:
+        """Read the source again; on success show the new model in every browser, else keep the
+        last good one and show why. Returns whether the new model is shown."""
+        try:
+            robot = self.source.load()
+            model = self._build(robot)
+            self._check(robot)
+        except BrasKitError as exc:
+            self.error = str(exc)
+            with self._lock:
+                for session in list(self.sessions.values()):
+                    session.show_checks()
+            return False
+        self.error = None
+        self.model = model
+        self.loaded_at = time.time()
+        self.reloads += 1
+        with self._lock:
+            for session in list(self.sessions.values()):
+                session.show_model(model)
+        return True
+
+    def _frame_camera(self, model: ViewModel) -> None:
+        """Where a new browser's camera starts: looking at the arm from the front and a little above,
+        as the pictures' iso view does."""
+        poses = model.poses({})
+        centre = poses[:, :3, 3].mean(axis=0)
+        centre[2] = 0.4 * model.scale
+        self.server.initial_camera.look_at = tuple(centre)
+        self.server.initial_camera.position = (centre[0] + 1.6 * model.scale, centre[1] - 2.2 * model.scale,
+                                               centre[2] + 0.8 * model.scale)
+
+    # -- browsers ------------------------------------------------------------------------------
+    def _connect(self, client: Any) -> None:
+        with self._lock:
+            self.sessions[client.client_id] = Session(client, self, self.t)
+
+    def _disconnect(self, client: Any) -> None:
+        with self._lock:
+            self.sessions.pop(client.client_id, None)
+
+    @property
+    def url(self) -> str:
+        return f"http://{self.server.get_host()}:{self.server.get_port()}"
+
+    # -- background work -----------------------------------------------------------------------
+    def _play_loop(self) -> None:
+        last = time.perf_counter()
+        while not self._stopping.wait(TICK_SECONDS):
+            now = time.perf_counter()
+            with self._lock:
+                sessions = list(self.sessions.values())
+            for session in sessions:
+                with contextlib.suppress(Exception):  # a browser that left mid-frame
+                    session.advance(now - last)
+            last = now
+
+    def _watch_loop(self) -> None:
+        stamps = _stamps(self.source.watched())
+        while not self._stopping.wait(WATCH_SECONDS):
+            current = _stamps(self.source.watched())
+            if current != stamps:
+                stamps = current
+                self.reload()
+
+    def stop(self) -> None:
+        self._stopping.set()
+        with quiet():
+            self.server.stop()
+
+    def __enter__(self) -> Viewer:
+        return self
+
+    def __exit__(self, *exc: object) -> None:
+        self.stop()
+
+    def wait(self, until: Callable[[], bool] | None = None) -> None:
+        """Block until Ctrl-C (or ``until()`` is true)."""
+        with contextlib.suppress(KeyboardInterrupt):
+            while not self._stopping.wait(0.2):
+                if until is not None and until():
+                    break
+
+
+@contextlib.contextmanager
+def quiet() -> Iterator[None]:
+    """viser prints a banner and a goodbye on standard output: bras-kit prints its own line."""
+    import io
+
+    with contextlib.redirect_stdout(io.StringIO()):
+        yield
+
+
+def never_share(server: Any) -> None:
+    """A browser may ask the server for a public share URL (a tunnel to the internet): refused."""
+    server.request_share_url = lambda *args, **kwargs: None
+
+
+def _stamps(paths: Sequence[str]) -> dict[str, tuple[int, int]]:
+    out = {}
+    for path in paths:
+        with contextlib.suppress(OSError):
+            info = os.stat(path)
+            out[path] = (info.st_mtime_ns, info.st_size)
+    return out
+
+
+@contextlib.contextmanager
+def serving(source: Source, **options: Any) -> Iterator[Viewer]:
+    viewer = Viewer(source, **options)
+    try:
+        yield viewer
+    finally:
+        viewer.stop()

@@ -1,0 +1,196 @@
+"""bras-kit view in a real browser: Debian's chromium, headless, driven by Playwright, WebGL on
+the CPU (SwiftShader). The oracles are what the page shows (pixels of the orange forearm, the
+panel's text) and what the Python side holds, never the viewer's own idea of itself."""
+
+from __future__ import annotations
+
+import shutil
+import socket
+import subprocess
+import sys
+import time
+from pathlib import Path
+
+import numpy as np
+import pytest
+
+pytestmark = pytest.mark.slow
+
+CHROMIUM = "/usr/bin/chromium"
+ARGS = ["--no-sandbox", "--disable-background-networking", "--disable-component-update", "--disable-sync",
+        "--no-first-run", "--use-angle=swiftshader", "--enable-unsafe-swiftshader"]
+SCENE = (slice(0, 700), slice(0, 590))  # the 3D view left of the panel (rows, columns)
+
+
+def _free_port() -> int:
+    with socket.socket() as probe:
+        probe.bind(("127.0.0.1", 0))
+        return int(probe.getsockname()[1])
+
+
+@pytest.fixture(scope="module")
+def browser():
+    from playwright.sync_api import sync_playwright
+
+    assert Path(CHROMIUM).exists(), "Debian's chromium is needed (apt-get install chromium)"
+    with sync_playwright() as playwright:
+        launched = playwright.chromium.launch(executable_path=CHROMIUM, headless=True, args=ARGS)
+        yield launched
+        launched.close()
+
+
+@pytest.fixture()
+def arm_file(tmp_path):
+    path = tmp_path / "bras.urdf"
+    done = subprocess.run([sys.executable, "-m", "bras_kit", "urdf", "-o", str(path)], capture_output=True)
+    assert done.returncode == 0, done.stderr
+    return path
+
+
+@pytest.fixture()
+def viewer(arm_file):
+    from bras_kit.view import Source, Viewer
+
+    with Viewer(Source(path=str(arm_file)), port=_free_port(), motion_specs=["tutorial"]) as running:
+        yield running
+
+
+def _open(browser, url, requests=None):
+    page = browser.new_page(viewport={"width": 1000, "height": 700})
+    if requests is not None:
+        page.on("request", lambda request: requests.append(request.url))
+    page.goto(url)
+    page.wait_for_selector("text=coude", timeout=60_000)
+    return page
+
+
+def _orange(page) -> np.ndarray:
+    """Pixels of the forearm's orange (0.95 0.5 0.1), shaded: (row, column) of each."""
+    from io import BytesIO
+
+    from PIL import Image
+
+    image = np.asarray(Image.open(BytesIO(page.screenshot())).convert("RGB"))[SCENE].astype(int)
+    r, g, b = image[..., 0], image[..., 1], image[..., 2]
+    mask = (r > 120) & (r - b > 100) & (g > 0.35 * r) & (g < 0.7 * r)
+    return np.argwhere(mask)
+
+
+def _wait(condition, seconds=10.0):
+    end = time.monotonic() + seconds
+    while time.monotonic() < end:
+        if condition():
+            return True
+        time.sleep(0.05)
+    return condition()
+
+
+def test_page_loads_from_this_computer_only_and_draws_the_arm(browser, viewer):
+    requests: list[str] = []
+    page = _open(browser, viewer.url, requests)
+    assert _wait(lambda: len(_orange(page)) > 200), "the orange forearm is not drawn"
+    hosts = {url.split("/")[2] for url in requests if "://" in url and not url.startswith("data:")}
+    assert hosts == {viewer.url.split("/")[2]}, hosts
+    assert viewer.url.startswith("http://127.0.0.1:")
+    page.close()
+
+
+def test_moving_the_coude_slider_moves_the_arm_on_both_sides(browser, viewer):
+    page = _open(browser, viewer.url)
+    assert _wait(lambda: len(_orange(page)) > 200)
+    before = _orange(page).mean(axis=0)
+    session = next(iter(viewer.sessions.values()))
+    coude = page.get_by_role("slider").nth(1)
+    coude.focus()
+    page.keyboard.press("End")  # the slider's upper bound: the coude's limit, 2 rad
+    assert _wait(lambda: session.values["coude"] == pytest.approx(2.0))
+    assert session.values["epaule"] == 0.0
+    assert _wait(lambda: np.linalg.norm(_orange(page).mean(axis=0) - before) > 20), "the forearm did not move"
+    # the readout: the tip, by hand: shoulder at z=0.05, bras 0.6 up, forearm 0.5 turned 2 rad about y
+    tip = viewer.model.tip(viewer.model.poses(session.values))
+    np.testing.assert_allclose(tip, [0.5 * np.sin(2.0), 0.0, 0.65 + 0.5 * np.cos(2.0)], atol=1e-12)
+    assert _wait(lambda: f"x={tip[0]:.3f}" in page.inner_text("body"))
+    page.close()
+
+
+def test_each_browser_has_its_own_controls(browser, viewer):
+    first, second = _open(browser, viewer.url), _open(browser, viewer.url)
+    assert _wait(lambda: len(viewer.sessions) == 2)
+    one, two = viewer.sessions.values()
+    one.set_values({"epaule": 1.0})
+    assert two.values["epaule"] == 0.0
+    first.close()
+    second.close()
+
+
+def test_saving_the_file_reloads_the_model_and_shows_the_finding(browser, viewer, arm_file):
+    page = _open(browser, viewer.url)
+    session = next(iter(viewer.sessions.values()))
+    session.set_values({"coude": 0.5})
+    text = arm_file.read_text()
+    extra = ('  <link name="pince"/>\n'
+             '  <joint name="pince_joint" type="revolute">\n'
+             '    <parent link="avant_bras"/><child link="pince"/>\n'
+             '    <origin xyz="0 0 0.5"/><axis xyz="0 1 0"/>\n'
+             '    <limit lower="-1" upper="1" effort="5" velocity="1"/>\n'
+             '  </joint>\n</robot>')
+    arm_file.write_text(text.replace("</robot>", extra))
+    assert _wait(lambda: "pince" in viewer.model.tree.links, 5), "not reloaded"
+    assert _wait(lambda: "BK308" in page.inner_text("body"), 5), "the finding is not shown"
+    assert session.values["coude"] == 0.5  # kept across the reload
+    assert "pince_joint" in session.values
+    arm_file.write_text(text.replace("</robot>", "<link name=\n"))  # no longer XML
+    assert _wait(lambda: viewer.error is not None, 5)
+    assert _wait(lambda: "cannot be read" in page.inner_text("body"), 5)
+    assert "pince" in viewer.model.tree.links  # the last good model stays
+    page.close()
+
+
+def test_exported_page_replays_the_arm_from_disk(browser, tmp_path):
+    out = tmp_path / "bras.html"
+    done = subprocess.run([sys.executable, "-m", "bras_kit", "view", "--export", str(out), "--duration", "2"],
+                          capture_output=True, text=True, timeout=120)
+    assert done.returncode == 0, done.stderr
+    assert "https://" not in out.read_text()
+    page = browser.new_page(viewport={"width": 1000, "height": 700})
+    requests: list[str] = []
+    page.on("request", lambda request: requests.append(request.url))
+    page.goto(out.as_uri())
+    assert _wait(lambda: len(_orange(page)) > 200, 60), "the exported page draws no arm"
+    assert all(url.startswith(("file://", "data:", "blob:")) for url in requests), requests
+    page.close()
+    again = subprocess.run([sys.executable, "-m", "bras_kit", "view", "--export", str(out)],
+                           capture_output=True, text=True, timeout=120)
+    assert again.returncode == 2 and "--force" in again.stderr
+
+
+def test_view_command_serves_and_stops_on_ctrl_c(tmp_path):
+    import signal
+
+    port = _free_port()
+    process = subprocess.Popen([sys.executable, "-m", "bras_kit", "view", "--no-browser", "--port", str(port)],
+                               stdout=subprocess.PIPE, stderr=subprocess.PIPE, text=True)
+    try:
+        line = process.stdout.readline()
+        assert f"http://127.0.0.1:{port}" in line
+        import urllib.request
+
+        assert b"<html" in urllib.request.urlopen(f"http://127.0.0.1:{port}", timeout=10).read()
+    finally:
+        process.send_signal(signal.SIGINT)
+        out, err = process.communicate(timeout=20)
+    assert process.returncode == 0
+    assert "Traceback" not in err
+    assert shutil.which("bras-kit") or True
+
+
+def test_the_page_speaks_french(browser, arm_file):
+    from bras_kit.view import Source, Viewer
+
+    with Viewer(Source(path=str(arm_file)), port=_free_port(), lang="fr") as viewer:
+        page = _open(browser, viewer.url)
+        assert _wait(lambda: "Pose au hasard" in page.inner_text("body"))
+        text = page.inner_text("body")
+        assert "Articulations" in text and "Pointe" in text
+        assert "Random pose" not in text and "Joints" not in text
+        page.close()
