@@ -54,15 +54,25 @@ def _mapped_bytes() -> int:
         return 0
 
 
+def _tighten(which: int, soft: int, hard: int) -> None:
+    """Set a limit, never above the one already in force (a sandbox inside a sandbox)."""
+    import resource
+
+    _, current = resource.getrlimit(which)
+    if current != resource.RLIM_INFINITY:
+        soft, hard = min(soft, current), min(hard, current)
+    resource.setrlimit(which, (soft, hard))
+
+
 def _child(write_fd: int, function: Callable[..., Any], args: tuple[Any, ...], kwargs: dict[str, Any],
            cpu_seconds: int, memory_bytes: int) -> None:
     import resource
 
     status = 0
     try:
-        resource.setrlimit(resource.RLIMIT_CPU, (cpu_seconds, cpu_seconds + 1))
+        _tighten(resource.RLIMIT_CPU, cpu_seconds, cpu_seconds + 1)
         limit = _mapped_bytes() + memory_bytes
-        resource.setrlimit(resource.RLIMIT_AS, (limit, limit))
+        _tighten(resource.RLIMIT_AS, limit, limit)
         resource.setrlimit(resource.RLIMIT_CORE, (0, 0))
         try:
             payload = ("ok", function(*args, **kwargs))

@@ -194,14 +194,14 @@ def _view(robot: Robot) -> tuple[float, float]:
     return round(top / 2.0, 3), round(max(1.5, 2.2 * top), 2)
 
 
-def _command_line(name: str, wrist: bool, inertials: bool, params: Mapping[str, str]) -> str:
-    words = ["bras-kit", "new"]
+def _command_line(name: str, wrist: bool, inertials: bool, params: Mapping[str, str], lang: str = "en") -> str:
+    words = ["bras-kit", "new"] + (["--lang", lang] if lang != "en" else [])
     if name != DEFAULT_PACKAGE:
         words += ["--name", name]
     words += [flag for flag, on in (("--wrist", wrist), ("--inertials", inertials)) if on]
     for key, value in params.items():
         item = f"{key}={value}"
-        words += ["--set", f'"{item}"' if " " in item else item]
+        words += ["--param", f'"{item}"' if " " in item else item]
     return " ".join(words)
 
 
@@ -213,6 +213,7 @@ def render_package(
     params: Mapping[str, object] | None = None,
     maintainer: str | None = None,
     email: str | None = None,
+    lang: str = "en",
 ) -> dict[str, str]:
     """Every file of the package as ``{relative path: text}``; nothing is written.
 
@@ -227,7 +228,7 @@ def render_package(
 
     check_package_name(name)
     settings = normalise_parameters(params or {})
-    urdf_text = arm_urdf(wrist=wrist, inertials=inertials, params=params)
+    urdf_text = arm_urdf(wrist=wrist, inertials=inertials, params=params, root_inertial=False)
     robot = robot_from_xml(parse_xml(urdf_text, URDF_FILE), URDF_FILE, urdf_text)
     waves = plan_motion(robot)
     root_link = tf_tree(robot).links[0]
@@ -256,7 +257,7 @@ def render_package(
         "focal_z": focal_z,
         "distance": distance,
         "version": __version__,
-        "command": _command_line(name, wrist, inertials, settings),
+        "command": _command_line(name, wrist, inertials, settings, lang),
         "margin_percent": round(LIMIT_MARGIN * 100),
     }
     environment = jinja2.Environment(
@@ -269,8 +270,10 @@ def render_package(
     )
     files: dict[str, str] = {}
     for template, target in _FILES:
-        files[target.format(name=name)] = environment.get_template(template).render(context)
-    defaults = {"wrist": str(wrist).lower(), "inertials": str(inertials).lower(), **settings}
+        translated = template[: -len(".j2")] + f".{lang}.j2"  # prose in the learner's language
+        chosen = translated if (templates_dir() / "package" / translated).is_file() else template
+        files[target.format(name=name)] = environment.get_template(chosen).render(context)
+    defaults = {"wrist": str(wrist).lower(), "inertials": str(inertials).lower(), "base_inertial": "false", **settings}
     template_text = robot_template().read_text(encoding="utf-8")
     files[XACRO_FILE] = _xacro_with_defaults(template_text, defaults)
     files[URDF_FILE] = _GENERATED_NOTE.sub(
@@ -301,6 +304,7 @@ def scaffold_package(
     *,
     maintainer: str | None = None,
     email: str | None = None,
+    lang: str = "en",
 ) -> list[Path]:
     """Write the ament_python package ``name`` into ``dest``; return the files made.
 
@@ -310,7 +314,11 @@ def scaffold_package(
     dest = Path(dest)
     _check_destination(dest, force)
     files = render_package(name, wrist=wrist, inertials=inertials, params=params,
-                           maintainer=maintainer, email=email)
+                           maintainer=maintainer, email=email, lang=lang)
+    for relative in files:
+        if (dest / relative).is_symlink():  # never write through a link planted in the folder
+            raise OutputExistsError(f"{dest / relative} is a symbolic link: refused",
+                                    hint="remove the link, or choose another DIR")
     made = []
     for relative, text in files.items():
         path = dest / relative

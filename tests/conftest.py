@@ -7,8 +7,9 @@ import os
 import pytest
 
 os.environ.setdefault("PYOPENGL_PLATFORM", "egl")
-for _variable in ("BRAS_KIT_LANG", "LC_ALL", "LC_MESSAGES", "LANG", "LANGUAGE"):
+for _variable in ("BRAS_KIT_LANG", "LC_ALL", "LC_MESSAGES", "LANGUAGE"):
     os.environ.pop(_variable, None)  # English unless a test asks for French
+os.environ["LANG"] = "C.UTF-8"  # English, and UTF-8 text in the commands the tests run
 
 
 @pytest.fixture(autouse=True)

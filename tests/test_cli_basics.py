@@ -86,6 +86,6 @@ def test_heavy_module_check_can_see_a_heavy_import():
 
 def test_new_command_parses_its_options():
     parser = build_parser("new")
-    args = parser.parse_args(["new", "out", "--name", "mon_bras", "--wrist", "--set", "bras_length=0.8"])
+    args = parser.parse_args(["new", "out", "--name", "mon_bras", "--wrist", "--param", "bras_length=0.8"])
     assert (args.command, args.dir, args.name, args.wrist, args.params) == (
         "new", "out", "mon_bras", True, ["bras_length=0.8"])

@@ -22,11 +22,11 @@ HOSTILE = Path(__file__).parent / "data" / "hostile"
 
 # commands reading a robot description from FILE
 FILE_COMMANDS = ["validate", "tree", "fk", "motion", "render", "frames", "plot", "workspace", "simulate", "mjcf",
-                 "xacro"]
+                 "xacro", "view"]
 # command -> how it is asked to write a file
 OUTPUTS = {
     "urdf": ["-o"], "xacro": ["-o"], "frames": ["-o"], "plot": ["-o"], "motion": ["-o"], "render": ["-o"],
-    "workspace": ["-o"], "mjcf": ["--inertials", "-o"], "simulate": ["--inertials", "-o"],
+    "workspace": ["-o"], "mjcf": ["--inertials", "-o"], "simulate": ["--inertials", "-o"], "view": ["--export"],
 }
 EXTRA = {"reach": ["0.3", "0", "0.5"], "xacro": []}
 
@@ -78,8 +78,22 @@ def _file_cases() -> list[tuple[str, str, str]]:
 
 
 def test_the_table_covers_every_command_that_reads_or_writes():
-    listed = set(FILE_COMMANDS) | set(OUTPUTS) | set(EXTRA) | {"demo", "new", "explain"}
+    listed = set(FILE_COMMANDS) | set(OUTPUTS) | set(EXTRA) | {"demo", "new", "explain", "grade"}
     assert set(COMMANDS) <= listed
+
+
+@pytest.mark.parametrize("argv,words", [
+    (["grade", "no_such_class"], "is not a folder"),
+    (["grade", "a_file"], "is not a folder"),
+    (["grade", "folder.urdf"], "is empty"),
+    (["grade", ".", "-o", "a_file"], "exists and is not a folder"),
+    (["grade", ".", "-o", "dangling.png"], "exists and is not a folder"),
+    (["grade", ".", "--rubric", "/dev/zero"], "rubric"),
+    (["grade", ".", "--jobs", "0"], "out of range"),
+    (["grade", ".", "--scheduler", "tcp://127.0.0.1:9"], "cannot reach the Dask scheduler"),
+])
+def test_grade_bad_input_is_a_clean_error(bad, argv, words):
+    _clean(_run(argv, bad), words)
 
 
 @pytest.mark.parametrize("command,name,words", _file_cases(), ids=lambda v: str(v).replace("/", "_"))

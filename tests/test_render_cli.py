@@ -138,7 +138,7 @@ def test_bad_values_are_clean_errors(run_cli, tmp_path, monkeypatch, args, messa
 def test_out_of_limit_pose_is_drawn_with_a_warning(run_cli, tmp_path):
     code, _, err = run_cli("render", "--set", "coude=2.5", "-o", str(tmp_path / "p.png"), *SMALL)
     assert code == 0
-    assert "coude=2.5 is outside its limits [-2, 2]" in err
+    assert "coude=2.5 is above its upper limit 2 by 0.5 (drawn anyway)" in err
 
 
 def test_motion_alone_makes_a_gif(run_cli, tmp_path, monkeypatch):

@@ -234,9 +234,9 @@ def test_equal_limits_give_a_still_joint():
 def test_inverted_limits_are_refused_and_nothing_is_written(run_cli, tmp_path):
     from bras_kit.authoring import arm
 
-    with pytest.raises(ModelError, match="lower limit 1 is above upper limit -1"):
-        plan_motion(arm(params={"coude_lower": 1, "coude_upper": -1}))
-    code, _, err = run_cli("new", str(tmp_path / "p"), "--set", "coude_lower=1", "--set", "coude_upper=-1")
+    with pytest.raises(ParameterError, match="coude_lower=1 is above coude_upper=-1"):
+        arm(params={"coude_lower": 1, "coude_upper": -1})  # refused before any URDF is written
+    code, _, err = run_cli("new", str(tmp_path / "p"), "--param", "coude_lower=1", "--param", "coude_upper=-1")
     assert code == 2 and "coude" in err
     assert not (tmp_path / "p").exists()
 
@@ -508,12 +508,12 @@ def test_new_with_a_name_uses_it_everywhere(run_cli, tmp_path):
 
 
 def test_new_takes_template_parameters(run_cli, tmp_path):
-    code, _, err = run_cli("new", str(tmp_path / "p"), "--set", "bras_length=0.8", "--inertials")
+    code, _, err = run_cli("new", str(tmp_path / "p"), "--param", "bras_length=0.8", "--inertials")
     assert code == 0, err
     robot = load(tmp_path / "p" / "urdf" / "bras.urdf")
     assert robot.joint("coude").origin.xyz == (0.0, 0.0, 0.8)
     assert robot.link("bras").inertial is not None
-    assert "bras-kit new --inertials --set bras_length=0.8" in (tmp_path / "p" / "README.md").read_text()
+    assert "bras-kit new --inertials --param bras_length=0.8" in (tmp_path / "p" / "README.md").read_text()
 
 
 @pytest.mark.parametrize("name", ["Bras", "2bras", "bras-description", "bras description", "_bras", "class"])
@@ -526,7 +526,7 @@ def test_new_refuses_an_invalid_package_name(run_cli, tmp_path, monkeypatch, nam
 
 
 def test_new_with_an_unknown_parameter_writes_nothing(run_cli, tmp_path):
-    code, _, err = run_cli("new", str(tmp_path / "p"), "--set", "bras_lenght=0.8")
+    code, _, err = run_cli("new", str(tmp_path / "p"), "--param", "bras_lenght=0.8")
     assert code == 2 and "valid names" in err
     assert not (tmp_path / "p").exists()
 

@@ -36,6 +36,7 @@ COMMANDS: dict[str, str] = {
     "simulate": "physics with MuJoCo: gravity, motors limited by effort, collisions",
     "mjcf": "write the MuJoCo model (MJCF) bras-kit builds from the URDF",
     "view": "the arm live in the browser: sliders, TF frames, motion playback, reload on save",
+    "grade": "for teachers: check, draw and score a class's submissions (process pool or Dask)",
 }
 
 _MODULES = {"xacro": "xacro_cmd"}

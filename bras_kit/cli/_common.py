@@ -121,6 +121,26 @@ def warn_out_of_limits(tree: Any, config: Mapping[str, float], consequence: str 
         warn(text + (f" ({consequence})" if consequence else ""))
 
 
+def template_values(args: argparse.Namespace) -> list[str]:
+    """``--param`` items, plus the old ``--set`` spelling of ``urdf`` and ``new`` with a note;
+    a joint name given there is pointed to ``--set`` of the other commands."""
+    from ..authoring import template_parameters
+    from ..i18n import _
+
+    old = list(getattr(args, "old_params", []) or [])
+    if old:
+        warn(_("--set is deprecated for template parameters: use --param (--set gives joint values in the other commands)"))
+    items = list(args.params) + old
+    known = template_parameters()
+    for item in items:
+        name = item.partition("=")[0].strip()
+        if name and name not in known and name in ("epaule", "coude", "poignet"):
+            raise ParameterError(_("'{name}' is a joint, not a template parameter").format(name=name),
+                                 hint=_("joint values go to --set in render, fk, tree, plot and validate; "
+                                        "template parameters are listed by bras-kit urdf --list-params"))
+    return items
+
+
 def joint_name_hint(name: str, hint: str | None) -> str | None:
     """What a name given as a joint is instead: a template parameter, the wrist of the exercise."""
     from ..authoring import template_parameters

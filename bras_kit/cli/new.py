@@ -5,7 +5,8 @@ from __future__ import annotations
 import argparse
 import os
 
-from ._common import add_force_argument
+from ..i18n import _
+from ._common import add_force_argument, template_values
 
 
 def configure(parser: argparse.ArgumentParser) -> None:
@@ -15,9 +16,11 @@ def configure(parser: argparse.ArgumentParser) -> None:
                         help="ROS package name: lowercase letters, digits, _ (default: bras_description)")
     parser.add_argument("--wrist", action="store_true", help="add the wrist link and joint 'poignet'")
     parser.add_argument("--inertials", action="store_true", help="add mass and inertia to every link")
-    parser.add_argument("--set", dest="params", action="append", default=[], metavar="NAME=VALUE",
+    parser.add_argument("--param", dest="params", action="append", default=[], metavar="NAME=VALUE",
                         help="change a template parameter (repeatable); 'bras-kit urdf --list-params' "
                         "shows them")
+    parser.add_argument("--set", dest="old_params", action="append", default=[], metavar="NAME=VALUE",
+                        help="deprecated spelling of --param (--set means joint values elsewhere)")
     parser.add_argument("--maintainer", metavar="NAME", help="maintainer in package.xml (default: your user name)")
     parser.add_argument("--email", metavar="EMAIL", help="maintainer e-mail, one colcon accepts (default: from NAME, e.g. jean.dupont@todo.todo)")
     add_force_argument(parser)
@@ -28,14 +31,15 @@ def run(args: argparse.Namespace) -> int:
     from ..scaffold import check_package_name, scaffold_package
 
     check_package_name(args.name)
+    params = template_values(args)
     dest = args.dir if args.dir is not None else os.path.join(".", args.name)
     made = scaffold_package(dest, args.name, wrist=args.wrist, inertials=args.inertials,
-                            params=parse_assignments(args.params), force=args.force,
-                            maintainer=args.maintainer, email=args.email)
-    print(f"created the ROS 2 package '{args.name}' in {dest}:")
+                            params=parse_assignments(params), force=args.force,
+                            maintainer=args.maintainer, email=args.email, lang=args.lang)
+    print(_("created the ROS 2 package '{name}' in {folder}:").format(name=args.name, folder=dest))
     for path in made:
         print(f"  {os.path.relpath(path, dest)}")
-    print("\nnext: move it into the src/ folder of a colcon workspace, then")
+    print("\n" + _("next: move it into the src/ folder of a colcon workspace, then"))
     print(f"  colcon build --packages-select {args.name} && source install/setup.bash")
     print(f"  ros2 launch {args.name} affichage.launch.py")
     return 0

@@ -4,7 +4,7 @@ from __future__ import annotations
 
 import argparse
 
-from ._common import add_force_argument, write_text
+from ._common import add_force_argument, template_values, write_text
 
 
 def configure(parser: argparse.ArgumentParser) -> None:
@@ -12,8 +12,10 @@ def configure(parser: argparse.ArgumentParser) -> None:
     parser.add_argument("--inertials", action="store_true", help="add mass and inertia to every link")
     parser.add_argument("--collisions", action="store_true",
                         help="add <collision> shapes equal to the visuals (on with --inertials)")
-    parser.add_argument("--set", dest="params", action="append", default=[], metavar="NAME=VALUE",
+    parser.add_argument("--param", dest="params", action="append", default=[], metavar="NAME=VALUE",
                         help="change a template parameter (repeatable); --list-params shows them")
+    parser.add_argument("--set", dest="old_params", action="append", default=[], metavar="NAME=VALUE",
+                        help="deprecated spelling of --param (--set means joint values elsewhere)")
     parser.add_argument("--list-params", action="store_true", help="list the template parameters and exit")
     parser.add_argument("-o", "--output", metavar="FILE", help="write to FILE instead of printing")
     add_force_argument(parser)
@@ -26,7 +28,7 @@ def run(args: argparse.Namespace) -> int:
         for p in template_parameters().values():
             print(f"{p.name:20s} {p.kind:7s} default {p.default}")
         return 0
-    text = arm_urdf(wrist=args.wrist, inertials=args.inertials, params=parse_assignments(args.params),
+    text = arm_urdf(wrist=args.wrist, inertials=args.inertials, params=parse_assignments(template_values(args)),
                     collisions=args.collisions)
     write_text(args.output, text, args.force)
     return 0

@@ -8,6 +8,7 @@ process is refused with a clear message.
 
 from __future__ import annotations
 
+import atexit
 import ctypes
 import ctypes.util
 import os
@@ -182,6 +183,10 @@ class PyrenderBackend:
         for direction, intensity in camera.world_lights():
             self._scene.add(pyrender.DirectionalLight(color=np.ones(3), intensity=intensity),
                             pose=_look_pose(direction))
+        self._key = (platform, camera.width, camera.height, antialias)
+        self._renderer = _POOL.take(self._key)
+        if self._renderer is not None:
+            return
         try:
             self._renderer = pyrender.OffscreenRenderer(camera.width, camera.height)
         except Exception as exc:
@@ -221,4 +226,45 @@ class PyrenderBackend:
     def close(self) -> None:
         renderer, self._renderer = getattr(self, "_renderer", None), None
         if renderer is not None:
-            renderer.delete()
+            _POOL.give(self._key, renderer)
+
+
+class _RendererPool:
+    """Closed OffscreenRenderers kept for the next picture of the same size: opening one (an
+    OpenGL context, shaders) and deleting it (pyrender runs a full garbage collection) cost
+    more than drawing a small robot. One per size, in this process only (a forked child
+    never uses its parent's context), deleted at exit."""
+
+    def __init__(self) -> None:
+        self._kept: dict[tuple[object, ...], object] = {}
+        self._pid = os.getpid()
+        atexit.register(self.clear)
+
+    def take(self, key: tuple[object, ...]) -> object | None:
+        if os.getpid() != self._pid:  # a forked child: the parent's contexts are not ours
+            self._kept, self._pid = {}, os.getpid()
+        renderer = self._kept.pop(key, None)
+        if renderer is not None:
+            platform = getattr(renderer, "_platform", None)
+            if platform is not None:
+                platform.make_current()
+        return renderer
+
+    def give(self, key: tuple[object, ...], renderer: object) -> None:
+        if os.getpid() != self._pid or key in self._kept:
+            if os.getpid() == self._pid:
+                renderer.delete()  # type: ignore[attr-defined]
+            return
+        self._kept[key] = renderer
+
+    def clear(self) -> None:
+        kept, self._kept = self._kept, {}
+        if os.getpid() == self._pid:
+            for renderer in kept.values():
+                try:
+                    renderer.delete()  # type: ignore[attr-defined]
+                except Exception:  # noqa: BLE001 - the context may already be gone at exit
+                    pass
+
+
+_POOL = _RendererPool()

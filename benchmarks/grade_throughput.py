@@ -1,0 +1,67 @@
+"""Submissions per second of bras-kit grade on this machine, next to what teachers do today:
+a loop running urdfdom's check_urdf on each file (no score, no picture, no package checks).
+
+For 50 and 500 generated submissions (the tutorial arm, the wrist exercise, a pitfall, a
+broken file, in turn), whole command: check_urdf loop, bras-kit grade --jobs 2 with a picture
+each, the same without pictures, and the same through a 2-worker Dask LocalCluster.
+
+    python benchmarks/grade_throughput.py [--sizes 50 500]
+"""
+
+from __future__ import annotations
+
+import argparse
+import shutil
+import subprocess
+import sys
+import tempfile
+import time
+from pathlib import Path
+
+
+def make_class(folder: Path, count: int) -> None:
+    from bras_kit.authoring import arm_urdf
+
+    texts = [arm_urdf(), arm_urdf(wrist=True), arm_urdf(wrist=True, inertials=True),
+             arm_urdf().replace('<origin xyz="0 0 0.6"/>', '<origin xyz="0 0 0.3"/>'), arm_urdf()[:900]]
+    for k in range(count):
+        (folder / f"learner{k:04d}.urdf").write_text(texts[k % len(texts)])
+
+
+def timed(command: list[str]) -> float:
+    start = time.perf_counter()
+    subprocess.run(command, capture_output=True, check=False)
+    return time.perf_counter() - start
+
+
+def check_urdf_loop(folder: Path) -> float:
+    start = time.perf_counter()
+    for file in sorted(folder.iterdir()):
+        subprocess.run(["check_urdf", str(file)], capture_output=True, check=False)
+    return time.perf_counter() - start
+
+
+def main() -> None:
+    parser = argparse.ArgumentParser()
+    parser.add_argument("--sizes", type=int, nargs="+", default=[50, 500])
+    args = parser.parse_args()
+    bras_kit = [sys.executable, "-m", "bras_kit", "grade"]
+    print(f"{'submissions':>11}  {'check_urdf loop':>16}  {'grade --jobs 2':>15}  {'no pictures':>12}  {'Dask 2 workers':>15}")
+    for size in args.sizes:
+        with tempfile.TemporaryDirectory() as tmp:
+            folder = Path(tmp) / "class"
+            folder.mkdir()
+            make_class(folder, size)
+            peer = check_urdf_loop(folder) if shutil.which("check_urdf") else float("nan")
+            pool = timed([*bras_kit, str(folder), "-o", f"{tmp}/a", "--jobs", "2"])
+            bare = timed([*bras_kit, str(folder), "-o", f"{tmp}/b", "--jobs", "2", "--no-pictures"])
+            from distributed import LocalCluster
+
+            with LocalCluster(n_workers=2, threads_per_worker=1, host="127.0.0.1", dashboard_address=None) as cluster:
+                dask = timed([*bras_kit, str(folder), "-o", f"{tmp}/c", "--scheduler", cluster.scheduler_address])
+            print(f"{size:>11}  {size / peer:>11.1f} /s  {size / pool:>10.1f} /s  {size / bare:>7.1f} /s  "
+                  f"{size / dask:>10.1f} /s")
+
+
+if __name__ == "__main__":
+    main()

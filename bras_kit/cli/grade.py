@@ -1,0 +1,84 @@
+"""bras-kit grade: a whole class's submissions validated, drawn and scored."""
+
+from __future__ import annotations
+
+import argparse
+import os
+import sys
+import time
+
+from ..i18n import _
+from ._common import add_force_argument
+
+EPILOG = """\
+examples:
+  bras-kit grade copies/                         one sub-folder, file or archive per learner
+  bras-kit grade copies/ --lang fr -o rapport/   findings in French
+  bras-kit grade copies/ --resume                only the submissions that changed
+  bras-kit grade copies/ --scheduler tcp://10.0.0.5:8786   on a Dask cluster
+  bras-kit grade --explain-rubric > bareme.yaml  the default rubric, to adapt
+"""
+
+
+def configure(parser: argparse.ArgumentParser) -> None:
+    parser.epilog = EPILOG
+    parser.add_argument("submissions", nargs="?", metavar="SUBMISSIONS",
+                        help="folder with one entry per learner: a folder, a .urdf/.xacro file or a .zip/.tar.gz")
+    parser.add_argument("--rubric", metavar="YAML", help="the rubric (default: the tutorial's, out of 20)")
+    parser.add_argument("--explain-rubric", action="store_true", help="print the rubric and exit")
+    parser.add_argument("-o", "--output", default="grade-report", metavar="DIR",
+                        help="report folder (default: ./grade-report)")
+    parser.add_argument("--jobs", type=int, default=None, metavar="N",
+                        help="worker processes on this machine (default: one per core)")
+    parser.add_argument("--scheduler", metavar="ADDRESS",
+                        help="grade on a Dask cluster, e.g. tcp://10.0.0.5:8786 (pip install 'bras-kit[cluster]')")
+    parser.add_argument("--resume", action="store_true",
+                        help="reuse the report's results of submissions that have not changed")
+    parser.add_argument("--gradescope", action="store_true",
+                        help="also write one results.json per learner in Gradescope's shape (gradescope/)")
+    parser.add_argument("--no-pictures", action="store_true", help="skip the pictures (faster)")
+    add_force_argument(parser)
+
+
+def run(args: argparse.Namespace) -> int:
+    from ..errors import OutputExistsError, ParameterError
+    from ..grade import Options, find_submissions, grade_all, load_rubric, write_reports
+    from ..grade.report import REPORT_MARK, previous_results
+
+    rubric = load_rubric(args.rubric)
+    if args.explain_rubric:
+        sys.stdout.write(rubric.text)
+        return 0
+    if args.submissions is None:
+        raise ParameterError("no SUBMISSIONS folder given", hint="bras-kit grade copies/ (one entry per learner)")
+    if args.jobs is not None and not 1 <= args.jobs <= 256:
+        raise ParameterError(f"--jobs {args.jobs} is out of range", hint="give a number of processes from 1 to 256")
+    output = args.output
+    if os.path.islink(output) or (os.path.exists(output) and not os.path.isdir(output)):
+        raise OutputExistsError(f"-o {output}: exists and is not a folder", hint="choose another report folder")
+    if os.path.isdir(output) and os.listdir(output) and not os.path.exists(os.path.join(output, REPORT_MARK)) \
+            and not args.force:
+        raise OutputExistsError(f"-o {output}: the folder holds files that are not a bras-kit report",
+                                hint="choose another folder, or pass --force")
+    submissions = find_submissions(args.submissions)
+    if not submissions:
+        raise ParameterError(f"{args.submissions} is empty", hint="put one folder, file or archive per learner in it")
+    pictures = None if args.no_pictures else os.path.abspath(os.path.join(output, "pictures"))
+    if pictures:
+        os.makedirs(pictures, exist_ok=True)
+    previous = previous_results(output) if args.resume else None
+    start = time.monotonic()
+    results, finished = grade_all(submissions, rubric, Options(lang=args.lang, pictures=pictures),
+                                  jobs=args.jobs, scheduler=args.scheduler, previous=previous)
+    write_reports(output, results, rubric, args.lang, gradescope=args.gradescope, finished=finished)
+    elapsed = time.monotonic() - start
+    unreadable = sum(1 for r in results if r["status"] != "graded")
+    mean = sum(r["score"] for r in results) / len(results) if results else 0.0
+    print(_("graded {count} of {total} submissions in {seconds:.1f} s: mean {mean:.1f} / {max:g}, "
+            "{unreadable} could not be read; report: {index}").format(
+        count=len(results), total=len(submissions), seconds=elapsed, mean=mean, max=rubric.total,
+        unreadable=unreadable, index=os.path.join(output, "index.html")))
+    if not finished:
+        print(_("interrupted: the report holds the submissions graded so far (--resume goes on)"), file=sys.stderr)
+        return 130
+    return 0

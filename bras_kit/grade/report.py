@@ -1,0 +1,156 @@
+"""The reports of a graded class: grades.csv for the course platform, results.json (or
+Gradescope's shape), and static HTML pages, openable from disk."""
+
+from __future__ import annotations
+
+import csv
+import html
+import io
+import json
+import os
+from collections import Counter
+from collections.abc import Callable, Sequence
+from typing import Any
+
+from .rubric import Rubric
+
+REPORT_MARK = ".bras-kit-grade"  # a folder holding this file is a report bras-kit may refresh
+
+
+def grades_csv(results: Sequence[dict[str, Any]], rubric: Rubric) -> str:
+    """identifier, score, max, one column per rubric item, the first error message."""
+    buffer = io.StringIO()
+    writer = csv.writer(buffer, lineterminator="\n")
+    writer.writerow(["identifier", "score", "max", *[item.id for item in rubric.items], "first_error"])
+    for result in results:
+        writer.writerow([result["learner"], _number(result["score"]), _number(result["max"]),
+                         *[_number(result["items"].get(item.id, 0.0)) for item in rubric.items],
+                         result.get("first_error", "")])
+    return buffer.getvalue()
+
+
+def results_json(results: Sequence[dict[str, Any]], rubric: Rubric) -> str:
+    return json.dumps({"rubric": {"name": rubric.name, "digest": rubric.digest, "max": rubric.total,
+                                  "items": [{"id": i.id, "title": i.title, "points": i.points} for i in rubric.items]},
+                       "learners": list(results)}, indent=1, ensure_ascii=False) + "\n"
+
+
+def gradescope_json(result: dict[str, Any], rubric: Rubric) -> str:
+    """One learner's results.json in the shape Gradescope's autograder reads."""
+    tests = [{"name": item.title, "score": result["items"].get(item.id, 0.0), "max_score": item.points,
+              "output": _item_output(item.id, result)} for item in rubric.items]
+    return json.dumps({"score": result["score"], "tests": tests,
+                       "output": result.get("first_error") or ""}, indent=1, ensure_ascii=False) + "\n"
+
+
+def _item_output(item_id: str, result: dict[str, Any]) -> str:
+    if result["status"] != "graded":
+        return result.get("first_error", "")
+    return ""
+
+
+def _number(value: float) -> str:
+    return f"{value:g}"
+
+
+def _page(title: str, body: str, lang: str) -> str:
+    return (f"<!doctype html>\n<html lang='{lang}'><head><meta charset='utf-8'><title>{html.escape(title)}</title>"
+            "<style>body{font-family:sans-serif;max-width:60em;margin:2em auto;padding:0 1em;color:#222}"
+            "table{border-collapse:collapse}td,th{border:1px solid #ccc;padding:.3em .6em;text-align:left}"
+            ".error{color:#c62828}.warning{color:#e65100}.info{color:#455a64}img{max-width:100%;border:1px solid #ddd}"
+            "</style></head><body>\n" + body + "\n</body></html>\n")
+
+
+def learner_page(result: dict[str, Any], rubric: Rubric, t: Callable[[str], str], lang: str) -> str:
+    rows = "".join(f"<tr><td>{html.escape(item.title)}</td><td>{_number(result['items'].get(item.id, 0.0))}"
+                   f" / {_number(item.points)}</td></tr>" for item in rubric.items)
+    picture = (f"<p><img src='../{html.escape(result['picture'])}' alt='{html.escape(result['learner'])}'></p>"
+               if result.get("picture") else f"<p><i>{html.escape(t('no picture: the robot could not be read'))}</i></p>")
+    findings = "".join(
+        f"<li><b class='{html.escape(f['severity'])}'>{html.escape(f['code'])}</b> "
+        f"{html.escape(f['file'] or '')}{':' + str(f['line']) if f.get('line') else ''} — {html.escape(f['message'])}"
+        + (f"<br><small>{html.escape(t('fix'))}: {html.escape(f['hint'])}</small>" if f.get("hint") else "")
+        + "</li>" for f in result["findings"])
+    body = (f"<p><a href='../index.html'>← {html.escape(t('class summary'))}</a></p>"
+            f"<h1>{html.escape(result['learner'])}: {_number(result['score'])} / {_number(result['max'])}</h1>"
+            + picture + f"<h2>{html.escape(t('Score'))}</h2><table>{rows}</table>"
+            + f"<h2>{html.escape(t('Findings'))}</h2>"
+            + (f"<ul>{findings}</ul>" if findings else f"<p>{html.escape(t('No finding'))}</p>"))
+    return _page(result["learner"], body, lang)
+
+
+def histogram_svg(scores: Sequence[float], total: float, width: int = 480, height: int = 160) -> str:
+    """Learners per score bin, as an inline SVG bar chart (no script, no external file)."""
+    bins = max(1, min(10, int(total) or 1))
+    counts = [0] * bins
+    for score in scores:
+        k = min(int(bins * score / total), bins - 1) if total > 0 else 0
+        counts[k] += 1
+    top = max(counts) or 1
+    bar = width / bins
+    parts = [f"<svg xmlns='http://www.w3.org/2000/svg' width='{width}' height='{height + 20}' role='img'>"]
+    for k, count in enumerate(counts):
+        h = (height - 10) * count / top
+        parts.append(f"<rect x='{k * bar + 2:.1f}' y='{height - h:.1f}' width='{bar - 4:.1f}' height='{h:.1f}' "
+                     f"fill='#1f77b4'><title>{count}</title></rect>")
+        parts.append(f"<text x='{k * bar + bar / 2:.1f}' y='{height + 14}' font-size='11' text-anchor='middle'>"
+                     f"{total * k / bins:g}–{total * (k + 1) / bins:g}</text>")
+    parts.append("</svg>")
+    return "".join(parts)
+
+
+def index_page(results: Sequence[dict[str, Any]], rubric: Rubric, t: Callable[[str], str], lang: str,
+               finished: bool) -> str:
+    rows = "".join(
+        f"<tr><td><a href='learners/{html.escape(_file_name(r['learner']))}'>{html.escape(r['learner'])}</a></td>"
+        f"<td>{_number(r['score'])} / {_number(r['max'])}</td><td>{html.escape(r.get('first_error', ''))}</td></tr>"
+        for r in results)
+    hits = Counter(f["code"] for r in results for f in {(x["code"]): x for x in r["findings"]}.values())
+    rules = "".join(f"<tr><td>{html.escape(code)}</td><td>{count}</td></tr>" for code, count in sorted(hits.items()))
+    note = "" if finished else f"<p class='warning'>{html.escape(t('interrupted: only the learners below were graded'))}</p>"
+    body = (f"<h1>{html.escape(rubric.name)}</h1>" + note
+            + f"<p>{len(results)} {html.escape(t('learners'))}</p>"
+            + f"<h2>{html.escape(t('Scores'))}</h2>" + histogram_svg([r["score"] for r in results], rubric.total)
+            + f"<table><tr><th>{html.escape(t('learner'))}</th><th>{html.escape(t('score'))}</th>"
+              f"<th>{html.escape(t('first error'))}</th></tr>{rows}</table>"
+            + f"<h2>{html.escape(t('Learners hitting each rule'))}</h2>"
+            + (f"<table><tr><th>{html.escape(t('rule'))}</th><th>{html.escape(t('learners'))}</th></tr>{rules}</table>"
+               if rules else f"<p>{html.escape(t('No finding'))}</p>"))
+    return _page(rubric.name, body, lang)
+
+
+def _file_name(learner: str) -> str:
+    from .worker import _safe_name
+
+    return _safe_name(learner) + ".html"
+
+
+def write_reports(folder: str, results: Sequence[dict[str, Any]], rubric: Rubric, lang: str, *,
+                  gradescope: bool = False, finished: bool = True) -> None:
+    from ..i18n import translator
+    from ..outputs import write_text
+
+    t = translator(lang, "grade")
+    os.makedirs(os.path.join(folder, "learners"), exist_ok=True)
+    write_text(os.path.join(folder, "grades.csv"), grades_csv(results, rubric), True, announce=False)
+    write_text(os.path.join(folder, "results.json"), results_json(results, rubric), True, announce=False)
+    if gradescope:
+        os.makedirs(os.path.join(folder, "gradescope"), exist_ok=True)
+        for result in results:
+            write_text(os.path.join(folder, "gradescope", _file_name(result["learner"])[:-5] + ".json"),
+                       gradescope_json(result, rubric), True, announce=False)
+    for result in results:
+        write_text(os.path.join(folder, "learners", _file_name(result["learner"])),
+                   learner_page(result, rubric, t, lang), True, announce=False)
+    write_text(os.path.join(folder, "index.html"), index_page(results, rubric, t, lang, finished), True, announce=False)
+    write_text(os.path.join(folder, REPORT_MARK), "bras-kit grade report\n", True, announce=False)
+
+
+def previous_results(folder: str) -> dict[str, dict[str, Any]]:
+    """learner -> result of the report already in ``folder`` (for --resume)."""
+    try:
+        with open(os.path.join(folder, "results.json"), encoding="utf-8") as handle:
+            data = json.load(handle)
+        return {r["learner"]: r for r in data.get("learners", []) if isinstance(r, dict) and "learner" in r}
+    except (OSError, ValueError, AttributeError):
+        return {}

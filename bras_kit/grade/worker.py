@@ -1,0 +1,246 @@
+"""Grading one submission, in a worker process (a local pool or a Dask worker).
+
+Reading and checking the learner's files happens in a child process under CPU, memory and
+wall-time limits (:func:`bras_kit.sandbox.run_limited`): a hostile or enormous submission
+costs at most those limits and scores zero, and the batch goes on. The picture is drawn in
+the worker itself, which keeps pyrender and its OpenGL libraries loaded from one learner to
+the next (only the first submission of each worker pays for them).
+"""
+
+from __future__ import annotations
+
+import os
+import shutil
+import tempfile
+import time
+from dataclasses import dataclass
+from typing import Any
+
+import numpy as np
+
+from ..errors import BrasKitError
+from .rubric import SEVERITIES, Item, Rubric
+from .submissions import MAX_SUBMISSION_BYTES, Submission, SubmissionError, content_hash, unpack
+
+CHECK_CPU_SECONDS = 20
+CHECK_WALL_SECONDS = 40.0
+CHECK_MEMORY_BYTES = 1536 << 20
+PICTURE_SIZE = (480, 360)
+UNREADABLE = ("BK100", "BK101", "BK102", "BK103")
+
+
+@dataclass(frozen=True)
+class Options:
+    lang: str = "en"
+    pictures: str | None = None  # folder for the PNGs, None: no pictures
+    gif: bool = False
+
+
+def grade(submission: Submission, rubric: Rubric, options: Options) -> dict[str, Any]:
+    """Everything the reports need about one learner, as plain data (JSON-ready)."""
+    start = time.monotonic()
+    result: dict[str, Any] = {"learner": submission.learner, "path": submission.path,
+                              "hash": content_hash(submission.path), "status": "graded", "findings": [],
+                              "picture": None, "animation": None, "main_file": None, "package": False}
+    robot = None
+    workdir = tempfile.mkdtemp(prefix="bras-kit-grade-")
+    try:
+        root = _materialise(submission, workdir)
+        inspected = _inspect_limited(root, options.lang)
+        result.update(findings=inspected["findings"], main_file=inspected["main"], package=inspected["package"])
+        robot = inspected["robot"]
+        if robot is None:
+            result["status"] = "unreadable"
+    except BrasKitError as exc:
+        result["status"] = "unreadable"
+        result["findings"] = [_finding("BK103", "error", str(exc).split("\n")[0], exc.hint or "", submission.path)]
+    finally:
+        shutil.rmtree(workdir, ignore_errors=True)
+    result["items"] = {item.id: _score(item, robot, result) for item in rubric.items}
+    result["score"] = float(sum(result["items"].values()))
+    result["max"] = rubric.total
+    errors = [f for f in result["findings"] if f["severity"] == "error"]
+    result["first_error"] = f"{errors[0]['code']} {errors[0]['message']}" if errors else ""
+    if robot is not None and options.pictures:
+        result["picture"] = _picture(robot, submission.learner, options)
+    result["seconds"] = round(time.monotonic() - start, 3)
+    return result
+
+
+def _materialise(submission: Submission, workdir: str) -> str:
+    if submission.kind == "other":
+        raise SubmissionError("not a robot description: hand in a folder, a .urdf or .xacro file, or a .zip/.tar.gz",
+                              path=submission.path)
+    size = _size(submission.path)
+    if size > MAX_SUBMISSION_BYTES:
+        raise SubmissionError(f"the submission holds {size >> 20} MB, more than {MAX_SUBMISSION_BYTES >> 20} MB",
+                              path=submission.path, hint="hand in the package only")
+    if submission.kind == "archive":
+        target = os.path.join(workdir, "unpacked")
+        os.makedirs(target)
+        unpack(submission.path, target)
+        return target
+    return submission.path
+
+
+def _size(path: str) -> int:
+    if not os.path.isdir(path):
+        return os.path.getsize(path)
+    total = 0
+    for folder, dirs, files in os.walk(path):
+        dirs[:] = [d for d in dirs if not os.path.islink(os.path.join(folder, d))]
+        total += sum(os.path.getsize(os.path.join(folder, f)) for f in files
+                     if not os.path.islink(os.path.join(folder, f)))
+        if total > MAX_SUBMISSION_BYTES:
+            break
+    return total
+
+
+def _inspect_limited(root: str, lang: str) -> dict[str, Any]:
+    from ..sandbox import run_limited
+
+    return run_limited(_inspect, root, lang, cpu_seconds=CHECK_CPU_SECONDS, memory_bytes=CHECK_MEMORY_BYTES,
+                       wall_seconds=CHECK_WALL_SECONDS, what=f"checking {os.path.basename(root)}")
+
+
+def _inspect(root: str, lang: str) -> dict[str, Any]:
+    """In the limited child: the findings of every file (and of the package), and the main robot."""
+    from ..authoring import load
+    from ..validate import collect_files, generated_pairs, validate_path
+    from ..validate.package import find_packages, validate_package
+
+    paths = collect_files([root]) if os.path.isdir(root) else [root]
+    pairs = generated_pairs(paths, [root]) if os.path.isdir(root) else {}
+    packages = find_packages([root]) if os.path.isdir(root) else []
+    findings: list[dict[str, Any]] = []
+    for package in packages:
+        for result in validate_package(package, lang=lang):
+            findings += [_as_dict(f, _relative(result.path, root)) for f in result.findings]
+    checked = [p for p in paths if p not in pairs]
+    for path in checked:
+        findings += [_as_dict(f, _relative(path, root)) for f in validate_path(path, lang=lang)]
+    main = _main_file(checked, root)
+    robot = None
+    if main is not None and not any(f["code"] in UNREADABLE and f["file"] == _relative(main, root) for f in findings):
+        try:
+            robot = load(main)
+        except BrasKitError:
+            robot = None
+    if not paths:
+        findings.append(_finding("BK103", "error", "no .urdf or .xacro file in the submission",
+                                 "hand in the robot description (urdf/bras.urdf or urdf/bras.urdf.xacro)", "."))
+    return {"findings": findings, "robot": robot, "main": _relative(main, root) if main else None,
+            "package": bool(packages)}
+
+
+def _main_file(paths: list[str], root: str) -> str | None:
+    """The robot to score: a top-level xacro (xacro:include'd parts are not robots of their own)
+    or a URDF, preferring those under urdf/ and the shortest names."""
+    def rank(path: str) -> tuple[int, int, int, str]:
+        relative = _relative(path, root)
+        in_urdf = 0 if "/urdf/" in "/" + relative else 1
+        kind = 0 if path.endswith(".urdf.xacro") else 1 if path.endswith(".urdf") else 2
+        return in_urdf, kind, len(relative), relative
+    return min(paths, key=rank) if paths else None
+
+
+def _relative(path: str, root: str) -> str:
+    if not os.path.isdir(root):
+        return os.path.basename(path)
+    return os.path.relpath(path, root).replace(os.sep, "/")
+
+
+def _as_dict(finding: Any, file: str) -> dict[str, Any]:
+    return {"file": file, "line": finding.line, "code": finding.code, "severity": finding.severity,
+            "message": finding.message, "hint": finding.hint}
+
+
+def _finding(code: str, severity: str, message: str, hint: str, file: str) -> dict[str, Any]:
+    return {"file": os.path.basename(file), "line": None, "code": code, "severity": severity,
+            "message": message, "hint": hint}
+
+
+def _score(item: Item, robot: Any, result: dict[str, Any]) -> float:
+    return item.points if passes(item, robot, result["findings"], result["package"]) else 0.0
+
+
+def passes(item: Item, robot: Any, findings: list[dict[str, Any]], package: bool) -> bool:
+    """Whether ``item`` is earned by a submission with these findings and model."""
+    if robot is None or (item.needs_package and not package):
+        return False
+    if item.check == "loads":
+        return True
+    if item.check == "no_findings":
+        floor = SEVERITIES[item.severity]
+        return not any(SEVERITIES.get(f["severity"], 0) >= floor
+                       and (not item.codes or f["code"].startswith(item.codes)) for f in findings)
+    if item.check == "joints":
+        return all(_moves(robot, name) for name in item.joints)
+    if item.check == "joint":
+        return _joint_ok(item, robot)
+    if item.check == "inertials":
+        return _inertials_ok(robot)
+    return False
+
+
+def _moves(robot: Any, name: str) -> bool:
+    joint = robot.joint(name)
+    return joint is not None and joint.type in ("revolute", "continuous", "prismatic")
+
+
+def _joint_ok(item: Item, robot: Any) -> bool:
+    from ..kinematics import tf_tree
+    from ..tip import link_tip
+
+    joint = robot.joint(item.joint)
+    if joint is None or (item.parent and joint.parent != item.parent):
+        return False
+    if item.at_tip:
+        tree = tf_tree(robot)
+        if joint.parent not in tree.links:
+            return False
+        tip = link_tip(tree, joint.parent)
+        return bool(np.linalg.norm(np.asarray(joint.origin.xyz, dtype=float) - tip) <= item.tolerance)
+    return True
+
+
+def _inertials_ok(robot: Any) -> bool:
+    from ..kinematics import tf_tree
+
+    tree = tf_tree(robot)
+    moving = set()
+    for index, joint in enumerate(tree.joints):
+        parent = tree.parent[index]
+        if joint is not None and (joint.type != "fixed" or tree.links[parent] in moving):
+            moving.add(tree.links[index])
+    for name in moving:
+        link = robot.link(name)
+        inertial = link.inertial if link is not None else None
+        if inertial is None or not inertial.mass or inertial.mass <= 0:
+            return False
+        try:
+            eigen = np.linalg.eigvalsh(np.asarray(inertial.matrix(), dtype=float))
+        except (TypeError, ValueError, np.linalg.LinAlgError):
+            return False
+        if not np.all(eigen > 0):
+            return False
+    return bool(moving)
+
+
+def _picture(robot: Any, learner: str, options: Options) -> str | None:
+    """The learner's arm at rest with its TF frames, as pictures/<learner>.png (None if it cannot be drawn)."""
+    from ..render import render_pose, save_png
+
+    assert options.pictures is not None
+    name = _safe_name(learner) + ".png"
+    try:
+        image = render_pose(robot, {}, size=PICTURE_SIZE, tf=True)
+        save_png(image, os.path.join(options.pictures, name))
+    except (BrasKitError, MemoryError, OSError, RuntimeError, ValueError):
+        return None
+    return f"pictures/{name}"
+
+
+def _safe_name(learner: str) -> str:
+    keep = "".join(c if c.isalnum() or c in "-_." else "_" for c in learner).strip(".")
+    return keep or "learner"

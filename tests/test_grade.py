@@ -1,0 +1,273 @@
+"""bras-kit grade on a generated class of 30 submissions: scores against hand-computed ones
+(the default rubric: loads 4, no error 4, no BK3 warning 3, epaule+coude 2, wrist at the
+forearm's tip 3, inertials 2, package without BK6 warning 2), unsafe archives refused, the
+reports readable by a spreadsheet and a browser, the process pool and Dask agreeing."""
+
+from __future__ import annotations
+
+import csv
+import io
+import json
+import shutil
+import subprocess
+import sys
+import tarfile
+import zipfile
+from pathlib import Path
+
+import pytest
+
+from bras_kit.authoring import arm_urdf
+from bras_kit.scaffold import scaffold_package
+
+HOSTILE = Path(__file__).parent / "data" / "hostile"
+
+
+def _write(path: Path, text: str) -> None:
+    path.parent.mkdir(parents=True, exist_ok=True)
+    path.write_text(text, encoding="utf-8")
+
+
+def _zip_folder(folder: Path, archive: Path) -> None:
+    with zipfile.ZipFile(archive, "w") as bundle:
+        for file in sorted(folder.rglob("*")):
+            if file.is_file():
+                bundle.write(file, file.relative_to(folder.parent))
+
+
+@pytest.fixture(scope="module")
+def klass(tmp_path_factory) -> tuple[Path, dict[str, float]]:
+    """The class folder and each learner's expected score, computed by hand from the rubric."""
+    root = tmp_path_factory.mktemp("class")
+    expected: dict[str, float] = {}
+    plain, wrist, full = arm_urdf(), arm_urdf(wrist=True), arm_urdf(wrist=True, inertials=True)
+
+    # right: the tutorial (4+4+3+2 = 13), + wrist (16), + inertials (18)
+    for k in range(9):
+        _write(root / f"arm{k}.urdf", arm_urdf(params={"bras_length": 0.5 + 0.05 * k}))
+        expected[f"arm{k}"] = 13
+    _write(root / "wrist.urdf", wrist)
+    expected["wrist"] = 16
+    _write(root / "wrist_inertials.urdf", full)
+    expected["wrist_inertials"] = 18
+    _write(root / "xacro_learner" / "bras.urdf.xacro",
+           (Path(__file__).parent.parent / "templates" / "robot" / "bras.urdf.xacro").read_text())
+    expected["xacro_learner"] = 13  # the template with its defaults: the tutorial arm
+    # whole packages: the package item needs no BK6 warning (+2)
+    scaffold_package(root / "pkg_full", wrist=True, inertials=True)
+    expected["pkg_full"] = 20
+    scaffold_package(root / "pkg_plain")
+    expected["pkg_plain"] = 15
+    scaffold_package(root / "tmp_zip" / "bras_description", wrist=True, inertials=True)
+    _zip_folder(root / "tmp_zip" / "bras_description", root / "pkg_zip.zip")
+    expected["pkg_zip"] = 20
+    with tarfile.open(root / "pkg_tar.tar.gz", "w:gz") as bundle:
+        bundle.add(root / "tmp_zip" / "bras_description", arcname="bras_description")
+    expected["pkg_tar"] = 20
+    shutil.rmtree(root / "tmp_zip")
+    # a package pitfall: setup.py no longer installs urdf/ (BK6xx) -> 20 - 2
+    scaffold_package(root / "pkg_setup", wrist=True, inertials=True)
+    setup = root / "pkg_setup" / "setup.py"
+    setup.write_text(setup.read_text().replace("installed('urdf', '*.urdf', '*.xacro'),", ""))
+    expected["pkg_setup"] = 4 + 0 + 3 + 2 + 3 + 2 + 0  # the BK6 finding is an error: no_errors 0 too
+
+    # the tutorial's pitfalls
+    _write(root / "coude_short.urdf", plain.replace('<origin xyz="0 0 0.6"/>', '<origin xyz="0 0 0.3"/>'))
+    expected["coude_short"] = 10  # BK301 warning: pitfalls 0
+    _write(root / "wrist_on_bras.urdf", wrist.replace('<parent link="avant_bras"/>', '<parent link="bras"/>'))
+    expected["wrist_on_bras"] = 4 + 4 + 0 + 2 + 0  # BK301 (0.5 on a 0.6 m bras), wrist on the wrong parent
+    _write(root / "wrist_short.urdf", wrist.replace('<origin xyz="0 0 0.5"/>', '<origin xyz="0 0 0.3"/>'))
+    expected["wrist_short"] = 10  # not at the tip (wrist 0) and BK301 (pitfalls 0)
+    _write(root / "massless.urdf", full.replace('<mass value="1.0"/>', '<mass value="0"/>'))
+    expected["massless"] = 4 + 0 + 3 + 2 + 3 + 0  # loads, an error (BK500), pitfalls, arm, wrist, inertials
+    _write(root / "no_coude.urdf", plain.replace('name="coude"', 'name="genou"'))
+    expected["no_coude"] = 4 + 4 + 3 + 0  # the arm item needs coude
+
+    # unreadable, hostile, unsafe, empty: zero, and the batch goes on
+    _write(root / "broken.urdf", plain[: len(plain) // 2])
+    expected["broken"] = 0
+    shutil.copy(HOSTILE / "getattribute_escape.xacro", root / "hostile.xacro")
+    expected["hostile"] = 0
+    shutil.copy(HOSTILE / "macro_bomb.xacro", root / "bomb.xacro")
+    expected["bomb"] = 0
+    with zipfile.ZipFile(root / "zipslip.zip", "w") as bundle:
+        bundle.writestr("../../evil.urdf", plain)
+    expected["zipslip"] = 0
+    info = tarfile.TarInfo("bras_description/urdf/bras.urdf")
+    info.type, info.linkname = tarfile.SYMTYPE, "/etc/passwd"
+    with tarfile.open(root / "tarlink.tar.gz", "w:gz") as bundle:
+        bundle.addfile(info)
+    expected["tarlink"] = 0
+    (root / "empty").mkdir()
+    expected["empty"] = 0
+    _write(root / "notes.txt", "my robot is in my head")
+    expected["notes.txt"] = 0
+    # a 10 MB URDF (a huge comment): legal, slow to read, graded like the tutorial arm
+    _write(root / "big.urdf", plain.replace("<robot", "<!-- " + "x" * (10 << 20) + " -->\n<robot", 1))
+    expected["big"] = 13
+    return root, expected
+
+
+def _grade(klass_dir: Path, out: Path, *extra: str) -> subprocess.CompletedProcess:
+    return subprocess.run([sys.executable, "-m", "bras_kit", "grade", str(klass_dir), "-o", str(out), *extra],
+                          capture_output=True, text=True, timeout=600)
+
+
+@pytest.fixture(scope="module")
+def report(klass, tmp_path_factory):
+    folder, _ = klass
+    out = tmp_path_factory.mktemp("report") / "rapport"
+    done = _grade(folder, out, "--jobs", "2", "--gradescope")
+    assert done.returncode == 0, done.stderr
+    assert "Traceback" not in done.stderr
+    return out
+
+
+@pytest.mark.slow
+def test_scores_equal_the_hand_computed_ones(klass, report):
+    _, expected = klass
+    assert len(expected) == 30
+    rows = list(csv.DictReader(io.StringIO((report / "grades.csv").read_text())))
+    scores = {row["identifier"]: float(row["score"]) for row in rows}
+    assert scores == expected
+    for row in rows:  # the columns add up, and max is the rubric's total
+        items = ("loads", "no_errors", "pitfalls", "arm", "wrist", "inertials", "package")
+        assert sum(float(row[i]) for i in items) == float(row["score"])
+        assert row["max"] == "20"
+    unreadable = {row["identifier"] for row in rows if row["first_error"].startswith(("BK100", "BK102", "BK103"))}
+    assert {"broken", "hostile", "bomb", "zipslip", "tarlink", "empty", "notes.txt"} <= unreadable
+
+
+@pytest.mark.slow
+def test_unsafe_archives_write_nothing_outside(klass, report):
+    folder, _ = klass
+    assert not (folder.parent / "evil.urdf").exists() and not (folder / "evil.urdf").exists()
+    learners = {r["learner"]: r for r in json.loads((report / "results.json").read_text())["learners"]}
+    assert "outside its folder" in learners["zipslip"]["first_error"]
+    assert "not a plain file" in learners["tarlink"]["first_error"]
+    assert not (Path.cwd() / "bras_kit_canary").exists()
+
+
+@pytest.mark.slow
+def test_html_pages_link_existing_pictures(klass, report):
+    _, expected = klass
+    index = (report / "index.html").read_text()
+    for learner in expected:
+        page = report / "learners" / (learner.replace(".", ".") + ".html")
+        assert page.exists(), learner
+        assert f"learners/{page.name}" in index
+    learners = json.loads((report / "results.json").read_text())["learners"]
+    drawn = [r for r in learners if r["picture"]]
+    assert len(drawn) >= 20
+    for result in drawn:
+        picture = report / result["picture"]
+        from PIL import Image
+
+        assert Image.open(picture).size == (480, 360)
+        page = (report / "learners" / f"{result['learner']}.html").read_text()
+        assert f"../{result['picture']}" in page
+    assert "<svg" in index and "BK301" in index  # the histogram and the rule counts
+
+
+@pytest.mark.slow
+def test_gradescope_shape(klass, report):
+    data = json.loads((report / "gradescope" / "wrist.json").read_text())
+    assert data["score"] == 16
+    assert sum(t["score"] for t in data["tests"]) == 16
+    assert sum(t["max_score"] for t in data["tests"]) == 20
+
+
+@pytest.mark.slow
+def test_findings_in_the_learners_language(klass, tmp_path):
+    folder, _ = klass
+    small = tmp_path / "classe"
+    small.mkdir()
+    shutil.copy(folder / "coude_short.urdf", small)
+    out = tmp_path / "rapport"
+    done = _grade(small, out, "--lang", "fr", "--no-pictures")
+    assert done.returncode == 0, done.stderr
+    learner = json.loads((out / "results.json").read_text())["learners"][0]
+    message = next(f["message"] for f in learner["findings"] if f["code"] == "BK301")
+    assert "articulation" in message
+
+
+@pytest.mark.slow
+def test_resume_regrades_only_what_changed(klass, tmp_path):
+    folder, _ = klass
+    small = tmp_path / "class"
+    small.mkdir()
+    for name in ("arm0.urdf", "wrist.urdf", "broken.urdf"):
+        shutil.copy(folder / name, small)
+    out = tmp_path / "out"
+    assert _grade(small, out, "--no-pictures").returncode == 0
+    first = {r["learner"]: r for r in json.loads((out / "results.json").read_text())["learners"]}
+    (small / "broken.urdf").write_text(arm_urdf())
+    assert _grade(small, out, "--no-pictures", "--resume").returncode == 0
+    second = {r["learner"]: r for r in json.loads((out / "results.json").read_text())["learners"]}
+    assert second["arm0"] == first["arm0"] and second["wrist"] == first["wrist"]  # reused as they were
+    assert second["broken"]["score"] == 13 and first["broken"]["score"] == 0
+
+
+def test_a_foreign_output_folder_is_refused(tmp_path, klass):
+    folder, _ = klass
+    out = tmp_path / "mine"
+    out.mkdir()
+    (out / "notes.txt").write_text("keep me")
+    done = _grade(folder, out)
+    assert done.returncode == 2 and "--force" in done.stderr
+    assert (out / "notes.txt").read_text() == "keep me"
+
+
+def test_explain_rubric_prints_the_default_rubric():
+    done = subprocess.run([sys.executable, "-m", "bras_kit", "grade", "--explain-rubric"], capture_output=True, text=True)
+    import yaml
+
+    rubric = yaml.safe_load(done.stdout)
+    assert sum(item["points"] for item in rubric["items"]) == 20
+
+
+def test_a_bad_rubric_is_a_clear_error(tmp_path):
+    rubric = tmp_path / "bareme.yaml"
+    rubric.write_text("items:\n  - id: a\n    points: 2\n    check: magic\n")
+    done = subprocess.run([sys.executable, "-m", "bras_kit", "grade", str(tmp_path), "--rubric", str(rubric)],
+                          capture_output=True, text=True)
+    assert done.returncode == 2 and "unknown check 'magic'" in done.stderr and "Traceback" not in done.stderr
+
+
+def test_interrupted_batch_keeps_what_was_finished(klass, tmp_path):
+    from bras_kit.grade import Options, find_submissions, grade_all, load_rubric
+
+    folder, _ = klass
+    submissions = [s for s in find_submissions(folder) if s.learner.startswith("arm")]
+    seen = []
+
+    def stop_after_two(result):
+        seen.append(result["learner"])
+        if len(seen) == 2:
+            raise KeyboardInterrupt
+
+    results, finished = grade_all(submissions, load_rubric(), Options(), jobs=1, on_result=stop_after_two)
+    assert not finished
+    assert [r["learner"] for r in results] == [s.learner for s in submissions if s.learner in seen]
+
+
+@pytest.mark.slow
+def test_dask_cluster_gives_the_same_report(klass, report, tmp_path):
+    from distributed import LocalCluster
+
+    folder, _ = klass
+    with LocalCluster(n_workers=2, threads_per_worker=1, processes=True, host="127.0.0.1",
+                      dashboard_address=None) as cluster:
+        out = tmp_path / "dask"
+        done = _grade(folder, out, "--scheduler", cluster.scheduler_address, "--gradescope")
+        assert done.returncode == 0, done.stderr
+
+    def comparable(path: Path):
+        data = json.loads(path.read_text())
+        for learner in data["learners"]:
+            learner.pop("seconds")
+            learner.pop("path")
+        return data
+
+    assert comparable(out / "results.json") == comparable(report / "results.json")
+    assert (out / "grades.csv").read_text() == (report / "grades.csv").read_text()
