@@ -3,7 +3,9 @@ a loop running urdfdom's check_urdf on each file (no score, no picture, no packa
 
 For 50 and 500 generated submissions (the tutorial arm, the wrist exercise, a pitfall, a
 broken file, in turn), whole command: check_urdf loop, bras-kit grade --jobs 2 with a picture
-each, the same without pictures, and the same through a 2-worker Dask LocalCluster.
+each, the same without pictures, and the same through a 2-worker Dask LocalCluster (started
+before the clock: a cluster outlives one class). Every figure includes the command's start-up
+and the writing of the report (CSV, JSON, one HTML page per learner).
 
     python benchmarks/grade_throughput.py [--sizes 50 500]
 """

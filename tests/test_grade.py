@@ -120,6 +120,7 @@ def report(klass, tmp_path_factory):
     done = _grade(folder, out, "--jobs", "2", "--gradescope")
     assert done.returncode == 0, done.stderr
     assert "Traceback" not in done.stderr
+    assert "grading [" not in done.stderr  # no progress bar when piped
     return out
 
 
@@ -175,6 +176,10 @@ def test_gradescope_shape(klass, report):
     assert data["score"] == 16
     assert sum(t["score"] for t in data["tests"]) == 16
     assert sum(t["max_score"] for t in data["tests"]) == 20
+    assert [t["output"] for t in data["tests"]] == ["", "", "", "", "", "not met: " + data["tests"][5]["name"], ""]
+    short = json.loads((report / "gradescope" / "coude_short.json").read_text())
+    pitfalls = next(t for t in short["tests"] if "BK3xx" in t["name"])
+    assert pitfalls["score"] == 0 and pitfalls["output"].startswith("BK301 coude_short.urdf:")
 
 
 @pytest.mark.slow
@@ -271,3 +276,162 @@ def test_dask_cluster_gives_the_same_report(klass, report, tmp_path):
 
     assert comparable(out / "results.json") == comparable(report / "results.json")
     assert (out / "grades.csv").read_text() == (report / "grades.csv").read_text()
+
+
+def _dies_on_arm3(submission, rubric, options):
+    """Stands in for grade() in forked pool workers: the worker grading arm3 dies outright."""
+    import os
+
+    from bras_kit.grade.worker import grade
+
+    if submission.learner == "arm3":
+        os._exit(9)
+    return grade(submission, rubric, options)
+
+
+def test_a_worker_that_dies_costs_only_its_submission(klass, monkeypatch):
+    from bras_kit.grade import Options, find_submissions, grade_all, load_rubric, runner
+
+    folder, expected = klass
+    submissions = [s for s in find_submissions(folder) if s.learner.startswith("arm")]
+    monkeypatch.setattr(runner, "grade", _dies_on_arm3)
+    results, finished = grade_all(submissions, load_rubric(), Options(), jobs=2)
+    assert finished
+    scores = {r["learner"]: r["score"] for r in results}
+    assert scores == {s.learner: (0 if s.learner == "arm3" else expected[s.learner]) for s in submissions}
+    dead = next(r for r in results if r["learner"] == "arm3")
+    assert "worker process died" in dead["first_error"]
+
+
+@pytest.mark.slow
+def test_gif_draws_each_arm_moving(klass, tmp_path):
+    from PIL import Image
+
+    folder, _ = klass
+    small = tmp_path / "classe"
+    small.mkdir()
+    for name in ("wrist.urdf", "broken.urdf"):
+        shutil.copy(folder / name, small)
+    out = tmp_path / "rapport"
+    done = _grade(small, out, "--gif", "--jobs", "1")
+    assert done.returncode == 0, done.stderr
+    learners = {r["learner"]: r for r in json.loads((out / "results.json").read_text())["learners"]}
+    assert learners["wrist"]["animation"] == "pictures/wrist.gif" and learners["broken"]["animation"] is None
+    gif = Image.open(out / "pictures" / "wrist.gif")
+    assert gif.n_frames == 40 and gif.size == (320, 240)  # 4 s at 10 frames per second
+    assert "../pictures/wrist.gif" in (out / "learners" / "wrist.html").read_text()
+
+
+@pytest.mark.slow
+def test_ctrl_c_writes_the_report_of_what_was_finished(tmp_path):
+    import os
+    import signal
+    import time
+
+    folder = tmp_path / "classe"
+    folder.mkdir()
+    for k in range(200):  # long enough a batch (several seconds) to be interrupted in its middle
+        (folder / f"eleve{k:03d}.urdf").write_text(arm_urdf() if k % 2 else arm_urdf(wrist=True))
+    expected = {f"eleve{k:03d}": 13 if k % 2 else 16 for k in range(200)}
+    out = tmp_path / "rapport"
+    process = subprocess.Popen([sys.executable, "-m", "bras_kit", "grade", str(folder), "-o", str(out), "--jobs", "1"],
+                               stdout=subprocess.PIPE, stderr=subprocess.PIPE, text=True, start_new_session=True)
+    deadline = time.monotonic() + 120
+    while time.monotonic() < deadline and len(list((out / "pictures").glob("*.png"))) < 2:
+        time.sleep(0.05)
+    os.killpg(process.pid, signal.SIGINT)  # as a terminal does: the whole group, workers included
+    _, stderr = process.communicate(timeout=120)
+    assert process.returncode == 130, stderr
+    assert "interrupted" in stderr and "Traceback" not in stderr
+    learners = json.loads((out / "results.json").read_text())["learners"]
+    assert 2 <= len(learners) < len(expected)
+    assert all(r["score"] == expected[r["learner"]] for r in learners)  # finished ones, none marked failed
+    assert "interrupted" in (out / "index.html").read_text()
+
+
+def test_scheduler_without_dask_names_the_extra(tmp_path):
+    (tmp_path / "alice.urdf").write_text(arm_urdf())
+    code = ("import sys; sys.modules['distributed'] = None; from bras_kit.cli import main; "
+            f"sys.exit(main(['grade', {str(tmp_path)!r}, '-o', {str(tmp_path / 'out')!r}, "
+            "'--scheduler', 'tcp://127.0.0.1:8786']))")
+    done = subprocess.run([sys.executable, "-c", code], capture_output=True, text=True, timeout=120)
+    assert done.returncode == 2 and "pip install 'bras-kit[cluster]'" in done.stderr
+    assert "Traceback" not in done.stderr
+
+
+def test_progress_bar_on_a_terminal_only():
+    from bras_kit.grade.runner import Progress
+
+    class Terminal(io.StringIO):
+        def isatty(self) -> bool:
+            return True
+
+    shown, piped = Terminal(), io.StringIO()
+    for stream in (shown, piped):
+        progress = Progress(4, stream)
+        for failed in (False, True, False):
+            progress.update(failed)
+        progress.close()
+    assert piped.getvalue() == ""
+    last = shown.getvalue().rstrip("\n").split("\r")[-1]
+    assert "3/4" in last and "1 unreadable" in last and "/s" in last
+
+
+def test_learners_whose_names_clash_once_made_safe_keep_their_own_pages():
+    from bras_kit.grade.worker import _safe_name
+
+    names = ["alice", "a b", "a_b", "a/b", "../x", "élève-3"]
+    safe = [_safe_name(name) for name in names]
+    assert len(set(safe)) == len(names)
+    assert safe[0] == "alice" and safe[2] == "a_b" and safe[5] == "élève-3"  # safe names are kept as they are
+    assert all("/" not in name and not name.startswith(".") for name in safe)
+
+
+@pytest.mark.slow
+def test_report_opens_from_disk_in_a_browser(klass, report):
+    """Chromium, from file://, with no server: the index links every page, each page shows its picture."""
+    from playwright.sync_api import sync_playwright
+
+    _, expected = klass
+    with sync_playwright() as playwright:
+        browser = playwright.chromium.launch(executable_path="/usr/bin/chromium", headless=True,
+                                             args=["--no-sandbox", "--disable-background-networking"])
+        page = browser.new_page()
+        page.goto((report / "index.html").as_uri())
+        links = page.eval_on_selector_all("a[href^='learners/']", "els => els.map(e => e.href)")
+        assert len(links) == len(expected)
+        assert page.eval_on_selector("svg", "e => e.querySelectorAll('rect').length") >= 1
+        page.goto(next(link for link in links if link.endswith("/wrist.html")))
+        size = page.eval_on_selector("img", "e => [e.complete, e.naturalWidth, e.naturalHeight]")
+        assert size == [True, 480, 360]  # the picture loaded from disk
+        assert "16 / 20" in page.inner_text("h1")
+        page.click("text=class summary")
+        assert page.url.endswith("/index.html")
+        browser.close()
+
+
+@pytest.mark.slow
+def test_meshes_are_drawn_from_the_archive_and_never_from_outside(tmp_path):
+    import trimesh
+
+    base_cylinder = '<cylinder length="0.1" radius="0.15"/>'
+    klass = tmp_path / "classe"
+    klass.mkdir()
+    package = tmp_path / "src" / "bras_description"
+    (package / "meshes").mkdir(parents=True)
+    (package / "package.xml").write_text("<package format='3'><name>bras_description</name></package>")
+    trimesh.creation.box(extents=(0.3, 0.3, 0.1)).export(package / "meshes" / "socle.stl")
+    _write(package / "urdf" / "bras.urdf",
+           arm_urdf().replace(base_cylinder, '<mesh filename="package://bras_description/meshes/socle.stl"/>'))
+    _zip_folder(package, klass / "maille.zip")
+    outside = tmp_path / "secret.stl"
+    trimesh.creation.box(extents=(0.3, 0.3, 0.1)).export(outside)
+    _write(klass / "dehors.urdf", arm_urdf().replace(base_cylinder, f'<mesh filename="file://{outside}"/>'))
+    _write(klass / "monte.urdf", arm_urdf().replace(base_cylinder, '<mesh filename="../secret.stl"/>'))
+    out = tmp_path / "rapport"
+    done = _grade(klass, out, "--jobs", "1")
+    assert done.returncode == 0, done.stderr
+    learners = {r["learner"]: r for r in json.loads((out / "results.json").read_text())["learners"]}
+    assert learners["maille"]["picture"] == "pictures/maille.png"  # the mesh found while unpacked
+    assert learners["dehors"]["picture"] is None and learners["monte"]["picture"] is None
+    assert learners["dehors"]["status"] == learners["monte"]["status"] == "graded"  # still graded

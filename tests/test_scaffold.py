@@ -20,7 +20,7 @@ import pytest
 import yaml
 
 from bras_kit.authoring import load
-from bras_kit.errors import ModelError, OutputExistsError, ParameterError
+from bras_kit.errors import OutputExistsError, ParameterError
 from bras_kit.scaffold import plan_motion, render_package, scaffold_package
 from bras_kit.xacrotools import expand_xacro
 from bras_kit.xmlio import read_xml

@@ -37,6 +37,8 @@ def configure(parser: argparse.ArgumentParser) -> None:
     parser.add_argument("--gradescope", action="store_true",
                         help="also write one results.json per learner in Gradescope's shape (gradescope/)")
     parser.add_argument("--no-pictures", action="store_true", help="skip the pictures (faster)")
+    parser.add_argument("--gif", action="store_true",
+                        help="also draw each arm moving (the tutorial's motion) as pictures/LEARNER.gif")
     add_force_argument(parser)
 
 
@@ -51,6 +53,8 @@ def run(args: argparse.Namespace) -> int:
         return 0
     if args.submissions is None:
         raise ParameterError("no SUBMISSIONS folder given", hint="bras-kit grade copies/ (one entry per learner)")
+    if args.gif and args.no_pictures:
+        raise ParameterError("--gif and --no-pictures cannot go together", hint="keep one of them")
     if args.jobs is not None and not 1 <= args.jobs <= 256:
         raise ParameterError(f"--jobs {args.jobs} is out of range", hint="give a number of processes from 1 to 256")
     output = args.output
@@ -60,7 +64,7 @@ def run(args: argparse.Namespace) -> int:
             and not args.force:
         raise OutputExistsError(f"-o {output}: the folder holds files that are not a bras-kit report",
                                 hint="choose another folder, or pass --force")
-    submissions = find_submissions(args.submissions)
+    submissions = find_submissions(os.path.abspath(args.submissions))  # Dask workers may start elsewhere
     if not submissions:
         raise ParameterError(f"{args.submissions} is empty", hint="put one folder, file or archive per learner in it")
     pictures = None if args.no_pictures else os.path.abspath(os.path.join(output, "pictures"))
@@ -68,7 +72,7 @@ def run(args: argparse.Namespace) -> int:
         os.makedirs(pictures, exist_ok=True)
     previous = previous_results(output) if args.resume else None
     start = time.monotonic()
-    results, finished = grade_all(submissions, rubric, Options(lang=args.lang, pictures=pictures),
+    results, finished = grade_all(submissions, rubric, Options(lang=args.lang, pictures=pictures, gif=args.gif),
                                   jobs=args.jobs, scheduler=args.scheduler, previous=previous)
     write_reports(output, results, rubric, args.lang, gradescope=args.gradescope, finished=finished)
     elapsed = time.monotonic() - start

@@ -63,14 +63,17 @@ def run(args: argparse.Namespace) -> int:
     write_text(args.output, text, args.force)
     if built.assets:
         target = os.path.join(os.path.dirname(args.output), folder)
+        from ..outputs import write_bytes
+
+        if os.path.islink(target):
+            raise BrasKitError(f"{target} is a symbolic link: refused", hint="remove the link, or choose another -o")
         try:
             os.makedirs(target, exist_ok=True)
-            for asset in built.assets.values():
-                with open(os.path.join(target, asset.name), "wb") as handle:
-                    handle.write(asset.data)
         except OSError as exc:
-            raise BrasKitError(f"cannot write {exc.filename or target}: {exc.strerror or exc}",
+            raise BrasKitError(f"cannot create {target}: {exc.strerror or exc}",
                                hint="check the folder is writable and has space") from None
+        for asset in built.assets.values():  # each through the one safe write: no link followed
+            write_bytes(os.path.join(target, asset.name), asset.data, args.force, announce=False)
         print(_("wrote {count} meshes in {folder}/").format(count=len(built.assets), folder=target), file=sys.stderr)
     return 0
 

@@ -94,6 +94,8 @@ def _check_frames_dir(folder: str, force: bool) -> None:
     if os.path.isdir(folder) and not force and any(re.fullmatch(r"frame_\d+\.png", n) for n in os.listdir(folder)):
         raise OutputExistsError(f"{folder} already holds frame_*.png files",
                                 hint="pass --force to overwrite them, or choose another --frames-dir")
+    if os.path.islink(folder):
+        raise OutputExistsError(f"{folder} is a symbolic link: refused", hint="choose another --frames-dir")
     if os.path.exists(folder) and not os.path.isdir(folder):
         raise OutputExistsError(f"{folder} exists and is not a folder", hint="choose another --frames-dir")
 

@@ -41,7 +41,7 @@ def run(args: argparse.Namespace) -> int:
     from ..errors import ParameterError
     from ._common import xacro_mappings
 
-    if not 1 <= args.port <= 65535:
+    if not 0 <= args.port <= 65535:
         raise ParameterError(f"--port {args.port} is out of range", hint="give a port between 1024 and 65535, e.g. 8080")
     if args.file is not None and (args.wrist or args.inertials or args.param or args.collisions):
         raise ParameterError("--wrist, --inertials, --collisions and --param apply to the built-in arm only",

@@ -12,7 +12,7 @@ from collections import Counter
 from collections.abc import Callable, Sequence
 from typing import Any
 
-from .rubric import Rubric
+from .rubric import SEVERITIES, Item, Rubric
 
 REPORT_MARK = ".bras-kit-grade"  # a folder holding this file is a report bras-kit may refresh
 
@@ -38,14 +38,23 @@ def results_json(results: Sequence[dict[str, Any]], rubric: Rubric) -> str:
 def gradescope_json(result: dict[str, Any], rubric: Rubric) -> str:
     """One learner's results.json in the shape Gradescope's autograder reads."""
     tests = [{"name": item.title, "score": result["items"].get(item.id, 0.0), "max_score": item.points,
-              "output": _item_output(item.id, result)} for item in rubric.items]
+              "output": _item_output(item, result)} for item in rubric.items]
     return json.dumps({"score": result["score"], "tests": tests,
                        "output": result.get("first_error") or ""}, indent=1, ensure_ascii=False) + "\n"
 
 
-def _item_output(item_id: str, result: dict[str, Any]) -> str:
+def _item_output(item: Item, result: dict[str, Any]) -> str:
+    """What the learner reads under one Gradescope test: why it was not earned."""
     if result["status"] != "graded":
-        return result.get("first_error", "")
+        return str(result.get("first_error", ""))
+    if item.check == "no_findings":
+        floor = SEVERITIES[item.severity]
+        hits = [f for f in result["findings"] if SEVERITIES.get(f["severity"], 0) >= floor
+                and (not item.codes or f["code"].startswith(item.codes))]
+        return "\n".join(f"{f['code']} {f['file']}{':' + str(f['line']) if f.get('line') else ''}: {f['message']}"
+                         + (f" ({f['hint']})" if f.get("hint") else "") for f in hits)
+    if result["items"].get(item.id, 0.0) < item.points:
+        return f"not met: {item.title}"
     return ""
 
 
@@ -61,11 +70,17 @@ def _page(title: str, body: str, lang: str) -> str:
             "</style></head><body>\n" + body + "\n</body></html>\n")
 
 
+_NO_PICTURE = {False: "no picture: the robot could not be read",
+               True: "no picture (--no-pictures, or the arm could not be drawn)"}
+
+
 def learner_page(result: dict[str, Any], rubric: Rubric, t: Callable[[str], str], lang: str) -> str:
-    rows = "".join(f"<tr><td>{html.escape(item.title)}</td><td>{_number(result['items'].get(item.id, 0.0))}"
+    rows = "".join(f"<tr><td>{html.escape(t(item.title))}</td><td>{_number(result['items'].get(item.id, 0.0))}"
                    f" / {_number(item.points)}</td></tr>" for item in rubric.items)
     picture = (f"<p><img src='../{html.escape(result['picture'])}' alt='{html.escape(result['learner'])}'></p>"
-               if result.get("picture") else f"<p><i>{html.escape(t('no picture: the robot could not be read'))}</i></p>")
+               + (f"<p><img src='../{html.escape(result['animation'])}' alt='{html.escape(t('the arm moving'))}'></p>"
+                  if result.get("animation") else "")
+               if result.get("picture") else f"<p><i>{html.escape(t(_NO_PICTURE[result['status'] == 'graded']))}</i></p>")
     findings = "".join(
         f"<li><b class='{html.escape(f['severity'])}'>{html.escape(f['code'])}</b> "
         f"{html.escape(f['file'] or '')}{':' + str(f['line']) if f.get('line') else ''} — {html.escape(f['message'])}"

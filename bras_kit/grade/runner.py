@@ -8,8 +8,10 @@ import concurrent.futures as futures
 import contextlib
 import os
 import sys
+import tempfile
 import time
 from collections.abc import Callable, Iterator, Sequence
+from concurrent.futures.process import BrokenProcessPool
 from typing import IO, Any
 
 from ..errors import BrasKitError, ParameterError
@@ -42,11 +44,34 @@ def executor(jobs: int | None = None, scheduler: str | None = None) -> Iterator[
 
     # fork: workers start at once and share what this process already imported
     pool = futures.ProcessPoolExecutor(max_workers=jobs or os.cpu_count() or 1,
-                                       mp_context=multiprocessing.get_context("fork"))
+                                       mp_context=multiprocessing.get_context("fork"),
+                                       initializer=_start_worker)
     try:
         yield pool
     finally:
         pool.shutdown(wait=False, cancel_futures=True)
+
+
+_marker: str | None = None  # in a pool worker: the file naming the submission it is grading
+
+
+def _start_worker() -> None:
+    """Ctrl-C is the parent's to handle: a worker killed by it would break the pool and turn
+    the submissions still queued into failures instead of leaving them for --resume.
+
+    When one worker dies, the pool terminates the others (SIGTERM): they take their marker
+    away first, so their submissions are graded again rather than blamed.
+    """
+    import signal
+
+    def terminated(signum: int, frame: object) -> None:
+        if _marker is not None:
+            with contextlib.suppress(OSError):
+                os.unlink(_marker)
+        os._exit(128 + signum)
+
+    signal.signal(signal.SIGINT, signal.SIG_IGN)
+    signal.signal(signal.SIGTERM, terminated)
 
 
 class Progress:
@@ -99,20 +124,17 @@ def grade_all(submissions: Sequence[Submission], rubric: Rubric, options: Option
     for _ in results:
         progress.update(False)
     finished = True
+
+    def keep(submission: Submission, result: dict[str, Any]) -> None:
+        result.update(rubric=rubric.digest, lang=options.lang)
+        results[submission.learner] = result
+        progress.update(result["status"] != "graded")
+        if on_result is not None:
+            on_result(result)
+
     try:
-        with executor(jobs, scheduler) as pool:
-            pending = {pool.submit(grade, s, rubric, options): s for s in todo}
-            for future in futures.as_completed(pending):
-                submission = pending[future]
-                try:
-                    result = future.result()
-                except Exception as exc:  # a worker that died: that learner only
-                    result = _failed(submission, rubric, exc)
-                result.update(rubric=rubric.digest, lang=options.lang)
-                results[submission.learner] = result
-                progress.update(result["status"] != "graded")
-                if on_result is not None:
-                    on_result(result)
+        while todo:
+            todo = _run_batch(todo, rubric, options, jobs, scheduler, keep)
     except KeyboardInterrupt:
         finished = False
     finally:
@@ -121,11 +143,77 @@ def grade_all(submissions: Sequence[Submission], rubric: Rubric, options: Option
     return ordered, finished
 
 
+def _run_batch(todo: list[Submission], rubric: Rubric, options: Options, jobs: int | None, scheduler: str | None,
+               keep: Callable[[Submission, dict[str, Any]], None]) -> list[Submission]:
+    """Grade ``todo`` on one executor; returns the submissions to grade again on a fresh one.
+
+    A local worker that dies (a crash in a native library, the kernel's OOM killer) breaks the
+    whole process pool: every submission still queued fails with ``BrokenProcessPool``. Each
+    worker leaves a marker naming the submission it is on, so only the ones being graded when
+    a worker died score zero and the others go to a new pool. (Dask replaces a dead worker
+    itself and fails only the task that killed it.)
+    """
+    again: list[Submission] = []
+    with tempfile.TemporaryDirectory(prefix="bras-kit-grade-markers-") as markers, \
+            executor(jobs, scheduler) as pool:
+        if scheduler:
+            pending = {pool.submit(grade, s, rubric, options): s for s in todo}
+        else:
+            pending = {pool.submit(_grade_marked, markers, s, rubric, options): s for s in todo}
+        for future in futures.as_completed(pending):
+            submission = pending[future]
+            try:
+                result = future.result()
+            except BrokenProcessPool:
+                again.append(submission)
+                continue
+            except Exception as exc:  # an error in a worker: that learner only
+                result = _failed(submission, rubric, exc)
+            keep(submission, result)
+        if again:
+            pool.shutdown(wait=True)  # the other workers have taken their markers away once they are gone
+            culprits = _marked(markers) or {s.learner for s in again}  # none known: stop rather than loop
+            for submission in [s for s in again if s.learner in culprits]:
+                keep(submission, _failed(submission, rubric, DiedError("the worker process died while grading "
+                                                                       "it (a crash, or out of memory)")))
+            again = [s for s in again if s.learner not in culprits]
+    order = {s.learner: k for k, s in enumerate(todo)}
+    return sorted(again, key=lambda s: order[s.learner])
+
+
+def _grade_marked(markers: str, submission: Submission, rubric: Rubric, options: Options) -> dict[str, Any]:
+    """:func:`grade`, with a file in ``markers`` naming the submission while it is being graded."""
+    global _marker
+    marker = os.path.join(markers, str(os.getpid()))
+    with open(marker, "w", encoding="utf-8") as handle:
+        handle.write(submission.learner)
+    _marker = marker
+    try:
+        return grade(submission, rubric, options)
+    finally:
+        _marker = None
+        os.unlink(marker)
+
+
+def _marked(markers: str) -> set[str]:
+    """The submissions being graded by workers that died (their markers are still there)."""
+    names = set()
+    for entry in os.listdir(markers):
+        with contextlib.suppress(OSError), open(os.path.join(markers, entry), encoding="utf-8") as handle:
+            names.add(handle.read())
+    return names
+
+
+class DiedError(Exception):
+    """A submission whose worker process died while grading it."""
+
+
 def _failed(submission: Submission, rubric: Rubric, exc: BaseException) -> dict[str, Any]:
+    message = str(exc) if isinstance(exc, DiedError) else f"{type(exc).__name__}: {exc}"
     return {"learner": submission.learner, "path": submission.path, "hash": content_hash(submission.path),
             "status": "unreadable", "picture": None, "animation": None, "main_file": None, "package": False,
             "findings": [{"file": os.path.basename(submission.path), "line": None, "code": "BK103",
-                          "severity": "error", "message": f"could not be graded: {type(exc).__name__}: {exc}",
+                          "severity": "error", "message": f"could not be graded: {message}",
                           "hint": "check the submission by hand with bras-kit validate"}],
             "items": {item.id: 0.0 for item in rubric.items}, "score": 0.0, "max": rubric.total,
-            "first_error": f"BK103 could not be graded: {exc}", "seconds": 0.0}
+            "first_error": f"BK103 could not be graded: {message}", "seconds": 0.0}

@@ -9,6 +9,7 @@ the next (only the first submission of each worker pays for them).
 
 from __future__ import annotations
 
+import hashlib
 import os
 import shutil
 import tempfile
@@ -26,6 +27,10 @@ CHECK_CPU_SECONDS = 20
 CHECK_WALL_SECONDS = 40.0
 CHECK_MEMORY_BYTES = 1536 << 20
 PICTURE_SIZE = (480, 360)
+MAX_DRAWN_LINKS = 500
+ANIMATION_SIZE = (320, 240)
+ANIMATION_SECONDS = 4.0
+ANIMATION_FPS = 10.0
 UNREADABLE = ("BK100", "BK101", "BK102", "BK103")
 
 
@@ -51,6 +56,11 @@ def grade(submission: Submission, rubric: Rubric, options: Options) -> dict[str,
         robot = inspected["robot"]
         if robot is None:
             result["status"] = "unreadable"
+        elif options.pictures and _drawable(robot):  # while an archive's meshes are still unpacked
+            paths = (root, os.path.dirname(root)) if os.path.isdir(root) else ()
+            result["picture"] = _picture(robot, submission.learner, options, paths)
+            if options.gif:
+                result["animation"] = _animation(robot, submission.learner, options, paths)
     except BrasKitError as exc:
         result["status"] = "unreadable"
         result["findings"] = [_finding("BK103", "error", str(exc).split("\n")[0], exc.hint or "", submission.path)]
@@ -61,8 +71,6 @@ def grade(submission: Submission, rubric: Rubric, options: Options) -> dict[str,
     result["max"] = rubric.total
     errors = [f for f in result["findings"] if f["severity"] == "error"]
     result["first_error"] = f"{errors[0]['code']} {errors[0]['message']}" if errors else ""
-    if robot is not None and options.pictures:
-        result["picture"] = _picture(robot, submission.learner, options)
     result["seconds"] = round(time.monotonic() - start, 3)
     return result
 
@@ -97,7 +105,9 @@ def _size(path: str) -> int:
 
 
 def _inspect_limited(root: str, lang: str) -> dict[str, Any]:
+    from .. import authoring, validate  # noqa: F401  imported here, the limited child is forked with them
     from ..sandbox import run_limited
+    from ..validate import package  # noqa: F401  (else every submission would pay for importing them)
 
     return run_limited(_inspect, root, lang, cpu_seconds=CHECK_CPU_SECONDS, memory_bytes=CHECK_MEMORY_BYTES,
                        wall_seconds=CHECK_WALL_SECONDS, what=f"checking {os.path.basename(root)}")
@@ -227,20 +237,59 @@ def _inertials_ok(robot: Any) -> bool:
     return bool(moving)
 
 
-def _picture(robot: Any, learner: str, options: Options) -> str | None:
+def _drawable(robot: Any) -> bool:
+    """Drawing happens in the worker, outside the limited child: not a robot of 100,000 links,
+    and no mesh named by an absolute path or one climbing out of the submission (``..``),
+    which would make the teacher's machine read, and picture, files of its own."""
+    if len(robot.links) > MAX_DRAWN_LINKS:
+        return False
+    for link in robot.links:
+        for visual in link.visuals:
+            name = (visual.geometry.filename or "") if visual.geometry is not None else ""
+            if name.startswith(("file:", "/")) or ".." in name.replace("\\", "/").split("/"):
+                return False
+    return True
+
+
+def _picture(robot: Any, learner: str, options: Options, package_paths: tuple[str, ...] = ()) -> str | None:
     """The learner's arm at rest with its TF frames, as pictures/<learner>.png (None if it cannot be drawn)."""
+    from ..outputs import staged
     from ..render import render_pose, save_png
 
     assert options.pictures is not None
     name = _safe_name(learner) + ".png"
     try:
-        image = render_pose(robot, {}, size=PICTURE_SIZE, tf=True)
-        save_png(image, os.path.join(options.pictures, name))
+        image = render_pose(robot, {}, size=PICTURE_SIZE, tf=True, package_paths=package_paths)
+        with staged(os.path.join(options.pictures, name), True) as temporary:  # atomic, links not followed
+            save_png(image, temporary)
+    except (BrasKitError, MemoryError, OSError, RuntimeError, ValueError):
+        return None
+    return f"pictures/{name}"
+
+
+def _animation(robot: Any, learner: str, options: Options, package_paths: tuple[str, ...] = ()) -> str | None:
+    """The tutorial's motion on the learner's arm (every moving joint swinging), as pictures/<learner>.gif."""
+    from ..motion import motion_from_specs, sample_loop
+    from ..outputs import staged
+    from ..render import render_motion, save_gif
+
+    assert options.pictures is not None
+    name = _safe_name(learner) + ".gif"
+    try:
+        states = sample_loop(motion_from_specs(robot, []), ANIMATION_SECONDS, ANIMATION_FPS)
+        with render_motion(robot, states, progress=False, size=ANIMATION_SIZE, tf=True,
+                           package_paths=package_paths) as frames:
+            with staged(os.path.join(options.pictures, name), True) as temporary:
+                save_gif(frames, temporary, ANIMATION_FPS)
     except (BrasKitError, MemoryError, OSError, RuntimeError, ValueError):
         return None
     return f"pictures/{name}"
 
 
 def _safe_name(learner: str) -> str:
+    """A file name for ``learner``'s picture and page; names that had to change get a suffix
+    from the original, so that "a b" and "a_b" keep pages of their own."""
     keep = "".join(c if c.isalnum() or c in "-_." else "_" for c in learner).strip(".")
-    return keep or "learner"
+    if keep == learner:
+        return keep
+    return (keep or "learner") + "-" + hashlib.sha256(learner.encode("utf-8", "surrogateescape")).hexdigest()[:8]

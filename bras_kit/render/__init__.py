@@ -1,8 +1,15 @@
 """Draw the arm off-screen: pictures of poses, animations of motions, as RViz would show them.
 
 OpenGL through pyrender on EGL (works with Mesa's software rasteriser: no GPU, no display),
-OSMesa next, and a pure-numpy rasteriser where there is no OpenGL at all. pyrender, trimesh,
-PIL and imageio are imported only when something is drawn or written.
+OSMesa next, and a pure-numpy rasteriser where there is no OpenGL at all. pyrender, PIL and
+imageio are imported only when something is drawn or written; boxes, cylinders and spheres
+are built with numpy, and trimesh is loaded only to read mesh files.
+
+Fixed costs are paid once per process: OpenGL renderers (context, shaders, framebuffers) are
+kept per picture size and reused by the next :class:`Renderer`, :func:`render_pose` or
+:func:`render_motion` of that size, whatever the robot, and mesh files are read once while
+unchanged. So a tool drawing many robots or poses just creates one :class:`Renderer` per
+robot (or calls :func:`render_pose`) and pays the OpenGL start-up only the first time.
 
 >>> from bras_kit import arm                                        # doctest: +SKIP
 >>> image = render_pose(arm(), {"epaule": 0.8, "coude": 1.2}, view="front")

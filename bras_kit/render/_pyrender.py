@@ -14,6 +14,9 @@ import ctypes.util
 import os
 import sys
 import types
+import weakref
+from collections.abc import Iterator
+from typing import Any
 
 import numpy as np
 
@@ -76,12 +79,123 @@ def _pyopengl_version() -> tuple[int, ...]:
 
 
 def import_pyrender():  # type: ignore[no-untyped-def]
-    """pyrender, importable under numpy 2 (it still uses ``np.infty``)."""
+    """pyrender, importable under numpy 2 (it still uses ``np.infty``), in a third of its usual time.
+
+    pyrender's ``__init__`` loads trimesh (about 0.5 s with scipy), networkx (0.1 s) and its
+    interactive viewer with pyglet and imageio (0.07 s), none of which off-screen drawing of
+    ready-made triangles needs. While pyrender loads, stand-ins take their place in
+    ``sys.modules`` (see :func:`_stand_ins`); they are taken out right after, so any later
+    ``import trimesh`` / ``networkx`` / ``pyrender.viewer`` in the process loads the real module.
+    """
     if not hasattr(np, "infty"):
         np.infty = np.inf  # type: ignore[attr-defined]
-    import pyrender
+    if "pyrender" in sys.modules:
+        import pyrender
 
+        return pyrender
+    stand_ins = _stand_ins()
+    for name, module in stand_ins.items():
+        sys.modules[name] = module
+    try:
+        import pyrender
+    finally:
+        for name, module in stand_ins.items():
+            _forget(name, module)
     return pyrender
+
+
+def _stand_ins() -> dict[str, types.ModuleType]:
+    """Light modules pyrender imports in place of trimesh, networkx and its viewer, when they are
+    not loaded yet; each hands over to the real module the first time it is really used."""
+    import importlib
+    import importlib.util
+
+    stand_ins: dict[str, types.ModuleType] = {}
+    spec = importlib.util.find_spec("trimesh") if "trimesh" not in sys.modules else None
+    if spec is not None and spec.submodule_search_locations:
+        # a bare package: ``import trimesh.transformations`` (pyrender.node) loads that one module
+        trimesh = types.ModuleType("trimesh")
+        trimesh.__path__ = list(spec.submodule_search_locations)
+        trimesh.__file__ = spec.origin
+        trimesh.__getattr__ = _real("trimesh", trimesh)  # type: ignore[method-assign]
+        stand_ins["trimesh"] = trimesh
+    if "networkx" not in sys.modules:
+        networkx = types.ModuleType("networkx")
+        networkx.DiGraph = _ParentGraph  # type: ignore[attr-defined]
+        networkx.shortest_path = _path_to  # type: ignore[attr-defined]
+        networkx.__getattr__ = _real("networkx", networkx)  # type: ignore[method-assign]
+        stand_ins["networkx"] = networkx
+    viewer = types.ModuleType("pyrender.viewer")
+
+    class Viewer:
+        """pyrender's interactive viewer, loaded (with pyglet) when one is opened."""
+
+        def __new__(cls, *args: object, **kwargs: object) -> Any:
+            real = importlib.import_module("pyrender.viewer").Viewer
+            if real is cls:
+                raise ImportError("pyrender.viewer cannot be loaded")
+            return real(*args, **kwargs)
+
+    viewer.Viewer = Viewer  # type: ignore[attr-defined]
+    stand_ins["pyrender.viewer"] = viewer
+    return stand_ins
+
+
+def _real(name: str, stand_in: types.ModuleType):  # type: ignore[no-untyped-def]
+    """A module ``__getattr__`` giving the real module's attribute, loading it if need be."""
+    import importlib
+
+    def getattr_(attribute: str) -> object:
+        if attribute.startswith("__"):
+            raise AttributeError(attribute)
+        _forget(name, stand_in)
+        return getattr(importlib.import_module(name), attribute)
+
+    return getattr_
+
+
+def _forget(name: str, stand_in: types.ModuleType) -> None:
+    """Take a stand-in, and the submodules loaded under it, out of ``sys.modules``."""
+    if sys.modules.get(name) is stand_in:
+        del sys.modules[name]
+        for sub in [n for n in sys.modules if n.startswith(name + ".")]:
+            del sys.modules[sub]
+
+
+class _ParentGraph:
+    """What pyrender's scene asks of ``networkx.DiGraph``: a tree of nodes, each with an edge
+    to its parent, up to ``'world'`` (add_node, add_edge, neighbors, remove_node)."""
+
+    def __init__(self) -> None:
+        self._parent: dict[object, object | None] = {}
+
+    def add_node(self, node: object) -> None:
+        self._parent.setdefault(node, None)
+
+    def add_edge(self, node: object, parent: object) -> None:
+        self.add_node(parent)
+        self._parent[node] = parent
+
+    def neighbors(self, node: object) -> Iterator[object]:
+        parent = self._parent[node]
+        return iter(() if parent is None else (parent,))
+
+    def remove_node(self, node: object) -> None:
+        del self._parent[node]
+        for child, parent in self._parent.items():
+            if parent is node:
+                self._parent[child] = None
+
+
+def _path_to(graph: _ParentGraph, source: object, target: object) -> list[object]:
+    """``networkx.shortest_path`` on a :class:`_ParentGraph`: from a node up its parents to ``target``."""
+    path = [source]
+    while path[-1] != target:
+        parent = graph._parent.get(path[-1])
+        if parent is None:
+            raise ValueError(f"no path from {source!r} to {target!r}")
+        path.append(parent)
+    return path
 
 
 def _linear(rgb: tuple[float, ...]) -> np.ndarray:
@@ -184,20 +298,26 @@ class PyrenderBackend:
             self._scene.add(pyrender.DirectionalLight(color=np.ones(3), intensity=intensity),
                             pose=_look_pose(direction))
         self._key = (platform, camera.width, camera.height, antialias)
-        self._renderer = _POOL.take(self._key)
-        if self._renderer is not None:
-            return
+        self._renderer: Any = _POOL.take(self._key)
+        if self._renderer is None:
+            self._renderer = self._open(pyrender, camera, platform, antialias)
+        # a backend dropped without close() still hands its renderer back (see _RendererPool)
+        self._finalizer = weakref.finalize(self, _POOL.give, self._key, self._renderer)
+
+    @staticmethod
+    def _open(pyrender, camera: Camera, platform: str, antialias: bool):  # type: ignore[no-untyped-def]
         try:
-            self._renderer = pyrender.OffscreenRenderer(camera.width, camera.height)
+            renderer = pyrender.OffscreenRenderer(camera.width, camera.height)
         except Exception as exc:
             raise BackendError(f"cannot start OpenGL ({platform}): {exc}".rstrip(),
                                hint="use backend software, or install Mesa's EGL "
                                "(libegl1 libegl-mesa0 libgl1-mesa-dri libgbm1)") from None
-        inner, platform_ = getattr(self._renderer, "_renderer", None), getattr(self._renderer, "_platform", None)
+        inner, platform_ = getattr(renderer, "_renderer", None), getattr(renderer, "_platform", None)
         if inner is not None and platform_ is not None and getattr(inner, "_main_fb", 1) is None:
             platform_.make_current()
             _make_framebuffers(inner, camera.width, camera.height, 4 if antialias else 0)
             inner._read_main_framebuffer = types.MethodType(_color_reader(camera.width, camera.height), inner)
+        return renderer
 
     @staticmethod
     def _primitive(pyrender, part):  # type: ignore[no-untyped-def]
@@ -224,16 +344,22 @@ class PyrenderBackend:
         return np.ascontiguousarray(color)
 
     def close(self) -> None:
-        renderer, self._renderer = getattr(self, "_renderer", None), None
-        if renderer is not None:
-            _POOL.give(self._key, renderer)
+        self._renderer = None
+        finalizer = getattr(self, "_finalizer", None)
+        if finalizer is not None:
+            finalizer()  # gives the renderer back to the pool, once
 
 
 class _RendererPool:
     """Closed OffscreenRenderers kept for the next picture of the same size: opening one (an
-    OpenGL context, shaders) and deleting it (pyrender runs a full garbage collection) cost
-    more than drawing a small robot. One per size, in this process only (a forked child
-    never uses its parent's context), deleted at exit."""
+    OpenGL context, shaders) costs more than drawing a small robot. One per size, in this
+    process only (a forked child never uses its parent's context), deleted at exit.
+
+    Renderers are deleted here, never by pyrender: pyrender's ``delete`` (also run by its
+    ``__del__`` on a renderer nobody closed) ends with ``eglTerminate`` on the EGL display that
+    every context of the process shares, which breaks all the other renderers, and with a full
+    garbage collection. :meth:`give` keeps the renderer of a backend dropped without ``close``.
+    """
 
     def __init__(self) -> None:
         self._kept: dict[tuple[object, ...], object] = {}
@@ -251,20 +377,63 @@ class _RendererPool:
         return renderer
 
     def give(self, key: tuple[object, ...], renderer: object) -> None:
-        if os.getpid() != self._pid or key in self._kept:
-            if os.getpid() == self._pid:
-                renderer.delete()  # type: ignore[attr-defined]
+        if os.getpid() != self._pid:
+            _disown(renderer)
             return
+        if key in self._kept:
+            _delete(renderer)
+            return
+        _release(renderer)
         self._kept[key] = renderer
 
     def clear(self) -> None:
         kept, self._kept = self._kept, {}
-        if os.getpid() == self._pid:
-            for renderer in kept.values():
-                try:
-                    renderer.delete()  # type: ignore[attr-defined]
-                except Exception:  # noqa: BLE001 - the context may already be gone at exit
-                    pass
+        for renderer in kept.values():
+            if os.getpid() == self._pid:
+                _delete(renderer)
+            else:
+                _disown(renderer)
+
+
+def _delete(renderer: Any) -> None:
+    """Free an OffscreenRenderer's OpenGL objects and its context, leaving the display alone."""
+    platform: Any = getattr(renderer, "_platform", None)
+    inner: Any = getattr(renderer, "_renderer", None)
+    try:
+        if platform is not None and inner is not None:
+            platform.make_current()
+            inner.delete()
+        context = getattr(platform, "_egl_context", None)
+        if context is not None:
+            from OpenGL.EGL import EGL_NO_CONTEXT, EGL_NO_SURFACE, eglDestroyContext, eglMakeCurrent
+
+            eglMakeCurrent(platform._egl_display, EGL_NO_SURFACE, EGL_NO_SURFACE, EGL_NO_CONTEXT)
+            eglDestroyContext(platform._egl_display, context)
+            platform._egl_context = None
+        elif platform is not None and hasattr(platform, "delete_context"):
+            platform.delete_context()  # OSMesa: a context of its own, nothing shared
+    except Exception:  # noqa: BLE001 - the context may already be gone at exit
+        pass
+    _disown(renderer)
+
+
+def _release(renderer: Any) -> None:
+    """Make a kept EGL context current nowhere, so the next renderer may take it in any thread
+    (a context current in one thread cannot be made current in another)."""
+    platform: Any = getattr(renderer, "_platform", None)
+    if getattr(platform, "_egl_context", None) is not None:
+        try:
+            from OpenGL.EGL import EGL_NO_CONTEXT, EGL_NO_SURFACE, eglMakeCurrent
+
+            eglMakeCurrent(platform._egl_display, EGL_NO_SURFACE, EGL_NO_SURFACE, EGL_NO_CONTEXT)
+        except Exception:  # noqa: BLE001 - the next make_current reports a real problem
+            pass
+
+
+def _disown(renderer: Any) -> None:
+    """Leave pyrender's ``__del__`` nothing to free (it would terminate the shared EGL display)."""
+    renderer._renderer = None
+    renderer._platform = None
 
 
 _POOL = _RendererPool()

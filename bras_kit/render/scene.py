@@ -12,6 +12,7 @@ import os
 import sys
 from collections.abc import Sequence
 from dataclasses import dataclass
+from typing import NamedTuple
 
 import numpy as np
 
@@ -84,35 +85,146 @@ def resolve_mesh_path(filename: str, robot: Robot, package_paths: Sequence[str] 
     return path
 
 
-def visual_mesh(robot: Robot, visual: Visual, package_paths: Sequence[str] = ()):  # type: ignore[no-untyped-def]
-    """The visual's shape as a ``trimesh.Trimesh`` in the link frame, or None when it has no usable shape."""
+class TriangleMesh(NamedTuple):
+    """Triangles in a link frame: ``vertices`` (V, 3) float, ``faces`` (F, 3) int, counter-clockwise
+    seen from outside (what :func:`visual_mesh` returns; trimesh is loaded only for mesh files)."""
+
+    vertices: np.ndarray
+    faces: np.ndarray
+
+    def transformed(self, matrix: np.ndarray) -> TriangleMesh:
+        return TriangleMesh(self.vertices @ matrix[:3, :3].T + matrix[:3, 3], self.faces)
+
+
+def box_mesh(extents: Sequence[float]) -> TriangleMesh:
+    """A box centred on the origin: 8 corners, 12 outward triangles."""
+    half = np.abs(np.asarray(extents, dtype=float)) / 2.0
+    corners = np.array([[x, y, z] for x in (-1, 1) for y in (-1, 1) for z in (-1, 1)], dtype=float) * half
+    # corner index = 4*x + 2*y + z (0 for -, 1 for +); two triangles per side, outward
+    faces = np.array([[0, 1, 3], [0, 3, 2], [4, 6, 7], [4, 7, 5],   # -x, +x
+                      [0, 4, 5], [0, 5, 1], [2, 3, 7], [2, 7, 6],   # -y, +y
+                      [0, 2, 6], [0, 6, 4], [1, 5, 7], [1, 7, 3]],  # -z, +z
+                     dtype=np.int64)
+    return TriangleMesh(corners, faces)
+
+
+def cylinder_mesh(radius: float, length: float, sections: int = CYLINDER_SECTIONS) -> TriangleMesh:
+    """A closed cylinder along z, centred on the origin: a ring of sides and two fans."""
+    angles = np.linspace(0.0, 2.0 * math.pi, sections, endpoint=False)
+    ring = np.column_stack([radius * np.cos(angles), radius * np.sin(angles)])
+    half = length / 2.0
+    vertices = np.vstack([np.column_stack([ring, np.full(sections, -half)]),
+                          np.column_stack([ring, np.full(sections, half)]),
+                          [[0.0, 0.0, -half], [0.0, 0.0, half]]])
+    i = np.arange(sections)
+    j = (i + 1) % sections
+    bottom, top = 2 * sections, 2 * sections + 1
+    faces = np.vstack([np.column_stack([i, j, j + sections]), np.column_stack([i, j + sections, i + sections]),
+                       np.column_stack([np.full(sections, bottom), j, i]),
+                       np.column_stack([np.full(sections, top), i + sections, j + sections])])
+    return TriangleMesh(vertices, faces.astype(np.int64))
+
+
+def sphere_mesh(radius: float, subdivisions: int = 2) -> TriangleMesh:
+    """An icosphere: the icosahedron with each triangle split in four ``subdivisions`` times."""
+    t = (1.0 + math.sqrt(5.0)) / 2.0
+    vertices = [np.array(v, dtype=float) for v in (
+        (-1, t, 0), (1, t, 0), (-1, -t, 0), (1, -t, 0), (0, -1, t), (0, 1, t),
+        (0, -1, -t), (0, 1, -t), (t, 0, -1), (t, 0, 1), (-t, 0, -1), (-t, 0, 1))]
+    faces = [(0, 11, 5), (0, 5, 1), (0, 1, 7), (0, 7, 10), (0, 10, 11), (1, 5, 9), (5, 11, 4), (11, 10, 2),
+             (10, 7, 6), (7, 1, 8), (3, 9, 4), (3, 4, 2), (3, 2, 6), (3, 6, 8), (3, 8, 9), (4, 9, 5),
+             (2, 4, 11), (6, 2, 10), (8, 6, 7), (9, 8, 1)]
+    def middle(a: int, b: int, middles: dict[tuple[int, int], int]) -> int:
+        key = (min(a, b), max(a, b))
+        if key not in middles:
+            middles[key] = len(vertices)
+            vertices.append((vertices[a] + vertices[b]) / 2.0)
+        return middles[key]
+
+    for _ in range(subdivisions):
+        middles: dict[tuple[int, int], int] = {}
+        split = []
+        for a, b, c in faces:
+            ab, bc, ca = middle(a, b, middles), middle(b, c, middles), middle(c, a, middles)
+            split += [(a, ab, ca), (b, bc, ab), (c, ca, bc), (ab, bc, ca)]
+        faces = split
+    points = np.array(vertices)
+    points *= radius / np.linalg.norm(points, axis=1, keepdims=True)
+    return TriangleMesh(points, np.array(faces, dtype=np.int64))
+
+
+def rod_mesh(radius: float, end: np.ndarray, sections: int = 12) -> TriangleMesh:
+    """A cylinder from the origin to ``end``."""
+    length = float(np.linalg.norm(end))
+    rod = cylinder_mesh(radius, length, sections)
+    axis = np.asarray(end, dtype=float) / length
+    helper = np.array([1.0, 0.0, 0.0]) if abs(axis[0]) < 0.9 else np.array([0.0, 1.0, 0.0])
+    x = np.cross(helper, axis)
+    x /= np.linalg.norm(x)
+    matrix = np.eye(4)
+    matrix[:3, :3] = np.column_stack([x, np.cross(axis, x), axis])
+    matrix[:3, 3] = axis * length / 2.0
+    return rod.transformed(matrix)
+
+
+def load_mesh_file(path: str, robot: Robot, line: int | None = None) -> TriangleMesh:
+    """The triangles of an STL, OBJ or DAE file (through trimesh, imported only here)."""
     import trimesh
 
+    try:
+        mesh = trimesh.load(path, force="mesh")
+    except Exception as exc:
+        raise ModelError(f"cannot read mesh {path}: {exc}", path=robot.path, line=line,
+                         element="mesh", hint="give an STL, OBJ or DAE file") from None
+    if not isinstance(mesh, trimesh.Trimesh) or len(mesh.faces) == 0:
+        raise ModelError(f"mesh {path} holds no triangles", path=robot.path, line=line,
+                         element="mesh", hint="export the mesh as triangles (STL, OBJ or DAE)")
+    return TriangleMesh(np.asarray(mesh.vertices, dtype=float), np.asarray(mesh.faces, dtype=np.int64))
+
+
+def visual_mesh(robot: Robot, visual: Visual, package_paths: Sequence[str] = ()) -> TriangleMesh | None:
+    """The visual's shape as a :class:`TriangleMesh` in the link frame, or None when it has no usable shape."""
     g = visual.geometry
     if g is None:
         return None
     if g.kind == "box" and g.size is not None:
-        mesh = trimesh.creation.box(extents=[abs(v) for v in g.size])
+        mesh = box_mesh(g.size)
     elif g.kind == "cylinder" and g.radius and g.length:
-        mesh = trimesh.creation.cylinder(radius=abs(g.radius), height=abs(g.length), sections=CYLINDER_SECTIONS)
+        mesh = cylinder_mesh(abs(g.radius), abs(g.length))
     elif g.kind == "sphere" and g.radius:
-        mesh = trimesh.creation.icosphere(subdivisions=2, radius=abs(g.radius))
+        mesh = sphere_mesh(abs(g.radius))
     elif g.kind == "mesh" and g.filename:
         path = resolve_mesh_path(g.filename, robot, package_paths, g.line)
-        try:
-            mesh = trimesh.load(path, force="mesh")
-        except Exception as exc:
-            raise ModelError(f"cannot read mesh {path}: {exc}", path=robot.path, line=g.line,
-                             element="mesh", hint="give an STL, OBJ or DAE file") from None
-        if not isinstance(mesh, trimesh.Trimesh) or len(mesh.faces) == 0:
-            raise ModelError(f"mesh {path} holds no triangles", path=robot.path, line=g.line,
-                             element="mesh", hint="export the mesh as triangles (STL, OBJ or DAE)")
+        mesh = _mesh_file_cached(path, robot, g.line)
         if g.scale is not None:
-            mesh.apply_scale(np.asarray(g.scale, dtype=float))
+            scale = np.asarray(g.scale, dtype=float)
+            # a mirroring scale turns the triangles inside out: wind them the other way
+            mesh = TriangleMesh(mesh.vertices * scale, mesh.faces[:, ::-1] if np.prod(scale) < 0 else mesh.faces)
     else:
         return None
-    mesh.apply_transform(origin_matrix(visual.origin.xyz, visual.origin.rpy))
+    return mesh.transformed(origin_matrix(visual.origin.xyz, visual.origin.rpy))
+
+
+def _mesh_file_cached(path: str, robot: Robot, line: int | None) -> TriangleMesh:
+    """A mesh file read once per process while it stays unchanged (robots share meshes)."""
+    try:
+        stat = os.stat(path)
+    except OSError:
+        return load_mesh_file(path, robot, line)
+    key = (os.path.realpath(path), stat.st_mtime_ns, stat.st_size)
+    mesh = _MESH_CACHE.get(key)
+    if mesh is None:
+        mesh = load_mesh_file(path, robot, line)
+        mesh.vertices.flags.writeable = False
+        mesh.faces.flags.writeable = False
+        if sum(len(m.vertices) + len(m.faces) for m in _MESH_CACHE.values()) > MESH_CACHE_ENTRIES:
+            _MESH_CACHE.clear()
+        _MESH_CACHE[key] = mesh
     return mesh
+
+
+MESH_CACHE_ENTRIES = 4_000_000  # vertices + faces kept from read mesh files (about 100 MB at most)
+_MESH_CACHE: dict[tuple[str, int, int], TriangleMesh] = {}
 
 
 PLACEHOLDER_COLOR = (0.9, 0.05, 0.05, 1.0)
@@ -120,20 +232,16 @@ PLACEHOLDER_SIDE = 0.05  # metres: the stand-in of a mesh with no collision shap
 MAX_MESH_BYTES = 256 << 20
 
 
-def placeholder_mesh(robot: Robot, link, visual: Visual):  # type: ignore[no-untyped-def]
+def placeholder_mesh(robot: Robot, link, visual: Visual) -> TriangleMesh:  # type: ignore[no-untyped-def]
     """What stands for a mesh that cannot be read: the link's first primitive collision shape,
     else a small cube at the visual's origin."""
-    import trimesh
-
     for collision in link.collisions:
         g = collision.geometry
         if g is not None and g.kind in ("box", "cylinder", "sphere"):
             mesh = visual_mesh(robot, Visual(collision.origin, g))
             if mesh is not None:
                 return mesh
-    mesh = trimesh.creation.box(extents=[PLACEHOLDER_SIDE] * 3)
-    mesh.apply_transform(origin_matrix(visual.origin.xyz, visual.origin.rpy))
-    return mesh
+    return box_mesh([PLACEHOLDER_SIDE] * 3).transformed(origin_matrix(visual.origin.xyz, visual.origin.rpy))
 
 
 def robot_parts(tree: TFTree, package_paths: Sequence[str] = ()) -> list[Part]:
@@ -163,13 +271,11 @@ def robot_parts(tree: TFTree, package_paths: Sequence[str] = ()) -> list[Part]:
 
 def triad_parts(tree: TFTree, length: float) -> list[Part]:
     """Red, green and blue rods along each link's x, y and z axes (RViz's TF display)."""
-    import trimesh
-
     radius = length / 22.0
     rods = []
     for axis, color in zip(np.eye(3), AXIS_COLORS):
-        rod = trimesh.creation.cylinder(radius=radius, segment=[np.zeros(3), axis * length], sections=12)
-        rods.append((np.asarray(rod.vertices, dtype=float), np.asarray(rod.faces, dtype=np.int64), color))
+        rod = rod_mesh(radius, axis * length)
+        rods.append((rod.vertices, rod.faces, color))
     return [Part(i, v.copy(), f, c, unlit=True, label=f"{name} axes")
             for i, name in enumerate(tree.links) for v, f, c in rods]
 

@@ -10,8 +10,10 @@ from __future__ import annotations
 
 import io
 import os
+import queue
 import struct
 import sys
+import threading
 import time
 from collections.abc import Iterable, Iterator, Sequence
 from typing import IO, Any, Protocol
@@ -22,6 +24,7 @@ from ..errors import BackendError, ParameterError
 
 PALETTE_SAMPLES = 4  # frames the GIF palette is computed from
 TRANSPARENT = 255  # GIF palette index left for "unchanged since the previous frame"
+QUEUED_FRAMES = 8  # frames waiting for the GIF worker at most (memory stays flat)
 _LUT_BITS = 5  # colour -> palette index table: 5 bits per channel (32768 entries)
 
 
@@ -98,12 +101,10 @@ class _PaletteMap:
         palette = np.asarray(quantised.getpalette() or [0, 0, 0], dtype=np.uint8).reshape(-1, 3)[used]
         self.palette = np.zeros((256, 3), dtype=np.uint8)
         self.palette[: len(palette)] = palette
-        from scipy.spatial import cKDTree
-
         levels = (np.arange(1 << _LUT_BITS) << (8 - _LUT_BITS)) + (1 << (7 - _LUT_BITS))
         r, g, b = np.meshgrid(levels, levels, levels, indexing="ij")
-        cube = np.stack([r.ravel(), g.ravel(), b.ravel()], axis=1).astype(np.float64)
-        self._table = cKDTree(palette.astype(np.float64)).query(cube)[1].astype(np.uint8)
+        cube = np.stack([r.ravel(), g.ravel(), b.ravel()], axis=1)
+        self._table = _nearest(cube, palette).astype(np.uint8)
 
     def indices(self, frame: np.ndarray) -> np.ndarray:
         shift = 8 - _LUT_BITS
@@ -113,26 +114,98 @@ class _PaletteMap:
         return self._table[key]
 
 
+def _nearest(points: np.ndarray, palette: np.ndarray, chunk: int = 4096) -> np.ndarray:
+    """Index of the nearest ``palette`` row (Euclidean) for each of ``points``: exact, by blocks,
+    as |c|^2 - 2 p.c (the same for every c); integers below 2^24 throughout, so float32 is exact."""
+    points, palette = np.asarray(points, dtype=np.float32), np.asarray(palette, dtype=np.float32)
+    squares = (palette ** 2).sum(axis=1)
+    out = np.empty(len(points), dtype=np.int64)
+    for start in range(0, len(points), chunk):
+        block = points[start:start + chunk]
+        out[start:start + chunk] = np.argmin(squares[None, :] - 2.0 * block @ palette.T, axis=1)
+    return out
+
+
 class GifWriter:
-    """Streams frames into a looping GIF (a path or a binary file object)."""
+    """Streams frames into a looping GIF (a path or a binary file object).
+
+    Encoding runs in a worker thread, so the next frames draw while earlier ones are mapped to
+    the palette, compressed and written; the palette itself (from ``palette_samples``) is also
+    computed there. :meth:`write` copies the frame, checks it at once (type, size) and returns;
+    an error while encoding or writing is raised by the next :meth:`write` or by :meth:`close`,
+    which waits for the last frame and ends the file.
+    """
 
     def __init__(self, target: str | os.PathLike[str] | IO[bytes], fps: float,
                  palette_samples: Sequence[np.ndarray]) -> None:
         if not palette_samples:
             raise ParameterError("a GIF palette needs at least one sample frame")
-        self._palette = _PaletteMap(palette_samples)
+        samples = [np.array(_rgb(s)) for s in palette_samples]
+        from PIL import GifImagePlugin, Image  # noqa: F401 - loaded here, not in the worker
         self._delay = gif_delay(fps)
         self._own = not hasattr(target, "write")
-        self._file: IO[bytes] = open(target, "wb") if self._own else target  # type: ignore[arg-type,assignment]
-        self._previous: np.ndarray | None = None
+        self._file: IO[bytes] | None = open(target, "wb") if self._own else target  # type: ignore[arg-type,assignment]
+        self._shape: tuple[int, ...] | None = None
+        self._error: BaseException | None = None
+        self._queue: queue.Queue[np.ndarray | None] = queue.Queue(maxsize=QUEUED_FRAMES)
+        self._thread = threading.Thread(target=self._work, args=(samples,), name="gif-writer", daemon=True)
+        self._thread.start()
         self.frames = 0
+
+    def write(self, frame: np.ndarray) -> None:
+        rgb = _rgb(frame)
+        if self._shape is None:
+            self._shape = rgb.shape
+        elif rgb.shape != self._shape:
+            raise ParameterError("all frames of a GIF must have the same size")
+        self._raise_failure()
+        self._queue.put(np.array(rgb))
+        self.frames += 1
+
+    def close(self) -> None:
+        if self._file is None:
+            return
+        self._queue.put(None)
+        self._thread.join()
+        try:
+            self._raise_failure()
+            self._file.write(b";")
+        finally:
+            if self._own:
+                self._file.close()
+            self._file = None
+
+    def _raise_failure(self) -> None:
+        if self._error is not None:
+            error, self._error = self._error, None
+            raise error
+
+    # ---- in the worker thread
+
+    def _work(self, samples: list[np.ndarray]) -> None:
+        try:
+            encoder = _GifFrames(_PaletteMap(samples), self._delay, self._file)  # type: ignore[arg-type]
+            while (frame := self._queue.get()) is not None:
+                encoder.add(frame)
+        except BaseException as exc:  # handed to the drawing thread
+            self._error = exc
+            while self._queue.get() is not None:  # let write() and close() go on
+                pass
+
+
+class _GifFrames:
+    """The GIF's header and frames: each frame stores only the rectangle that changed."""
+
+    def __init__(self, palette: _PaletteMap, delay: int, file: IO[bytes]) -> None:
+        self._palette, self._delay, self._file = palette, delay, file
+        self._previous: np.ndarray | None = None
 
     def _header(self, width: int, height: int) -> bytes:
         loop = b"!\xff\x0bNETSCAPE2.0\x03\x01" + struct.pack("<H", 0) + b"\x00"
         return (b"GIF89a" + struct.pack("<HHBBB", width, height, 0xF7, 0, 0)
                 + self._palette.palette.tobytes() + loop)
 
-    def write(self, frame: np.ndarray) -> None:
+    def add(self, frame: np.ndarray) -> None:
         from PIL import GifImagePlugin, Image
 
         index = self._palette.indices(frame)
@@ -140,8 +213,6 @@ class GifWriter:
             self._file.write(self._header(index.shape[1], index.shape[0]))
             top, left, patch = 0, 0, index
         else:
-            if index.shape != self._previous.shape:
-                raise ParameterError("all frames of a GIF must have the same size")
             changed = index != self._previous
             rows, cols = np.flatnonzero(changed.any(axis=1)), np.flatnonzero(changed.any(axis=0))
             if len(rows) == 0:
@@ -156,15 +227,6 @@ class GifWriter:
                                             transparency=TRANSPARENT):
             self._file.write(chunk)
         self._previous = index
-        self.frames += 1
-
-    def close(self) -> None:
-        if self._file is None:
-            return
-        self._file.write(b";")
-        if self._own:
-            self._file.close()
-        self._file = None  # type: ignore[assignment]
 
 
 # ---------------------------------------------------------------- MP4
@@ -234,7 +296,10 @@ class FramesDirWriter:
         os.makedirs(self.folder, exist_ok=True)
 
     def write(self, frame: np.ndarray) -> None:
-        save_png(frame, os.path.join(self.folder, frame_name(self.frames, self.total)))
+        path = os.path.join(self.folder, frame_name(self.frames, self.total))
+        if os.path.islink(path):  # replace the link itself, never write through it
+            os.unlink(path)
+        save_png(frame, path)
         self.frames += 1
 
     def close(self) -> None:

@@ -12,6 +12,7 @@ import numpy as np
 
 from ..kinematics import TFTree, fk_batch, tf_tree
 from ..model import Robot, Visual
+from ..motion.limits import TOLERANCE
 
 Color = tuple[int, int, int]
 COLLISION_COLOR: Color = (90, 160, 90)
@@ -38,6 +39,19 @@ class Slider:
     unit: str  # "rad" or "m"
 
 
+@dataclass(frozen=True)
+class Follower:
+    """A mimic joint: ``gain * leader + offset``, with its own limits (shown red past them)."""
+
+    joint: str
+    leader: str
+    gain: float
+    offset: float
+    lower: float
+    upper: float
+    unit: str
+
+
 @dataclass
 class ViewModel:
     robot: Robot
@@ -45,6 +59,7 @@ class ViewModel:
     visuals: list[Mesh]
     collisions: list[Mesh]
     sliders: list[Slider]
+    followers: list[Follower]
     tip_link: int
     tip_offset: np.ndarray
     scale: float  # metres: the size of the robot, for triads, labels and the grid
@@ -71,9 +86,17 @@ class ViewModel:
         pose = poses[self.tip_link]
         return pose[:3, :3] @ self.tip_offset + pose[:3, 3]
 
+    def follower_values(self, values: Mapping[str, float]) -> dict[str, float]:
+        """The value of each mimic joint for the leaders' ``values``."""
+        return {f.joint: f.gain * float(values.get(f.leader, 0.0)) + f.offset for f in self.followers}
+
     def out_of_limits(self, values: Mapping[str, float]) -> set[str]:
-        return {s.joint for s in self.sliders
-                if s.joint in values and not s.lower - 1e-9 <= values[s.joint] <= s.upper + 1e-9}
+        """The joints, sliders and mimic followers, past their limits for ``values``."""
+        every = [(s.joint, s.lower, s.upper) for s in self.sliders]
+        every += [(f.joint, f.lower, f.upper) for f in self.followers]
+        given = {**values, **self.follower_values(values)}
+        return {name for name, lower, upper in every
+                if name in given and not lower - TOLERANCE <= given[name] <= upper + TOLERANCE}
 
 
 def _rgb(color: Sequence[float]) -> Color:
@@ -107,12 +130,21 @@ def view_model(robot: Robot, package_paths: Sequence[str] = ()) -> ViewModel:
             lower, upper = -math.pi, math.pi  # continuous joints: one turn each way
         sliders.append(Slider(joint.name or "?", float(lower), float(upper),
                               "m" if joint.type == "prismatic" else "rad"))
+    followers = []
+    for index, into in enumerate(tree.joints):
+        if into is None or into.mimic is None:
+            continue
+        motion = tree.joint_motion(index)
+        if motion.column >= 0:  # a mimic of a joint that moves (not of a fixed one)
+            lower, upper = into.bounds()
+            followers.append(Follower(into.name or "?", tree.dof[motion.column], motion.gain, motion.offset,
+                                      float(lower), float(upper), "m" if motion.kind == "prismatic" else "rad"))
     tip_name, tip_offset = tool_tip(tree)
     zero = fk_batch(tree, np.zeros(len(tree.dof)))
     points = [zero[m.link][:3, :3] @ m.vertices.T + zero[m.link][:3, 3:4] for m in visuals]
     corners = np.hstack(points) if points else zero[:, :3, 3].T
     span = float(np.max(np.ptp(corners, axis=1))) if corners.size else 1.0
-    return ViewModel(robot, tree, visuals, collisions, sliders, tree.index(tip_name),
+    return ViewModel(robot, tree, visuals, collisions, sliders, followers, tree.index(tip_name),
                      np.asarray(tip_offset, float), max(span, 0.05))
 
 

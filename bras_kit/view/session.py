@@ -167,11 +167,19 @@ class Session:
                 f"x={tip[0]:.3f} y={tip[1]:.3f} z={tip[2]:.3f} m</p>"]
         for slider in model.sliders:
             value = self.values.get(slider.joint, 0.0)
-            style = " style='color:#c62828;font-weight:bold'" if slider.joint in outside else ""
+            style = "margin:2px 0" + (";color:#c62828;font-weight:bold" if slider.joint in outside else "")
             degrees = f" ({math.degrees(value):.1f}°)" if slider.unit == "rad" else ""
             mark = f" — {html.escape(t('out of limits'))}" if slider.joint in outside else ""
-            rows.append(f"<p style='margin:2px 0'{style} data-joint='{html.escape(slider.joint)}'>"
+            rows.append(f"<p style='{style}' data-joint='{html.escape(slider.joint)}'>"
                         f"{html.escape(slider.joint)} = {value:.3f} {slider.unit}{degrees}{mark}</p>")
+        for follower, value in zip(model.followers, model.follower_values(self.values).values()):
+            style = "margin:2px 0" + (";color:#c62828;font-weight:bold" if follower.joint in outside else "")
+            degrees = f" ({math.degrees(value):.1f}°)" if follower.unit == "rad" else ""
+            mark = f" — {html.escape(t('out of limits'))}" if follower.joint in outside else ""
+            follows = html.escape(t("follows {joint}").format(joint=follower.leader))
+            rows.append(f"<p style='{style}' data-joint='{html.escape(follower.joint)}'>"
+                        f"{html.escape(follower.joint)} = {value:.3f} {follower.unit}{degrees} <i>({follows})</i>"
+                        f"{mark}</p>")
         self.readout.content = "".join(rows)
 
     def set_values(self, values: dict[str, float]) -> None:
@@ -214,6 +222,7 @@ class Session:
         when = self.play_time % period if period else self.play_time
         positions = motion.positions(np.array([when]))[0]
         self.set_values(dict(zip(motion.names, (float(v) for v in positions))))
+        self.motion_text.content = f"<small>{html.escape(motion.label or '')} · t = {when:.2f} s</small>"
 
     # -- display toggles ---------------------------------------------------------------------
     def _apply_visibility(self) -> None:

@@ -19,8 +19,6 @@ from .session import Session
 LOCAL_HOST = "127.0.0.1"
 TICK_SECONDS = 1 / 30  # playback frame period
 WATCH_SECONDS = 0.25  # how often the files are looked at
-MAX_WATCHED = 2000  # files under the folder of FILE
-WATCHED_SUFFIXES = (".urdf", ".xacro", ".yaml", ".yml")
 
 
 @dataclass
@@ -41,17 +39,12 @@ class Source:
         return load(self.path, mappings=self.mappings, package_paths=self.package_paths)
 
     def watched(self) -> list[str]:
-        """The file and the robot files beside it (what a xacro includes usually lives there)."""
+        """The file, the robot files beside it and every file it includes."""
         if self.path is None:
             return []
-        found = [os.path.abspath(self.path)]
-        folder = os.path.dirname(os.path.abspath(self.path))
-        for root, dirs, files in os.walk(folder):
-            dirs[:] = sorted(d for d in dirs if not d.startswith("."))
-            found += [os.path.join(root, f) for f in sorted(files) if f.endswith(WATCHED_SUFFIXES)]
-            if len(found) > MAX_WATCHED:
-                break
-        return sorted(set(found))[:MAX_WATCHED]
+        from .watch import watched_files
+
+        return watched_files(self.path, self.package_paths)
 
 
 class Viewer:
@@ -114,8 +107,8 @@ class Viewer:
             robot = self.source.load()
             model = self._build(robot)
             self._check(robot)
-        except BrasKitError as exc:
-            self.error = str(exc)
+        except Exception as exc:  # noqa: BLE001 - whatever the file does, the viewer keeps running
+            self.error = str(exc) if isinstance(exc, BrasKitError) else f"{type(exc).__name__}: {exc}"
             with self._lock:
                 for session in list(self.sessions.values()):
                     session.show_checks()
@@ -123,10 +116,10 @@ class Viewer:
         self.error = None
         self.model = model
         self.loaded_at = time.time()
-        self.reloads += 1
         with self._lock:
             for session in list(self.sessions.values()):
                 session.show_model(model)
+        self.reloads += 1  # counted once every browser has the new model
         return True
 
     def _frame_camera(self, model: ViewModel) -> None:
@@ -165,15 +158,21 @@ class Viewer:
             last = now
 
     def _watch_loop(self) -> None:
-        stamps = _stamps(self.source.watched())
+        files = self.source.watched()
+        stamps = _stamps(files)
         while not self._stopping.wait(WATCH_SECONDS):
-            current = _stamps(self.source.watched())
+            current = _stamps(files)
             if current != stamps:
-                stamps = current
                 self.reload()
+                files = self.source.watched()  # the saved file may include new files
+                # stamps from before the reload: a save during the reload is seen next time
+                stamps = {**_stamps(files), **{k: v for k, v in current.items() if k in files}}
 
     def stop(self) -> None:
         self._stopping.set()
+        for thread in self._threads:  # a reload under way finishes before the server goes
+            if thread is not threading.current_thread():
+                thread.join(timeout=10)
         with quiet():
             self.server.stop()
 

@@ -1,0 +1,193 @@
+"""What the picture path pays once (issue 15): shapes built without trimesh, pyrender loaded
+without trimesh/networkx/scipy, OpenGL renderers kept across robots, the GIF encoded in a
+worker. Speed itself is measured in benchmarks/render_*.py, not here."""
+
+from __future__ import annotations
+
+import gc
+import io
+import math
+import subprocess
+import sys
+
+import numpy as np
+import pytest
+
+from bras_kit.render import Renderer, render_pose
+from bras_kit.render.scene import box_mesh, cylinder_mesh, rod_mesh, sphere_mesh
+from bras_kit.render.sequence import GifWriter, _nearest
+
+SIZE = (160, 120)
+
+
+def signed_volume(vertices: np.ndarray, faces: np.ndarray) -> float:
+    """Divergence theorem: positive when every triangle winds counter-clockwise seen from outside."""
+    a, b, c = (vertices[faces[:, k]] for k in range(3))
+    return float(np.einsum("ij,ij->i", a, np.cross(b, c)).sum() / 6.0)
+
+
+def closed(faces: np.ndarray) -> bool:
+    """Every edge used once in each direction: a closed surface, consistently wound."""
+    edges = np.concatenate([faces[:, [0, 1]], faces[:, [1, 2]], faces[:, [2, 0]]])
+    forward = {tuple(e) for e in edges.tolist()}
+    return len(forward) == len(edges) and all((b, a) in forward for a, b in forward)
+
+
+def test_box_is_closed_outward_and_has_its_volume():
+    mesh = box_mesh([0.2, -0.4, 1.0])  # a negative size is a size
+    assert closed(mesh.faces) and len(mesh.faces) == 12
+    assert signed_volume(mesh.vertices, mesh.faces) == pytest.approx(0.2 * 0.4 * 1.0)
+    assert np.allclose(mesh.vertices.min(axis=0), [-0.1, -0.2, -0.5])
+
+
+def test_cylinder_is_a_closed_prism_of_its_polygon():
+    n, r, length = 32, 0.05, 0.3
+    mesh = cylinder_mesh(r, length, sections=n)
+    assert closed(mesh.faces) and len(mesh.faces) == 4 * n
+    polygon = n / 2 * r * r * math.sin(2 * math.pi / n)  # area of the regular n-gon inside the circle
+    assert signed_volume(mesh.vertices, mesh.faces) == pytest.approx(polygon * length)
+    assert np.allclose(np.linalg.norm(mesh.vertices[:2 * n, :2], axis=1), r)
+    assert mesh.vertices[:, 2].min() == pytest.approx(-0.15) and mesh.vertices[:, 2].max() == pytest.approx(0.15)
+
+
+def test_sphere_is_an_icosphere_on_its_radius():
+    mesh = sphere_mesh(0.5, subdivisions=2)
+    assert closed(mesh.faces)
+    assert (len(mesh.vertices), len(mesh.faces)) == (162, 320)  # 10 * 4^2 + 2 vertices, 20 * 4^2 faces
+    assert np.allclose(np.linalg.norm(mesh.vertices, axis=1), 0.5)
+    volume = signed_volume(mesh.vertices, mesh.faces)
+    assert 0.95 * (4 / 3 * math.pi * 0.125) < volume < 4 / 3 * math.pi * 0.125  # inscribed, close
+
+
+def test_rod_runs_from_the_origin_to_its_end():
+    end = np.array([0.0, 0.3, 0.4])
+    rod = rod_mesh(0.01, end)
+    axis = end / 0.5
+    along = rod.vertices @ axis
+    assert along.min() == pytest.approx(0.0, abs=1e-12) and along.max() == pytest.approx(0.5)
+    off_axis = rod.vertices - np.outer(along, axis)
+    assert np.linalg.norm(off_axis, axis=1).max() == pytest.approx(0.01)
+    assert signed_volume(rod.vertices, rod.faces) > 0
+
+
+def test_pictures_load_neither_trimesh_nor_networkx_nor_scipy():
+    code = ("import sys, numpy as np\n"
+            "from bras_kit.authoring import arm\n"
+            "from bras_kit.render import render_pose, save_gif, render_motion\n"
+            "import io\n"
+            "image = render_pose(arm(), {'coude': 1.0}, size=(64, 48), tf=True)\n"
+            "save_gif(render_motion(arm(), np.zeros((3, 2)), size=(64, 48)), io.BytesIO())\n"
+            "print(sorted(m for m in ('trimesh', 'networkx', 'scipy', 'pyglet') if m in sys.modules))\n"
+            "import trimesh, networkx, pyrender\n"  # the real ones still load afterwards
+            "print(hasattr(trimesh, 'Trimesh'), hasattr(networkx, 'DiGraph'), callable(pyrender.Viewer))\n")
+    result = subprocess.run([sys.executable, "-c", code], capture_output=True, text=True, check=True)
+    assert result.stdout.split("\n")[:2] == ["[]", "True True True"]
+
+
+def test_a_renderer_dropped_without_close_leaves_the_others_working(tutorial_robot):
+    first = render_pose(tutorial_robot, {"epaule": 0.5}, size=SIZE)
+    dropped = Renderer(tutorial_robot, size=SIZE, antialias=False)
+    dropped.render({})
+    del dropped  # never closed: pyrender's own clean-up would end the EGL display of every renderer
+    gc.collect()
+    with Renderer(tutorial_robot, size=SIZE, antialias=False) as again:
+        plain = again.render({"epaule": 0.5})
+    assert np.array_equal(render_pose(tutorial_robot, {"epaule": 0.5}, size=SIZE), first)
+    assert (plain != 255).any(axis=2).sum() > 100  # the arm is drawn
+
+
+def test_one_renderer_draws_the_same_picture_as_a_fresh_one(tutorial_robot):
+    poses = [{"epaule": 0.1 * k, "coude": -0.2 * k} for k in range(4)]
+    with Renderer(tutorial_robot, fit=poses, size=SIZE) as renderer:
+        kept = [renderer.render(p) for p in poses]
+    for pose, image in zip(poses, kept):
+        with Renderer(tutorial_robot, fit=poses, size=SIZE) as fresh:
+            assert np.array_equal(fresh.render(pose), image)
+
+
+def test_nearest_palette_entry_is_exact():
+    rng = np.random.default_rng(3)
+    palette = rng.integers(0, 256, (255, 3))
+    colours = rng.integers(0, 256, (5000, 3))
+    chosen = _nearest(colours, palette)
+    distances = ((colours[:, None, :] - palette[None, :, :]) ** 2).sum(axis=2)
+    assert np.array_equal(distances[np.arange(len(colours)), chosen], distances.min(axis=1))
+
+
+class FailingFile(io.BytesIO):
+    def __init__(self, limit: int) -> None:
+        super().__init__()
+        self.limit = limit
+
+    def write(self, data) -> int:  # type: ignore[no-untyped-def, override]
+        if self.tell() + len(data) > self.limit:
+            raise OSError(28, "No space left on device")
+        return super().write(data)
+
+
+def test_a_write_error_in_the_gif_worker_reaches_the_caller():
+    rng = np.random.default_rng(5)
+    frames = [rng.integers(0, 256, (40, 50, 3), dtype=np.uint8) for _ in range(12)]  # noise: kilobytes a frame
+    writer = GifWriter(FailingFile(limit=6000), 10, frames[:4])
+    with pytest.raises(OSError, match="No space left"):
+        for frame in frames:
+            writer.write(frame)
+        writer.close()
+
+
+def test_the_gif_writer_copies_frames_it_has_not_encoded_yet():
+    from PIL import Image
+
+    buffer = np.zeros((20, 30, 3), np.uint8)
+    target = io.BytesIO()
+    writer = GifWriter(target, 10, [np.zeros((20, 30, 3), np.uint8), np.full((20, 30, 3), 200, np.uint8)])
+    for value in (0, 200, 0):
+        buffer[:] = value  # the caller reuses one array
+        writer.write(buffer)
+    writer.close()
+    image = Image.open(io.BytesIO(target.getvalue()))
+    seen = []
+    for index in range(image.n_frames):
+        image.seek(index)
+        seen.append(int(np.asarray(image.convert("RGB"))[0, 0, 0]))
+    assert seen == [0, 200, 0]
+
+
+def _ascii_stl(mesh) -> str:  # type: ignore[no-untyped-def]
+    rows = ["solid t"]
+    for face in mesh.faces:
+        rows += ["facet normal 0 0 0", "outer loop"]
+        rows += [f"vertex {x:.9g} {y:.9g} {z:.9g}" for x, y, z in mesh.vertices[face]]
+        rows += ["endloop", "endfacet"]
+    return "\n".join(rows + ["endsolid t", ""])
+
+
+def test_mesh_files_are_read_once_and_mirroring_keeps_them_outward(tmp_path, tutorial_robot):
+    from bras_kit.model import Geometry, Origin, Visual
+    from bras_kit.render import scene
+
+    path = tmp_path / "cube.stl"
+    path.write_text(_ascii_stl(box_mesh([0.1, 0.2, 0.3])))
+    plain = scene.visual_mesh(tutorial_robot, Visual(Origin(), Geometry("mesh", filename=str(path))))
+    mirrored = scene.visual_mesh(tutorial_robot, Visual(Origin((1.0, 0.0, 0.0)), Geometry(
+        "mesh", filename=str(path), scale=(-2.0, 1.0, 1.0))))
+    assert signed_volume(plain.vertices, plain.faces) == pytest.approx(0.006)
+    assert signed_volume(mirrored.vertices, mirrored.faces) == pytest.approx(0.012)  # still outward
+    assert np.allclose(mirrored.vertices[:, 0].min(), 0.9)
+    key = next(k for k in scene._MESH_CACHE if k[0] == str(path.resolve()))
+    path.write_text(_ascii_stl(box_mesh([0.5, 0.5, 0.5])))  # a changed file is read again
+    import os
+
+    os.utime(path, ns=(key[1] + 10**9, key[1] + 10**9))
+    again = scene.visual_mesh(tutorial_robot, Visual(Origin(), Geometry("mesh", filename=str(path))))
+    assert signed_volume(again.vertices, again.faces) == pytest.approx(0.125)
+
+
+def test_a_kept_renderer_serves_another_thread(tutorial_robot):
+    from concurrent.futures import ThreadPoolExecutor
+
+    here = render_pose(tutorial_robot, {"coude": 0.7}, size=SIZE)  # leaves a renderer of this size kept
+    with ThreadPoolExecutor(1) as pool:
+        there = pool.submit(render_pose, tutorial_robot, {"coude": 0.7}, size=SIZE).result()
+    assert np.array_equal(here, there)
+    assert np.array_equal(render_pose(tutorial_robot, {"coude": 0.7}, size=SIZE), here)  # and back here

@@ -1,0 +1,234 @@
+"""bras-kit view without a browser: what a session computes and sends (mimic joints, limits in
+red during playback, readouts), which files are watched, reload on saving an included file, the
+share tunnel refused, and the command's errors. The browser itself is tested in test_view.py."""
+
+from __future__ import annotations
+
+import math
+import socket
+import subprocess
+import sys
+import time
+
+import numpy as np
+import pytest
+
+MIMIC_URDF = """<?xml version="1.0"?>
+<robot name="pince">
+  <link name="base"/><link name="a"/><link name="b"/><link name="c"/>
+  <joint name="meneur" type="revolute">
+    <parent link="base"/><child link="a"/><axis xyz="0 0 1"/>
+    <limit lower="-1" upper="1" effort="1" velocity="1"/>
+  </joint>
+  <joint name="suiveur" type="revolute">
+    <parent link="a"/><child link="b"/><origin xyz="1 0 0"/><axis xyz="0 0 1"/>
+    <limit lower="-1" upper="1" effort="1" velocity="1"/>
+    <mimic joint="meneur" multiplier="2" offset="0.1"/>
+  </joint>
+  <joint name="bout" type="fixed">
+    <parent link="b"/><child link="c"/><origin xyz="1 0 0"/>
+  </joint>
+</robot>
+"""
+
+
+def _free_port() -> int:
+    with socket.socket() as probe:
+        probe.bind(("127.0.0.1", 0))
+        return int(probe.getsockname()[1])
+
+
+class _ServerAsClient:
+    """A viser server's own scene and GUI stand in for one browser's (no browser needed)."""
+
+    def __init__(self, server) -> None:
+        self.scene, self.gui, self.atomic, self.client_id = server.scene, server.gui, server.atomic, 0
+
+
+def _session(viewer):
+    """A session, registered as a connected browser's would be (reloads reach it)."""
+    from bras_kit.view.session import Session
+
+    session = Session(_ServerAsClient(viewer.server), viewer, viewer.t)
+    viewer.sessions[0] = session
+    return session
+
+
+def _wait(condition, seconds=5.0):
+    end = time.monotonic() + seconds
+    while time.monotonic() < end:
+        if condition():
+            return True
+        time.sleep(0.02)
+    return condition()
+
+
+@pytest.fixture()
+def mimic_file(tmp_path):
+    path = tmp_path / "pince.urdf"
+    path.write_text(MIMIC_URDF)
+    return path
+
+
+def test_mimic_joint_has_no_slider_and_follows_its_leader(mimic_file):
+    from bras_kit.view import Source, Viewer
+
+    with Viewer(Source(path=str(mimic_file)), port=_free_port(), watch=False) as viewer:
+        session = _session(viewer)
+        assert list(session._sliders) == ["meneur"]
+        session.set_values({"meneur": 0.3})
+        poses = viewer.model.poses(session.values)
+        c = viewer.model.tree.index("c")
+        # a turns 0.3, b a further 2*0.3 + 0.1 = 0.7 (1.0 in all): c = (cos .3 + cos 1, sin .3 + sin 1)
+        np.testing.assert_allclose(poses[c][:3, 3], [math.cos(0.3) + math.cos(1.0), math.sin(0.3) + math.sin(1.0), 0],
+                                   atol=1e-12)
+        # what is sent to the browser: the frame of link c at that place
+        np.testing.assert_allclose(session._frames[c].position, poses[c][:3, 3], atol=1e-6)
+        assert "suiveur = 0.700 rad (40.1°)" in session.readout.content
+        assert "follows meneur" in session.readout.content
+        session.set_values({"meneur": 0.5})  # the leader inside its limits, the follower at 1.1 past its own
+        assert viewer.model.out_of_limits(session.values) == {"suiveur"}
+        row = next(r for r in session.readout.content.split("</p>") if "data-joint='suiveur'" in r)
+        assert row.count("style=") == 1 and "color:#c62828" in row and "out of limits" in row
+
+
+def test_playback_turns_a_joint_red_while_it_is_past_its_limit(tmp_path):
+    from bras_kit.authoring import arm
+    from bras_kit.view import Source, Viewer
+
+    # coude's limits are -2 .. 2 rad; 2.5 sin(t) is past 2 for t in (0.927, 2.214)
+    with Viewer(Source(robot=arm()), port=_free_port(), motion_specs=["coude=2.5*sin(t)"], watch=False) as viewer:
+        session = _session(viewer)
+        session.playing = True
+        session.advance(0.5)
+        assert session.values["coude"] == pytest.approx(2.5 * math.sin(0.5))
+        assert "out of limits" not in session.readout.content
+        session.advance(1.0)  # t = 1.5
+        assert session.values["coude"] == pytest.approx(2.5 * math.sin(1.5))
+        assert session._sliders["coude"].value == pytest.approx(2.0)  # the slider stops at its bound
+        row = next(r for r in session.readout.content.split("</p>") if "data-joint='coude'" in r)
+        assert row.count("style=") == 1 and "color:#c62828" in row and "out of limits" in row
+        session.speed = 2.0
+        session.advance(0.5)  # twice as fast: t = 2.5, back inside
+        assert session.values["coude"] == pytest.approx(2.5 * math.sin(2.5))
+        assert "out of limits" not in session.readout.content
+        session.playing = False
+        session.advance(1.0)  # paused: nothing moves
+        assert session.values["coude"] == pytest.approx(2.5 * math.sin(2.5))
+
+
+def test_zero_random_and_fixed_frame(tmp_path):
+    from bras_kit.authoring import arm
+    from bras_kit.view import Source, Viewer
+
+    with Viewer(Source(robot=arm()), port=_free_port(), watch=False) as viewer:
+        session = _session(viewer)
+        random_values = []
+        for _ in range(20):
+            session._button(viewer.t("Random pose"))
+            random_values.append(dict(session.values))
+        for values in random_values:
+            assert -2.0 <= values["coude"] <= 2.0 and -math.pi <= values["epaule"] <= math.pi
+        assert len({v["coude"] for v in random_values}) == 20
+        session._button(viewer.t("Zero"))
+        assert session.values == {"epaule": 0.0, "coude": 0.0}
+        # Fixed Frame = avant_bras: the forearm's frame is sent at the origin, the base is not
+        session.fixed.value = "avant_bras"
+        session._choose_fixed_frame()
+        forearm = viewer.model.tree.index("avant_bras")
+        np.testing.assert_allclose(session._frames[forearm].position, [0, 0, 0], atol=1e-9)
+        np.testing.assert_allclose(session._frames[0].position, [0, 0, -0.65], atol=1e-9)
+
+
+def test_watched_files_follow_includes_through_relative_paths_and_find(tmp_path):
+    from bras_kit.view.watch import watched_files
+
+    robot = tmp_path / "robot"
+    (robot / "urdf" / "parts").mkdir(parents=True)
+    other = tmp_path / "ailleurs" / "commun"
+    (other / "urdf").mkdir(parents=True)
+    (other / "package.xml").write_text("<package/>")
+    main = robot / "urdf" / "bras.urdf.xacro"
+    main.write_text('<robot xmlns:xacro="http://www.ros.org/wiki/xacro" name="r">\n'
+                    '  <xacro:include filename="parts/avant_bras.xacro"/>\n'
+                    "  <xacro:include filename='$(find commun)/urdf/materiaux.xacro' />\n"
+                    '  <xacro:include filename="$(arg extra)"/>\n'
+                    '  <xacro:property name="p" value="${load_yaml(\'parts/params.yaml\')}"/>\n</robot>\n')
+    (robot / "urdf" / "parts" / "avant_bras.xacro").write_text(
+        '<robot xmlns:xacro="http://www.ros.org/wiki/xacro"><xacro:include filename="../couleurs.xacro"/></robot>')
+    (robot / "urdf" / "couleurs.xacro").write_text("<robot/>")
+    (robot / "urdf" / "parts" / "params.yaml").write_text("a: 1\n")
+    (robot / "urdf" / "notes.txt").write_text("not a robot file")
+    (robot / "urdf" / "parts" / "unused.xacro").write_text("<robot/>")
+    (other / "urdf" / "materiaux.xacro").write_text("<robot/>")
+
+    found = watched_files(str(main), package_paths=[str(tmp_path / "ailleurs")])
+    assert found == sorted(str(p) for p in [
+        main, robot / "urdf" / "parts" / "avant_bras.xacro", robot / "urdf" / "couleurs.xacro",
+        robot / "urdf" / "parts" / "params.yaml", other / "urdf" / "materiaux.xacro"])
+
+
+def test_saving_an_included_file_in_another_folder_reloads(tmp_path):
+    from bras_kit.view import Source, Viewer
+
+    (tmp_path / "urdf").mkdir()
+    (tmp_path / "inc").mkdir()
+    main = tmp_path / "urdf" / "r.urdf.xacro"
+    main.write_text('<robot xmlns:xacro="http://www.ros.org/wiki/xacro" name="r">\n'
+                    '  <link name="base"/>\n  <xacro:include filename="../inc/bras.xacro"/>\n</robot>\n')
+    part = tmp_path / "inc" / "bras.xacro"
+    part.write_text('<robot xmlns:xacro="http://www.ros.org/wiki/xacro"><link name="bras"/>'
+                    '<joint name="epaule" type="continuous"><parent link="base"/><child link="bras"/>'
+                    '<axis xyz="0 0 1"/></joint></robot>')
+    with Viewer(Source(path=str(main)), port=_free_port()) as viewer:
+        session = _session(viewer)
+        session.set_values({"epaule": 1.25})
+        time.sleep(0.3)
+        part.write_text(part.read_text().replace('<link name="bras"/>', '<link name="bras"/><link name="pince"/>'
+                        '<joint name="serrage" type="prismatic"><parent link="bras"/><child link="pince"/>'
+                        '<limit lower="0" upper="0.04" effort="1" velocity="1"/></joint>'))
+        # how fast is measured in benchmarks/view_latency.py; here: it happens at all
+        assert _wait(lambda: "pince" in viewer.model.tree.links, 5), "the include was not watched"
+        assert session.values == {"epaule": 1.25, "serrage": 0.0}  # kept, and the new joint at 0
+        assert "serrage" in session._sliders and session._sliders["serrage"].max == pytest.approx(0.04)
+
+
+def test_the_share_tunnel_is_refused(tmp_path):
+    from bras_kit.authoring import arm
+    from bras_kit.view import Source, Viewer
+
+    with Viewer(Source(robot=arm()), port=_free_port(), watch=False) as viewer:
+        assert viewer.server.request_share_url() is None
+        assert viewer.server._share_tunnel is None
+        assert viewer.url.startswith("http://127.0.0.1:")
+
+
+@pytest.mark.parametrize(("arguments", "words"), [
+    (["--port", "70000"], "--port 70000 is out of range"),
+    (["nowhere.urdf"], "no such file"),
+    (["--host", "127.0.0.1", "--motion", "nowhere=sin(t)", "--export", "{out}"], "nowhere"),
+])
+def test_bad_input_is_a_clear_message(tmp_path, arguments, words):
+    arguments = [a.replace("{out}", str(tmp_path / "a.html")) for a in arguments]
+    done = subprocess.run([sys.executable, "-m", "bras_kit", "view", "--no-browser", *arguments],
+                          capture_output=True, text=True, timeout=60, cwd=tmp_path)
+    assert done.returncode == 2, done.stderr
+    assert words in done.stderr and "Traceback" not in done.stderr
+    assert not (tmp_path / "a.html").exists()
+
+
+def test_library_entry_serves_a_robot_and_prints_its_address(capsys):
+    import urllib.request
+
+    import bras_kit
+    from bras_kit.authoring import arm
+
+    port = _free_port()
+    viewer = bras_kit.view(arm(wrist=True), port=port, motion="tutorial")
+    try:
+        assert capsys.readouterr().out.strip() == f"http://127.0.0.1:{port}"
+        assert b"<html" in urllib.request.urlopen(viewer.url, timeout=10).read().lower()
+        assert [s.joint for s in viewer.model.sliders] == ["epaule", "coude", "poignet"]
+        assert viewer.motion is not None and set(viewer.motion.names) == {"epaule", "coude", "poignet"}
+    finally:
+        viewer.stop()
