@@ -22,17 +22,11 @@ from . import __version__
 from ._resources import robot_template, templates_dir
 from .errors import BrasKitError, ModelError, OutputExistsError, ParameterError
 from .model import Robot
+from .motion.sources import TUTORIAL_WAVES  # the one definition of the tutorial's motion
 
 DEFAULT_PACKAGE = "bras_description"
 PACKAGE_NAME_PATTERN = re.compile(r"[a-z][a-z0-9_]*")
 
-# The tutorial's motion (epaule = 0.8 sin t, coude = 1.2 sin 0.7t) and the wrist's own wave:
-# joint -> (amplitude, angular frequency in rad/s, phase in rad).
-TUTORIAL_WAVES: dict[str, tuple[float, float, float]] = {
-    "epaule": (0.8, 1.0, 0.0),
-    "coude": (1.2, 0.7, 0.0),
-    "poignet": (1.0, 1.3, math.pi / 2),
-}
 OTHER_JOINT_WAVE = (0.5, 0.5, 0.0)
 # Fraction of each half-range (and of each velocity limit) the motion leaves unused.
 LIMIT_MARGIN = 0.1

@@ -2,6 +2,7 @@
 
 from __future__ import annotations
 
+import json
 import subprocess
 import sys
 from pathlib import Path
@@ -88,3 +89,21 @@ def test_notebook_runs_top_to_bottom(path: Path, tmp_path: Path) -> None:
     client.execute()  # raises CellExecutionError, with the failing cell and traceback, on any error
     ran = [c for c in nb.cells if c.cell_type == "code"]
     assert ran and all(c.execution_count is not None for c in ran)
+
+
+def test_french_lessons_speak_the_tutorials_french() -> None:
+    """Segments, articulations, repères: no English word left in the French lessons' text
+    (code spans, code blocks and XML tags aside; RViz's own setting names are kept)."""
+    import re
+
+    english = re.compile(r"\b(links?|joints?|frames?|the|and|of|error|warning|wrote)\b", re.IGNORECASE)
+    found = []
+    for path in sorted((LESSONS / "fr").rglob("*.ipynb")):
+        for cell in json.loads(path.read_text(encoding="utf-8"))["cells"]:
+            if cell["cell_type"] != "markdown":
+                continue
+            text = "".join(cell["source"])
+            text = re.sub(r"```.*?```", "", text, flags=re.S)
+            text = re.sub(r"`[^`]*`|<[^>]+>|\*\*Fixed Frame\*\*|Fixed Frame", "", text)
+            found += [f"{path.name}: {m.group(0)}" for m in english.finditer(text)]
+    assert not found, found

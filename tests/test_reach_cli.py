@@ -226,3 +226,17 @@ def test_workspace_bad_input_exits_2(run_cli, tmp_path, monkeypatch, argv, messa
     monkeypatch.chdir(tmp_path)
     code, _, err = run_cli("workspace", *argv)
     assert code == 2 and message in err
+
+
+def test_reach_gif_marks_the_target(run_cli, tmp_path):
+    from PIL import Image
+
+    gif = tmp_path / "reach.gif"
+    code, _, err = run_cli("reach", "0.5", "0", "0.6", "--gif", str(gif))
+    assert code == 0, err
+    with Image.open(gif) as animation:
+        for index in (0, animation.n_frames - 1):
+            animation.seek(index)
+            rgb = np.asarray(animation.convert("RGB")).astype(int)
+            magenta = (rgb[..., 0] > 170) & (rgb[..., 1] < 70) & (rgb[..., 2] > 100)  # 0.85 0.1 0.55
+            assert magenta.sum() > 30, index

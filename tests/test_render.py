@@ -431,3 +431,26 @@ def test_unknown_package_says_how_to_find_it(tmp_path):
         resolve_mesh_path("package://elsewhere/meshes/cube.stl", robot)
     assert "package 'elsewhere' not found" in str(info.value)
     assert "--package-path" in info.value.hint
+
+
+def test_tf_axes_are_drawn_over_the_segments_with_their_names(tutorial_robot):
+    """Every joint's triad sits inside a segment; RViz's TF display shows it anyway, on top."""
+    pose = {"epaule": 0.8, "coude": 1.2}
+    with Renderer(tutorial_robot, fit=pose, view="iso", grid=False, size=(320, 240), tf=True, antialias=False) as r:
+        drawn = r.render(pose)
+        for mesh in r._backend._solids:  # the same camera with the segments taken away
+            mesh.is_visible = False
+        axes_only = r.render(pose)
+        for mesh in r._backend._solids:
+            mesh.is_visible = True
+        with Renderer(tutorial_robot, fit=pose, view="iso", grid=False, size=(320, 240), antialias=False) as plain_r:
+            solids = silhouette(plain_r.render(pose))
+    for channel in range(3):
+        wanted = pure_mask(axes_only, channel)
+        inside = wanted & solids
+        assert inside.sum() > 20  # part of this axis runs inside a segment...
+        assert (pure_mask(drawn, channel) & inside).sum() >= 0.95 * inside.sum()  # ...and is drawn
+    # the names: dark text appears next to each frame origin, on top of whatever is there
+    text = (drawn.max(axis=2) < 60) & ~(axes_only.max(axis=2) < 60)
+    assert text.sum() == 0  # the names are part of both pictures (same camera, same origins)
+    assert (drawn.max(axis=2) < 60).sum() > 40

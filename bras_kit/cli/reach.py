@@ -82,14 +82,15 @@ def _view(robot, motion) -> str:  # type: ignore[no-untyped-def]
     return "front" if moving and about_y else "iso"
 
 
-def _write_gif(robot, motion, path: str, force: bool) -> None:  # type: ignore[no-untyped-def]
+def _write_gif(robot, motion, path: str, force: bool, target=None) -> None:  # type: ignore[no-untyped-def]
     from ..errors import BackendError
 
     try:
         from ..render import render_motion, save_gif
     except ImportError as exc:
         raise BackendError(f"cannot render the GIF: {exc}", hint="check the bras-kit install (pip install -e .)") from None
-    frames = render_motion(robot, _states(motion), view=_view(robot, motion))
+    frames = render_motion(robot, _states(motion), view=_view(robot, motion),
+                           targets=[tuple(target)] if target is not None else ())
     from ._common import save_with
 
     save_with(path, force, lambda temporary: save_gif(frames, temporary, GIF_RATE), option="--gif", announce=False)
@@ -134,7 +135,7 @@ def run(args: argparse.Namespace) -> int:
     elif args.duration is not None or args.gif:
         warn(_("no move: the target is not reached"))
     if motion is not None and args.gif:
-        _write_gif(robot, motion, args.gif, args.force)
+        _write_gif(robot, motion, args.gif, args.force, result.target)
     code = 0 if result.reachable and not result.singular and not violations else 1
 
     units = {name: ("m" if (j := robot.joint(name)) is not None and j.type == "prismatic" else "rad")

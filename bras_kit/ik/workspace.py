@@ -61,6 +61,18 @@ def _occupancy(points: np.ndarray, x_edges: np.ndarray, y_edges: np.ndarray) -> 
     return cells | ~shift_any(~dilated)
 
 
+def _smooth(field: np.ndarray, passes: int = 2) -> np.ndarray:
+    """The occupancy blurred by a binomial 1-2-1 filter along each axis: its 0.5 level is a smooth
+    curve through the cells' edges instead of a staircase."""
+    out = field
+    for _pass in range(passes):
+        padded = np.pad(out, 1, mode="edge")
+        out = (padded[:-2, 1:-1] + 2 * padded[1:-1, 1:-1] + padded[2:, 1:-1]) / 4
+        padded = np.pad(out, 1, mode="edge")
+        out = (padded[1:-1, :-2] + 2 * padded[1:-1, 1:-1] + padded[1:-1, 2:]) / 4
+    return out
+
+
 def _area(cells: np.ndarray, cell_area: float) -> float:
     """Area of a region drawn as occupied cells: a cell on the border (a side touching an empty
     cell) is on average half inside a smooth boundary, so it counts one half."""
@@ -132,7 +144,7 @@ def workspace_figure(model: TFTree | Robot, samples: int = 100_000, *, tip_link:
     centres_x, centres_y = (x_edges[:-1] + x_edges[1:]) / 2, (y_edges[:-1] + y_edges[1:]) / 2
     for cells_on, colour, order in ((free_cells, free_colour, 1), (bounded_cells, bounded_colour, 2)):
         if cells_on.any():  # contour at half a cell: smooth edges, no blocky pixels
-            axes.contourf(centres_x, centres_y, cells_on.T.astype(float), levels=[0.5, 1.5],
+            axes.contourf(centres_x, centres_y, _smooth(cells_on.astype(float)).T, levels=[0.5, 1.5],
                           colors=[colour], antialiased=True, zorder=order)
     base = tree.robot.link(tree.root)
     for visual in base.visuals if base is not None else []:
@@ -151,6 +163,10 @@ def workspace_figure(model: TFTree | Robot, samples: int = 100_000, *, tip_link:
             continue
         axes.add_patch(Rectangle((centre[h] - w / 2, centre[v] - hh / 2), w, hh, facecolor=(0.5, 0.5, 0.5),
                                  edgecolor="black", linewidth=0.8, zorder=3, label=_("base")))
+    if v == 2:  # the floor the base stands on: the tip cannot go below it on a real arm
+        bottoms = [patch.get_y() for patch in axes.patches if isinstance(patch, Rectangle)]
+        floor = min(bottoms) if bottoms else float(zero[0][2, 3])
+        axes.axhline(floor, color=(0.45, 0.3, 0.15), linewidth=2, zorder=3, label=_("floor"))
     axes.plot(arm_points[:, h], arm_points[:, v], "-", color=(0.95, 0.5, 0.1), linewidth=3, zorder=4,
               label=_("arm at zero pose"))
     axes.plot(arm_points[1:-1, h], arm_points[1:-1, v], "o", color="black", markersize=5, zorder=5)

@@ -68,14 +68,32 @@ def _fitted_sine(joint: Joint, amplitude: float, omega: float, phase: str = "") 
 
 # The tutorial's node: epaule = 0.8 sin t, coude = 1.2 sin 0.7t, kept as written (even past
 # narrower limits: that is the pitfall the limit check is for).
-TUTORIAL_FORMULAS = {"epaule": "0.8*sin(t)", "coude": "1.2*sin(0.7*t)"}
+# The one definition of the tutorial's motion, used by the CLI, the scaffolded node (bras-kit
+# new) and the lessons: joint -> (amplitude rad, angular frequency rad/s, phase rad). The wrist
+# of the exercise moves faster than the elbow, so the three joints never line up for long.
+TUTORIAL_WAVES: dict[str, tuple[float, float, float]] = {
+    "epaule": (0.8, 1.0, 0.0),
+    "coude": (1.2, 0.7, 0.0),
+    "poignet": (1.0, 1.3, 0.0),
+}
+
+
+def wave_formula(amplitude: float, omega: float, phase: float = 0.0) -> str:
+    """``amplitude*sin(omega*t + phase)`` written as a learner would: ``1.2*sin(0.7*t)``."""
+    inner = "t" if omega == 1.0 else f"{omega!r}*t"
+    if phase:
+        inner += f" + {phase!r}"
+    return f"{amplitude!r}*sin({inner})"
+
+
+TUTORIAL_FORMULAS = {name: wave_formula(*wave) for name, wave in TUTORIAL_WAVES.items()}
 
 
 def tutorial_motion(robot: Robot) -> Motion:
     """The tutorial's animation: epaule = 0.8 sin t, coude = 1.2 sin 0.7t.
 
-    A wrist ``poignet`` follows 0.9 sin(1.3t + pi/3) (smaller if its limits are narrower); any
-    other movable joint gets a gentle sine inside its limits, each at its own pace.
+    A wrist ``poignet`` follows 1.0 sin 1.3t (:data:`TUTORIAL_WAVES`; smaller if its limits are
+    narrower); any other movable joint gets a gentle sine inside its limits, each at its own pace.
     """
     tree = tf_tree(robot)
     return _build(tree, [_tutorial_layer(tree)], label="tutorial")
@@ -85,10 +103,11 @@ def _tutorial_layer(tree: TFTree) -> _Layer:
     tracks: dict[str, Track] = {}
     others = 0
     for name, joint in zip(tree.dof, tree.dof_joints()):
-        if name in TUTORIAL_FORMULAS:
+        if name in ("epaule", "coude"):  # the tutorial's node, as written (limits are checked)
             formula = TUTORIAL_FORMULAS[name]
-        elif name == "poignet":
-            formula = _fitted_sine(joint, 0.9, 1.3, " + pi/3")
+        elif name in TUTORIAL_WAVES:
+            amplitude, omega, phase = TUTORIAL_WAVES[name]
+            formula = _fitted_sine(joint, amplitude, omega, f" + {phase!r}" if phase else "")
         else:
             cap = 0.1 if joint_unit(joint) == "m" else 0.8
             formula = _fitted_sine(joint, cap, 0.5 + 0.25 * others)

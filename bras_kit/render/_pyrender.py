@@ -283,14 +283,20 @@ class PyrenderBackend:
         self._scene = pyrender.Scene(bg_color=[c / 255.0 for c in background] + [1.0],
                                      ambient_light=[AMBIENT] * 3)
         self._nodes = []
+        self._solids: list[Any] = []  # meshes hidden while the TF axes are drawn on top
+        self._overlays: list[Any] = []  # TF axes and targets: drawn in a second pass, over the solids
         for part in scene.parts:
             mesh = pyrender.Mesh([self._primitive(pyrender, part)])
             self._nodes.append((self._scene.add(mesh), part.link))
+            (self._overlays if part.unlit else self._solids).append(mesh)
         if scene.grid is not None:
             material = _emissive(pyrender, scene.grid.color)
             lines = pyrender.Primitive(positions=scene.grid.segments.reshape(-1, 3).astype(np.float32),
                                        mode=pyrender.constants.GLTF.LINES, material=material)
-            self._scene.add(pyrender.Mesh([lines]))
+            grid = pyrender.Mesh([lines])
+            self._scene.add(grid)
+            self._solids.append(grid)
+        self._background = np.asarray(background, dtype=np.uint8)
         cam = pyrender.PerspectiveCamera(yfov=camera.yfov, znear=camera.znear, zfar=camera.zfar,
                                          aspectRatio=camera.aspect)
         self._scene.add(cam, pose=camera.pose)
@@ -337,11 +343,31 @@ class PyrenderBackend:
                                   material=material)
 
     def render(self, transforms: np.ndarray) -> np.ndarray:
-        """The picture for link transforms ``transforms`` (L, 4, 4): (H, W, 3) uint8."""
+        """The picture for link transforms ``transforms`` (L, 4, 4): (H, W, 3) uint8.
+
+        TF axes, when shown, are drawn in a second pass over the finished picture, as RViz's TF
+        display does: an axis inside a segment (every joint sits in one) stays visible."""
         for node, link in self._nodes:
             self._scene.set_pose(node, transforms[link])
-        color, _ = self._renderer.render(self._scene)
-        return np.ascontiguousarray(color)
+        if not self._overlays:
+            color, _ = self._renderer.render(self._scene)
+            return np.ascontiguousarray(color)
+        for mesh in self._overlays:
+            mesh.is_visible = False
+        base, _ = self._renderer.render(self._scene)
+        base = base.copy()
+        for mesh in self._overlays:
+            mesh.is_visible = True
+        for mesh in self._solids:
+            mesh.is_visible = False
+        try:
+            axes, _ = self._renderer.render(self._scene)
+        finally:
+            for mesh in self._solids:
+                mesh.is_visible = True
+        drawn = (axes != self._background).any(axis=2)
+        base[drawn] = axes[drawn]
+        return base
 
     def close(self) -> None:
         self._renderer = None

@@ -48,6 +48,7 @@ class RenderOptions:
     fov: float = 30.0  # vertical field of view, degrees
     antialias: bool | None = None  # smooth edges (4x multisampling); None: on for pictures, off for sequences
     package_paths: Sequence[str] = field(default_factory=tuple)
+    targets: Sequence[Sequence[float]] = field(default_factory=tuple)  # points marked in the world (reach)
 
     @property
     def width(self) -> int:

@@ -105,6 +105,32 @@ def open_backend(scene: Scene, camera: Camera, options: RenderOptions):  # type:
 MAX_RENDER_LINKS = 5000  # real robots have a few hundred at most; each link costs a scene node
 
 
+MAX_NAMED_FRAMES = 60  # past that, names would hide the robot
+
+
+def frame_names(image: np.ndarray, camera: Any, names: Any, origins: np.ndarray) -> np.ndarray:
+    """``image`` with each frame's name written beside its origin, over everything, like RViz's TF
+    display with "Show Names" on: dark text with a light outline, readable on any colour."""
+    from PIL import Image, ImageDraw, ImageFont
+
+    points = np.hstack([origins, np.ones((len(origins), 1))]) @ (camera.projection() @ camera.view()).T
+    picture = Image.fromarray(np.ascontiguousarray(image))
+    draw = ImageDraw.Draw(picture)
+    size = max(9, min(16, camera.height // 30))
+    try:
+        font: Any = ImageFont.load_default(size=size)
+    except TypeError:  # Pillow without FreeType sizes
+        font = ImageFont.load_default()
+    for name, (x, y, _depth, w) in zip(names, points):
+        if w <= 1e-9:  # behind the camera
+            continue
+        column = (x / w + 1.0) / 2.0 * camera.width + 4
+        row = (1.0 - y / w) / 2.0 * camera.height - size - 2
+        draw.text((column, row), str(name), fill=(20, 20, 20), font=font, stroke_width=2,
+                  stroke_fill=(255, 255, 255))
+    return np.asarray(picture)
+
+
 class Renderer:
     """Draws one robot again and again with the same camera and backend.
 
@@ -126,7 +152,8 @@ class Renderer:
                              "bras-kit draws", hint="'bras-kit tree' and 'bras-kit validate' work on models of any size")
         fit_q = workspace_samples(self.tree) if fit is None else configurations(self.tree, fit)
         self.scene, points = build_scene(self.tree, fk_batch(self.tree, fit_q), tf=self.options.tf,
-                                         grid=self.options.grid, package_paths=self.options.package_paths)
+                                         grid=self.options.grid, package_paths=self.options.package_paths,
+                                         targets=self.options.targets)
         self.camera = fit_camera(points, self.options)
         self._backend = open_backend(self.scene, self.camera, self.options)
 
@@ -140,14 +167,20 @@ class Renderer:
         q = configurations(self.tree, config)
         if len(q) != 1:
             raise ParameterError(f"render draws one pose, got {len(q)}", hint="use frames() for a sequence")
-        return self._backend.render(fk_batch(self.tree, q[0]))
+        return self._draw(fk_batch(self.tree, q[0]))
 
     def frames(self, positions: Any) -> Iterator[np.ndarray]:
         """Pictures of each pose of ``positions`` (any form :func:`configurations` takes), one at a time."""
         q = configurations(self.tree, positions)
         for start in range(0, len(q), 256):
             for transforms in fk_batch(self.tree, q[start:start + 256]):
-                yield self._backend.render(transforms)
+                yield self._draw(transforms)
+
+    def _draw(self, transforms: np.ndarray) -> np.ndarray:
+        image = self._backend.render(transforms)
+        if self.options.tf and len(self.tree.links) <= MAX_NAMED_FRAMES:
+            image = frame_names(image, self.camera, self.tree.links, transforms[:, :3, 3])
+        return image
 
     def close(self) -> None:
         backend, self._backend = getattr(self, "_backend", None), None

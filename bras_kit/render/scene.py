@@ -333,11 +333,25 @@ def ground_grid(points: np.ndarray, floor: float) -> Grid:
     return Grid(np.asarray(segments, dtype=float))
 
 
+TARGET_COLOR = (0.85, 0.1, 0.55, 1.0)  # magenta: no segment, axis or grid has it
+
+
+def target_parts(targets: Sequence[Sequence[float]], size: float) -> list[Part]:
+    """A small magenta ball at each world point (the root link's frame is the world)."""
+    ball = sphere_mesh(size)
+    return [Part(0, ball.vertices + np.asarray(point, dtype=float)[:3], ball.faces, TARGET_COLOR, unlit=True,
+                 label="target") for point in targets]
+
+
 def build_scene(tree: TFTree, fit_transforms: np.ndarray, *, tf: bool = False, grid: bool = True,
-                package_paths: Sequence[str] = ()) -> tuple[Scene, np.ndarray]:
+                package_paths: Sequence[str] = (), targets: Sequence[Sequence[float]] = ()) -> tuple[Scene, np.ndarray]:
     """The scene and the world points the camera must keep in view (every part over ``fit_transforms``)."""
     parts = robot_parts(tree, package_paths)
     points = world_points(parts, fit_transforms)
+    if len(targets):
+        extent = float(np.ptp(points, axis=0).max()) if len(parts) else 0.5
+        parts = parts + target_parts(targets, max(0.025 * extent, 0.01))
+        points = world_points(parts, fit_transforms)
     if tf:
         extent = float(np.ptp(points, axis=0).max()) if len(parts) else 0.0
         parts = parts + triad_parts(tree, max(0.18 * extent, 0.05))

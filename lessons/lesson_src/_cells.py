@@ -55,6 +55,8 @@ FR_COMMENTS = {
         "Un seul moteur de rendu pour tous les dessins ; sa caméra cadre toutes les poses permises,",
     "so the view stays put while the sliders move.":
         "si bien que la vue ne bouge pas quand les curseurs bougent.",
+    "the same picture, replaced in place": "la même image, remplacée sur place",
+    "run this cell when you are done with the 3D view": "exécutez cette cellule quand vous avez fini avec la vue 3D",
     "what the panel draws when you set these values":
         "ce que dessine le panneau pour ces valeurs",
     "--no-build-isolation: use the installed setuptools, no download":

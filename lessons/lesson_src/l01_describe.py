@@ -5,14 +5,14 @@ from ._cells import Lesson, code, md
 LESSON = Lesson(
     "01",
     {"fr": "decrire-le-bras", "en": "describe-the-arm"},
-    {"fr": "1 · Décrire le bras : links et joints", "en": "1 · Describe the arm: links and joints"},
+    {"fr": "1 · Décrire le bras : segments et articulations", "en": "1 · Describe the arm: links and joints"},
 )
 
 LESSON.cells = [
     md(
         """
-        Un bras de robot, pour ROS 2, c'est d'abord une **liste de pièces rigides** (les *links*)
-        et une **liste de charnières** entre elles (les *joints*). Le format qui les écrit s'appelle
+        Un bras de robot, pour ROS 2, c'est d'abord une **liste de pièces rigides** (les *segments*)
+        et une **liste de charnières** entre elles (les *articulations*). Le format qui les écrit s'appelle
         URDF : du XML, lisible à l'œil.
 
         Dans cette leçon :
@@ -54,10 +54,10 @@ LESSON.cells = [
     ),
     md(
         """
-        ## Les links : les pièces rigides
+        ## Les segments : les pièces rigides
 
-        Chaque link a une forme visible (`visual`) : un cylindre pour la base, des pavés (`box`)
-        pour le bras et l'avant-bras. L'`origin` d'une forme la place dans le repère de son link.
+        Chaque segment a une forme visible (`visual`) : un cylindre pour la base, des pavés (`box`)
+        pour le bras et l'avant-bras. L'`origin` d'une forme la place dans le repère de son segment.
         """,
         """
         ## Links: the rigid pieces
@@ -77,9 +77,9 @@ LESSON.cells = [
     ),
     md(
         """
-        ## Les joints : les charnières
+        ## Les articulations : les charnières
 
-        Un joint relie un link **parent** à un link **enfant**. Trois informations comptent :
+        Une articulation relie un segment **parent** à un segment **enfant**. Trois informations comptent :
 
         * `origin` : où se trouve le repère de l'enfant, vu depuis le parent ;
         * `axis` : l'axe autour duquel l'enfant tourne (ici `0 1 0`, l'axe y) ;
@@ -114,7 +114,7 @@ LESSON.cells = [
         ## Le texte URDF
 
         Voici le fichier complet, tel qu'on le donnerait à `robot_state_publisher`. Repérez
-        l'`origin` du joint `coude` : `z = 0.6`, exactement la longueur du bras. C'est ce qui
+        l'`origin` de l'articulation `coude` : `z = 0.6`, exactement la longueur du bras. C'est ce qui
         accroche l'avant-bras **au bout** du bras et non à son pied.
         """,
         """
@@ -203,7 +203,7 @@ LESSON.cells = [
         ## À vous
 
         Les paramètres du modèle sont listés par `bras_kit.template_parameters()`. Raccourcissez
-        l'avant-bras à 0,3 m et vérifiez quelle valeur change dans l'URDF. (Le joint `coude` ne
+        l'avant-bras à 0,3 m et vérifiez quelle valeur change dans l'URDF. (L'articulation `coude` ne
         bouge pas : pourquoi ?)
         """,
         """

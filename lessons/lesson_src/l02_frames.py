@@ -11,7 +11,7 @@ LESSON = Lesson(
 LESSON.cells = [
     md(
         """
-        Chaque link porte son propre **repère** (une origine et trois axes). Les repères
+        Chaque segment porte son propre **repère** (une origine et trois axes). Les repères
         s'emboîtent : celui du bras est défini par rapport à la base, celui de l'avant-bras par
         rapport au bras. C'est l'arbre que `robot_state_publisher` publie sur TF.
 
@@ -43,10 +43,10 @@ LESSON.cells = [
         ## À la main
 
         Une transformation se note avec une matrice 4×4 : rotation en haut à gauche, translation
-        dans la dernière colonne. Un joint `revolute` fait deux choses, dans cet ordre :
+        dans la dernière colonne. Une articulation `revolute` fait deux choses, dans cet ordre :
 
         1. se décaler de son `origin` (une translation) ;
-        2. tourner de l'angle du joint autour de son `axis` (ici y).
+        2. tourner de l'angle de l'articulation autour de son `axis` (ici y).
 
         Une rotation d'angle $\theta$ autour de y :
         $R_y(\theta) = \begin{pmatrix} \cos\theta & 0 & \sin\theta \\ 0 & 1 & 0 \\ -\sin\theta & 0 & \cos\theta \end{pmatrix}$
@@ -108,7 +108,7 @@ LESSON.cells = [
         ## La même chose avec bras_kit
 
         `bras_kit.tf_tree` compile l'arbre une fois ; `bras_kit.fk` (cinématique directe, *forward
-        kinematics*) donne la pose de chaque link dans le repère racine.
+        kinematics*) donne la pose de chaque segment dans le repère racine.
         """,
         """
         ## The same with bras_kit

@@ -12,7 +12,7 @@ LESSON.cells = [
     md(
         """
         Dans le tutoriel, RViz dessine le bras et une petite fenêtre à curseurs
-        (`joint_state_publisher_gui`) fixe l'angle de chaque joint. Ici, `bras_kit.render` dessine
+        (`joint_state_publisher_gui`) fixe l'angle de chaque articulation. Ici, `bras_kit.render` dessine
         le bras hors écran (une image = un tableau numpy) et des curseurs `ipywidgets` jouent le
         rôle de la fenêtre.
         """,
@@ -75,12 +75,11 @@ LESSON.cells = [
         """
         ## Des curseurs, comme joint_state_publisher_gui
 
-        Un curseur par joint mobile, borné par ses butées : c'est exactement ce que fait la fenêtre
+        Un curseur par articulation mobile, borné par ses butées : c'est exactement ce que fait la fenêtre
         du tutoriel, qui lit les `limit` de l'URDF. Bougez un curseur, l'image est redessinée.
 
-        (Hors d'un vrai Jupyter — par exemple quand les tests exécutent ce carnet — personne ne
-        bouge les curseurs : la dernière ligne appelle donc la fonction de dessin une fois
-        directement.)
+        L'image suit le curseur pendant que vous le faites glisser : chaque valeur redessine une
+        seule image, remplacée sur place, sans empiler de nouvelles images sous le panneau.
         """,
         """
         ## Sliders, like joint_state_publisher_gui
@@ -88,25 +87,30 @@ LESSON.cells = [
         One slider per movable joint, bounded by its limits: exactly what the tutorial's window
         does, reading the URDF's `limit` elements. Move a slider and the picture is redrawn.
 
-        (Outside a live Jupyter — for example when the tests run this notebook — nobody moves the
-        sliders, so the last line calls the drawing function once directly.)
+        The picture follows the slider while you drag it: each value redraws one picture,
+        replaced in place, with no pile of pictures under the panel.
         """,
     ),
     code(
         """
+        import io
+
         import ipywidgets as widgets
         from IPython.display import display
 
-        from bras_kit.render import Renderer, show_image
+        from bras_kit.render import Renderer, save_png, show_image
 
         # One renderer for every redraw; its camera frames all the poses the limits allow,
         # so the view stays put while the sliders move.
         renderer = Renderer(robot, size=(480, 360), tf=True)
+        image = widgets.Image(format="png")
 
 
         def redraw(**config):
             picture = renderer.render(config)
-            display(show_image(picture))
+            buffer = io.BytesIO()
+            save_png(picture, buffer)
+            image.value = buffer.getvalue()  # the same picture, replaced in place
             return picture
 
 
@@ -114,11 +118,42 @@ LESSON.cells = [
         for joint in robot.movable_joints():
             lower, upper = joint.bounds()
             sliders[joint.name] = widgets.FloatSlider(value=0.0, min=lower, max=upper, step=0.01,
-                                                      description=joint.name, continuous_update=False)
+                                                      description=joint.name, continuous_update=True)
         panel = widgets.interactive(redraw, **sliders)
-        display(panel)
+        display(widgets.VBox([image, *panel.children[:-1]]))
 
         picture = redraw(epaule=0.6, coude=-1.1)  # what the panel draws when you set these values
+        """
+    ),
+    md(
+        """
+        ## RViz dans le navigateur
+
+        `bras_kit.view` ouvre la même chose en 3D, en direct : une page servie par votre
+        ordinateur (adresse 127.0.0.1), avec un curseur par articulation, les repères TF et leurs
+        noms, le choix du repère fixe, et la position de l'extrémité. Dans un Jupyter lancé sur
+        votre machine, la page s'affiche sous la cellule ; ailleurs, ouvrez l'adresse affichée.
+        Depuis un terminal, c'est `bras-kit view`.
+        """,
+        """
+        ## RViz in the browser
+
+        `bras_kit.view` opens the same thing in 3D, live: a page served by your computer
+        (address 127.0.0.1), one slider per joint, the TF frames with their names, the Fixed Frame
+        to choose, and the position of the tip. In a Jupyter running on your machine the page
+        shows under the cell; elsewhere, open the address printed. From a terminal it is
+        `bras-kit view`.
+        """,
+    ),
+    code(
+        """
+        viewer = bras_kit.view(robot, port=0, motion="tutorial")
+        print(viewer.url)
+        """
+    ),
+    code(
+        """
+        viewer.stop()  # run this cell when you are done with the 3D view
         """
     ),
     md(
@@ -129,9 +164,9 @@ LESSON.cells = [
 
         * **Fixed Frame = `base`.** RViz dessine tout dans un repère choisi. Il doit exister dans
           l'arbre TF : c'est la racine de notre arbre, le seul repère qui ne bouge pas. Un nom qui
-          n'existe pas (`map`, `base_link`…) et RViz ne sait où placer aucun link.
+          n'existe pas (`map`, `base_link`…) et RViz ne sait où placer aucun segment.
         * **RobotModel → Description Topic = `/robot_description`.** L'affichage RobotModel a
-          besoin de la forme des links ; `robot_state_publisher` publie l'URDF sur ce topic. Sans
+          besoin de la forme des segments ; `robot_state_publisher` publie l'URDF sur ce topic. Sans
           lui, RViz connaît les repères mais pas les pièces à dessiner.
 
         `render_pose` fait les deux choses d'un coup : il prend l'URDF directement (pas de topic)

@@ -12,7 +12,7 @@ LESSON.cells = [
     md(
         """
         À l'étape 7 du tutoriel, un nœud remplace les curseurs : 20 fois par seconde, il publie
-        un message `JointState` (des noms de joints et des angles) sur `/joint_states`. Les angles
+        un message `JointState` (des noms d'articulations et des angles) sur `/joint_states`. Les angles
         viennent de deux sinusoïdes : `epaule = 0.8 sin t` et `coude = 1.2 sin 0.7t`.
 
         Un **programme de mouvement** est juste cela : une fonction du temps vers les angles.
@@ -93,7 +93,7 @@ LESSON.cells = [
         """
         ## Les angles et leurs butées
 
-        Une courbe se lit mieux qu'une animation pour vérifier les butées : chaque joint, son
+        Une courbe se lit mieux qu'une animation pour vérifier les butées : chaque articulation, son
         angle dans le temps, et ses limites en pointillés.
         """,
         """
@@ -125,7 +125,7 @@ LESSON.cells = [
 
         En production, on donne plutôt des **poses à atteindre à des instants donnés** ; le
         programme interpole entre elles. Un simple tableau CSV suffit : une colonne `time`, une
-        colonne par joint.
+        colonne par articulation.
         """,
         """
         ## A motion through waypoints
@@ -164,7 +164,7 @@ LESSON.cells = [
     ),
     md(
         """
-        Avant de l'animer, vérifions-le : le joint `coude` doit passer de -1,2 à 1,5 rad en
+        Avant de l'animer, vérifions-le : l'articulation `coude` doit passer de -1,2 à 1,5 rad en
         2 s. Même dans les butées de position, c'est trop rapide pour sa vitesse maximale de
         1 rad/s. `waypoint_speeds` dit quels segments et de combien :
         """,

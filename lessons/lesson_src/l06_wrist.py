@@ -41,8 +41,8 @@ SETUP = code(
         joint = robot.joint("poignet")
         link = robot.link("poignet")
         tests = {
-            "un link 'poignet'": link is not None,
-            "un joint 'poignet' revolute": joint is not None and joint.type == "revolute",
+            "un segment 'poignet'": link is not None,
+            "une articulation 'poignet' revolute": joint is not None and joint.type == "revolute",
             "parent avant_bras, enfant poignet": joint is not None and (joint.parent, joint.child) == ("avant_bras", "poignet"),
             "origine au bout de l'avant-bras (z = 0.5)": joint is not None and np.allclose(joint.origin.xyz, (0, 0, 0.5)),
             "axe y": joint is not None and joint.axis is not None and np.allclose(joint.axis, (0, 1, 0)),
@@ -104,9 +104,9 @@ LESSON.cells = [
         Le tutoriel se termine par un défi : ajouter une troisième articulation, un **poignet**
         au bout de l'avant-bras, puis l'animer. Trois étapes :
 
-        1. à la main, dans l'URDF : un link et un joint de plus ;
+        1. à la main, dans l'URDF : un segment et une articulation de plus ;
         2. avec `bras_kit.arm(wrist=True)`, qui fait la même chose depuis le modèle xacro ;
-        3. animer les trois joints.
+        3. animer les trois articulations.
 
         La solution complète est dans `solutions/06-solution-poignet.ipynb` — essayez d'abord !
         """,
@@ -129,9 +129,9 @@ LESSON.cells = [
         Écrivez dans la cellule suivante, en XML, ce qui manque pour le poignet :
 
         * un `<link name="poignet">` : un pavé plus court que l'avant-bras (0,15 m de long,
-          0,04 m de côté), dont la forme commence à l'origine du link ;
+          0,04 m de côté), dont la forme commence à l'origine du segment ;
         * un `<joint name="poignet" type="revolute">` : parent `avant_bras`, enfant `poignet`,
-          une `origin` **au bout de l'avant-bras**, le même `axis` que les autres joints, et des
+          une `origin` **au bout de l'avant-bras**, le même `axis` que les autres articulations, et des
           `limit` (par exemple ±1,57 rad, effort 5, vitesse 1,5).
 
         La cellule d'après colle votre texte avant `</robot>`, charge le fichier et coche ce qui
@@ -201,10 +201,10 @@ LESSON.cells = [
     ),
     md(
         """
-        Bras tendu, le bout est à `0.05 + 0.6 + 0.5 + 0.15 = 1.3` m : chaque origine de joint est
+        Bras tendu, le bout est à `0.05 + 0.6 + 0.5 + 0.15 = 1.3` m : chaque origine d'articulation est
         la longueur du segment d'avant.
 
-        ## 3. Animer trois joints
+        ## 3. Animer trois articulations
 
         Dans le nœud du tutoriel, il faut ajouter `'poignet'` à `msg.name` **et** une troisième
         valeur à `msg.position` : les deux listes vont par paires. Ici, on ajoute une formule :
@@ -256,8 +256,8 @@ LESSON.cells = [
 SOLUTION.cells = [
     md(
         """
-        Une réponse à l'exercice de la leçon 6. Le link reprend le bloc `avant_bras`, en plus
-        court ; le joint reprend le bloc `coude`, avec l'origine à la longueur de l'avant-bras.
+        Une réponse à l'exercice de la leçon 6. Le segment reprend le bloc `avant_bras`, en plus
+        court ; l'articulation reprend le bloc `coude`, avec l'origine à la longueur de l'avant-bras.
         """,
         """
         One answer to lesson 6's exercise. The link copies the `avant_bras` block, shorter; the
@@ -289,8 +289,8 @@ SOLUTION.cells = [
     md(
         """
         Tout est coché, et le validateur ne trouve ni erreur ni avertissement (seulement une
-        information : pas d'inerties, c'est la leçon 7). Le résultat est le même, joint pour
-        joint, que celui du modèle avec `wrist=True` :
+        information : pas d'inerties, c'est la leçon 7). Le résultat est le même, articulation par
+        articulation, que celui du modèle avec `wrist=True` :
         """,
         """
         Everything is ticked, and the validator finds no error and no warning (only a note: no

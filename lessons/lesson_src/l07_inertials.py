@@ -19,10 +19,10 @@ INTRO = md(
     r"""
     RViz ne simule rien : il dessine la géométrie aux angles qu'on lui publie. Un simulateur
     physique comme **Gazebo**, lui, calcule comment le bras tombe, accélère, force sur ses
-    moteurs. Il lui faut, pour chaque link, une balise `<inertial>` :
+    moteurs. Il lui faut, pour chaque segment, une balise `<inertial>` :
 
     * `mass` : la masse en kg ;
-    * `origin` : le **centre de masse**, dans le repère du link ;
+    * `origin` : le **centre de masse**, dans le repère du segment ;
     * `inertia` : le tenseur d'inertie autour de ce centre (six nombres, `ixx ixy ixz iyy iyz izz`).
 
     Pour un pavé plein de masse $m$ et de côtés $x, y, z$ :
@@ -143,7 +143,7 @@ LESSON.cells = [
         ## Exercice
 
         Complétez les deux fonctions ci-dessous (elles renvoient `None` tant qu'elles ne sont pas
-        écrites). La cellule suivante les compare aux valeurs du modèle pour les trois links :
+        écrites). La cellule suivante les compare aux valeurs du modèle pour les trois segments :
         le bras (1 kg, 0,08 × 0,08 × 0,6 m), l'avant-bras (0,5 kg, 0,06 × 0,06 × 0,5 m) et la base
         (cylindre de 2 kg, r = 0,15 m, h = 0,1 m). La solution est dans
         `solutions/07-solution-inerties.ipynb`.
@@ -185,7 +185,7 @@ LESSON.cells = [
         ## Le centre de masse
 
         La forme du bras est centrée à mi-longueur (`z = 0.3`), le centre de masse aussi : l'
-        `origin` de `<inertial>` n'est pas celle du joint. Le modèle avec `inertials=True` :
+        `origin` de `<inertial>` n'est pas celle de l'articulation. Le modèle avec `inertials=True` :
         """,
         """
         ## The centre of mass
@@ -204,7 +204,7 @@ LESSON.cells = [
     ),
     md(
         """
-        (L'info BK506 est un détail à connaître : `robot_state_publisher` ignore l'inertie du link
+        (L'info BK506 est un détail à connaître : `robot_state_publisher` ignore l'inertie du segment
         racine et le signale par un avertissement au démarrage.)
 
         ## Une mauvaise inertie
@@ -240,7 +240,7 @@ LESSON.cells = [
     ),
     md(
         """
-        Deux autres fautes classiques : une masse nulle ou négative, et un link sans `<inertial>`
+        Deux autres fautes classiques : une masse nulle ou négative, et un segment sans `<inertial>`
         dans un modèle qui en a ailleurs (Gazebo l'ignore ou le fusionne avec son parent).
         """,
         """
@@ -265,7 +265,7 @@ LESSON.cells = [
 
         Avec les masses et les centres de masse, on peut calculer ce que RViz ne dira jamais :
         le couple que le moteur de l'épaule doit fournir pour **tenir** le bras contre la
-        gravité. Chaque link pèse `m·g` en son centre de masse ; le couple autour de l'axe y de
+        gravité. Chaque segment pèse `m·g` en son centre de masse ; le couple autour de l'axe y de
         l'épaule est la somme des bras de levier.
         """,
         """

@@ -19,7 +19,7 @@ LESSON.cells = [
         | 1 | RViz reste vide | Fixed Frame ou RobotModel mal réglés |
         | 2 | le bras s'affiche mais ne bouge pas | personne ne publie sur `/joint_states` |
         | 3 | *file not found* au lancement | l'URDF n'est pas installé (`data_files`) |
-        | 4 | segments mal placés | `origin` d'un joint incohérente avec la longueur du parent |
+        | 4 | segments mal placés | `origin` d'une articulation incohérente avec la longueur du parent |
         | 5 | les articulations dépassent | angles publiés hors des `limit` |
 
         Les pannes 4 et 5 sont dans l'URDF ou dans le mouvement : le validateur de `bras_kit` les
@@ -220,7 +220,7 @@ LESSON.cells = [
         """
         ## 2. Le bras s'affiche mais ne bouge pas
 
-        `robot_state_publisher` ne bouge un joint que s'il reçoit son angle sur `/joint_states`,
+        `robot_state_publisher` ne bouge une articulation que s'il reçoit son angle sur `/joint_states`,
         **reconnu par son nom**. Personne ne publie, ou les noms sont faux : le bras reste figé à
         zéro, sans le moindre message d'erreur.
 
@@ -266,7 +266,7 @@ LESSON.cells = [
         """
         **On casse** : un nœud qui publie des noms anglais (`shoulder`, `elbow`). ROS les
         ignorerait en silence ; `bras_kit` refuse et dit quels noms existent. **On répare** : les
-        noms des joints de l'URDF.
+        noms des articulations de l'URDF.
         """,
         """
         **Break it**: a node publishing English names (`shoulder`, `elbow`). ROS would ignore them
@@ -361,7 +361,7 @@ LESSON.cells = [
     md(
         """
         À gauche, l'avant-bras sort du milieu du bras. Le message donne la ligne et l'origine à
-        écrire. La faute voisine : la **forme** d'un link centrée sur le joint au lieu de partir
+        écrire. La faute voisine : la **forme** d'un segment centrée sur l'articulation au lieu de partir
         de lui (l'`origin` du `<visual>` oubliée) — la moitié du bras passe sous l'épaule :
         """,
         """

@@ -14,7 +14,7 @@ LESSON.cells = [
         Jusqu'ici, on donnait des angles et on calculait où allait le bout (cinématique
         **directe**, leçon 2). Le problème utile est l'inverse : **« mets le bout de l'outil
         ici »**. Quels angles faut-il ? C'est la cinématique **inverse**. Pour notre bras à deux
-        joints parallèles, c'est un triangle, et il a en général **deux** solutions : coude d'un
+        articulations parallèles, c'est un triangle, et il a en général **deux** solutions : coude d'un
         côté ou de l'autre.
         """,
         """
@@ -183,7 +183,7 @@ LESSON.cells = [
 
         * trop loin : plus loin que `L1 + L2 = 1.1` m de l'épaule ;
         * hors du plan : le bras ne tourne qu'autour de y, il ne peut pas sortir du plan `y = 0` ;
-        * derrière les butées : le triangle existe, mais un joint devrait dépasser ses limites.
+        * derrière les butées : le triangle existe, mais une articulation devrait dépasser ses limites.
 
         Dans chaque cas, `result.joints` donne la pose la plus proche **dans les butées**.
         """,
@@ -213,7 +213,7 @@ LESSON.cells = [
 
         Une solution n'est qu'une pose d'arrivée. Pour y **aller**, `reach_motion` fabrique un
         mouvement doux (vitesse nulle au départ et à l'arrivée), assez lent pour les limites de
-        vitesse des joints :
+        vitesse des articulations :
         """,
         """
         ## Getting there
@@ -253,7 +253,7 @@ LESSON.cells = [
         ## À vous
 
         1. Trouvez une cible que **seul** le coude « down » atteint dans les butées.
-        2. Avec le poignet (`bras_kit.arm(wrist=True)`), il y a trois joints pour deux
+        2. Avec le poignet (`bras_kit.arm(wrist=True)`), il y a trois articulations pour deux
            coordonnées : une infinité de solutions. `bras_kit.solve_ik` cherche alors
            numériquement. Essayez-le sur la même cible.
         """,

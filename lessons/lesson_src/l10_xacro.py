@@ -78,7 +78,7 @@ LESSON.cells = [
     ),
     md(
         """
-        La macro `bloc` a produit deux links ; `${h / 2}` a été calculé. Donnons maintenant une
+        La macro `bloc` a produit deux segments ; `${h / 2}` a été calculé. Donnons maintenant une
         autre valeur à l'argument, comme `xacro fichier hauteur:=1.0` en ligne de commande :
         """,
         """
@@ -149,14 +149,14 @@ LESSON.cells = [
         """
         Deux idées à retenir :
 
-        * `segment` place la boîte à `length / 2` : la pièce **commence** à l'origine de son link
+        * `segment` place la boîte à `length / 2` : la pièce **commence** à l'origine de son segment
           et monte le long de z, quelle que soit sa longueur ;
-        * le joint qui suit est appelé avec `z="${bras_length}"` : l'origine du coude **est** la
+        * l'articulation qui suit est appelée avec `z="${bras_length}"` : l'origine du coude **est** la
           longueur du bras. Les deux ne peuvent plus se contredire (voir la leçon 8, où on les
           désaccorde exprès).
 
-        Et les butées : `$(arg ${name}_lower)` fabrique le nom de l'argument à partir du nom du
-        joint. Les appels en bas du fichier :
+        Et les butées : `$(arg ${name}_lower)` fabrique le nom de l'argument à partir du nom de
+        l'articulation. Les appels en bas du fichier :
         """,
         """
         Two ideas to keep:
@@ -224,8 +224,8 @@ LESSON.cells = [
         ## À vous
 
         Dans `deux_blocs.urdf.xacro`, ajoutez un troisième bloc `tete` de 0,1 m posé sur la
-        colonne, avec un joint fixe dont l'origine est `${h}`. Développez avec `hauteur:=0.7` et
-        vérifiez que l'origine du joint suit.
+        colonne, avec une articulation fixe dont l'origine est `${h}`. Développez avec `hauteur:=0.7` et
+        vérifiez que l'origine de l'articulation suit.
         """,
         """
         ## Your turn

@@ -13,7 +13,7 @@ LESSON.cells = [
     md(
         """
         Dans RViz, on peut mettre l'épaule à l'horizontale et laisser le bras ainsi pendant des
-        heures : rien ne plie. RViz ne fait que **dessiner** chaque link là où `/joint_states`
+        heures : rien ne plie. RViz ne fait que **dessiner** chaque segment là où `/joint_states`
         l'indique ; il ne se demande jamais si un moteur pourrait tenir cette pose. Pour le
         savoir, il faut un moteur physique. bras-kit utilise **MuJoCo** : la pesanteur agit sur
         les masses des balises `<inertial>`, chaque moteur pousse au plus de `<limit effort>`, et
@@ -47,7 +47,7 @@ LESSON.cells = [
     md(
         """
         Un corps sans masse ne peut pas être simulé : c'est l'exercice 7 (les inerties) qui rend
-        la physique possible. Avec `inertials=True`, chaque link reçoit masse et inertie, et aussi
+        la physique possible. Avec `inertials=True`, chaque segment reçoit masse et inertie, et aussi
         une forme de collision identique à sa forme visible.
 
         ## 1. Lâcher le bras
@@ -113,7 +113,7 @@ LESSON.cells = [
         """
         Le bras tient, mais un peu plus bas que demandé. Un ressort ne pousse que s'il est étiré :
         le moteur PD doit **s'écarter** de la consigne pour produire le couple qui compense le
-        poids. Vérifions à la main le couple de pesanteur : pour chaque link au-delà du joint,
+        poids. Vérifions à la main le couple de pesanteur : pour chaque segment au-delà de l'articulation,
         masse × g × bras de levier horizontal (bras : 1 kg, centre à 0,3 m ; avant-bras : 0,5 kg,
         centre à 0,25 m du coude, coude à 0,6 m).
         """,
@@ -140,7 +140,7 @@ LESSON.cells = [
         ## 3. Suivre la sinusoïde
 
         Le mouvement par défaut est celui du nœud du tutoriel (`epaule = 0,8 sin t`,
-        `coude = 1,2 sin 0,7t`). Le rapport donne, par joint, l'erreur de suivi, le couple maximal,
+        `coude = 1,2 sin 0,7t`). Le rapport donne, par articulation, l'erreur de suivi, le couple maximal,
         la part du temps passée à la limite d'effort, et le couple que le mouvement exige vraiment
         (dynamique inverse le long de la consigne).
         """,
@@ -216,7 +216,7 @@ LESSON.cells = [
         ## Pourquoi le bras ne tombe pas dans RViz
 
         `joint_state_publisher` et le nœud du tutoriel **écrivent** les angles ; personne ne les
-        calcule à partir de forces. C'est comme si chaque joint avait un moteur infiniment
+        calcule à partir de forces. C'est comme si chaque articulation avait un moteur infiniment
         puissant avec une compensation de pesanteur parfaite. Pour voir ce que ferait le vrai bras,
         il faut les masses (`<inertial>`), les limites d'effort et un moteur physique : Gazebo dans
         le monde ROS, MuJoCo ici. `bras-kit mjcf --inertials -o bras.xml` écrit le modèle pour le
