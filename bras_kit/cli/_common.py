@@ -155,4 +155,6 @@ def joint_name_hint(name: str, hint: str | None) -> str | None:
 
 
 def format_config(config: Mapping[str, float]) -> str:
-    return ", ".join(f"{k}={v:g}" for k, v in config.items()) or "zero pose"
+    from ..i18n import _
+
+    return ", ".join(f"{k}={v:g}" for k, v in config.items()) or _("zero pose")

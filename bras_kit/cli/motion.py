@@ -14,7 +14,7 @@ import os
 import sys
 
 from ..errors import ParameterError
-from ..i18n import _
+from ..i18n import _, translate_message
 from ._common import (
     add_force_argument,
     add_model_arguments,
@@ -127,7 +127,7 @@ def run(args: argparse.Namespace) -> int:
         warn(_("... and {count} more waypoint segments too fast").format(count=len(segments) - 10))
     reported = {s.joint for s in segments}
     for v in clamped:
-        warn(_("clamped") + ": " + describe_violation(v))
+        print(f"{_('warning')}: {_('clamped')}: {translate_message(describe_violation(v))}", file=sys.stderr)
     for v in violations:
         if v.kind == "velocity" and v.joint in reported:
             continue  # already named segment by segment

@@ -12,7 +12,7 @@ import re
 import sys
 import textwrap
 
-from ..i18n import _
+from ..i18n import _, translate_message
 from ._common import add_force_argument, add_model_arguments, check_writable, joint_values, warn
 
 # argparse takes "-0.3" for a positional only in its plain forms; widen that to "-1e-3",
@@ -27,9 +27,9 @@ def _coordinate(text: str) -> float:
     try:
         value = float(text)
     except ValueError:
-        raise argparse.ArgumentTypeError(f"{text!r} is not a number (give metres, e.g. 0.4 or -0.25)") from None
+        raise argparse.ArgumentTypeError(translate_message(f"{text!r} is not a number (give metres, e.g. 0.4 or -0.25)")) from None
     if not math.isfinite(value):
-        raise argparse.ArgumentTypeError(f"{text!r} is not a finite number (give metres, e.g. 0.4)")
+        raise argparse.ArgumentTypeError(translate_message(f"{text!r} is not a finite number (give metres, e.g. 0.4)"))
     return value
 
 
@@ -164,7 +164,7 @@ def run(args: argparse.Namespace) -> int:
         how += ", " + _("{count} iterations").format(count=result.iterations)
     print(f"{_('reached') if result.reachable else _('NOT reached'):10s} ({how})")
     if result.reason != "ok":
-        print(textwrap.fill(result.message, 100, initial_indent=" " * 11, subsequent_indent=" " * 13))
+        print(textwrap.fill(translate_message(result.message), 100, initial_indent=" " * 11, subsequent_indent=" " * 13))
     print(_("joints") if result.reachable else _("closest pose within the limits"))
     for name in tree.dof:
         joint = robot.joint(name)
