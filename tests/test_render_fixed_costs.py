@@ -191,3 +191,25 @@ def test_a_kept_renderer_serves_another_thread(tutorial_robot):
         there = pool.submit(render_pose, tutorial_robot, {"coude": 0.7}, size=SIZE).result()
     assert np.array_equal(here, there)
     assert np.array_equal(render_pose(tutorial_robot, {"coude": 0.7}, size=SIZE), here)  # and back here
+
+
+def test_a_display_ended_by_another_library_gives_a_fresh_renderer():
+    """MuJoCo's EGL context, when freed, ends the EGL display every context shares: the pooled
+    renderer is then dead, and the next picture must open a new one rather than fail. (In a
+    fresh process: ending the display would disturb the other tests' renderers.)"""
+    script = (
+        "import numpy as np\n"
+        "from bras_kit.authoring import arm\n"
+        "from bras_kit.render import _pyrender, render_pose\n"
+        "robot = arm()\n"
+        "first = render_pose(robot, {'coude': 0.7}, size=(96, 72), backend='egl')\n"
+        "assert _pyrender._POOL._kept, 'the renderer went back to the pool'\n"
+        "from OpenGL.EGL import eglTerminate\n"
+        "for renderer in _pyrender._POOL._kept.values():\n"
+        "    eglTerminate(renderer._platform._egl_display)  # what another library's clean-up does\n"
+        "again = render_pose(robot, {'coude': 0.7}, size=(96, 72), backend='egl')\n"
+        "assert np.array_equal(first, again)\n"
+        "print('ok')\n"
+    )
+    done = subprocess.run([sys.executable, "-c", script], capture_output=True, text=True, timeout=120)
+    assert done.returncode == 0 and done.stdout.strip() == "ok", done.stderr

@@ -398,8 +398,12 @@ class _RendererPool:
         renderer = self._kept.pop(key, None)
         if renderer is not None:
             platform = getattr(renderer, "_platform", None)
-            if platform is not None:
-                platform.make_current()
+            try:
+                if platform is not None:
+                    platform.make_current()
+            except Exception:  # noqa: BLE001 - someone else ended the display (MuJoCo's GL context
+                _disown(renderer)  # does eglTerminate too): this context is gone, open a new one
+                return None
         return renderer
 
     def give(self, key: tuple[object, ...], renderer: object) -> None:
