@@ -174,3 +174,20 @@ def main(argv: Sequence[str] | None = None) -> int:
 
 def _fail(command: str, text: str) -> None:
     print(f"bras-kit {command}: {_('error')}: {text}", file=sys.stderr)
+
+
+def run() -> None:
+    """The ``bras-kit`` command: :func:`main`, then leave at once.
+
+    Every output is already written, closed and moved into place when :func:`main` returns, so
+    the interpreter's teardown (tens of milliseconds spent unloading PyOpenGL's modules and
+    freeing OpenGL contexts the process is about to lose anyway) is skipped. Library users and
+    the tests call :func:`main`, which returns normally.
+    """
+    code = main()
+    try:
+        sys.stdout.flush()
+        sys.stderr.flush()
+    except (BrokenPipeError, OSError):  # a reader that went away: nothing left to say
+        pass
+    os._exit(code)
