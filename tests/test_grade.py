@@ -272,10 +272,22 @@ def test_dask_cluster_gives_the_same_report(klass, report, tmp_path):
         for learner in data["learners"]:
             learner.pop("seconds")
             learner.pop("path")
+            if learner["learner"] == "bomb":  # stopped by whichever limit comes first: the time
+                learner["first_error"] = learner["first_error"].split()[0]  # budget or the size cap,
+                for finding in learner["findings"]:  # so only its code is the same in both runs
+                    finding.pop("message")
+                    finding.pop("hint")
         return data
 
     assert comparable(out / "results.json") == comparable(report / "results.json")
-    assert (out / "grades.csv").read_text() == (report / "grades.csv").read_text()
+    def grades(path: Path):
+        rows = list(csv.DictReader(io.StringIO(path.read_text())))
+        for row in rows:
+            if row["identifier"] == "bomb":
+                row["first_error"] = row["first_error"].split()[0]
+        return rows
+
+    assert grades(out / "grades.csv") == grades(report / "grades.csv")
 
 
 def _dies_on_arm3(submission, rubric, options):
