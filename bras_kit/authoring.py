@@ -61,6 +61,8 @@ def parse_assignments(items: Iterable[str], what: str = "parameter") -> dict[str
 
 
 def _number(text: str) -> float | None:
+    if _COMMA_NUMBER.match(text.strip()):  # the French decimal comma: 0,8
+        text = text.replace(",", ".")
     try:
         value = float(text)
     except ValueError:
@@ -92,56 +94,195 @@ def normalise_parameters(values: Mapping[str, object]) -> dict[str, str]:
                                      hint=f"give four numbers between 0 and 1 (r g b a), e.g. {name}=\"0.2 0.4 0.9 1\"")
             out[name] = " ".join(repr(p) for p in parts)  # type: ignore[arg-type]
         else:
-            value = _number(text)
+            value = _limit_value(text) if name.endswith(("_lower", "_upper")) else _number(text)
             if value is None:
                 raise ParameterError(f"{name}={text!r} is not a number",
                                      hint=f"give a finite number, e.g. {name}={settable[name].default}")
-            if name.endswith(_POSITIVE) and value <= 0:
-                raise ParameterError(f"{name}={text}: {_POSITIVE_WHAT[name.rsplit('_', 1)[1]]} must be above 0",
-                                     hint=f"give a positive number, e.g. {name}={settable[name].default}")
+            _check_range(name, text, value, settable[name].default)
             out[name] = repr(value)
     _check_limit_order(out, settable)
     return out
 
 
-_POSITIVE = ("_length", "_radius", "_width", "_mass", "_effort", "_velocity")
-_POSITIVE_WHAT = {"length": "a length", "radius": "a radius", "width": "a width", "mass": "a mass",
-                  "effort": "an effort limit", "velocity": "a velocity limit"}
+@dataclass(frozen=True)
+class Range:
+    """The values a kind of template parameter may take, bounds included.
+
+    Chosen so that every combination gives a URDF the validator accepts: sizes of 1 mm to
+    10 m keep each box's smallest principal moment of inertia far above the validator's
+    1e-12 relative threshold (a 1 mm x 1 mm x 10 m box: 2e-8) and every number finite; joint
+    limits stay within one turn each way (a larger number is most often degrees).
+    """
+
+    lowest: float
+    highest: float
+    message: str  # English id in the ``package`` catalog: {name}, {value}, {lowest}, {highest}
+    hint: str
+
+
+_TURN = round(2 * math.pi, 4)
+_SIZE_HINT = "sizes are in metres (0.6 is 60 cm): give e.g. {name}={default}"
+RANGES: dict[str, Range] = {  # by the parameter name's last word
+    "length": Range(0.001, 10.0, "{name}={value}: a length must be between {lowest} and {highest} m", _SIZE_HINT),
+    "width": Range(0.001, 10.0, "{name}={value}: a width must be between {lowest} and {highest} m", _SIZE_HINT),
+    "radius": Range(0.001, 10.0, "{name}={value}: a radius must be between {lowest} and {highest} m", _SIZE_HINT),
+    "mass": Range(0.001, 1000.0, "{name}={value}: a mass must be between {lowest} and {highest} kg",
+                  "masses are in kilograms: give e.g. {name}={default}"),
+    "effort": Range(0.001, 10000.0,
+                    "{name}={value}: an effort limit must be between {lowest} and {highest} N.m",
+                    "give the largest torque of the joint's motor, e.g. {name}={default}"),
+    "velocity": Range(0.001, 100.0,
+                      "{name}={value}: a velocity limit must be between {lowest} and {highest} rad/s",
+                      "give the largest speed of the joint, e.g. {name}={default}"),
+    "lower": Range(-_TURN, _TURN, "{name}={value}: a joint limit must be between {lowest} and {highest} rad",
+                   "limits are in radians: give e.g. {name}={default}, pi/2 or 90deg"),
+    "upper": Range(-_TURN, _TURN, "{name}={value}: a joint limit must be between {lowest} and {highest} rad",
+                   "limits are in radians: give e.g. {name}={default}, pi/2 or 90deg"),
+}
+
+
+def parameter_range(name: str) -> Range | None:
+    """The allowed values of a number parameter of the arm template (``None``: any finite number)."""
+    return RANGES.get(name.rsplit("_", 1)[-1])
+
+
+def _say(message: str) -> str:
+    """``message`` in the current language, from the generator's own ``package`` catalog."""
+    from .i18n import current_language, translator
+
+    return translator(current_language(), "package")(message)
+
+
+def _prose_number(value: float) -> str:
+    """A bound as a learner reads it: ``0.001``, or ``0,001`` in French prose."""
+    from .i18n import current_language
+
+    text = f"{value:g}"
+    return text.replace(".", ",") if current_language() == "fr" else text
+
+
+def _check_range(name: str, text: str, value: float, default: str) -> None:
+    allowed = parameter_range(name)
+    if allowed is None or allowed.lowest <= value <= allowed.highest:
+        return
+    message = _say(allowed.message).format(name=name, value=text, lowest=_prose_number(allowed.lowest),
+                                           highest=_prose_number(allowed.highest))
+    hint = _say(allowed.hint).format(name=name, default=default)
+    in_degrees = math.radians(value)
+    if name.endswith(("_lower", "_upper")) and allowed.lowest <= in_degrees <= allowed.highest:
+        hint = _say("{value} looks like degrees: write {name}={value}deg ({radians} rad)").format(
+            name=name, value=text, radians=f"{in_degrees:.4f}")
+    raise ParameterError(message, hint=hint)
+
+
+_COMMA_NUMBER = re.compile(r"^[-+]?\d*,\d+$")
+
+
+def _limit_value(text: str) -> float | None:
+    """A joint limit as learners type joint values: ``1.2``, ``1,2``, ``pi/2``, ``90deg``."""
+    from .expr import parse_joint_value
+
+    try:
+        return parse_joint_value(text)
+    except ParameterError:
+        return None
 
 
 def _check_limit_order(values: Mapping[str, str], settable: Mapping[str, Any]) -> None:
-    """lower < upper for every joint, whichever of the two was changed."""
-    for joint in {name.rsplit("_", 1)[0] for name in values if name.endswith(("_lower", "_upper"))}:
+    """lower <= upper for every joint, whichever of the two was changed (equal: a still joint)."""
+    for joint in sorted({name.rsplit("_", 1)[0] for name in values if name.endswith(("_lower", "_upper"))}):
         lower = float(values.get(f"{joint}_lower", settable[f"{joint}_lower"].default))
         upper = float(values.get(f"{joint}_upper", settable[f"{joint}_upper"].default))
         if not lower <= upper:
-            raise ParameterError(f"{joint}_lower={lower:g} is above {joint}_upper={upper:g}",
-                                 hint="the lower limit of a joint must not be above its upper limit")
+            raise ParameterError(
+                _say("{joint}_lower={lower} is above {joint}_upper={upper}").format(
+                    joint=joint, lower=f"{lower:g}", upper=f"{upper:g}"),
+                hint=_say("the lower limit of a joint must not be above its upper limit: "
+                          "swap the values, or change {joint}_lower and {joint}_upper together").format(joint=joint))
 
 
 _BANNER = re.compile(r"<!-- =+ -->\s*<!-- \|.*?\| -->\s*<!-- \|.*?\| -->\s*<!-- =+ -->\s*", re.S)
 
 
 def arm_urdf(*, wrist: bool = False, inertials: bool = False, params: Mapping[str, object] | None = None,
-             collisions: bool = False, root_inertial: bool = True) -> str:
+             collisions: bool = False, root_inertial: bool = True, lang: str | None = None,
+             header: str | None = None) -> str:
     """URDF text of the tutorial arm, optionally with the wrist, inertials, collision shapes and changed parameters.
 
     ``inertials`` brings the collision shapes too (physics needs both); ``root_inertial=False``
-    leaves the root link without one, as robot_state_publisher's KDL parser prefers.
+    leaves the root link without one, as robot_state_publisher's KDL parser prefers. The
+    comments are in ``lang`` (default: the current language); ``header``, if given, replaces
+    the first one, which otherwise names the options that made the file.
     """
+    from .i18n import current_language, translator
+
+    lang = lang or current_language()
     mappings = normalise_parameters(params or {})
     mappings.update(wrist=str(wrist).lower(), inertials=str(inertials).lower(), collisions=str(collisions).lower(),
                     base_inertial=str(root_inertial).lower())
-    text = _expand_template(mappings)
-    from .i18n import _
+    text = localise_comments(_expand_template(mappings), lang)
+    if header is None:
+        options = [f for f, on in (("wrist", wrist), ("inertials", inertials),
+                                   ("collisions", collisions and not inertials)) if on]
+        options += [f"param {k}={v}" for k, v in (params or {}).items()]
+        header = header_comment(options, translator(lang, "package"))
+    return _BANNER.sub(lambda _match: f"<!-- {_comment_safe(header)} -->\n", text, count=1)
 
-    # An XML comment may not hold "--": the options are named without their dashes.
-    options = [f for f, on in (("wrist", wrist), ("inertials", inertials),
-                               ("collisions", collisions and not inertials)) if on]
-    options += [f"param {k}={v}".replace("--", "-") for k, v in (params or {}).items()]
-    note = ("<!-- " + (_("Generated by bras-kit urdf with the options: {options}").format(options=", ".join(options))
-                       if options else _("Generated by bras-kit urdf")) + " -->\n")
-    return _BANNER.sub(note, text, count=1)
+
+def header_comment(options: list[str], say: Any) -> str:
+    """The first comment of ``bras-kit urdf``'s output: the options that made it.
+
+    An XML comment may not hold two dashes in a row (XML 1.0, section 2.5: xmllint, Python's
+    parsers and lxml reject the file), so the options are named without theirs and the comment
+    says so, rather than showing a command whose dashes were changed.
+    """
+    if not options:
+        return str(say("Generated by bras-kit urdf (no option)"))
+    return str(say("Generated by bras-kit urdf with the options {options} (on the command line, each starts "
+                   "with two dashes, which an XML comment cannot hold)")).format(options=", ".join(options))
+
+
+def _comment_safe(text: str) -> str:
+    """``text`` as the body of an XML comment: no two dashes in a row, no dash at the end."""
+    while "--" in text:
+        text = text.replace("--", "- -")
+    return text + " " if text.endswith("-") else text
+
+
+_COMMENT = re.compile(r"<!--(.*?)-->", re.S)
+
+
+def localise_comments(text: str, lang: str) -> str:
+    """The comments of the arm template (kept in its expansion) in ``lang``.
+
+    Each comment's lines, stripped, are an English id of the ``package`` catalog; a comment the
+    catalog does not know is left as it is.
+    """
+    from .i18n import DEFAULT_LANGUAGE, translator
+
+    if lang == DEFAULT_LANGUAGE:
+        return text
+    say = translator(lang, "package")
+
+    def swap(found: re.Match[str]) -> str:
+        body = found.group(1)
+        english = comment_id(body)
+        words = say(english)
+        if words == english:
+            return found.group(0)
+        if "\n" in body.strip() or body.startswith("\n"):  # a block: one line each, indented like the original
+            indent = re.match(r"\n([ \t]*)", body)
+            pad = indent.group(1) if indent else "  "
+            tail = body[body.rstrip(" \t").rfind("\n"):] if body.rstrip(" \t").endswith("\n") else "\n"
+            return "<!--\n" + "\n".join(pad + _comment_safe(line) for line in words.split("\n")) + tail + "-->"
+        return f"<!-- {_comment_safe(words)} -->"
+
+    return _COMMENT.sub(swap, text)
+
+
+def comment_id(body: str) -> str:
+    """The catalog id of a comment: its lines stripped, blank ones dropped."""
+    return "\n".join(line.strip() for line in body.strip().splitlines() if line.strip())
 
 
 def _expand_template(mappings: Mapping[str, str]) -> str:

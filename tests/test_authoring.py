@@ -3,6 +3,8 @@
 from __future__ import annotations
 
 import math
+import subprocess
+from pathlib import Path
 
 import numpy as np
 import pytest
@@ -264,22 +266,159 @@ def test_a_joint_given_as_template_parameter_points_to_set(run_cli):
 
 
 @pytest.mark.parametrize("argument,words", [
-    ("bras_length=0", "bras_length=0: a length must be above 0"),
-    ("base_radius=-0.1", "a radius must be above 0"),
-    ("avant_bras_mass=0", "a mass must be above 0"),
-    ("coude_velocity=0", "a velocity limit must be above 0"),
+    ("bras_length=0", "bras_length=0: a length must be between 0.001 and 10 m"),
+    ("bras_length=600", "bras_length=600: a length must be between 0.001 and 10 m"),
+    ("base_radius=-0.1", "base_radius=-0.1: a radius must be between 0.001 and 10 m"),
+    ("poignet_width=1e-9", "poignet_width=1e-9: a width must be between 0.001 and 10 m"),
+    ("avant_bras_mass=0", "avant_bras_mass=0: a mass must be between 0.001 and 1000 kg"),
+    ("coude_velocity=0", "coude_velocity=0: a velocity limit must be between 0.001 and 100 rad/s"),
+    ("epaule_effort=-5", "epaule_effort=-5: an effort limit must be between 0.001 and 10000 N.m"),
+    ("coude_lower=-7", "coude_lower=-7: a joint limit must be between -6.2832 and 6.2832 rad"),
     ("epaule_upper=-2", "epaule_lower=-1.57 is above epaule_upper=-2"),
 ])
 def test_the_generator_refuses_what_its_validator_would_reject(run_cli, argument, words):
     code, out, err = run_cli("urdf", "--param", argument)
     assert code == 2 and out == "" and words in err
+    assert "Traceback" not in err
 
 
-def test_urdf_header_names_the_options_without_mangled_dashes(run_cli):
-    code, out, _ = run_cli("urdf", "--wrist", "--param", "bras_length=0.8")
+def test_a_limit_in_degrees_is_pointed_out():
+    with pytest.raises(ParameterError, match=r"epaule_upper=90: a joint limit must be between") as caught:
+        arm(params={"epaule_upper": "90"})
+    assert caught.value.hint == "90 looks like degrees: write epaule_upper=90deg (1.5708 rad)"
+
+
+@pytest.mark.parametrize("typed,radians", [("pi/2", math.pi / 2), ("90deg", math.pi / 2), ("1,2", 1.2),
+                                           ("-0.5*pi", -math.pi / 2)])
+def test_limits_take_what_learners_type_for_joint_values(typed, radians):
+    assert arm(params={"coude_upper": typed}).joint("coude").limit.upper == pytest.approx(radians, abs=1e-15)
+
+
+def test_a_size_takes_the_french_decimal_comma():
+    assert arm(params={"bras_length": "0,8"}).joint("coude").origin.xyz == (0.0, 0.0, 0.8)
+
+
+def test_range_errors_are_french_with_lang_fr(run_cli):
+    code, _, err = run_cli("--lang", "fr", "urdf", "--param", "bras_length=0")
+    assert code == 2
+    assert "bras_length=0: une longueur doit être comprise entre 0,001 et 10 m" in err
+    assert "les dimensions sont en mètres" in err
+
+
+def _number_parameters():
+    return [p for p in template_parameters().values() if p.kind == "number"]
+
+
+def _errors(robot):
+    from bras_kit.validate import validate
+
+    return [f"{f.code} {f.message}" for f in validate(robot) if f.severity == "error"]
+
+
+@pytest.mark.parametrize("name", [p.name for p in _number_parameters()])
+def test_each_parameter_at_its_bounds_gives_a_urdf_the_validator_accepts(name):
+    from bras_kit.authoring import parameter_range
+
+    allowed = parameter_range(name)
+    assert allowed is not None, f"{name} has no range: a new kind of parameter needs one"
+    other = "upper" if name.endswith("_lower") else "lower"
+    for value in (allowed.lowest, allowed.highest):
+        params = {name: repr(value)}
+        if name.endswith(("_lower", "_upper")):  # keep the pair ordered
+            params[f"{name.rsplit('_', 1)[0]}_{other}"] = repr(value)
+        for options in ({"wrist": True}, {"wrist": True, "inertials": True}):
+            assert _errors(arm(params=params, **options)) == [], (params, options)
+    below, above = allowed.lowest - abs(allowed.lowest) * 0.5 - 1e-9, allowed.highest * 2 + 1
+    for value in (below, above):
+        with pytest.raises(ParameterError, match=f"^{name}=") as caught:
+            arm(params={name: repr(value)})
+        assert f"between {allowed.lowest:g} and {allowed.highest:g}" in str(caught.value)
+
+
+EXTREMES = {
+    "all smallest": {p.name: "0.001" for p in _number_parameters() if p.name.endswith(
+        ("_length", "_width", "_radius", "_mass", "_effort", "_velocity"))},
+    "all largest": {**{p.name: "10" for p in _number_parameters() if p.name.endswith(("_length", "_width", "_radius"))},
+                    **{p.name: "1000" for p in _number_parameters() if p.name.endswith("_mass")}},
+    "needles": {**{p.name: "10" for p in _number_parameters() if p.name.endswith("_length")},
+                **{p.name: "0.001" for p in _number_parameters() if p.name.endswith(("_width", "_radius", "_mass"))}},
+    "plates": {**{p.name: "0.001" for p in _number_parameters() if p.name.endswith("_length")},
+               **{p.name: "10" for p in _number_parameters() if p.name.endswith(("_width", "_radius"))},
+               **{p.name: "1000" for p in _number_parameters() if p.name.endswith("_mass")}},
+    "full turns, still joints": {"epaule_lower": "-6.2832", "epaule_upper": "6.2832", "coude_lower": "0.5",
+                                 "coude_upper": "0.5", "poignet_lower": "-90deg", "poignet_upper": "pi/2"},
+}
+
+
+@pytest.mark.parametrize("case", EXTREMES)
+def test_accepted_combinations_pass_the_validator_and_check_urdf(case, tmp_path):
+    text = arm_urdf(wrist=True, inertials=True, params=EXTREMES[case])
+    assert _errors(arm(wrist=True, inertials=True, params=EXTREMES[case])) == []
+    path = tmp_path / "bras.urdf"
+    path.write_text(text)
+    checked = subprocess.run(["check_urdf", str(path)], capture_output=True, text=True, timeout=60)
+    assert checked.returncode == 0, checked.stdout + checked.stderr
+    assert "Successfully Parsed XML" in checked.stdout
+
+
+@pytest.mark.parametrize("argv,options", [
+    (["--wrist", "--param", "bras_length=0.8"], "wrist, param bras_length=0.8"),
+    (["--inertials", "--param", "bras_color=0.1 0.2 0.3 1"], "inertials, param bras_color=0.1 0.2 0.3 1"),
+    (["--collisions"], "collisions"),
+])
+def test_urdf_header_names_each_option_whole_in_a_well_formed_comment(run_cli, argv, options):
+    import xml.etree.ElementTree as ElementTree
+    from xml.dom import minidom
+
+    code, out, _ = run_cli("urdf", *argv)
     header = out.splitlines()[1]
-    assert header == "<!-- Generated by bras-kit urdf with the options: wrist, param bras_length=0.8 -->"
+    assert header == (f"<!-- Generated by bras-kit urdf with the options {options} (on the command line, "
+                      "each starts with two dashes, which an XML comment cannot hold) -->")
+    minidom.parseString(out)  # expat refuses "--" inside a comment
+    ElementTree.fromstring(out)
     assert "- -" not in out
+
+
+def test_urdf_header_and_template_comments_in_french(run_cli):
+    code, out, _ = run_cli("urdf", "--lang", "fr", "--wrist")
+    lines = out.splitlines()
+    assert lines[1] == ("<!-- Généré par bras-kit urdf avec les options wrist (sur la ligne de commande, chacune "
+                        "commence par deux tirets, qu'un commentaire XML ne peut pas contenir) -->")
+    assert "l'option param de bras-kit urdf" in out and "Every number" not in out
+
+
+def test_every_comment_of_the_template_has_french_words():
+    """A comment added to the template in English only would reach a French package's xacro."""
+    from babel.messages.pofile import read_po
+
+    from bras_kit._resources import robot_template
+    from bras_kit.authoring import _COMMENT, comment_id, localise_comments
+    from bras_kit.i18n import LOCALE_DIR
+
+    with (LOCALE_DIR / "fr" / "LC_MESSAGES" / "package.po").open("rb") as handle:
+        french = {m.id: m.string for m in read_po(handle) if m.id}
+    template = robot_template().read_text(encoding="utf-8")
+    comments = [comment_id(found.group(1)) for found in _COMMENT.finditer(template)]
+    assert len(comments) == 14
+    missing = [c for c in comments if not french.get(c)]
+    assert missing == []
+    translated = localise_comments(template, "fr")
+    assert [comment_id(found.group(1)) for found in _COMMENT.finditer(translated)] == [french[c] for c in comments]
+    assert all("--" not in french[c] for c in comments)
+    assert expand_xacro_text(translated) == expand_xacro_text(template)
+
+
+def expand_xacro_text(text):
+    """The expansion without its comments: translating comments changes nothing else."""
+    import re
+    import tempfile
+
+    from bras_kit.xacrotools import expand_xacro
+
+    with tempfile.TemporaryDirectory() as folder:
+        path = Path(folder) / "bras.urdf.xacro"
+        path.write_text(text, encoding="utf-8")
+        return re.sub(r"<!--.*?-->", "", expand_xacro(path, {"wrist": "true", "inertials": "true"}), flags=re.S)
 
 
 def test_the_built_in_arm_is_cached_and_equals_xacros_expansion(tmp_path, monkeypatch):

@@ -10,7 +10,6 @@ import importlib.util
 import math
 import py_compile
 import re
-import shutil
 import subprocess
 import sys
 import types
@@ -243,9 +242,11 @@ def test_inverted_limits_are_refused_and_nothing_is_written(run_cli, tmp_path):
 
 
 @pytest.mark.slow
-def test_package_own_test_passes_and_catches_a_changed_limit(packages, tmp_path):
+@pytest.mark.parametrize("lang,limits_test", [("en", "test_limits_match_the_urdf"),
+                                               ("fr", "test_limites_recopiees_de_l_urdf")])
+def test_package_own_test_passes_and_catches_a_changed_limit(tmp_path, lang, limits_test):
     package = tmp_path / PKG
-    shutil.copytree(packages["wrist"], package)
+    scaffold_package(package, wrist=True, lang=lang)
     command = [sys.executable, "-m", "pytest", "-q", "-p", "no:cacheprovider", "test"]
     passed = subprocess.run(command, cwd=package, capture_output=True, text=True, timeout=300)
     assert passed.returncode == 0, passed.stdout + passed.stderr
@@ -254,7 +255,7 @@ def test_package_own_test_passes_and_catches_a_changed_limit(packages, tmp_path)
     urdf.write_text(urdf.read_text().replace('lower="-2.0" upper="2.0"', 'lower="-2.0" upper="0.3"'))
     failed = subprocess.run(command, cwd=package, capture_output=True, text=True, timeout=300)
     assert failed.returncode == 1
-    assert "test_limits_match_the_urdf" in failed.stdout
+    assert limits_test in failed.stdout and "1 failed, 1 passed" in failed.stdout
 
 
 # --- the animation node, on a stand-in for rclpy ---------------------------------------------------
@@ -348,10 +349,10 @@ def generated_import(monkeypatch):
             del sys.modules[key]
 
 
-@pytest.mark.parametrize("wrist", [False, True], ids=["default", "wrist"])
-def test_animation_node_publishes_joint_states_at_20_hz(tmp_path, monkeypatch, generated_import, wrist):
-    name = "bk_anim_wrist" if wrist else "bk_anim"
-    scaffold_package(tmp_path / name, name=name, wrist=wrist)
+@pytest.mark.parametrize("wrist,lang", [(False, "en"), (True, "en"), (True, "fr")], ids=["default", "wrist", "fr"])
+def test_animation_node_publishes_joint_states_at_20_hz(tmp_path, monkeypatch, generated_import, wrist, lang):
+    name = f"bk_anim_{lang}_wrist" if wrist else f"bk_anim_{lang}"
+    scaffold_package(tmp_path / name, name=name, wrist=wrist, lang=lang)
     ros = FakeRos()
     for module_name, module in ros.modules().items():
         monkeypatch.setitem(sys.modules, module_name, module)
@@ -421,9 +422,10 @@ def test_package_installs_like_colcon_build(tmp_path, name, wrist):
 
 
 @pytest.mark.slow
-def test_installed_launch_file_finds_the_installed_files(tmp_path, monkeypatch):
+@pytest.mark.parametrize("lang", ["en", "fr"])
+def test_installed_launch_file_finds_the_installed_files(tmp_path, monkeypatch, lang):
     source = tmp_path / "src" / PKG
-    scaffold_package(source)
+    scaffold_package(source, lang=lang)
     result, prefix = colcon_like_install(source, tmp_path)
     assert result.returncode == 0, result.stderr
     share = prefix / "share" / PKG
@@ -450,7 +452,7 @@ def test_installed_launch_file_finds_the_installed_files(tmp_path, monkeypatch):
     }
     for module_name, module in fakes.items():
         monkeypatch.setitem(sys.modules, module_name, module)
-    launch_file = load_module(share / "launch" / "affichage.launch.py", "generated_launch")
+    launch_file = load_module(share / "launch" / "affichage.launch.py", f"generated_launch_{lang}")
     entities = launch_file.generate_launch_description()
 
     arguments = [e for e in entities if e[0] == "Argument"]
@@ -470,15 +472,19 @@ def test_installed_launch_file_finds_the_installed_files(tmp_path, monkeypatch):
 
 
 @pytest.mark.slow
-def test_build_stops_with_a_message_when_urdf_folder_is_empty(tmp_path):
+@pytest.mark.parametrize("lang,message", [
+    ("en", f"{PKG}: no *.urdf or *.xacro file in urdf/"),
+    ("fr", f"{PKG} : aucun fichier *.urdf ou *.xacro dans urdf/ (lancez colcon depuis l'espace de travail"),
+])
+def test_build_stops_with_a_message_when_urdf_folder_is_empty(tmp_path, lang, message):
     """The tutorial's 'file not found' pitfall becomes an error at build time."""
     source = tmp_path / "src" / PKG
-    scaffold_package(source)
+    scaffold_package(source, lang=lang)
     for path in (source / "urdf").iterdir():
         path.unlink()
     result, prefix = colcon_like_install(source, tmp_path)
     assert result.returncode != 0
-    assert f"{PKG}: no *.urdf or *.xacro file in urdf/" in result.stderr
+    assert message in result.stderr
     assert not (prefix / "share" / PKG).exists()
 
 
