@@ -46,28 +46,18 @@ def code(src: str, en: str | None = None, *, hidden: bool = False) -> Cell:
 
 # English comment of a shared code cell -> its French words.
 FR_COMMENTS = {
-    "the same camera distance for both, so the lengths compare":
-        "la même distance de caméra pour les deux, pour comparer les longueurs",
-    "joint epaule": "joint epaule",
-    "joint coude": "joint coude",
+    "joint epaule": "articulation epaule",
+    "joint coude": "articulation coude",
+    "the library's messages and picture words in this notebook's language":
+        "messages, titres et axes de la bibliothèque dans la langue du carnet",
     "+ 0.0 turns -0.0 into 0.0": "+ 0.0 change -0.0 en 0.0",
-    "One renderer for every redraw; its camera frames all the poses the limits allow,":
-        "Un seul moteur de rendu pour tous les dessins ; sa caméra cadre toutes les poses permises,",
-    "so the view stays put while the sliders move.":
-        "si bien que la vue ne bouge pas quand les curseurs bougent.",
-    "the same picture, replaced in place": "la même image, remplacée sur place",
     "run this cell when you are done with the 3D view": "exécutez cette cellule quand vous avez fini avec la vue 3D",
-    "what the panel draws when you set these values":
-        "ce que dessine le panneau pour ces valeurs",
     "--no-build-isolation: use the installed setuptools, no download":
         "--no-build-isolation : le setuptools installé, sans téléchargement",
     "tidy up the temporary folder": "ranger le dossier temporaire",
     "20 Hz, like the node's 0.05 s timer": "20 Hz, comme le minuteur de 0,05 s du nœud",
-    "Each expectation of the exercise, ticked or not.": "Chaque attente de l'exercice, cochée ou non.",
-    "about y": "autour de y",
     "ixx = iyy = 0.030533, izz = 0.0010667": "ixx = iyy = 0.030533, izz = 0.0010667",
     "repaired: the generated arm": "réparé : le bras généré",
-    "one row per picture, columns epaule, coude": "une ligne par image, colonnes epaule, coude",
 }
 
 _COMMENT = re.compile(r"(#\s*)(.+)$")

@@ -40,6 +40,7 @@ LESSON.cells = [
 
         import bras_kit
 
+        bras_kit.set_language("fr")  # messages, titres et axes de la bibliothèque en français
         robot = bras_kit.arm()  # le bras du tutoriel : base, bras, avant_bras
         """,
         """
@@ -49,6 +50,7 @@ LESSON.cells = [
 
         import bras_kit
 
+        bras_kit.set_language("en")  # the library's messages, titles and axis labels in English
         robot = bras_kit.arm()  # the tutorial's arm: base, bras, avant_bras
         """,
     ),
@@ -72,8 +74,15 @@ LESSON.cells = [
             for visual in link.visuals:
                 g = visual.geometry
                 shape = f"box {g.size}" if g.kind == "box" else f"{g.kind} r={g.radius} l={g.length}"
-                print(f"{link.name:11s} {shape:28s} origin {visual.origin.xyz}")
+                print(f"{link.name:11s} {shape:28s} origine {visual.origin.xyz}")
+        """,
         """
+        for link in robot.links:
+            for visual in link.visuals:
+                g = visual.geometry
+                shape = f"box {g.size}" if g.kind == "box" else f"{g.kind} r={g.radius} l={g.length}"
+                print(f"{link.name:11s} {shape:28s} origin {visual.origin.xyz}")
+        """,
     ),
     md(
         """
@@ -100,7 +109,7 @@ LESSON.cells = [
         for joint in robot.joints:
             lower, upper = joint.bounds()
             print(f"{joint.name:7s} {joint.type:9s} {joint.parent} -> {joint.child:10s} "
-                  f"origin {joint.origin.xyz}  axis {joint.axis}  butées [{lower}, {upper}]")
+                  f"origine {joint.origin.xyz}  axe {joint.axis}  butées [{lower}, {upper}]")
         """,
         """
         for joint in robot.joints:
@@ -148,7 +157,7 @@ LESSON.cells = [
     code(
         """
         longer = bras_kit.arm(params={"bras_length": 0.8})
-        print("coude origin :", robot.joint("coude").origin.xyz, "->", longer.joint("coude").origin.xyz)
+        print("origine du coude :", robot.joint("coude").origin.xyz, "->", longer.joint("coude").origin.xyz)
         bras_visual = longer.link("bras").visuals[0]
         print("forme du bras :", bras_visual.geometry.size, "centrée en", bras_visual.origin.xyz)
         """,
@@ -179,24 +188,69 @@ LESSON.cells = [
     ),
     md(
         """
-        Et en image (le rendu est expliqué à la leçon 3) :
+        Et en image (le rendu est expliqué à la leçon 3). Pour comparer deux longueurs, les deux images
+        doivent avoir le même cadrage : chacune est posée sur les mêmes axes, en mètres.
         """,
         """
-        And as a picture (rendering is explained in lesson 3):
+        And as a picture (rendering is explained in lesson 3). To compare two lengths, both pictures
+        need the same framing: each one is placed on the same axes, in metres.
         """,
     ),
     code(
         """
-        from bras_kit.render import render_pose
+        import math
 
-        fig, axes = plt.subplots(1, 2, figsize=(8, 4))
+        from bras_kit.render import Renderer
+
+
+        def front_view(ax, arm, pose, distance=3.0):
+            \"""Le bras vu de face, posé sur des axes en mètres : ceux du plan y = 0 où il bouge.\"""
+            with Renderer(arm, fit=pose, view="front", distance=distance, size=(400, 400)) as renderer:
+                picture = renderer.render(pose)
+                camera = renderer.camera
+            x, y, z = camera.pose[:3, 3]  # la caméra est du côté y < 0, à -y mètres du plan y = 0
+            half = -y * math.tan(camera.yfov / 2)  # la moitié de ce qu'elle voit de ce plan, en mètres
+            ax.imshow(picture, extent=(x - half, x + half, z - half, z + half))
+
+
+        # mêmes axes pour les deux images : un seul cadrage, les longueurs se comparent à l'œil
+        fig, axes = plt.subplots(1, 2, figsize=(8, 4.5), sharex=True, sharey=True)
         for ax, (label, arm) in zip(axes, [("bras_length = 0.6", robot), ("bras_length = 0.8", longer)]):
-            # the same camera distance for both, so the lengths compare
-            ax.imshow(render_pose(arm, {"coude": 0.6}, size=(400, 400), view="front", distance=3.0))
+            front_view(ax, arm, {"coude": 0.6})
             ax.set_title(label)
-            ax.axis("off")
+            ax.set_xlabel("x (m)")
+        axes[0].set_ylabel("z (m)")
+        axes[0].set_xlim(-0.5, 0.8)
+        axes[0].set_ylim(-0.15, 1.45)
         plt.show()
+        """,
         """
+        import math
+
+        from bras_kit.render import Renderer
+
+
+        def front_view(ax, arm, pose, distance=3.0):
+            \"""The arm seen from the front, placed on axes in metres: those of the plane y = 0 it moves in.\"""
+            with Renderer(arm, fit=pose, view="front", distance=distance, size=(400, 400)) as renderer:
+                picture = renderer.render(pose)
+                camera = renderer.camera
+            x, y, z = camera.pose[:3, 3]  # the camera is on the y < 0 side, -y metres from the plane y = 0
+            half = -y * math.tan(camera.yfov / 2)  # half of what it sees of that plane, in metres
+            ax.imshow(picture, extent=(x - half, x + half, z - half, z + half))
+
+
+        # the same axes for both pictures: one framing, so the lengths compare by eye
+        fig, axes = plt.subplots(1, 2, figsize=(8, 4.5), sharex=True, sharey=True)
+        for ax, (label, arm) in zip(axes, [("bras_length = 0.6", robot), ("bras_length = 0.8", longer)]):
+            front_view(ax, arm, {"coude": 0.6})
+            ax.set_title(label)
+            ax.set_xlabel("x (m)")
+        axes[0].set_ylabel("z (m)")
+        axes[0].set_xlim(-0.5, 0.8)
+        axes[0].set_ylim(-0.15, 1.45)
+        plt.show()
+        """,
     ),
     md(
         """
@@ -216,9 +270,14 @@ LESSON.cells = [
     ),
     code(
         """
+        KINDS = {"flag": "oui/non", "number": "nombre", "colour": "couleur"}
+        for p in bras_kit.template_parameters().values():
+            print(f"{p.name:18s} {KINDS.get(p.kind, p.kind):8s} {p.default}")
+        """,
+        """
         for p in bras_kit.template_parameters().values():
             print(f"{p.name:18s} {p.kind:7s} {p.default}")
-        """
+        """,
     ),
     code(
         """

@@ -33,6 +33,7 @@ LESSON.cells = [
 
         import bras_kit
 
+        bras_kit.set_language("@LANG@")  # the library's messages and picture words in this notebook's language
         robot = bras_kit.arm()
         pose = {"epaule": 0.5, "coude": -0.8}
         np.set_printoptions(precision=4, suppress=True)
@@ -120,6 +121,16 @@ LESSON.cells = [
     code(
         """
         tree = bras_kit.tf_tree(robot)
+        print("segments      :", tree.links)
+        print("parents       :", [tree.links[p] if p >= 0 else None for p in tree.parent])
+        print("articulations :", tree.dof)
+
+        poses = bras_kit.fk(tree, pose)
+        print(poses["avant_bras"])
+        assert np.allclose(poses["avant_bras"], by_hand)
+        """,
+        """
+        tree = bras_kit.tf_tree(robot)
         print("links  :", tree.links)
         print("parents:", [tree.links[p] if p >= 0 else None for p in tree.parent])
         print("joints :", tree.dof)
@@ -127,7 +138,7 @@ LESSON.cells = [
         poses = bras_kit.fk(tree, pose)
         print(poses["avant_bras"])
         assert np.allclose(poses["avant_bras"], by_hand)
-        """
+        """,
     ),
     md(
         """

@@ -29,6 +29,7 @@ LESSON.cells = [
         import bras_kit
         from bras_kit.render import render_pose
 
+        bras_kit.set_language("@LANG@")  # the library's messages and picture words in this notebook's language
         robot = bras_kit.arm()
         image = render_pose(robot, {"epaule": 0.4, "coude": 0.9}, size=(480, 360))
         print(image.shape, image.dtype)
@@ -78,8 +79,10 @@ LESSON.cells = [
         Un curseur par articulation mobile, borné par ses butées : c'est exactement ce que fait la fenêtre
         du tutoriel, qui lit les `limit` de l'URDF. Bougez un curseur, l'image est redessinée.
 
-        L'image suit le curseur pendant que vous le faites glisser : chaque valeur redessine une
-        seule image, remplacée sur place, sans empiler de nouvelles images sous le panneau.
+        L'image suit le curseur pendant que vous le faites glisser (`continuous_update=True`) : une
+        seule image, remplacée sur place, sans empiler de nouvelles images sous le panneau. Le
+        glissement envoie bien plus de valeurs que le rendu ne sait en dessiner : on dessine au plus
+        30 fois par seconde, et toujours la dernière valeur.
         """,
         """
         ## Sliders, like joint_state_publisher_gui
@@ -87,13 +90,64 @@ LESSON.cells = [
         One slider per movable joint, bounded by its limits: exactly what the tutorial's window
         does, reading the URDF's `limit` elements. Move a slider and the picture is redrawn.
 
-        The picture follows the slider while you drag it: each value redraws one picture,
-        replaced in place, with no pile of pictures under the panel.
+        The picture follows the slider while you drag it (`continuous_update=True`): one picture,
+        replaced in place, with no pile of pictures under the panel. Dragging sends many more
+        values than the renderer can draw: it draws at most 30 times a second, and always the
+        last value.
         """,
     ),
     code(
         """
+        import asyncio
         import io
+        import time
+
+        import ipywidgets as widgets
+        from IPython.display import display
+
+        from bras_kit.render import Renderer, save_png, show_image
+
+        # Un seul moteur de rendu pour tous les dessins ; sa caméra cadre toutes les poses permises,
+        # si bien que la vue ne bouge pas quand les curseurs bougent.
+        renderer = Renderer(robot, size=(480, 360), tf=True)
+        screen = widgets.Image(format="png")  # une seule image, remplacée sur place à chaque dessin
+        sliders = {joint.name: widgets.FloatSlider(value=0.0, min=joint.bounds()[0], max=joint.bounds()[1], step=0.01,
+                                                   description=joint.name, continuous_update=True)
+                   for joint in robot.movable_joints()}
+        FRAME = 1 / 30  # s : pas plus d'un dessin par trentième de seconde
+        drawn = {"at": 0.0, "later": None}
+
+
+        def draw():
+            \"""Dessine la pose des curseurs dans l'image du panneau.\"""
+            drawn["later"] = None
+            buffer = io.BytesIO()
+            save_png(renderer.render({name: slider.value for name, slider in sliders.items()}), buffer)
+            screen.value = buffer.getvalue()
+            drawn["at"] = time.monotonic()
+
+
+        def on_slide(change):
+            wait = FRAME - (time.monotonic() - drawn["at"])
+            if drawn["later"] is not None:
+                return  # un dessin est déjà prévu : il lira les dernières valeurs
+            if wait <= 0:
+                draw()
+            else:  # trop tôt : dessiner les dernières valeurs dès que le délai est passé
+                drawn["later"] = asyncio.get_running_loop().call_later(wait, draw)
+
+
+        for slider in sliders.values():
+            slider.observe(on_slide, names="value")
+        draw()
+        display(widgets.VBox([screen, *sliders.values()]))
+
+        picture = renderer.render({"epaule": 0.6, "coude": -1.1})  # l'image de ces valeurs, calculée sans l'afficher
+        """,
+        """
+        import asyncio
+        import io
+        import time
 
         import ipywidgets as widgets
         from IPython.display import display
@@ -103,27 +157,40 @@ LESSON.cells = [
         # One renderer for every redraw; its camera frames all the poses the limits allow,
         # so the view stays put while the sliders move.
         renderer = Renderer(robot, size=(480, 360), tf=True)
-        image = widgets.Image(format="png")
+        screen = widgets.Image(format="png")  # one picture, replaced in place at each redraw
+        sliders = {joint.name: widgets.FloatSlider(value=0.0, min=joint.bounds()[0], max=joint.bounds()[1], step=0.01,
+                                                   description=joint.name, continuous_update=True)
+                   for joint in robot.movable_joints()}
+        FRAME = 1 / 30  # s: no more than one drawing per thirtieth of a second
+        drawn = {"at": 0.0, "later": None}
 
 
-        def redraw(**config):
-            picture = renderer.render(config)
+        def draw():
+            \"""Draw the sliders' pose into the panel's picture.\"""
+            drawn["later"] = None
             buffer = io.BytesIO()
-            save_png(picture, buffer)
-            image.value = buffer.getvalue()  # the same picture, replaced in place
-            return picture
+            save_png(renderer.render({name: slider.value for name, slider in sliders.items()}), buffer)
+            screen.value = buffer.getvalue()
+            drawn["at"] = time.monotonic()
 
 
-        sliders = {}
-        for joint in robot.movable_joints():
-            lower, upper = joint.bounds()
-            sliders[joint.name] = widgets.FloatSlider(value=0.0, min=lower, max=upper, step=0.01,
-                                                      description=joint.name, continuous_update=True)
-        panel = widgets.interactive(redraw, **sliders)
-        display(widgets.VBox([image, *panel.children[:-1]]))
+        def on_slide(change):
+            wait = FRAME - (time.monotonic() - drawn["at"])
+            if drawn["later"] is not None:
+                return  # a drawing is already due: it will read the latest values
+            if wait <= 0:
+                draw()
+            else:  # too soon: draw the latest values as soon as the delay is over
+                drawn["later"] = asyncio.get_running_loop().call_later(wait, draw)
 
-        picture = redraw(epaule=0.6, coude=-1.1)  # what the panel draws when you set these values
-        """
+
+        for slider in sliders.values():
+            slider.observe(on_slide, names="value")
+        draw()
+        display(widgets.VBox([screen, *sliders.values()]))
+
+        picture = renderer.render({"epaule": 0.6, "coude": -1.1})  # the picture of these values, computed without showing it
+        """,
     ),
     md(
         """
@@ -147,7 +214,7 @@ LESSON.cells = [
     ),
     code(
         """
-        viewer = bras_kit.view(robot, port=0, motion="tutorial")
+        viewer = bras_kit.view(robot, port=0, motion="tutorial", lang="@LANG@")
         print(viewer.url)
         """
     ),

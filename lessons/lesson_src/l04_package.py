@@ -34,9 +34,10 @@ LESSON.cells = [
         import bras_kit
         from bras_kit.scaffold import scaffold_package
 
+        bras_kit.set_language("@LANG@")  # the library's messages and picture words in this notebook's language
         work = Path(tempfile.mkdtemp(prefix="bras-paquet-"))
         package = work / "bras_description"
-        scaffold_package(package)
+        scaffold_package(package, lang="@LANG@")
 
         for path in sorted(package.rglob("*")):
             if path.is_file():
@@ -246,7 +247,7 @@ LESSON.cells = [
     md(
         """
         Le dossier `urdf/` manque dans `share/` : sur une vraie machine, `ros2 launch` s'arrête
-        sur un *file not found*. Le correctif est celui du tutoriel : remettre la ligne dans
+        sur le message `file not found` (fichier introuvable). Le correctif est celui du tutoriel : remettre la ligne dans
         `data_files` et reconstruire (`colcon build`).
 
         La vérification à faire avant de partir sur une machine ROS : chaque dossier du paquet

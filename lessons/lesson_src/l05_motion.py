@@ -35,6 +35,7 @@ LESSON.cells = [
         import bras_kit
         from bras_kit.motion import check_limits, formula_motion, sample, tutorial_motion, waypoint_motion
 
+        bras_kit.set_language("@LANG@")  # the library's messages and picture words in this notebook's language
         robot = bras_kit.arm()
         motion = tutorial_motion(robot)
         states = sample(motion, duration=10.0, rate=20.0)  # 20 Hz, like the node's 0.05 s timer
@@ -225,9 +226,10 @@ LESSON.cells = [
     ),
     code(
         """
+        KIND = {"position": "position", "velocity": "vitesse"}  # v.kind : le genre de butée dépassée
         wild = sample(formula_motion(robot, ["epaule=0.8*sin(t)", "coude=2.5*sin(t)"]), duration=10.0)
         for v in check_limits(robot, wild):
-            print(f"{v.joint}: {v.kind} {v.value:+.3f} à t={v.peak_time:.2f} s, butée {v.bound:+.2f}, excès {v.excess:.3f}")
+            print(f"{v.joint}: {KIND.get(v.kind, v.kind)} {v.value:+.3f} à t={v.peak_time:.2f} s, butée {v.bound:+.2f}, excès {v.excess:.3f}")
         """,
         """
         wild = sample(formula_motion(robot, ["epaule=0.8*sin(t)", "coude=2.5*sin(t)"]), duration=10.0)

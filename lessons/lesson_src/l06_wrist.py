@@ -24,6 +24,7 @@ SETUP = code(
     import bras_kit
     from bras_kit.validate import validate
 
+    bras_kit.set_language("fr")  # messages, titres et axes de la bibliothèque en français
     SEVERITE = {"error": "erreur", "warning": "avertissement", "info": "info"}
 
 
@@ -37,7 +38,7 @@ SETUP = code(
 
 
     def check_wrist(robot):
-        # Each expectation of the exercise, ticked or not.
+        # Chaque attente de l'exercice, cochée ou non.
         joint = robot.joint("poignet")
         link = robot.link("poignet")
         tests = {
@@ -60,6 +61,7 @@ SETUP = code(
     import bras_kit
     from bras_kit.validate import validate
 
+    bras_kit.set_language("en")  # the library's messages, titles and axis labels in English
 
     def show(findings):
         if not findings:
@@ -155,7 +157,7 @@ LESSON.cells = [
     code(
         """
         wrist_xml = \"\"\"
-          <!-- votre link "poignet" et votre joint "poignet" ici -->
+          <!-- votre segment <link name="poignet"> et votre articulation <joint name="poignet"> ici -->
         \"\"\"
         """,
         """

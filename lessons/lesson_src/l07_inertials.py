@@ -56,6 +56,11 @@ import bras_kit
 from bras_kit.validate import validate
 """
 
+_LANGUAGE = {
+    "fr": 'bras_kit.set_language("fr")  # messages, titres et axes de la bibliothèque en français',
+    "en": 'bras_kit.set_language("en")  # the library\'s messages, titles and axis labels in English',
+}
+
 _REFERENCE = {
     "fr": "reference = bras_kit.arm(inertials=True)  # la réponse du modèle, pour comparer",
     "en": "reference = bras_kit.arm(inertials=True)  # the template's answer, to compare with",
@@ -115,7 +120,7 @@ def _setup(lang: str, solution: bool = False) -> str:
     if solution:
         imports = imports.replace("import re\nfrom pathlib import Path\n\n", "")
         imports = imports.replace("\nfrom bras_kit.validate import validate", "")
-    blocks = [imports + "\n\n" + _REFERENCE[lang]]
+    blocks = [imports + "\n\n" + _LANGUAGE[lang] + "\n" + _REFERENCE[lang]]
     if not solution:
         blocks.append(_SHOW[lang].strip("\n"))
     blocks.append(_COMPARE[lang].strip("\n"))
@@ -290,7 +295,7 @@ LESSON.cells = [
                 centre = (poses[name] @ [*inertial.origin.xyz, 1])[:3]
                 lever = centre - shoulder
                 weight = np.array([0, 0, -inertial.mass * g])
-                torque += np.cross(lever, weight)[1]  # about y
+                torque += np.cross(lever, weight)[1]  # autour de y
             return torque
 
 

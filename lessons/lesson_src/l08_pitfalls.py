@@ -18,7 +18,7 @@ LESSON.cells = [
         |---|---|---|
         | 1 | RViz reste vide | Fixed Frame ou RobotModel mal réglés |
         | 2 | le bras s'affiche mais ne bouge pas | personne ne publie sur `/joint_states` |
-        | 3 | *file not found* au lancement | l'URDF n'est pas installé (`data_files`) |
+        | 3 | `file not found` au lancement | l'URDF n'est pas installé (`data_files`) |
         | 4 | segments mal placés | `origin` d'une articulation incohérente avec la longueur du parent |
         | 5 | les articulations dépassent | angles publiés hors des `limit` |
 
@@ -46,6 +46,7 @@ LESSON.cells = [
     code(
         """
         import importlib.util
+        import math
         import re
         import tempfile
         from pathlib import Path
@@ -56,15 +57,16 @@ LESSON.cells = [
 
         import bras_kit
         from bras_kit.motion import formula_motion, sample, tutorial_motion
-        from bras_kit.render import render_pose
+        from bras_kit.render import Renderer
         from bras_kit.scaffold import scaffold_package
         from bras_kit.validate import validate
 
+        bras_kit.set_language("fr")  # messages, titres et axes de la bibliothèque en français
         robot = bras_kit.arm()
         tree = bras_kit.tf_tree(robot)
         good_urdf = bras_kit.arm_urdf()
         package = Path(tempfile.mkdtemp(prefix="pieges-")) / "bras_description"
-        scaffold_package(package)
+        scaffold_package(package, lang="@LANG@")
 
 
         SEVERITE = {"error": "erreur", "warning": "avertissement", "info": "info"}
@@ -84,6 +86,7 @@ LESSON.cells = [
         """,
         """
         import importlib.util
+        import math
         import re
         import tempfile
         from pathlib import Path
@@ -94,15 +97,16 @@ LESSON.cells = [
 
         import bras_kit
         from bras_kit.motion import formula_motion, sample, tutorial_motion
-        from bras_kit.render import render_pose
+        from bras_kit.render import Renderer
         from bras_kit.scaffold import scaffold_package
         from bras_kit.validate import validate
 
+        bras_kit.set_language("en")  # the library's messages, titles and axis labels in English
         robot = bras_kit.arm()
         tree = bras_kit.tf_tree(robot)
         good_urdf = bras_kit.arm_urdf()
         package = Path(tempfile.mkdtemp(prefix="pitfalls-")) / "bras_description"
-        scaffold_package(package)
+        scaffold_package(package, lang="@LANG@")
 
 
         def show(findings):
@@ -246,7 +250,7 @@ LESSON.cells = [
 
         states = sample(tutorial_motion(robot), duration=10.0, rate=20.0)
         published = np.array([node_motion.joint_positions(t) for t in states.times])
-        print("noms publiés :", node_motion.JOINT_NAMES, " joints du modèle :", list(tree.dof))
+        print("noms publiés :", node_motion.JOINT_NAMES, " articulations du modèle :", list(tree.dof))
         print("mêmes angles que le tutoriel :", np.allclose(published, states.positions))
         print("le bras bouge :", np.ptp(published, axis=0))
         """,
@@ -287,7 +291,7 @@ LESSON.cells = [
     ),
     md(
         """
-        ## 3. *file not found* au lancement
+        ## 3. `file not found` (fichier introuvable) au lancement
 
         Le fichier de lancement lit `share/bras_description/urdf/bras.urdf` et
         `share/bras_description/rviz/…` ; seuls les dossiers listés dans `data_files` de
@@ -350,13 +354,52 @@ LESSON.cells = [
         short_elbow = load_text(good_urdf.replace('<origin xyz="0 0 0.6"/>', '<origin xyz="0 0 0.4"/>'), "coude_court.urdf")
         show(validate(short_elbow, lang="@LANG@", select=["BK3"]))
 
-        fig, axes = plt.subplots(1, 2, figsize=(8, 4))
+
+        def front_view(ax, arm, pose, distance=3.0):
+            \"""Le bras vu de face, sur des axes en mètres (ceux du plan y = 0, comme à la leçon 1).\"""
+            with Renderer(arm, fit=pose, view="front", distance=distance, size=(360, 360)) as renderer:
+                picture = renderer.render(pose)
+                camera = renderer.camera
+            x, y, z = camera.pose[:3, 3]  # la caméra est à -y mètres du plan y = 0
+            half = -y * math.tan(camera.yfov / 2)
+            ax.imshow(picture, extent=(x - half, x + half, z - half, z + half))
+
+
+        fig, axes = plt.subplots(1, 2, figsize=(8, 4.5), sharex=True, sharey=True)  # un seul cadrage pour les deux images
         for ax, (title, model) in zip(axes, [("z = 0.4", short_elbow), ("z = 0.6", robot)]):
-            ax.imshow(render_pose(model, {"coude": 1.0}, size=(360, 360), view="front", distance=3.0))
+            front_view(ax, model, {"coude": 1.0})
             ax.set_title(title)
-            ax.axis("off")
+            ax.set_xlabel("x (m)")
+        axes[0].set_ylabel("z (m)")
+        axes[0].set_xlim(-0.4, 0.9)
+        axes[0].set_ylim(-0.15, 1.3)
         plt.show()
+        """,
         """
+        short_elbow = load_text(good_urdf.replace('<origin xyz="0 0 0.6"/>', '<origin xyz="0 0 0.4"/>'), "coude_court.urdf")
+        show(validate(short_elbow, lang="@LANG@", select=["BK3"]))
+
+
+        def front_view(ax, arm, pose, distance=3.0):
+            \"""The arm seen from the front, on axes in metres (those of the plane y = 0, as in lesson 1).\"""
+            with Renderer(arm, fit=pose, view="front", distance=distance, size=(360, 360)) as renderer:
+                picture = renderer.render(pose)
+                camera = renderer.camera
+            x, y, z = camera.pose[:3, 3]  # the camera is -y metres from the plane y = 0
+            half = -y * math.tan(camera.yfov / 2)
+            ax.imshow(picture, extent=(x - half, x + half, z - half, z + half))
+
+
+        fig, axes = plt.subplots(1, 2, figsize=(8, 4.5), sharex=True, sharey=True)  # one framing for both pictures
+        for ax, (title, model) in zip(axes, [("z = 0.4", short_elbow), ("z = 0.6", robot)]):
+            front_view(ax, model, {"coude": 1.0})
+            ax.set_title(title)
+            ax.set_xlabel("x (m)")
+        axes[0].set_ylabel("z (m)")
+        axes[0].set_xlim(-0.4, 0.9)
+        axes[0].set_ylim(-0.15, 1.3)
+        plt.show()
+        """,
     ),
     md(
         """
@@ -437,7 +480,7 @@ LESSON.cells = [
         |---|---|---|
         | 1 | RViz vide | le `.rviz` : Fixed Frame dans l'arbre, RobotModel sur `/robot_description` ; BK307 |
         | 2 | rien ne bouge | les noms publiés = `tree.dof` ; le calcul du nœud exécuté hors ROS |
-        | 3 | *file not found* | chaque dossier lu par le lancement est dans `data_files` (leçon 4) |
+        | 3 | `file not found` | chaque dossier lu par le lancement est dans `data_files` (leçon 4) |
         | 4 | segments mal placés | BK301, BK302 |
         | 5 | butées dépassées | BK303 (pose), BK304 et BK305 (mouvement) |
 

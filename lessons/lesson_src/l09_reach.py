@@ -32,6 +32,7 @@ LESSON.cells = [
         import bras_kit
         from bras_kit.ik import ik_2r
 
+        bras_kit.set_language("fr")  # messages, titres et axes de la bibliothèque en français
         robot = bras_kit.arm()
         tree = bras_kit.tf_tree(robot)
         L1, L2, H = 0.6, 0.5, 0.05  # bras, avant-bras, hauteur de l'épaule
@@ -44,6 +45,7 @@ LESSON.cells = [
         import bras_kit
         from bras_kit.ik import ik_2r
 
+        bras_kit.set_language("en")  # the library's messages, titles and axis labels in English
         robot = bras_kit.arm()
         tree = bras_kit.tf_tree(robot)
         L1, L2, H = 0.6, 0.5, 0.05  # upper arm, forearm, shoulder height
@@ -103,10 +105,11 @@ LESSON.cells = [
     ),
     code(
         """
+        COUDE = {"up": "haut", "down": "bas"}  # solution.elbow : "up" ou "down"
         result = ik_2r(robot, target)
         print(result.reachable, "-", result.message)
         for solution in result.solutions:
-            print(f"  coude {solution.elbow:4s}: {solution.joints}  dans les butées : {solution.within_limits}")
+            print(f"  coude {COUDE[solution.elbow]:4s}: {solution.joints}  dans les butées : {solution.within_limits}")
         print("choisie :", result.joints, " écart :", result.residual)
         """,
         """
@@ -142,7 +145,7 @@ LESSON.cells = [
 
         fig, ax = plt.subplots(figsize=(5, 5))
         for solution, colour in zip(result.solutions, ("tab:blue", "tab:orange")):
-            stick(ax, solution.joints, color=colour, label=f"coude {solution.elbow}")
+            stick(ax, solution.joints, color=colour, label=f"coude {COUDE[solution.elbow]}")
         ax.plot(target[0], target[2], "k*", ms=15, label="cible")
         ax.add_patch(plt.Circle((0, H), L1 + L2, fill=False, ls=":", color="grey"))
         ax.set_aspect("equal")
@@ -231,7 +234,7 @@ LESSON.cells = [
 
         move = reach_motion(robot, {}, result.joints)
         print(f"durée : {move.duration:.2f} s, vitesses de pointe : {move.peak_velocities().round(3)}")
-        poses = move.positions(move.times(rate=10.0))  # one row per picture, columns epaule, coude
+        poses = move.positions(move.times(rate=10.0))  # une ligne par image, colonnes epaule, coude
         save_gif(render_motion(robot, poses, size=(320, 240)), "atteindre.gif", fps=10)
         display(Image(filename="atteindre.gif"))
         """,
@@ -252,7 +255,7 @@ LESSON.cells = [
         """
         ## À vous
 
-        1. Trouvez une cible que **seul** le coude « down » atteint dans les butées.
+        1. Trouvez une cible que **seul** le coude « bas » (`down`) atteint dans les butées.
         2. Avec le poignet (`bras_kit.arm(wrist=True)`), il y a trois articulations pour deux
            coordonnées : une infinité de solutions. `bras_kit.solve_ik` cherche alors
            numériquement. Essayez-le sur la même cible.

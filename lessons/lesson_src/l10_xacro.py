@@ -46,6 +46,7 @@ LESSON.cells = [
 
         import bras_kit
 
+        bras_kit.set_language("@LANG@")  # the library's messages and picture words in this notebook's language
         small = '''<?xml version="1.0"?>
         <robot name="deux_blocs" xmlns:xacro="http://www.ros.org/wiki/xacro">
           <xacro:arg name="hauteur" default="0.4"/>

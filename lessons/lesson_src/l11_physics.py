@@ -38,6 +38,7 @@ LESSON.cells = [
         import bras_kit
         from bras_kit.physics.diagnostics import report_text
 
+        bras_kit.set_language("@LANG@")  # the library's messages and picture words in this notebook's language
         try:
             bras_kit.simulate(bras_kit.arm(), lang="@LANG@")
         except bras_kit.ModelError as error:
@@ -105,9 +106,16 @@ LESSON.cells = [
         pose = {"epaule": 0.5, "coude": 0.3}
         hold = bras_kit.simulate(robot, bras_kit.pose_motion(robot, pose), control="pd", duration=3)
         error = np.array(list(pose.values())) - hold.positions[-1]
+        print("écart (rad)   :", error.round(4))
+        print("couple (N.m) :", hold.efforts[-1].round(3))
+        """,
+        """
+        pose = {"epaule": 0.5, "coude": 0.3}
+        hold = bras_kit.simulate(robot, bras_kit.pose_motion(robot, pose), control="pd", duration=3)
+        error = np.array(list(pose.values())) - hold.positions[-1]
         print("error (rad):", error.round(4))
         print("torque (N.m):", hold.efforts[-1].round(3))
-        """
+        """,
     ),
     md(
         """
@@ -131,9 +139,17 @@ LESSON.cells = [
         q1, q2 = hold.positions[-1]
         shoulder = g * (1.0 * 0.3 * np.sin(q1) + 0.5 * (0.6 * np.sin(q1) + 0.25 * np.sin(q1 + q2)))
         elbow = g * 0.5 * 0.25 * np.sin(q1 + q2)
+        print("à la main :", np.round([-shoulder, -elbow], 3))
+        print("kp × écart :", np.round(100 * error, 3))
+        """,
+        """
+        g = 9.81
+        q1, q2 = hold.positions[-1]
+        shoulder = g * (1.0 * 0.3 * np.sin(q1) + 0.5 * (0.6 * np.sin(q1) + 0.25 * np.sin(q1 + q2)))
+        elbow = g * 0.5 * 0.25 * np.sin(q1 + q2)
         print("by hand   :", np.round([-shoulder, -elbow], 3))
         print("kp x error:", np.round(100 * error, 3))
-        """
+        """,
     ),
     md(
         """
@@ -208,8 +224,13 @@ LESSON.cells = [
         """
         compensated = bras_kit.simulate(robot, control="pd+gravity")
         for plain, better in zip(track.report, compensated.report):
-            print(f"{plain.joint:8s} mean error: pd {plain.error_mean:.4f} rad, pd+gravity {better.error_mean:.4f} rad")
+            print(f"{plain.joint:8s} écart moyen : pd {plain.error_mean:.4f} rad, pd+gravity {better.error_mean:.4f} rad")
+        """,
         """
+        compensated = bras_kit.simulate(robot, control="pd+gravity")
+        for plain, better in zip(track.report, compensated.report):
+            print(f"{plain.joint:8s} mean error: pd {plain.error_mean:.4f} rad, pd+gravity {better.error_mean:.4f} rad")
+        """,
     ),
     md(
         """
