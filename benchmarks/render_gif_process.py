@@ -5,7 +5,8 @@ TinyRenderer and Pillow's GIF writer. Target (issue 15): bras-kit at most 0.5x t
 Run: python benchmarks/render_gif_process.py [--repeat 5] [--robot PATH.urdf --package-path DIR]
 Each command runs in a fresh Python process (imports, model, OpenGL start-up and file
 writing included). The two commands alternate, run after run, so both see the same machine
-load; the medians and their ratio are printed with the GIF sizes. --robot draws a URDF file
+load (see _process.py for the fairness rules); the medians and their ratio are printed with
+the GIF sizes. bras-kit draws its built-in arm; the script loads the same arm's URDF file. --robot draws a URDF file
 instead of the tutorial arm (bras-kit only: the peer script knows the arm's joints), e.g. Talos
 from example-robot-data (60 links, 206k triangles): --robot .../talos_data/robots/talos_full_v2.urdf
 --package-path .../cmeel.prefix/share (target: under 10 s).
@@ -15,26 +16,22 @@ from __future__ import annotations
 
 import argparse
 import os
-import shutil
 import statistics
-import subprocess
 import sys
 import tempfile
-import time
+
+from _process import alternate, bras_kit_command
 
 FRAMES, FPS, SIZE = 120, 20, (640, 480)
 TARGET = 0.5
 
 # The peer: what one would write without bras-kit (pybullet for pictures, Pillow for the GIF).
 PEER = r'''
-import math, os, sys, tempfile
+import math, os, sys
 fd = os.dup(1); null = os.open(os.devnull, os.O_WRONLY); os.dup2(null, 1); os.dup2(null, 2)
 import numpy as np, pybullet as p
 from PIL import Image
-from bras_kit.authoring import arm_urdf
-out, count, fps = sys.argv[1], int(sys.argv[2]), int(sys.argv[3])
-path = os.path.join(tempfile.mkdtemp(), "bras.urdf")
-open(path, "w").write(arm_urdf())
+path, out, count, fps = sys.argv[1], sys.argv[2], int(sys.argv[3]), int(sys.argv[4])
 p.connect(p.DIRECT)
 body = p.loadURDF(path, useFixedBase=True)
 os.dup2(fd, 1)
@@ -51,17 +48,6 @@ frames[0].save(out, save_all=True, append_images=frames[1:], duration=1000 // fp
 '''
 
 
-def timed(command: list[str]) -> float:
-    start = time.perf_counter()
-    subprocess.run(command, check=True, stdout=subprocess.DEVNULL, stderr=subprocess.DEVNULL)
-    return time.perf_counter() - start
-
-
-def bras_kit_command() -> list[str]:
-    exe = shutil.which("bras-kit")
-    return [exe] if exe else [sys.executable, "-m", "bras_kit"]
-
-
 def main() -> None:
     parser = argparse.ArgumentParser(description=__doc__, formatter_class=argparse.RawDescriptionHelpFormatter)
     parser.add_argument("--repeat", type=int, default=5)
@@ -69,20 +55,22 @@ def main() -> None:
     parser.add_argument("--package-path", action="append", default=[], metavar="DIR",
                         help="where the robot's package:// meshes are (passed to bras-kit)")
     args = parser.parse_args()
+    from bras_kit.authoring import arm_urdf
+
     with tempfile.TemporaryDirectory() as tmp:
+        urdf = os.path.join(tmp, "bras.urdf")
+        with open(urdf, "w", encoding="utf-8") as handle:
+            handle.write(arm_urdf())
         ours_gif, peer_gif = os.path.join(tmp, "bras.gif"), os.path.join(tmp, "peer.gif")
         ours = bras_kit_command() + ["render", *([args.robot] if args.robot else []), "--gif", ours_gif,
                                      *(f"--package-path={folder}" for folder in args.package_path),
                                      "--duration", str(FRAMES / FPS), "--fps", str(FPS),
                                      "--size", f"{SIZE[0]}x{SIZE[1]}", "--force"]
-        peer = [sys.executable, "-c", PEER, peer_gif, str(FRAMES), str(FPS)]
+        peer = [sys.executable, "-c", PEER, urdf, peer_gif, str(FRAMES), str(FPS)]
         commands = [("bras-kit render --gif", ours, ours_gif)]
         if not args.robot:
             commands.append(("pybullet TinyRenderer + Pillow GIF", peer, peer_gif))
-        times: dict[str, list[float]] = {label: [] for label, _, _ in commands}
-        for _ in range(args.repeat):  # alternate: both see the same load
-            for label, command, _ in commands:
-                times[label].append(timed(command))
+        times = alternate([(label, command) for label, command, _ in commands], args.repeat)
         sizes = {label: os.path.getsize(gif) / 1024 for label, _, gif in commands}
     print(f"{FRAMES} frames at {SIZE[0]}x{SIZE[1]}, whole process, {args.repeat} alternating runs each, "
           f"{os.cpu_count()} cores" + (f", {args.robot}" if args.robot else ""))

@@ -213,3 +213,66 @@ def test_a_display_ended_by_another_library_gives_a_fresh_renderer():
     )
     done = subprocess.run([sys.executable, "-c", script], capture_output=True, text=True, timeout=120)
     assert done.returncode == 0 and done.stdout.strip() == "ok", done.stderr
+
+
+def _orange_columns(image: np.ndarray) -> float:
+    """Mean column of the forearm's orange pixels (red high, blue low)."""
+    red, blue = image[..., 0].astype(int), image[..., 2].astype(int)
+    rows, columns = np.nonzero((red > 180) & (blue < 90))
+    assert len(columns) > 20, "the orange forearm is not in the picture"
+    return float(columns.mean())
+
+
+def test_streamed_frames_are_the_poses_in_their_order(tutorial_robot):
+    """A sequence renderer draws each frame while the one before is read back: every pose comes
+    out once, in order, as the one-picture-at-a-time path draws it."""
+    elbow = [0.0, 1.2, 0.6, -0.6, -1.2, 0.0, 1.2]
+    poses = np.array([[0.0, q] for q in elbow])
+    with Renderer(tutorial_robot, fit=poses, size=SIZE, view="front", sequence=True, antialias=False) as seq:
+        streamed = list(seq.frames(poses))
+    with Renderer(tutorial_robot, fit=poses, size=SIZE, view="front", antialias=False) as one:
+        single = [one.render(q) for q in poses]
+    assert len(streamed) == len(poses)
+    assert all(np.array_equal(a, b) for a, b in zip(streamed, single))
+    # the forearm leans one way, then the other, as sin(coude) says (a bent elbow moves it sideways)
+    columns = [_orange_columns(image) for image in streamed]
+    lean = np.sign(np.diff(columns)) * np.sign(-np.diff(np.sin(elbow)))
+    assert abs(lean.sum()) == len(lean)
+
+
+def test_a_stream_left_early_leaves_the_renderer_drawing_right(tutorial_robot):
+    poses = np.array([[0.3 * k, -0.2 * k] for k in range(6)])
+    with Renderer(tutorial_robot, fit=poses, size=SIZE, sequence=True, antialias=False) as seq:
+        for count, _ in enumerate(seq.frames(poses), 1):
+            if count == 2:
+                break
+        after = seq.render(poses[4])
+        again = list(seq.frames(poses))
+    with Renderer(tutorial_robot, fit=poses, size=SIZE, antialias=False) as fresh:
+        expected = [fresh.render(q) for q in poses]
+    assert np.array_equal(after, expected[4])
+    assert len(again) == len(poses) and all(np.array_equal(a, b) for a, b in zip(again, expected))
+
+
+def _ink(image: np.ndarray) -> float:
+    """How much darker than the white background the picture is, summed over its pixels."""
+    return float((255 - image.astype(float)).sum())
+
+
+@pytest.mark.parametrize("size", [(320, 240), (4100, 48)])
+def test_smooth_pictures_blend_edges_and_keep_each_shape_s_ink(tutorial_robot, size):
+    """Pictures are antialiased (supersampled 2x2; multisampled past 4096 pixels a side): the
+    edges get in-between colours, while averaging keeps the amount of colour each shape puts on
+    the picture, the grid's thin lines included."""
+    pictures = {}
+    for smooth in (True, False):
+        for grid in (True, False):
+            pictures[smooth, grid] = render_pose(tutorial_robot, {"coude": 0.7}, size=size, grid=grid,
+                                                 antialias=smooth)
+    assert pictures[True, True].shape == (size[1], size[0], 3)
+    colours = {smooth: len(np.unique(pictures[smooth, False].reshape(-1, 3), axis=0)) for smooth in (True, False)}
+    assert colours[True] > 2 * colours[False]
+    arm_ink = {smooth: _ink(pictures[smooth, False]) for smooth in (True, False)}
+    grid_ink = {smooth: _ink(pictures[smooth, True]) - arm_ink[smooth] for smooth in (True, False)}
+    assert arm_ink[True] == pytest.approx(arm_ink[False], rel=0.05)
+    assert grid_ink[False] > 0 and grid_ink[True] == pytest.approx(grid_ink[False], rel=0.3)

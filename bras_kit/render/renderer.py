@@ -76,8 +76,11 @@ def workspace_samples(tree: TFTree, count: int = WORKSPACE_SAMPLES) -> np.ndarra
     return np.vstack([np.zeros((1, len(bounds))), grid])
 
 
-def open_backend(scene: Scene, camera: Camera, options: RenderOptions):  # type: ignore[no-untyped-def]
-    """The backend asked for; with 'auto', OpenGL (EGL, then OSMesa) or else, saying so once, software."""
+def open_backend(scene: Scene, camera: Camera, options: RenderOptions,  # type: ignore[no-untyped-def]
+                 sequence: bool = False):
+    """The backend asked for; with 'auto', OpenGL (EGL, then OSMesa) or else, saying so once, software.
+    ``sequence``: many frames will follow (antialiasing then favours the time per frame over the
+    time to the first one)."""
     from ._software import SoftwareBackend
 
     if options.backend == "software":
@@ -87,7 +90,7 @@ def open_backend(scene: Scene, camera: Camera, options: RenderOptions):  # type:
 
         platform = choose_platform(options.backend)
         return PyrenderBackend(scene, camera, options.background, platform,
-                               antialias=options.antialias is not False)
+                               antialias=options.antialias is not False, supersample=not sequence)
     except ImportError as exc:
         error = BackendError(f"cannot load pyrender: {exc}", hint="pip install pyrender, or use backend software")
     except BackendError as exc:
@@ -138,11 +141,13 @@ class Renderer:
     takes), or None for poses spread over the joint limits, so a slider never moves the arm
     out of the picture. Use it as a context manager, or call :meth:`close`.
 
+    ``sequence=True`` says many frames will follow (:class:`Frames` sets it).
+
     >>> with Renderer(arm(), view="front") as renderer:   # doctest: +SKIP
     ...     image = renderer.render({"epaule": 0.5})
     """
 
-    def __init__(self, robot: Robot, *, fit: Any = None, **opts: Any) -> None:
+    def __init__(self, robot: Robot, *, fit: Any = None, sequence: bool = False, **opts: Any) -> None:
         self.options = render_options(**opts)
         self.tree = tf_tree(robot)
         if len(self.tree.links) > MAX_RENDER_LINKS:
@@ -155,7 +160,7 @@ class Renderer:
                                          grid=self.options.grid, package_paths=self.options.package_paths,
                                          targets=self.options.targets)
         self.camera = fit_camera(points, self.options)
-        self._backend = open_backend(self.scene, self.camera, self.options)
+        self._backend = open_backend(self.scene, self.camera, self.options, sequence)
 
     @property
     def backend(self) -> str:
@@ -172,9 +177,13 @@ class Renderer:
     def frames(self, positions: Any) -> Iterator[np.ndarray]:
         """Pictures of each pose of ``positions`` (any form :func:`configurations` takes), one at a time."""
         q = configurations(self.tree, positions)
-        for start in range(0, len(q), 256):
-            for transforms in fk_batch(self.tree, q[start:start + 256]):
+        poses = (transforms for start in range(0, len(q), 256) for transforms in fk_batch(self.tree, q[start:start + 256]))
+        stream = getattr(self._backend, "frames", None)
+        if stream is None or (self.options.tf and len(self.tree.links) <= MAX_NAMED_FRAMES):
+            for transforms in poses:
                 yield self._draw(transforms)
+            return
+        yield from stream(poses)
 
     def _draw(self, transforms: np.ndarray) -> np.ndarray:
         image = self._backend.render(transforms)
@@ -218,7 +227,7 @@ class Frames:
     @property
     def renderer(self) -> Renderer:
         if self._renderer is None:
-            self._renderer = Renderer(self._robot, fit=self.positions, **self._opts)
+            self._renderer = Renderer(self._robot, fit=self.positions, sequence=True, **self._opts)
         return self._renderer
 
     def __getitem__(self, index: int) -> np.ndarray:
