@@ -46,7 +46,9 @@ class RenderOptions:
     elevation: float | None = None
     distance: float | None = None
     fov: float = 30.0  # vertical field of view, degrees
-    antialias: bool | None = None  # smooth edges (4x multisampling); None: on for pictures, off for sequences
+    # smooth edges (pictures: 2x2 supersampling, sequences: 4x multisampling);
+    # None: on for pictures, off for sequences
+    antialias: bool | None = None
     package_paths: Sequence[str] = field(default_factory=tuple)
     targets: Sequence[Sequence[float]] = field(default_factory=tuple)  # points marked in the world (reach)
 
@@ -80,8 +82,8 @@ def parse_size(text: str | Sequence[int]) -> tuple[int, int]:
     return width, height
 
 
-# Peak memory per pixel of one picture: OpenGL buffers with 4x antialiasing, the read-back
-# copy and the PNG encoder (measured: 8192x8192 peaked at 3.5 GB, about 52 bytes a pixel).
+# Peak memory per pixel of one picture: OpenGL buffers with 4 samples a pixel (2x2 supersampled
+# or 4x multisampled), the read-back copy and the PNG encoder (measured: 8192x8192 peaked at 3.5 GB, about 52 bytes a pixel).
 BYTES_PER_PIXEL = 64
 
 
