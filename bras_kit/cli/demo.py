@@ -36,7 +36,6 @@ def _done(start: float, path: str) -> None:
 
 def run(args: argparse.Namespace) -> int:
     from ..authoring import arm
-    from ..diagrams import frame_diagram, plot_motion
     from ..motion import check_limits, sample_loop, tutorial_motion
     from ..outputs import write_to
     from ..render import parse_size, render_motion, render_pose, save_gif, save_png
@@ -47,62 +46,140 @@ def run(args: argparse.Namespace) -> int:
     owned = _claim(outdir, args.force)
     size = parse_size(args.size)
     robot = arm(wrist=args.wrist)
-    variant = _("with the wrist 'poignet'") if args.wrist else "epaule + coude"
-    print(_("bras-kit demo: the tutorial arm '{name}' ({variant}) -> {folder}/").format(
-        name=robot.name, variant=variant, folder=outdir))
-    made: list[str] = []
-
-    def save(name: str, writer) -> str:  # type: ignore[no-untyped-def]
-        path = os.path.join(outdir, name)
-        write_to(path, args.force or name in owned, writer, announce=False)
-        made.append(name)
-        _remember(outdir, owned | set(made))
-        return path
-
-    start = _step(_("scaffolding the ROS 2 package"))
-    package_dir = os.path.join(outdir, "bras_description")
-    scaffold_package(package_dir, wrist=args.wrist, force=args.force or "bras_description" in owned, lang=args.lang)
-    made.append("bras_description")
-    _remember(outdir, owned | set(made))
-    _done(start, package_dir + "/")
-
-    start = _step(_("validating the URDF"))
-    findings = validate(robot, lang=args.lang)
-    problems = [f for f in findings if f.severity in ("error", "warning")]
-    print(" " + _("{count} errors or warnings ({seconds:.1f} s)").format(
-        count=len(problems), seconds=time.perf_counter() - start))
-    for finding in problems:
-        print(f"    {finding.code} {_(finding.severity)}: {finding.message}")
-
-    start = _step(_("rendering the pose {pose} with TF axes").format(
-        pose=", ".join(f"{k}={v}" for k, v in DEMO_POSE.items())))
-    picture = render_pose(robot, DEMO_POSE, size=size, tf=True, backend=args.backend)
-    pose_png = save("pose.png", lambda path: save_png(picture, path))
-    _done(start, pose_png)
-
-    start = _step(_("animating the tutorial motion ({duration:g} s at {fps:g} fps)").format(
-        duration=args.duration, fps=args.fps))
     states = sample_loop(tutorial_motion(robot), args.duration, args.fps)
-    gif = save(f"{robot.name}.gif",
-               lambda path: save_gif(render_motion(robot, states, size=size, backend=args.backend), path, fps=args.fps))
-    _done(start, gif)
-    for violation in check_limits(robot, states):
-        print("    " + _("warning") + ": " + _("{joint} leaves its {kind} limit at t={time:.2f} s").format(
-            joint=violation.joint, kind=_(violation.kind), time=violation.time))
+    # the diagrams (matplotlib only) are drawn by a second process while this one renders
+    with _Diagrams(robot, states) as diagrams:
+        variant = _("with the wrist 'poignet'") if args.wrist else "epaule + coude"
+        print(_("bras-kit demo: the tutorial arm '{name}' ({variant}) -> {folder}/").format(
+            name=robot.name, variant=variant, folder=outdir))
+        made: list[str] = []
 
-    start = _step(_("drawing the frame tree"))
-    frames_pdf = save("frames.pdf", lambda path: frame_diagram(robot, DEMO_POSE, path=path))
-    save("frames.png", lambda path: frame_diagram(robot, DEMO_POSE, path=path))
-    _done(start, frames_pdf + " (+ .png)")
+        def save(name: str, writer) -> str:  # type: ignore[no-untyped-def]
+            path = os.path.join(outdir, name)
+            write_to(path, args.force or name in owned, writer, announce=False)
+            made.append(name)
+            _remember(outdir, owned | set(made))
+            return path
 
-    start = _step(_("plotting joint angles and the tip path"))
-    plot_png = save("motion.png", lambda path: plot_motion(robot, states, path=path))
-    _done(start, plot_png)
+        start = _step(_("scaffolding the ROS 2 package"))
+        package_dir = os.path.join(outdir, "bras_description")
+        scaffold_package(package_dir, wrist=args.wrist, force=args.force or "bras_description" in owned, lang=args.lang)
+        made.append("bras_description")
+        _remember(outdir, owned | set(made))
+        _done(start, package_dir + "/")
 
-    print(_("done. Open {gif} to see the arm move; build {package} with colcon on a ROS 2 machine.").format(
-        gif=gif, package=package_dir))
-    sys.stdout.flush()
-    return 1 if any(f.severity == "error" for f in findings) else 0
+        start = _step(_("validating the URDF"))
+        findings = validate(robot, lang=args.lang)
+        problems = [f for f in findings if f.severity in ("error", "warning")]
+        print(" " + _("{count} errors or warnings ({seconds:.1f} s)").format(
+            count=len(problems), seconds=time.perf_counter() - start))
+        for finding in problems:
+            print(f"    {finding.code} {_(finding.severity)}: {finding.message}")
+
+        start = _step(_("rendering the pose {pose} with TF axes").format(
+            pose=", ".join(f"{k}={v}" for k, v in DEMO_POSE.items())))
+        picture = render_pose(robot, DEMO_POSE, size=size, tf=True, backend=args.backend)
+        pose_png = save("pose.png", lambda path: save_png(picture, path))
+        _done(start, pose_png)
+
+        start = _step(_("animating the tutorial motion ({duration:g} s at {fps:g} fps)").format(
+            duration=args.duration, fps=args.fps))
+        gif = save(f"{robot.name}.gif",
+                   lambda path: save_gif(render_motion(robot, states, size=size, backend=args.backend), path, fps=args.fps))
+        _done(start, gif)
+        for violation in check_limits(robot, states):
+            print("    " + _("warning") + ": " + _("{joint} leaves its {kind} limit at t={time:.2f} s").format(
+                joint=violation.joint, kind=_(violation.kind), time=violation.time))
+
+        start = _step(_("drawing the frame tree"))
+        frames_pdf = save("frames.pdf", diagrams.writer("frames.pdf"))
+        save("frames.png", diagrams.writer("frames.png"))
+        _done(start, frames_pdf + " (+ .png)")
+
+        start = _step(_("plotting joint angles and the tip path"))
+        plot_png = save("motion.png", diagrams.writer("motion.png"))
+        _done(start, plot_png)
+
+        print(_("done. Open {gif} to see the arm move; build {package} with colcon on a ROS 2 machine.").format(
+            gif=gif, package=package_dir))
+        sys.stdout.flush()
+        return 1 if any(f.severity == "error" for f in findings) else 0
+
+
+DIAGRAMS = ("frames.pdf", "frames.png", "motion.png")
+
+
+def _draw_diagrams(robot, states, folder: str) -> None:  # type: ignore[no-untyped-def]
+    """The demo's figures, written into ``folder``: the frame tree (drawn once, saved as PDF and
+    PNG) and the joint-angle and tip-path plot."""
+    from ..diagrams import frame_diagram, plot_motion
+    from ..diagrams.output import save_figure
+
+    diagram = frame_diagram(robot, DEMO_POSE)
+    for name in DIAGRAMS[:2]:
+        save_figure(diagram, os.path.join(folder, name))
+    plot_motion(robot, states, path=os.path.join(folder, DIAGRAMS[2]))
+
+
+class _Diagrams:
+    """The demo's figures, drawn by a forked process (matplotlib's import and drawing take as long
+    as the animation: on two cores the two overlap) into a private temporary folder, then copied
+    to their place by the demo's own writer. If that process cannot start or fails, the figures
+    are drawn here instead, so a failure says what the in-process drawing says."""
+
+    def __init__(self, robot, states) -> None:  # type: ignore[no-untyped-def]
+        import concurrent.futures
+        import multiprocessing
+        import tempfile
+
+        self._robot, self._states = robot, states
+        self._folder = tempfile.mkdtemp(prefix="bras-kit-demo-")
+        self._future = None
+        self._pool = None
+        try:  # forked before any OpenGL context exists in this process
+            self._pool = concurrent.futures.ProcessPoolExecutor(max_workers=1,
+                                                                mp_context=multiprocessing.get_context("fork"))
+            self._future = self._pool.submit(_draw_diagrams, robot, states, self._folder)
+        except (OSError, ValueError, RuntimeError):
+            self._future = None
+        self._ready = False
+
+    def writer(self, name: str):  # type: ignore[no-untyped-def]
+        """A writer for :func:`~bras_kit.outputs.write_to` copying the figure ``name``."""
+        import shutil
+
+        def write(path: str) -> None:
+            if not self._ready:
+                self._wait()
+            shutil.copyfile(os.path.join(self._folder, name), path)
+
+        return write
+
+    def _wait(self) -> None:
+        drawn = False
+        if self._future is not None:
+            try:
+                self._future.result()
+                drawn = all(os.path.isfile(os.path.join(self._folder, name)) for name in DIAGRAMS)
+            except Exception:  # noqa: BLE001 - drawn again below, where a real error is reported plainly
+                drawn = False
+        if not drawn:
+            _draw_diagrams(self._robot, self._states, self._folder)
+        self._ready = True
+
+    def __enter__(self) -> _Diagrams:
+        return self
+
+    def __exit__(self, *exc: object) -> None:
+        self.close()
+
+    def close(self) -> None:
+        import shutil
+
+        if self._pool is not None:
+            self._pool.shutdown(wait=True, cancel_futures=True)
+            self._pool = None
+        shutil.rmtree(self._folder, ignore_errors=True)
 
 
 MANIFEST = ".bras-kit-demo"
