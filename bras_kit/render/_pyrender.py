@@ -107,10 +107,12 @@ def import_pyrender():  # type: ignore[no-untyped-def]
 
 
 def _keep_uniform_locations(program_class) -> None:  # type: ignore[no-untyped-def]
-    """pyrender's ``ShaderProgram.set_uniform`` asks OpenGL where each uniform is at every call
-    (about 70 calls a frame for the tutorial arm: a seventh of a frame's time). This one keeps
-    the answer per program object, as OpenGL guarantees it until the program is linked again
-    (a new program id); the values are passed exactly as pyrender passes them."""
+    """pyrender's ``ShaderProgram.set_uniform`` asks OpenGL where each uniform is at every call,
+    and sets every light and material again for every primitive (about 70 calls a frame for the
+    tutorial arm, 2,200 for Talos: a third of a frame's time). This one keeps each location per
+    program object, as OpenGL guarantees it until the program is linked again (a new program
+    id), and skips a value the program already holds (uniforms are the program's own state);
+    the values it sets are passed exactly as pyrender passes them."""
     if getattr(program_class, "_bras_kit_locations", False):
         return
     from OpenGL import GL
@@ -120,11 +122,22 @@ def _keep_uniform_locations(program_class) -> None:  # type: ignore[no-untyped-d
 
     def set_uniform(self, name, value, unsigned=False):  # type: ignore[no-untyped-def]
         key = (self._program_id, name)
-        locations = self.__dict__.setdefault("_bras_kit_locations", {})
-        location = locations.get(key)
-        if location is None:
-            location = locations[key] = GL.glGetUniformLocation(self._program_id, name)
+        state = self.__dict__.setdefault("_bras_kit_uniforms", {})
+        if isinstance(value, np.ndarray):
+            token: object = (value.dtype.str, value.shape, value.tobytes(), unsigned)
+        elif isinstance(value, (float, int)):
+            token = (type(value), value, unsigned)
+        else:
+            token = None
+        known = state.get(key)
+        if known is not None:
+            location, held = known
+            if token is not None and held == token:
+                return
+        else:
+            location = GL.glGetUniformLocation(self._program_id, name)
         if location == -1:
+            state[key] = (location, token)
             return  # pyrender ignores uniforms the program does not have
         try:
             if isinstance(value, np.ndarray) and value.ndim == 1 and value.dtype == np.float64 and not unsigned:
@@ -138,7 +151,8 @@ def _keep_uniform_locations(program_class) -> None:  # type: ignore[no-untyped-d
             else:
                 original(self, name, value, unsigned)
         except Exception:  # noqa: BLE001 - as pyrender's own set_uniform: a value the shader refuses is skipped
-            pass
+            token = None
+        state[key] = (location, token)
 
     program_class.set_uniform = set_uniform
     program_class._bras_kit_locations = True
