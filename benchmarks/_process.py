@@ -50,7 +50,7 @@ def alternate(commands: Sequence[tuple[str, list[str]]], repeat: int) -> dict[st
 
 
 def table(times: dict[str, list[float]], extra: dict[str, str] | None = None) -> None:
-    print(f"{'command':44s} {'best s':>7s} {'median s':>9s}" + ("  " if extra else ""))
+    print(f"{'command':44s} {'best s':>7s} {'median s':>9s}")
     for label, runs in times.items():
         print(f"{label:44s} {min(runs):7.3f} {statistics.median(runs):9.3f}"
               + (f"  {extra.get(label, '')}" if extra else ""))

@@ -6,8 +6,8 @@ Run: python benchmarks/render_gif_process.py [--repeat 5] [--robot PATH.urdf --p
 Each command runs in a fresh Python process (imports, model, OpenGL start-up and file
 writing included). The two commands alternate, run after run, so both see the same machine
 load (see _process.py for the fairness rules); the medians and their ratio are printed with
-the GIF sizes. bras-kit draws its built-in arm; the script loads the same arm's URDF file. --robot draws a URDF file
-instead of the tutorial arm (bras-kit only: the peer script knows the arm's joints), e.g. Talos
+the GIF sizes. bras-kit draws its built-in arm; the script loads the same arm's URDF file.
+--robot draws a URDF file instead of the tutorial arm (bras-kit only: the peer script knows the arm's joints), e.g. Talos
 from example-robot-data (60 links, 206k triangles): --robot .../talos_data/robots/talos_full_v2.urdf
 --package-path .../cmeel.prefix/share (target: under 10 s).
 """
@@ -16,11 +16,10 @@ from __future__ import annotations
 
 import argparse
 import os
-import statistics
 import sys
 import tempfile
 
-from _process import alternate, bras_kit_command
+from _process import alternate, bras_kit_command, ratio, table
 
 FRAMES, FPS, SIZE = 120, 20, (640, 480)
 TARGET = 0.5
@@ -74,13 +73,11 @@ def main() -> None:
         sizes = {label: os.path.getsize(gif) / 1024 for label, _, gif in commands}
     print(f"{FRAMES} frames at {SIZE[0]}x{SIZE[1]}, whole process, {args.repeat} alternating runs each, "
           f"{os.cpu_count()} cores" + (f", {args.robot}" if args.robot else ""))
-    print(f"{'command':38s} {'best s':>7s} {'median s':>9s} {'GIF KiB':>8s}")
-    for label, _, _ in commands:
-        print(f"{label:38s} {min(times[label]):7.2f} {statistics.median(times[label]):9.2f} {sizes[label]:8.0f}")
+    table(times, {label: f"GIF {size:.0f} KiB" for label, size in sizes.items()})
     if not args.robot:
-        ratio = statistics.median(times[commands[0][0]]) / statistics.median(times[commands[1][0]])
-        print(f"ratio bras-kit / pybullet script (medians): {ratio:.2f}  target <= {TARGET} -> "
-              f"{'met' if ratio <= TARGET else 'NOT met'}")
+        value = ratio(times, commands[0][0], commands[1][0])
+        print(f"ratio bras-kit / pybullet script (medians): {value:.2f}  target <= {TARGET} -> "
+              f"{'met' if value <= TARGET else 'NOT met'}")
 
 
 if __name__ == "__main__":

@@ -83,8 +83,8 @@ def import_pyrender():  # type: ignore[no-untyped-def]
     """pyrender, importable under numpy 2 (it still uses ``np.infty``), in a third of its usual time.
 
     pyrender's ``__init__`` loads trimesh (about 0.5 s with scipy), networkx (0.1 s), FreeType
-    (0.02 s) and its interactive viewer with pyglet and imageio (0.07 s), none of which off-screen drawing of
-    ready-made triangles needs. While pyrender loads, stand-ins take their place in
+    (0.02 s) and its interactive viewer with pyglet and imageio (0.07 s), none of which
+    off-screen drawing of ready-made triangles needs. While pyrender loads, stand-ins take their place in
     ``sys.modules`` (see :func:`_stand_ins`); they are taken out right after, so any later
     ``import trimesh`` / ``networkx`` / ``pyrender.viewer`` in the process loads the real module.
     """
@@ -108,8 +108,8 @@ def import_pyrender():  # type: ignore[no-untyped-def]
 
 def _keep_uniform_locations(program_class) -> None:  # type: ignore[no-untyped-def]
     """pyrender's ``ShaderProgram.set_uniform`` asks OpenGL where each uniform is at every call,
-    and sets every light and material again for every primitive (about 70 calls a frame for the
-    tutorial arm, 2,200 for Talos: a third of a frame's time). This one keeps each location per
+    and sets every light and material again for every primitive (72 calls a frame for the
+    tutorial arm, about 1,000 for Talos: a fifth to a third of a frame's time). This one keeps each location per
     program object, as OpenGL guarantees it until the program is linked again (a new program
     id), and skips a value the program already holds (uniforms are the program's own state);
     the values it sets are passed exactly as pyrender passes them."""
@@ -534,8 +534,7 @@ class PyrenderBackend:
 
         TF axes, when shown, are drawn in a second pass over the finished picture, as RViz's TF
         display does: an axis inside a segment (every joint sits in one) stays visible."""
-        for node, link in self._nodes:
-            self._scene.set_pose(node, transforms[link])
+        self._pose(transforms)
         if not self._overlays:
             color, _ = self._renderer.render(self._scene)
             return np.ascontiguousarray(color)
@@ -556,6 +555,11 @@ class PyrenderBackend:
         base[drawn] = axes[drawn]
         return base
 
+    def _pose(self, transforms: np.ndarray) -> None:
+        """Move each part's node to its link's transform."""
+        for node, link in self._nodes:
+            self._scene.set_pose(node, transforms[link])
+
     def frames(self, transforms: Iterable[np.ndarray]) -> Iterator[np.ndarray]:
         """The pictures for each of ``transforms``; without TF axes, each picture is drawn while
         the one before is read back (see :class:`_ColorReader`)."""
@@ -566,8 +570,7 @@ class PyrenderBackend:
             return
         try:
             for each in transforms:
-                for node, link in self._nodes:
-                    self._scene.set_pose(node, each[link])
+                self._pose(each)
                 previous, _ = self._renderer.render(self._scene)
                 if previous is not None:
                     yield previous

@@ -83,7 +83,8 @@ def parse_size(text: str | Sequence[int]) -> tuple[int, int]:
 
 
 # Peak memory per pixel of one picture: OpenGL buffers with 4 samples a pixel (2x2 supersampled
-# or 4x multisampled), the read-back copy and the PNG encoder (measured: 8192x8192 peaked at 3.5 GB, about 52 bytes a pixel).
+# or 4x multisampled), the read-back copy and the PNG encoder (measured: 8192x8192 peaked at
+# 3.5 GB, about 52 bytes a pixel).
 BYTES_PER_PIXEL = 64
 
 

@@ -177,7 +177,8 @@ class Renderer:
     def frames(self, positions: Any) -> Iterator[np.ndarray]:
         """Pictures of each pose of ``positions`` (any form :func:`configurations` takes), one at a time."""
         q = configurations(self.tree, positions)
-        poses = (transforms for start in range(0, len(q), 256) for transforms in fk_batch(self.tree, q[start:start + 256]))
+        poses = (transforms for start in range(0, len(q), 256)
+                 for transforms in fk_batch(self.tree, q[start:start + 256]))
         stream = getattr(self._backend, "frames", None)
         if stream is None or (self.options.tf and len(self.tree.links) <= MAX_NAMED_FRAMES):
             for transforms in poses:
