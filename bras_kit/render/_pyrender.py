@@ -681,9 +681,23 @@ def _release(renderer: Any) -> None:
 
 
 def _disown(renderer: Any) -> None:
-    """Leave pyrender's ``__del__`` nothing to free (it would terminate the shared EGL display)."""
+    """Leave pyrender's finalizers nothing to do. Three objects have one: the OffscreenRenderer,
+    its inner renderer and its platform. Run later by the garbage collector, the inner one would
+    delete OpenGL objects by number in whatever context is current then (another renderer's
+    framebuffer 1, say), and the platform's would end the EGL display every context of the
+    process shares. Both are switched off here, not only unlinked, since either may outlive
+    the OffscreenRenderer."""
+    inner, platform = getattr(renderer, "_renderer", None), getattr(renderer, "_platform", None)
+    if inner is not None:
+        inner.delete = _nothing  # its __del__ calls self.delete()
+    if platform is not None:
+        platform.delete_context = _nothing  # the platform's __del__ calls it: eglTerminate
     renderer._renderer = None
     renderer._platform = None
+
+
+def _nothing() -> None:
+    """Stands in for a pyrender clean-up already done, or not ours to do."""
 
 
 _POOL = _RendererPool()
