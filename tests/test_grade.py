@@ -349,7 +349,8 @@ def test_ctrl_c_writes_the_report_of_what_was_finished(tmp_path):
     process = subprocess.Popen([sys.executable, "-m", "bras_kit", "grade", str(folder), "-o", str(out), "--jobs", "1"],
                                stdout=subprocess.PIPE, stderr=subprocess.PIPE, text=True, start_new_session=True)
     deadline = time.monotonic() + 120
-    while time.monotonic() < deadline and len(list((out / "pictures").glob("*.png"))) < 2:
+    # a third picture means the one worker has finished two learners (a picture is drawn before scoring)
+    while time.monotonic() < deadline and len(list((out / "pictures").glob("*.png"))) < 3:
         time.sleep(0.05)
     os.killpg(process.pid, signal.SIGINT)  # as a terminal does: the whole group, workers included
     _, stderr = process.communicate(timeout=120)

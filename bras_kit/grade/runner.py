@@ -160,16 +160,28 @@ def _run_batch(todo: list[Submission], rubric: Rubric, options: Options, jobs: i
             pending = {pool.submit(grade, s, rubric, options): s for s in todo}
         else:
             pending = {pool.submit(_grade_marked, markers, s, rubric, options): s for s in todo}
-        for future in futures.as_completed(pending):
+        taken: set[Any] = set()
+
+        def take(future: Any) -> None:
+            taken.add(future)
             submission = pending[future]
             try:
                 result = future.result()
             except BrokenProcessPool:
                 again.append(submission)
-                continue
+                return
             except Exception as exc:  # an error in a worker: that learner only
                 result = _failed(submission, rubric, exc)
             keep(submission, result)
+
+        try:
+            for future in futures.as_completed(pending):
+                take(future)
+        except KeyboardInterrupt:  # the report keeps every submission finished by then
+            for future in pending:
+                if future not in taken and future.done() and not future.cancelled():
+                    take(future)
+            raise
         if again:
             pool.shutdown(wait=True)  # the other workers have taken their markers away once they are gone
             culprits = _marked(markers) or {s.learner for s in again}  # none known: stop rather than loop
