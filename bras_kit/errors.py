@@ -2,23 +2,27 @@
 
 from __future__ import annotations
 
+from .message import Message
+
 
 class BrasKitError(Exception):
     """Base class: a problem with the user's input or environment, reported without a traceback.
 
-    ``path`` and ``line`` locate it when known; ``hint`` says what to do.
+    ``message`` and ``hint`` are :class:`~bras_kit.message.Message` data (an English id and its
+    parameters), worded by whoever shows the error (:func:`bras_kit.i18n.say_error`);
+    ``str(error)`` is the English text. ``path``, ``line`` and ``element`` locate it when known.
     """
 
     def __init__(
         self,
-        message: str,
+        message: Message | str,
         *,
         path: str | None = None,
         line: int | None = None,
         element: str | None = None,
-        hint: str | None = None,
+        hint: Message | str | None = None,
     ) -> None:
-        super().__init__(message)
+        super().__init__(str(message))
         self.message = message
         self.path = path
         self.line = line
@@ -26,19 +30,17 @@ class BrasKitError(Exception):
         self.hint = hint
 
     def __str__(self) -> str:
-        from .i18n import _, translate_message
-
         where = ""
         if self.path:
             where = str(self.path)
             if self.line:
                 where += f":{self.line}"
             where += ": "
-        text = where + translate_message(self.message)
+        text = where + str(self.message)
         if self.element:
-            text += " " + _("(in <{}>)").format(self.element)
+            text += f" (in <{self.element}>)"
         if self.hint:
-            text += f"\n  {_('hint')}: {translate_message(self.hint)}"
+            text += f"\n  hint: {self.hint}"
         return text
 
 
@@ -66,7 +68,7 @@ class UnknownJointError(ParameterError):
     """A name given as a joint is not a movable joint of this robot (``joint`` holds the name);
     the command line adds what the name is instead (a template parameter, the wrist...)."""
 
-    def __init__(self, message: str, joint: str, **where: object) -> None:
+    def __init__(self, message: Message | str, joint: str, **where: object) -> None:
         super().__init__(message, **where)  # type: ignore[arg-type]
         self.joint = joint
 

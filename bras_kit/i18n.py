@@ -1,10 +1,13 @@
 """One mechanism for every user-facing word: gettext catalogs, English message ids.
 
-Each feature has its own domain (``cli``, ``view``, ``grade``, ...), whose French catalog is
-``bras_kit/locale/fr/LC_MESSAGES/<domain>.po``, compiled to the ``.mo`` beside it by
-``python -m bras_kit.i18n compile`` (Babel, a contributor tool); the run time reads the
-``.mo`` with the standard library's :mod:`gettext`. A test checks each ``.mo`` is current and
-no entry is left untranslated.
+Library code builds :class:`~bras_kit.message.Message` objects (``M("...", name=...)``); the
+place that shows one words it here with :func:`say` in the language it resolved. Each feature
+has its own domain (``cli``, ``validate``, ``physics``, ``view``, ``grade``, ``package``, ...;
+see :data:`bras_kit.message.DOMAINS`), whose French catalog is
+``bras_kit/locale/fr/LC_MESSAGES/<domain>.po``, compiled to the ``.mo`` beside it. Contributors
+refresh the catalogs with ``python -m bras_kit.i18n update`` (Babel extracts every message,
+merges it into each ``.po`` and compiles); the run time reads the ``.mo`` with the standard
+library's :mod:`gettext`. A test checks each ``.mo`` is current and no entry is left untranslated.
 
 The language is ``--lang`` when given, else ``BRAS_KIT_LANG``, else the locale
 (``LC_ALL``, ``LC_MESSAGES``, ``LANG``), else English.
@@ -19,6 +22,9 @@ import sys
 from collections.abc import Callable, Mapping
 from functools import cache
 from pathlib import Path
+from typing import Any
+
+from .message import Message, english_template, fill
 
 LANGUAGES = ("en", "fr")
 DEFAULT_LANGUAGE = "en"
@@ -73,6 +79,59 @@ def set_language(lang: str | None) -> str:
 
 def current_language() -> str:
     return _language[0] if _language else resolve_language()
+
+
+def say(text: Any, lang: str | None = None) -> str:
+    """``text`` worded in ``lang`` (default: the library's language, :func:`set_language`).
+
+    A :class:`Message` is looked up in its domain's catalog (with its context and plural form)
+    and filled in; a :class:`~bras_kit.errors.BrasKitError` becomes its full text (place,
+    message, element, hint); anything else is ``str(text)``.
+    """
+    lang = lang or current_language()
+    if isinstance(text, Message):
+        return fill(_template(text, lang), text.params, lambda inner: say(inner, lang))
+    from .errors import BrasKitError
+
+    if isinstance(text, BrasKitError):
+        return say_error(text, lang)
+    if isinstance(text, str):  # transition: a finished English sentence (removed with translate_message)
+        return translate_message(text, lang)
+    return "" if text is None else str(text)
+
+
+def _template(message: Message, lang: str) -> str:
+    if lang == DEFAULT_LANGUAGE:
+        return english_template(message)
+    table = catalog(lang, message.domain)
+    if message.plural is not None:
+        n = message.n if message.n is not None else 1
+        if message.context is not None:
+            return table.npgettext(message.context, message.id, message.plural, n)
+        return table.ngettext(message.id, message.plural, n)
+    if message.context is not None:
+        return table.pgettext(message.context, message.id)
+    return table.gettext(message.id)
+
+
+def say_error(error: Any, lang: str | None = None, *, with_hint: bool = True) -> str:
+    """A :class:`~bras_kit.errors.BrasKitError` as the CLI prints it:
+    ``path:line: message (in <element>)`` and, on the next line, ``hint: ...``."""
+    from .message import M
+
+    lang = lang or current_language()
+    where = ""
+    if getattr(error, "path", None):
+        where = str(error.path)
+        if getattr(error, "line", None):
+            where += f":{error.line}"
+        where += ": "
+    text = where + say(error.message, lang)
+    if getattr(error, "element", None):
+        text += " " + say(M("(in <{element}>)", element=error.element), lang)
+    if with_hint and getattr(error, "hint", None):
+        text += f"\n  {say(M('hint'), lang)}: {say(error.hint, lang)}"
+    return text
 
 
 def _(message: str, domain: str = "cli") -> str:
@@ -131,8 +190,23 @@ def compile_catalogs() -> list[Path]:
     return written
 
 
-if __name__ == "__main__":  # python -m bras_kit.i18n compile
-    if sys.argv[1:] != ["compile"]:
-        sys.exit("usage: python -m bras_kit.i18n compile")
-    for path in compile_catalogs():
-        print(path)
+def _main(argv: list[str]) -> int:
+    """``compile``: every .po into its .mo; ``update [--prune]``: extract, merge, compile."""
+    if argv == ["compile"]:
+        for path in compile_catalogs():
+            print(path)
+        return 0
+    if argv[:1] == ["update"] and set(argv[1:]) <= {"--prune"}:
+        from .i18n_tools import update_catalogs
+
+        for domain, missing in update_catalogs(prune="--prune" in argv).items():
+            print(f"{domain}: {len(missing)} entries without French")
+            for word in missing:
+                print("  " + word.replace("\n", "\\n"))
+        return 0
+    print("usage: python -m bras_kit.i18n compile | update [--prune]", file=sys.stderr)
+    return 2
+
+
+if __name__ == "__main__":
+    sys.exit(_main(sys.argv[1:]))

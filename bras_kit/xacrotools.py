@@ -478,7 +478,7 @@ def _clean_error(xacro: Any, path: str, exc: BaseException) -> BrasKitError:
         if inner.path is None:
             inner.path = where
             expression = getattr(inner, "expression", "")
-            inner.line = inner.line or _locate(where, inner.message, [
+            inner.line = inner.line or _locate(where, str(inner.message), [
                 "${" + expression + "}", "$(eval " + expression, expression] if expression else [])
         return inner
     if isinstance(exc, RecursionError) or isinstance(getattr(exc, "exc", None), RecursionError):

@@ -16,7 +16,7 @@ from collections.abc import Sequence
 
 from .. import __version__
 from ..errors import BrasKitError, UnknownJointError
-from ..i18n import LANGUAGES, _, set_language, translate_message
+from ..i18n import LANGUAGES, _, say_error, set_language, translate_message
 
 # name -> one-line help. The module is bras_kit.cli.<name> (``xacro`` lives in ``xacro_cmd``).
 COMMANDS: dict[str, str] = {
@@ -132,7 +132,7 @@ def main(argv: Sequence[str] | None = None) -> int:
     try:
         lang = set_language(_language_in(argv))
     except BrasKitError as exc:  # BRAS_KIT_LANG holds an unknown language
-        print(f"bras-kit: {_('error')}: {exc}", file=sys.stderr)
+        print(f"bras-kit: {_('error')}: {say_error(exc, 'en')}", file=sys.stderr)
         return 2
     selected = _selected_command(argv)
     parser = build_parser(selected)
@@ -150,10 +150,10 @@ def main(argv: Sequence[str] | None = None) -> int:
     except UnknownJointError as exc:
         from ._common import joint_name_hint
 
-        exc.hint = joint_name_hint(exc.joint, exc.hint)
-        _fail(command, str(exc))
+        exc.hint = joint_name_hint(exc.joint, str(exc.hint) if exc.hint else None)
+        _fail(command, say_error(exc, lang))
     except BrasKitError as exc:
-        _fail(command, str(exc))
+        _fail(command, say_error(exc, lang))
     except KeyboardInterrupt:
         print(_("interrupted"), file=sys.stderr)
         return 130

@@ -65,7 +65,7 @@ def joint_values(items: Iterable[str]) -> dict[str, float]:
         try:
             values[name] = parse_joint_value(text)
         except BrasKitError as exc:
-            detail = exc.message.split("\n")[0]
+            detail = str(exc.message).split("\n")[0]
             why = detail if "time t" in detail else f"the joint value is not a number ({detail})"
             raise ParameterError(f"{name}={text!r}: {why}",
                                  hint="give radians for revolute joints and metres for prismatic ones: "
@@ -98,10 +98,13 @@ def save_with(path: str, force: bool, writer: Callable[[str], Any], **options: A
     return write_to(path, force, writer, **options)
 
 
-def warn(message: str) -> None:
-    from ..i18n import _, translate_message
+def warn(message: Any) -> None:
+    """``warning: ...`` on stderr, worded in the command's language (a Message or, until every
+    caller builds one, an English sentence)."""
+    from ..i18n import say
+    from ..message import M
 
-    print(f"{_('warning')}: {translate_message(message)}", file=sys.stderr)
+    print(f"{say(M('warning'))}: {say(message)}", file=sys.stderr)
 
 
 def warn_out_of_limits(tree: Any, config: Mapping[str, float], consequence: str = "") -> None:

@@ -20,6 +20,7 @@ from typing import Any
 import numpy as np
 
 from ..errors import BrasKitError
+from ..i18n import say, say_error
 from .rubric import SEVERITIES, Item, Rubric
 from .submissions import MAX_SUBMISSION_BYTES, Submission, SubmissionError, content_hash, unpack
 
@@ -63,7 +64,8 @@ def grade(submission: Submission, rubric: Rubric, options: Options) -> dict[str,
                 result["animation"] = _animation(robot, submission.learner, options, paths)
     except BrasKitError as exc:
         result["status"] = "unreadable"
-        result["findings"] = [_finding("BK103", "error", str(exc).split("\n")[0], exc.hint or "", submission.path)]
+        result["findings"] = [_finding("BK103", "error", say_error(exc, options.lang, with_hint=False).split("\n")[0],
+                                       say(exc.hint, options.lang) if exc.hint else "", submission.path)]
     finally:
         shutil.rmtree(workdir, ignore_errors=True)
     result["items"] = {item.id: _score(item, robot, result) for item in rubric.items}

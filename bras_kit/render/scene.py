@@ -259,8 +259,8 @@ def robot_parts(tree: TFTree, package_paths: Sequence[str] = ()) -> list[Part]:
                 mesh = visual_mesh(robot, visual, package_paths)
             except ModelError as exc:  # draw what can be drawn: a red stand-in, one warning per file
                 mesh, color = placeholder_mesh(robot, link, visual), PLACEHOLDER_COLOR
-                if exc.message not in warned:
-                    warned.add(exc.message)
+                if str(exc.message) not in warned:
+                    warned.add(str(exc.message))
                     print(f"warning: {exc.message}; drawn as a red stand-in (link '{name}')", file=sys.stderr)
             if mesh is None:
                 continue

@@ -236,7 +236,7 @@ def _unreadable(path: str, exc: BrasKitError, lang: str) -> Finding:
     where = f"{other}:{exc.line}: " if other and exc.line else (f"{other}: " if other else "")
     line = None if other else exc.line
     if isinstance(exc, XMLSafetyError):
-        message = exc.message
+        message = str(exc.message)
         variant = ("undefined" if "undefined entity" in message else "dtd" if "DTD" in message
                    else "entity" if "entity declaration" in message
                    else "external" if "external entity" in message else "")
@@ -248,10 +248,10 @@ def _unreadable(path: str, exc: BrasKitError, lang: str) -> Finding:
             at, byte, guess = encoding
             return _loader_finding("BK100", Hit("file", None, at, {"at": at, "byte": byte, "guess": guess},
                                                 "encoding"), lang)
-        detail = exc.message.removeprefix("not well-formed XML: ")
+        detail = str(exc.message).removeprefix("not well-formed XML: ")
         return _loader_finding("BK100", Hit("file", None, line, {"detail": where + detail}), lang)
     if isinstance(exc, XacroError):
-        detail = exc.message.removeprefix("xacro failed: ")
+        detail = str(exc.message).removeprefix("xacro failed: ")
         return _loader_finding("BK102", Hit("file", None, line, {"detail": where + detail}, _xacro_kind(detail)), lang)
     return _loader_finding("BK103", Hit("file", None, line, {"path": path, "detail": exc.message}), lang)
 

@@ -12,6 +12,7 @@ from dataclasses import dataclass, field
 from typing import Any
 
 from ..errors import BrasKitError
+from ..i18n import say_error
 from ..model import Robot
 from .model import ViewModel, view_model
 from .session import Session
@@ -108,7 +109,7 @@ class Viewer:
             model = self._build(robot)
             self._check(robot)
         except Exception as exc:  # noqa: BLE001 - whatever the file does, the viewer keeps running
-            self.error = str(exc) if isinstance(exc, BrasKitError) else f"{type(exc).__name__}: {exc}"
+            self.error = say_error(exc, self.lang) if isinstance(exc, BrasKitError) else f"{type(exc).__name__}: {exc}"
             with self._lock:
                 for session in list(self.sessions.values()):
                     session.show_checks()

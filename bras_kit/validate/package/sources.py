@@ -145,7 +145,7 @@ class Package:
         try:
             root = read_xml(full)
         except BrasKitError as exc:
-            self._problem(PACKAGE_XML, exc.line, exc.message)
+            self._problem(PACKAGE_XML, exc.line, str(exc.message))
             return None
         name = root.find("name")
         maintainers = [(m.get("email"), (m.text or "").strip(), m.line) for m in root.findall("maintainer")]

@@ -1,0 +1,186 @@
+"""Contributor tools for the catalogs (Babel): extract every message, merge, compile.
+
+``python -m bras_kit.i18n update`` reads every module of bras_kit with :mod:`ast` (through a
+Babel extraction method, :func:`extract_python`), finds each ``M(...)``, ``Mn(...)`` and
+``Mc(...)`` call and each text given to a registration call listed in :data:`TEXT_CALLS`
+(the validator's rules), groups them by domain (:func:`bras_kit.message.domain_of` of the
+module), merges them into ``locale/fr/LC_MESSAGES/<domain>.po`` (translations already there
+are kept, new entries are added empty, entries no longer in the code are dropped with
+``--prune``), adds the command line's argparse words and help texts to ``cli``, and compiles
+every ``.mo``. Nothing here runs at a user's run time.
+"""
+
+from __future__ import annotations
+
+import ast
+from collections.abc import Iterable, Iterator
+from dataclasses import dataclass
+from pathlib import Path
+from typing import Any
+
+from .message import domain_of
+
+PACKAGE_ROOT = Path(__file__).resolve().parent
+MARKERS = {"M": "message", "Mn": "plural", "Mc": "context"}
+# Registration calls whose keyword arguments are user-facing texts: function name ->
+# (index of the positional argument that is the msgctxt, or None; the text keywords).
+# A keyword's value may be a string or a dict of strings (variants).
+TEXT_CALLS: dict[str, tuple[int | None, tuple[str, ...]]] = {}
+
+
+@dataclass(frozen=True)
+class Extracted:
+    """One message id found in the code."""
+
+    domain: str
+    id: str
+    plural: str | None
+    context: str | None
+    path: str
+    line: int
+
+    @property
+    def key(self) -> tuple[str, str | None]:
+        return (self.id, self.context)
+
+
+def module_name(path: Path, root: Path = PACKAGE_ROOT) -> str:
+    rel = path.resolve().relative_to(root.parent).with_suffix("")
+    parts = list(rel.parts)
+    if parts[-1] == "__init__":
+        parts.pop()
+    return ".".join(parts)
+
+
+def _string(node: ast.AST | None) -> str | None:
+    if isinstance(node, ast.Constant) and isinstance(node.value, str):
+        return node.value
+    return None
+
+
+def _name(func: ast.AST) -> str | None:
+    if isinstance(func, ast.Name):
+        return func.id
+    if isinstance(func, ast.Attribute):
+        return func.attr
+    return None
+
+
+def _texts(node: ast.AST) -> Iterator[tuple[str, int]]:
+    """A string, or every string value of a dict literal."""
+    text = _string(node)
+    if text is not None:
+        yield text, node.lineno  # type: ignore[attr-defined]
+    elif isinstance(node, ast.Dict):
+        for value in node.values:
+            text = _string(value)
+            if text is not None:
+                yield text, value.lineno
+
+
+def calls_in(tree: ast.AST) -> Iterator[tuple[str | None, str, str | None, int, ast.Call]]:
+    """``(context, id, plural, line, call)`` for every message-building call in ``tree``;
+    ``id`` is "" when the call's id is not a plain string (the guard test reports those)."""
+    for node in ast.walk(tree):
+        if not isinstance(node, ast.Call):
+            continue
+        name = _name(node.func)
+        if name == "M" and node.args:
+            yield None, _string(node.args[0]) or "", None, node.lineno, node
+        elif name == "Mn" and len(node.args) >= 2:
+            yield None, _string(node.args[0]) or "", _string(node.args[1]), node.lineno, node
+        elif name == "Mc" and len(node.args) >= 2:
+            yield _string(node.args[0]), _string(node.args[1]) or "", None, node.lineno, node
+        elif name in TEXT_CALLS:
+            context_index, keywords = TEXT_CALLS[name]
+            context = _string(node.args[context_index]) if context_index is not None and \
+                len(node.args) > context_index else None
+            for keyword in node.keywords:
+                if keyword.arg in keywords:
+                    for text, line in _texts(keyword.value):
+                        yield context, text, None, line, node
+
+
+def extract_file(path: Path, root: Path = PACKAGE_ROOT) -> list[Extracted]:
+    tree = ast.parse(path.read_text(encoding="utf-8"), filename=str(path))
+    domain = domain_of(module_name(path, root))
+    return [Extracted(domain, text, plural, context, str(path), line)
+            for context, text, plural, line, _call in calls_in(tree) if text]
+
+
+def extract_all(root: Path = PACKAGE_ROOT) -> list[Extracted]:
+    found: list[Extracted] = []
+    for path in sorted(root.rglob("*.py")):
+        found.extend(extract_file(path, root))
+    return found
+
+
+def extract_python(fileobj: Any, keywords: Any, comment_tags: Any, options: dict[str, Any]) -> Iterable[Any]:
+    """A Babel extraction method: ``(lineno, funcname, messages, comments, context)`` rows."""
+    source = fileobj.read().decode("utf-8")
+    for context, text, plural, line, _call in calls_in(ast.parse(source)):
+        if text:
+            yield line, "Mn" if plural else "M", (text, plural) if plural else text, [], context
+
+
+def by_domain(found: Iterable[Extracted]) -> dict[str, dict[tuple[str, str | None], Extracted]]:
+    out: dict[str, dict[tuple[str, str | None], Extracted]] = {}
+    for item in found:
+        out.setdefault(item.domain, {}).setdefault(item.key, item)
+    return out
+
+
+def update_catalogs(prune: bool = False) -> dict[str, list[str]]:
+    """Merge the extracted ids into each domain's French ``.po``; return the untranslated ids."""
+    from babel.messages.catalog import Catalog
+    from babel.messages.pofile import read_po, write_po
+
+    from .i18n import LOCALE_DIR, compile_catalogs
+
+    domains = by_domain(extract_all())
+    extra_cli = _cli_words()
+    untranslated: dict[str, list[str]] = {}
+    for domain in sorted(set(domains) | {"cli"}):
+        path = LOCALE_DIR / "fr" / "LC_MESSAGES" / f"{domain}.po"
+        if path.exists():
+            with path.open("rb") as handle:
+                catalog = read_po(handle, locale="fr")
+        else:
+            catalog = Catalog(locale="fr", domain=domain, project="bras-kit")
+        wanted = dict(domains.get(domain, {}))
+        if domain == "cli":
+            for word in extra_cli:
+                wanted.setdefault((word, None), Extracted("cli", word, None, None, "", 0))
+        for (msgid, context), item in wanted.items():
+            key: Any = (msgid, item.plural) if item.plural else msgid
+            if catalog.get(msgid, context=context) is None:
+                catalog.add(key, ("", "") if item.plural else "", context=context)
+        if prune:
+            for message in list(catalog):
+                if not message.id:
+                    continue
+                msgid = str(message.id[0] if isinstance(message.id, (tuple, list)) else message.id)
+                if (msgid, message.context) not in wanted:
+                    catalog.delete(msgid, context=message.context)
+        path.parent.mkdir(parents=True, exist_ok=True)
+        with path.open("wb") as handle:
+            write_po(handle, catalog, width=0, omit_header=False, sort_output=False)
+        untranslated[domain] = [str(m.id) for m in catalog if m.id and not _translated(m.string)]
+    compile_catalogs()
+    return untranslated
+
+
+def _translated(string: Any) -> bool:
+    if isinstance(string, tuple):
+        return all(string)
+    return bool(string)
+
+
+def _cli_words() -> list[str]:
+    """argparse's own words and every command's help texts (read from the parsers)."""
+    from .cli._messages import ARGPARSE_WORDS, parser_words
+
+    seen: dict[str, None] = {}
+    for word in [*ARGPARSE_WORDS, *parser_words()]:
+        seen.setdefault(word, None)
+    return list(seen)
