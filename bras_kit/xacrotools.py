@@ -19,6 +19,7 @@ xacro itself is kept (its parser, macros, properties, includes, output), with wa
 
 from __future__ import annotations
 
+import builtins
 import contextlib
 import io
 import os
@@ -30,6 +31,8 @@ from collections.abc import Callable, Iterable, Mapping
 from typing import Any
 
 from .errors import BrasKitError, XacroError
+from .message import M, Message
+from .xacro_eval import BUILTINS
 from .xmlio import check_xml_safe
 
 PACKAGE_PATH_ENV = "BRAS_KIT_PACKAGE_PATH"
@@ -266,6 +269,7 @@ class _Hooks:
         self.xacro, self.subst, self.roots = xacro, subst, roots
         self.budget = Budget()
         self.elements = 0
+        self.files: list[str] = []  # every file read, for finding where an expression is written
         self.yaml_folders = [os.path.realpath(os.path.dirname(os.path.abspath(path)))]
         self.yaml_folders += [os.path.realpath(r) for r in roots if os.path.isdir(r)]
         self.original = (xacro.parse, xacro.safe_eval, xacro.eval_all, subst._eval, subst._eval_find,
@@ -326,6 +330,7 @@ class _Hooks:
             except UnicodeDecodeError as exc:
                 raise XacroError(f"{full} is not UTF-8 text (byte {exc.start})",
                                  hint="save the file as UTF-8") from None
+            self.files.append(full)
             return self.original[0](text, filename)
         if isinstance(inp, (str, bytes)):
             check_xml_safe(inp, filename)
@@ -348,11 +353,12 @@ class _Hooks:
         return find_package(name, self.roots)
 
     # expressions
-    def _evaluate(self, expression: str, lookup: Callable[[str], Any]) -> Any:
+    def _evaluate(self, expression: str, lookup: Callable[[str], Any],
+                  inner_lookup: Callable[[str], Any] | None = None) -> Any:
         from .xacro_eval import Evaluator, UnsafeXacroExpression
 
         try:
-            return Evaluator(lookup, self._attribute, self.callables, self.budget).run(expression)
+            return Evaluator(lookup, self._attribute, self.callables, self.budget, inner_lookup).run(expression)
         except UnsafeXacroExpression as exc:
             error = XacroError(f"refused the expression '{expression.strip()}': {exc.message}", hint=exc.hint)
             error.expression = expression.strip()  # type: ignore[attr-defined]
@@ -393,16 +399,20 @@ class _Hooks:
         functions.update(arg=arg, dirname=dirname, find=self.resolve)
         self.callables[id(arg)] = arg
         self.callables[id(dirname)] = dirname
-        from .xacro_eval import BUILTINS
 
-        def lookup(name: str) -> Any:
+        def builtin(name: str) -> Any:  # Python's own (the safe twin is called in its place)
+            if name in BUILTINS and hasattr(builtins, name):
+                return getattr(builtins, name)
+            return BUILTINS[name]
+
+        def lookup(name: str) -> Any:  # xacro: eval(s, {}, functions-then-args), then the builtins
             if name in functions:
                 return functions[name]
             if name in args:
                 return subst.convert_value(args[name], "auto")
-            return BUILTINS[name]
+            return builtin(name)
 
-        return str(self._evaluate(s, lookup))
+        return str(self._evaluate(s, lookup, inner_lookup=builtin))
 
     def eval_all(self, node: Any, macros: Any, symbols: Any) -> Any:
         self.elements += 1
@@ -465,33 +475,96 @@ def _expand(path: str, mappings: Mapping[str, str], package_paths: tuple[str, ..
                                  f"{MAX_OUTPUT_CHARS >> 20} Mi allowed", path=path)
             return str(text)
         except Exception as exc:  # xacro raises many kinds; all become one clean error
-            raise _clean_error(xacro, path, exc) from None
+            raise _clean_error(xacro, path, exc, hooks.files) from None
         finally:
             hooks.uninstall()
             xacro.init_stacks(None)
 
 
-def _clean_error(xacro: Any, path: str, exc: BaseException) -> BrasKitError:
+_EVALUATING = re.compile(r"when evaluating expression '(.*)'\s*$", re.S)
+_ESCAPES = (("&", "&amp;"), ("<", "&lt;"), (">", "&gt;"), ('"', "&quot;"), ("'", "&apos;"))
+
+
+def _chain(xacro: Any, exc: BaseException) -> tuple[BaseException, list[str]]:
+    """The root cause of a chain of xacro exceptions and the expressions it went through, innermost first."""
+    expressions: list[str] = []
+    current: BaseException = exc
+    seen: set[int] = set()
+    while id(current) not in seen:
+        seen.add(id(current))
+        suffix = getattr(current, "suffix", None)
+        if isinstance(suffix, str):
+            found = _EVALUATING.search(suffix.strip())
+            if found:
+                expressions.append(found.group(1))
+        inner = getattr(current, "exc", None)
+        if not isinstance(inner, BaseException):
+            break
+        current = inner
+    return current, expressions[::-1]
+
+
+def _escaped(text: str) -> list[str]:
+    forms = [text]
+    for plain, escape in _ESCAPES:
+        forms += [form.replace(plain, escape) for form in forms if plain in form]
+    return forms
+
+
+def find_expression(expression: str, files: Iterable[str]) -> tuple[str, int] | None:
+    """The first file and line (in ``files`` order) where ``${expression}`` or ``$(eval expression)`` is written."""
+    expression = expression.strip()
+    tokens = [wrap.format(form) for form in _escaped(expression) for wrap in ("${{{}}}", "$(eval {})")]
+    for path in dict.fromkeys(files):
+        try:
+            text = _read_limited(path).decode("utf-8", errors="replace")
+        except (OSError, BrasKitError):
+            continue
+        for token in tokens:
+            at = text.find(token)
+            if at >= 0:
+                return path, text.count("\n", 0, at) + 1
+    return None
+
+
+def _clean_error(xacro: Any, path: str, exc: BaseException, files: Iterable[str] = ()) -> BrasKitError:
     where = _current_file(xacro, path)
+    files = [where, *files, path]
     inner = _inner_error(exc)
     if inner is not None:  # one of our walls, possibly wrapped by xacro: report it alone
+        expression = getattr(inner, "expression", "")
         if inner.path is None:
-            inner.path = where
-            expression = getattr(inner, "expression", "")
-            inner.line = inner.line or _locate(where, str(inner.message), [
-                "${" + expression + "}", "$(eval " + expression, expression] if expression else [])
+            found = find_expression(expression, files) if expression else None
+            inner.path, inner.line = found or (where, inner.line or _locate(where, str(inner.message)))
         return inner
-    if isinstance(exc, RecursionError) or isinstance(getattr(exc, "exc", None), RecursionError):
-        return XacroError("the file nests too deeply (macros, properties or elements)", path=where,
-                          hint="a macro or property probably refers to itself")
-    if isinstance(exc, MemoryError):
-        return XacroError("the expansion ran out of memory", path=where, hint="simplify the file")
-    message = " ".join((str(exc) or type(exc).__name__).split())[:1000]
-    missing = _MISSING_FILE.search(message)
+    root, expressions = _chain(xacro, exc)
+    if isinstance(root, RecursionError):
+        return XacroError(M("the file nests too deeply (macros, properties or elements)"), path=where,
+                          hint=M("a macro or property probably refers to itself"))
+    if isinstance(root, MemoryError):
+        return XacroError(M("the expansion ran out of memory"), path=where, hint=M("simplify the file"))
+    if expressions:  # root cause first, where its expression is written; then what used it
+        cause = _one_line(str(root) or type(root).__name__)
+        if not isinstance(root, xacro.XacroException) and type(root).__name__ not in cause:
+            cause = f"{type(root).__name__}: {cause}"
+        found = find_expression(expressions[0], files)
+        message = M("{cause} in the expression '{expression}'", cause=cause, expression=expressions[0])
+        if len(expressions) > 1:
+            message = M("{message} (used by {expressions})", message=message, expressions=expressions[1:])
+        at, line = found or (where, None)
+        return XacroError(message, path=at, line=line, hint=_hint_for(cause))
+    text = _one_line(str(exc) or type(exc).__name__)
+    missing = _MISSING_FILE.search(text)
     if missing:
-        message = f"cannot include {missing.group(1).rstrip(':')}: no such file"
-    line = getattr(exc, "lineno", None) or _locate(where, message)
-    return XacroError(f"xacro failed: {message}", path=where, line=line, hint=_hint_for(message))
+        return XacroError(M("cannot include {path}: no such file", path=missing.group(1).rstrip(":")), path=where,
+                          line=_locate(where, text), hint=_hint_for("no such file"))
+    line = getattr(exc, "lineno", None) or _locate(where, text)
+    return XacroError(M("xacro failed: {error}", error=text), path=where, line=line, hint=_hint_for(text))
+
+
+def _one_line(text: str) -> str:
+    text = " ".join(text.split())
+    return text if len(text) <= 500 else text[:500] + "..."
 
 
 def _current_file(xacro_module, default: str) -> str:  # type: ignore[no-untyped-def]
@@ -499,13 +572,13 @@ def _current_file(xacro_module, default: str) -> str:  # type: ignore[no-untyped
     return os.path.normpath(stack[-1]) if stack else default
 
 
-def _hint_for(message: str) -> str:
+def _hint_for(message: str) -> Message:
     if "Undefined substitution argument" in message or "arg" in message.lower() and "undefined" in message.lower():
-        return "pass the argument as name:=value, or give it a default with <xacro:arg name=... default=...>"
+        return M("pass the argument as name:=value, or give it a default with <xacro:arg name=... default=...>")
     if "Undefined property" in message or "name '" in message and "is not defined" in message:
-        return "define the property with <xacro:property name=... value=...> before using it"
+        return M("define the property with <xacro:property name=... value=...> before using it")
     if "no such file" in message.lower():
-        return "check the path of the included file (relative paths start from the including file)"
+        return M("check the path of the included file (relative paths start from the including file)")
     if "not well-formed" in message or "mismatched tag" in message:
-        return "check the XML on this line is closed and quoted properly"
-    return "check the xacro syntax on this line"
+        return M("check the XML on this line is closed and quoted properly")
+    return M("check the xacro syntax on this line")
