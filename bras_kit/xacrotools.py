@@ -47,6 +47,7 @@ SANDBOX_WALL_SECONDS = 30.0
 SANDBOX_MEMORY_BYTES = 1536 << 20
 
 _lock = threading.Lock()
+_SELF_EXPANDING = M("a macro probably expands itself too many times")
 
 
 def check_expression(expression: str) -> None:
@@ -60,11 +61,14 @@ def check_expression(expression: str) -> None:
     try:
         vet(expression)
     except SyntaxError as exc:
-        raise XacroError(f"cannot read the expression '{expression}': {exc.msg}",
-                         hint="check brackets and operators inside ${...}") from None
+        raise XacroError(M("cannot read the expression '{expression}': {reason}", expression=expression,
+                           reason=exc.msg), hint=M("check brackets and operators inside ${{...}}")) from None
     except UnsafeXacroExpression as exc:
-        raise XacroError(f"refused the expression '{expression.strip()}': {exc.message}",
-                         hint=exc.hint) from None
+        raise XacroError(_refused(expression, exc.message), hint=exc.hint) from None
+
+
+def _refused(expression: str, reason: Message | str) -> Message:
+    return M("refused the expression '{expression}': {reason}", expression=expression.strip(), reason=reason)
 
 
 def package_roots(extra: Iterable[str] = ()) -> list[str]:
@@ -101,9 +105,11 @@ def find_package(name: str, roots: Iterable[str]) -> str:
     if fallback is not None:
         return _remember(name, fallback)
     raise XacroError(
-        f"$(find {name}): package '{name}' not found",
-        hint=f"pass --package-path DIR (a folder holding {name}/ or an install share/ tree) "
-        f"or set {PACKAGE_PATH_ENV}" + (f"; searched: {', '.join(searched)}" if searched else ""),
+        M("$(find {name}): package '{name}' not found", name=name),
+        hint=M("pass --package-path DIR (a folder holding {name}/ or an install share/ tree) or set {variable}; "
+               "searched: {folders}", name=name, variable=PACKAGE_PATH_ENV, folders=searched) if searched else
+        M("pass --package-path DIR (a folder holding {name}/ or an install share/ tree) or set {variable}",
+          name=name, variable=PACKAGE_PATH_ENV),
     )
 
 
@@ -125,13 +131,11 @@ def packages_used() -> dict[str, str]:
     return dict(sorted(_FOUND.items()))
 
 
-def describe_package_folder(name: str, folder: str) -> str:
+def describe_package_folder(name: str, folder: str) -> Message:
     """``name -> folder``, saying when the folder was taken by its name alone (no package.xml)."""
-    from .i18n import _
-
     if os.path.isfile(os.path.join(folder, "package.xml")) or os.path.basename(os.path.dirname(folder)) == "share":
-        return _("package '{name}': {folder}").format(name=name, folder=folder)
-    return _("package '{name}': {folder} (no package.xml: found by its folder name)").format(name=name, folder=folder)
+        return M("package '{name}': {folder}", name=name, folder=folder)
+    return M("package '{name}': {folder} (no package.xml: found by its folder name)", name=name, folder=folder)
 
 
 def _locate(path: str, message: str, extra: Iterable[str] = ()) -> int | None:
@@ -185,7 +189,7 @@ def expand_xacro(
     """
     path = os.fspath(path)
     if not os.path.exists(path):
-        raise BrasKitError(f"no such file: {path}", hint="check the path and spelling")
+        raise BrasKitError(M("no such file: {path}", path=path), hint=M("check the path and spelling"))
     check_readable_file(path)
     if sandbox is None:
         sandbox = not _is_builtin_template(path)
@@ -221,20 +225,20 @@ def check_readable_file(path: str) -> None:
     """Raise unless ``path`` is a regular file of at most :data:`MAX_FILE_BYTES` outside /proc, /sys, /dev."""
     real = os.path.realpath(path)
     if any(real == tree or real.startswith(tree + os.sep) for tree in _FORBIDDEN_TREES):
-        raise XacroError(f"refused to read {path}: it is a system file, not a robot description",
-                         hint="include only files of your robot's packages")
+        raise XacroError(M("refused to read {path}: it is a system file, not a robot description", path=path),
+                         hint=M("include only files of your robot's packages"))
     try:
         info = os.stat(path)
     except OSError as exc:
-        raise BrasKitError(f"cannot read {path}: {exc.strerror}") from None
+        raise BrasKitError(M("cannot read {path}: {reason}", path=path, reason=exc.strerror)) from None
     if stat.S_ISDIR(info.st_mode):
-        raise BrasKitError(f"{path} is a folder, not a file")
+        raise BrasKitError(M("{path} is a folder, not a file", path=path))
     if not stat.S_ISREG(info.st_mode):
-        raise XacroError(f"refused to read {path}: it is not a regular file (a device, pipe or socket)",
-                         hint="give the path of a .xacro, .urdf or .yaml file")
+        raise XacroError(M("refused to read {path}: it is not a regular file (a device, pipe or socket)", path=path),
+                         hint=M("give the path of a .xacro, .urdf or .yaml file"))
     if info.st_size > MAX_FILE_BYTES:
-        raise XacroError(f"refused to read {path}: {info.st_size:,} bytes is more than the "
-                         f"{MAX_FILE_BYTES >> 20} MiB a robot description file may have")
+        raise XacroError(M("refused to read {path}: {size} bytes is more than the {limit} MiB a robot "
+                           "description file may have", path=path, size=info.st_size, limit=MAX_FILE_BYTES >> 20))
 
 
 def _read_limited(path: str) -> bytes:
@@ -243,14 +247,14 @@ def _read_limited(path: str) -> bytes:
     fd = os.open(path, os.O_RDONLY | getattr(os, "O_NONBLOCK", 0))
     try:
         if not stat.S_ISREG(os.fstat(fd).st_mode):
-            raise XacroError(f"refused to read {path}: it is not a regular file")
+            raise XacroError(M("refused to read {path}: it is not a regular file", path=path))
         data = b""
         while len(data) <= MAX_FILE_BYTES:
             chunk = os.read(fd, 1 << 20)
             if not chunk:
                 return data
             data += chunk
-        raise XacroError(f"refused to read {path}: more than {MAX_FILE_BYTES >> 20} MiB")
+        raise XacroError(M("refused to read {path}: more than {limit} MiB", path=path, limit=MAX_FILE_BYTES >> 20))
     finally:
         os.close(fd)
 
@@ -317,8 +321,8 @@ class _Hooks:
     def parse(self, inp: Any, filename: str | None = None) -> Any:
         xacro = self.xacro
         if len(xacro.filestack or []) > MAX_INCLUDE_DEPTH:
-            raise XacroError(f"includes are nested more than {MAX_INCLUDE_DEPTH} deep",
-                             hint="a file probably includes itself")
+            raise XacroError(M("includes are nested more than {count} deep", count=MAX_INCLUDE_DEPTH),
+                             hint=M("a file probably includes itself"))
         if inp is None and filename is not None:
             full = os.path.normpath(os.path.join(xacro.root_dir, filename))
             if not os.path.exists(full):
@@ -328,8 +332,8 @@ class _Hooks:
             try:
                 text = data.decode("utf-8")
             except UnicodeDecodeError as exc:
-                raise XacroError(f"{full} is not UTF-8 text (byte {exc.start})",
-                                 hint="save the file as UTF-8") from None
+                raise XacroError(M("{path} is not UTF-8 text (byte {byte})", path=full, byte=exc.start),
+                                 hint=M("save the file as UTF-8")) from None
             self.files.append(full)
             return self.original[0](text, filename)
         if isinstance(inp, (str, bytes)):
@@ -339,9 +343,9 @@ class _Hooks:
     def load_yaml(self, filename: str) -> Any:
         full = self.xacro.abs_filename_spec(filename)
         if not _inside(full, self.yaml_folders):
-            raise XacroError(f"refused to load {filename}: only YAML files next to the robot description "
-                             "or inside the given package folders may be read",
-                             hint="move the file next to your xacro file, or pass its package with --package-path")
+            raise XacroError(M("refused to load {path}: only YAML files next to the robot description "
+                               "or inside the given package folders may be read", path=filename),
+                             hint=M("move the file next to your xacro file, or pass its package with --package-path"))
         check_readable_file(full)
         return self.original_load_yaml(filename)
 
@@ -360,7 +364,7 @@ class _Hooks:
         try:
             return Evaluator(lookup, self._attribute, self.callables, self.budget, inner_lookup).run(expression)
         except UnsafeXacroExpression as exc:
-            error = XacroError(f"refused the expression '{expression.strip()}': {exc.message}", hint=exc.hint)
+            error = XacroError(_refused(expression, exc.message), hint=exc.hint)
             error.expression = expression.strip()  # type: ignore[attr-defined]
             raise error from None
 
@@ -374,8 +378,9 @@ class _Hooks:
                 raise NameError(f"name '{name}' is not defined") from None
         if isinstance(value, self.xacro.YamlDictWrapper):
             return value.__getattr__(name)
-        raise UnsafeXacroExpression(f"it uses the attribute '.{name}' of a {type(value).__name__}",
-                                    hint="only namespaces (math., python., xacro.) and YAML data have attributes")
+        raise UnsafeXacroExpression(M("it uses the attribute '.{name}' of a {kind}", name=name,
+                                      kind=type(value).__name__),
+                                    hint=M("only namespaces (math., python., xacro.) and YAML data have attributes"))
 
     def safe_eval(self, expr: str, globals_: Any, locals_: Any = None) -> Any:
         table = locals_ if locals_ is not None else globals_
@@ -417,15 +422,14 @@ class _Hooks:
     def eval_all(self, node: Any, macros: Any, symbols: Any) -> Any:
         self.elements += 1
         if self.elements > MAX_ELEMENTS:
-            raise XacroError(f"the expansion makes more than {MAX_ELEMENTS:,} elements",
-                             hint="a macro probably expands itself too many times")
+            raise XacroError(M("the expansion makes more than {count} elements", count=MAX_ELEMENTS),
+                             hint=_SELF_EXPANDING)
         if len(self.xacro.macrostack or []) > MAX_MACRO_DEPTH:
-            raise XacroError(f"macros are nested more than {MAX_MACRO_DEPTH} deep",
-                             hint="a macro probably calls itself without end")
+            raise XacroError(M("macros are nested more than {count} deep", count=MAX_MACRO_DEPTH),
+                             hint=M("a macro probably calls itself without end"))
         self.budget.spend()
         if self.elements % 64 == 0 and time.monotonic() > self.budget.deadline:
-            raise XacroError("the expansion takes too long and was stopped",
-                             hint="a macro probably expands itself too many times")
+            raise XacroError(M("the expansion takes too long and was stopped"), hint=_SELF_EXPANDING)
         return self.original[2](node, macros, symbols)
 
     def replace_node(self, node: Any, by: Any, content_only: bool = False) -> Any:
@@ -436,11 +440,10 @@ class _Hooks:
             else:
                 incoming = len(by.childNodes) if content_only else 1
             if len(parent.childNodes) + incoming > MAX_CHILDREN:
-                raise XacroError(f"an element gets more than {MAX_CHILDREN:,} children",
-                                 hint="a macro probably expands itself too many times")
+                raise XacroError(M("an element gets more than {count} children", count=MAX_CHILDREN),
+                                 hint=_SELF_EXPANDING)
         if time.monotonic() > self.budget.deadline:
-            raise XacroError("the expansion takes too long and was stopped",
-                             hint="a macro probably expands itself too many times")
+            raise XacroError(M("the expansion takes too long and was stopped"), hint=_SELF_EXPANDING)
         return self.original[6](node, by, content_only)
 
     def install(self) -> None:
@@ -471,8 +474,8 @@ def _expand(path: str, mappings: Mapping[str, str], package_paths: tuple[str, ..
                 doc = xacro.process_file(path, mappings=dict(mappings), verbosity=0)
                 text = doc.toprettyxml(indent="  ")
             if len(text) > MAX_OUTPUT_CHARS:
-                raise XacroError(f"the expanded URDF has {len(text):,} characters, more than "
-                                 f"{MAX_OUTPUT_CHARS >> 20} Mi allowed", path=path)
+                raise XacroError(M("the expanded URDF has {count} characters, more than {limit} Mi allowed",
+                                   count=len(text), limit=MAX_OUTPUT_CHARS >> 20), path=path)
             return str(text)
         except Exception as exc:  # xacro raises many kinds; all become one clean error
             raise _clean_error(xacro, path, exc, hooks.files) from None

@@ -267,3 +267,35 @@ def test_repeating_text_or_lists_is_refused_before_it_fills_memory(tmp_path, run
     assert code == 2
     assert "repeating this text or list makes it too large" in err
     assert f"{path}:2:" in err
+
+
+# --- where an error is: the file and line the expression is written on, root cause first ----------
+
+@pytest.mark.parametrize("name,line,words", [
+    ("chain.xacro", 5, "ZeroDivisionError: division by zero in the expression '1 / zero'"),
+    ("keyword_error.xacro", 6, "'reversed' is an invalid keyword argument"),
+    ("less_than.xacro", 5, "name 'missing_name' is not defined"),
+], ids=["chain-of-properties", "keyword-argument", "escaped-less-than"])
+def test_expression_error_names_the_line_it_is_written_on(name, line, words):
+    path = DATA / "broken" / name
+    with pytest.raises(XacroError) as info:
+        expand_xacro(path)
+    assert (Path(info.value.path).resolve(), info.value.line) == (path.resolve(), line)
+    assert str(info.value.message).startswith(words) or words in str(info.value.message)
+
+
+def test_chain_of_failing_properties_puts_the_root_cause_first_then_who_used_it():
+    with pytest.raises(XacroError) as info:
+        expand_xacro(DATA / "broken" / "chain.xacro")
+    text = str(info.value.message)
+    assert text.startswith("ZeroDivisionError: division by zero")
+    assert text.endswith("(used by 'p3 + 1', 'p2 * 2', 'p1')")
+    assert "when evaluating" not in text
+
+
+def test_refusal_inside_a_macro_of_an_included_file_names_that_file_and_line():
+    with pytest.raises(XacroError) as info:
+        expand_xacro(DATA / "broken" / "includes_refused.xacro")
+    part = DATA / "broken" / "parts" / "refused_part.xacro"
+    assert (Path(info.value.path).resolve(), info.value.line) == (part.resolve(), 5)
+    assert "__class__" in str(info.value.message)
