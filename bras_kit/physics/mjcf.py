@@ -21,12 +21,14 @@ from xml.sax.saxutils import quoteattr
 import numpy as np
 
 from ..errors import ModelError
+from ..message import M, Mn
 from ..kinematics import matrix_to_quat_xyzw, rpy_to_matrix
 from ..model import Geometry, Joint, Origin, Robot
 
 MUJOCO_MESH_SUFFIXES = (".stl", ".obj", ".msh")
 DEFAULT_KP = 100.0  # N.m/rad (N/m for sliders)
 DEFAULT_KD = 10.0  # N.m.s/rad
+MAX_NESTED_BODIES = 496  # MuJoCo's XML reader (tinyxml2) stops at 500 nested elements
 DEFAULT_DAMPING = 0.05  # N.m.s/rad: a little joint friction, so a falling arm comes to rest
 DEFAULT_TIMESTEP = 0.002  # s, MuJoCo's own default
 DEFAULT_INTEGRATOR = "implicitfast"  # stable with stiff motor damping; RK4 for energy studies
@@ -86,12 +88,13 @@ def compile_xml(xml: str, assets: Mapping[str, bytes], name: str = "robot"):  # 
         return mujoco.MjModel.from_xml_string(xml, dict(assets))
     except ValueError as exc:
         reason = " ".join(str(exc).split())
-        hint = "check the file with bras-kit validate; bras-kit mjcf -o model.xml shows what MuJoCo was given"
+        hint = M("check the file with bras-kit validate; bras-kit mjcf -o model.xml shows what MuJoCo was given")
         if "inertia" in reason:
-            hint = "check the <inertial> of that link (bras-kit validate)"
+            hint = M("check the <inertial> of that link (bras-kit validate)")
         if "mass and inertia" in reason:
-            hint = "give every moving link an <inertial> (built-in arm: --inertials)"
-        raise ModelError(f"MuJoCo refuses the model of '{name}': {reason}", element="mujoco", hint=hint) from None
+            hint = M("give every moving link an <inertial> (built-in arm: --inertials)")
+        raise ModelError(M("MuJoCo refuses the model of '{name}': {reason}", name=name, reason=reason),
+                         element="mujoco", hint=hint) from None
 
 
 def _f(value: float) -> str:
@@ -166,11 +169,12 @@ def _to_stl(path: str, robot: Robot, line: int | None) -> bytes:
     try:
         mesh = trimesh.load(path, force="mesh")
     except Exception as exc:  # trimesh raises many kinds for bad files
-        raise ModelError(f"cannot convert mesh {path} for MuJoCo: {exc}", path=robot.path, line=line,
-                         element="mesh", hint="export it as STL or OBJ, which MuJoCo reads directly") from None
+        raise ModelError(M("cannot convert mesh {path} for MuJoCo: {reason}", path=path, reason=str(exc)),
+                         path=robot.path, line=line, element="mesh",
+                         hint=M("export it as STL or OBJ, which MuJoCo reads directly")) from None
     if not isinstance(mesh, trimesh.Trimesh) or len(mesh.faces) == 0:
-        raise ModelError(f"mesh {path} holds no triangles", path=robot.path, line=line, element="mesh",
-                         hint="export the mesh as triangles (STL or OBJ)")
+        raise ModelError(M("mesh {path} holds no triangles", path=path), path=robot.path, line=line, element="mesh",
+                         hint=M("export the mesh as triangles (STL or OBJ)"))
     data = mesh.export(file_type="stl")
     return data if isinstance(data, bytes) else str(data).encode()
 
@@ -282,7 +286,8 @@ def build_mjcf(robot: Robot, *, package_paths: Sequence[str] = (), kp: float | M
     def gain(value: float | Mapping[str, float], joint: str, default: float) -> float:
         return float(value.get(joint, default)) if isinstance(value, Mapping) else float(value)
 
-    def emit(link_name: str, joint: Joint | None, depth: int) -> None:
+    def emit(link_name: str, joint: Joint | None, depth: int) -> str | None:
+        """Write one body's opening and contents; return its closing line (None for the world)."""
         link = robot.link(link_name)
         pad = "  " * depth
         attrs = f"name={_name(link_name)}"
@@ -325,19 +330,33 @@ def build_mjcf(robot: Robot, *, package_paths: Sequence[str] = (), kp: float | M
                         f'{pad}  <geom name={_name(f"{link_name}/collision{n}")} {shape}'
                         f'{_mesh_scale(collision.geometry, meshes)}{_pose_attrs(collision.origin)} '
                         f'rgba="{COLLISION_RGBA}" group="{COLLISION_GROUP}"{mass}/>')
-        for child in children.get(link_name, []):
-            emit(child.child or "", child, depth + 1)
-        if opened:
-            body_lines.append(f"{pad}</body>")
+        return f"{pad}</body>" if opened else None
 
-    emit(root, None, 2)
+    # depth first with a stack, not recursion: a chain of a thousand links is a valid URDF
+    stack: list[tuple[str, Joint | None, int] | str | None] = [(root, None, 2)]
+    while stack:
+        item = stack.pop()
+        if item is None or isinstance(item, str):
+            if item is not None:
+                body_lines.append(item)
+            continue
+        link_name, joint, depth = item
+        if depth - 1 > MAX_NESTED_BODIES:
+            raise ModelError(M("link '{link}' is {count} links down its chain; MuJoCo reads at most {limit} bodies "
+                               "nested in one another", link=link_name, count=depth - 1, limit=MAX_NESTED_BODIES),
+                             path=robot.path, line=(robot.link(link_name) or robot.links[0]).line, element="link",
+                             hint=M("simulate a shorter chain ('bras-kit tree' and 'bras-kit validate' read any size)"))
+        stack.append(emit(link_name, joint, depth))
+        stack.extend((child.child or "", child, depth + 1) for child in reversed(children.get(link_name, [])))
     if massless:
         raise ModelError(
-            f"link '{massless[0]}' moves but has no <inertial> (and no <collision> to weigh): "
-            "MuJoCo cannot simulate a body with no mass"
-            + (f" ({len(massless)} such links: {', '.join(massless)})" if len(massless) > 1 else ""),
+            Mn("link {links} moves but has no <inertial> (and no <collision> to weigh): MuJoCo cannot simulate "
+               "a body with no mass",
+               "{n} links move but have no <inertial> (and no <collision> to weigh): {links}; MuJoCo cannot simulate "
+               "a body with no mass", len(massless), links=massless),
             path=robot.path, line=(robot.link(massless[0]) or robot.links[0]).line, element="link",
-            hint="built-in arm: pass --inertials; your own file: add <inertial> with mass and inertia to each moving link")
+            hint=M("built-in arm: pass --inertials; your own file: add <inertial> with mass and inertia to each "
+                   "moving link"))
 
     actuators = []
     for a in actuated if control != "none" else []:
