@@ -21,8 +21,8 @@ from xml.sax.saxutils import quoteattr
 import numpy as np
 
 from ..errors import ModelError
-from ..message import M, Mn
 from ..kinematics import matrix_to_quat_xyzw, rpy_to_matrix
+from ..message import M, Mn
 from ..model import Geometry, Joint, Origin, Robot
 
 MUJOCO_MESH_SUFFIXES = (".stl", ".obj", ".msh")
