@@ -3,6 +3,7 @@
 from __future__ import annotations
 
 import subprocess
+import site
 import sys
 import xml.etree.ElementTree as ET
 from pathlib import Path
@@ -14,8 +15,10 @@ from bras_kit.authoring import load
 from bras_kit.motion import read_states
 from bras_kit.physics import build_mjcf, simulate
 
-ROBOTS = Path(sys.prefix) / "lib" / f"python{sys.version_info.major}.{sys.version_info.minor}" / "site-packages" \
-    / "cmeel.prefix" / "share" / "example-robot-data" / "robots"
+ROBOTS = next((Path(folder) / "cmeel.prefix" / "share" / "example-robot-data" / "robots"
+               for folder in site.getsitepackages()
+               if (Path(folder) / "cmeel.prefix" / "share" / "example-robot-data" / "robots").is_dir()),
+              Path(sys.prefix) / "missing")
 if not ROBOTS.is_dir():  # a non-standard layout: ask the package where it lives
     import example_robot_data  # type: ignore[import-not-found]
 
