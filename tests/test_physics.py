@@ -229,11 +229,11 @@ def test_urdf_with_collisions_passes_check_urdf(tmp_path, options):
 
 
 def test_missing_inertials_are_explained_in_french():
-    from bras_kit.physics.diagnostics import check_physics_ready
-
     from bras_kit.i18n import say_error
+    from bras_kit.physics.diagnostics import check_physics_ready
 
     with pytest.raises(ModelError) as info:
         check_physics_ready(arm())
-    assert "n'a pas d'<inertial>" in say_error(info.value, "fr") and "--inertials" in str(info.value.hint)
+    assert "links bougent mais n'ont pas d'<inertial> : 'bras', 'avant_bras'" in say_error(info.value, "fr")
+    assert "--inertials" in str(info.value.hint)
     check_physics_ready(arm(inertials=True), "fr")  # nothing to say
