@@ -50,7 +50,7 @@ def _check_text_fits(figure: Figure, dpi: float) -> None:
 
     from ..message import M
 
-    sizes = [text.get_fontsize() for text in figure.findobj(Text) if text.get_text()]
+    sizes = [float(text.get_fontsize()) for text in figure.findobj(Text) if text.get_text()]
     if sizes and min(sizes) * dpi / 72.0 < 1.0:
         raise ParameterError(M("at the {side} pixels a PNG may have on a side, this diagram's text would be smaller "
                                "than a pixel", side=MAX_RASTER_SIDE),
