@@ -232,25 +232,25 @@ def read_recording(path: str, topic: str | None = None) -> Recording:
     store = get_typestore(Stores.ROS2_HUMBLE)
     stream = _messages(path, topic)
     next(stream)  # the checks before the first message
-    samples: dict[str, list[tuple[float, float]]] = {}
+    samples: dict[str, list[tuple[int, float]]] = {}
     undecodable = mismatched = not_finite = backwards = 0
-    previous = -math.inf
+    previous = -(1 << 63)
     count = 0
-    stamps: list[float] = []
+    stamps: list[int] = []
     for timestamp, data in stream:  # type: ignore[misc]
         count += 1
         try:
             message = store.deserialize_cdr(data, JOINT_STATE_TYPE)
             names = [str(n) for n in message.name]
             positions = np.asarray(message.position, dtype=float)
-            stamp = message.header.stamp.sec + message.header.stamp.nanosec * 1e-9
+            stamp = int(message.header.stamp.sec) * 1_000_000_000 + int(message.header.stamp.nanosec)
         except Exception:  # noqa: BLE001  (a message that does not decode is skipped and counted)
             undecodable += 1
             continue
         if len(positions) != len(names) or len(set(names)) != len(names):
             mismatched += 1
             continue
-        time = float(stamp) if stamp else int(timestamp) * 1e-9
+        time = stamp if stamp else int(timestamp)  # ns, kept whole: an epoch stamp in float loses 0.1 µs
         if time < previous:
             backwards += 1
         previous = max(previous, time)
@@ -263,7 +263,7 @@ def read_recording(path: str, topic: str | None = None) -> Recording:
     if not samples:
         raise _fail(path, M("topic {topic} holds no usable joint state ({count} messages)", topic=topic,
                             count=count))
-    start = min(t for values in samples.values() for t, _ in values)
+    start = min(t for values in samples.values() for t, _ in values)  # ns
     notes: list[Message] = []
     if undecodable:
         notes.append(Mn("{n} message of {topic} does not decode as a JointState: skipped",
@@ -282,17 +282,18 @@ def read_recording(path: str, topic: str | None = None) -> Recording:
     series = {}
     duplicates = 0
     for name, values in samples.items():
-        array = np.array(values)
-        order = np.argsort(array[:, 0], kind="stable")
-        times, positions = array[order, 0] - start, array[order, 1]
+        stamped = np.array([t - start for t, _ in values], dtype=np.int64)
+        order = np.argsort(stamped, kind="stable")
+        times = stamped[order] * 1e-9
+        positions = np.array([v for _, v in values])[order]
         keep = np.append(np.diff(times) > 0, True)  # one value per stamp: the last one recorded
         duplicates += int((~keep).sum())
         series[name] = (times[keep], positions[keep])
     if duplicates:
         notes.append(Mn("{n} sample repeats a stamp already seen: the last one is kept",
                         "{n} samples repeat a stamp already seen: the last one is kept", duplicates))
-    notes.extend(_gap_notes(np.unique(np.array(stamps) - start)))
-    return Recording(os.fspath(path), topic, series, start, count, notes)
+    notes.extend(_gap_notes(np.unique(np.array(stamps, dtype=np.int64) - start) * 1e-9))
+    return Recording(os.fspath(path), topic, series, start * 1e-9, count, notes)
 
 
 def _gap_notes(times: np.ndarray) -> list[Message]:

@@ -73,6 +73,18 @@ def joint_values(items: Iterable[str]) -> dict[str, float]:
     return values
 
 
+def add_topic_argument(parser: argparse.ArgumentParser) -> None:
+    """``--topic``: which JointState topic a ROS 2 bag given to --motion is read from."""
+    parser.add_argument("--topic", metavar="NAME", default=None,
+                        help="with a ROS 2 bag as --motion: the JointState topic to replay (default: /joint_states)")
+
+
+def warn_motion_notes(motion: Any) -> None:
+    """What was odd in the motion's input (a recording's gaps, unknown joints...), one warning each."""
+    for note in getattr(motion, "notes", ()):
+        warn(note)
+
+
 def add_force_argument(parser: argparse.ArgumentParser) -> None:
     parser.add_argument("--force", action="store_true", help="overwrite files that already exist")
 
