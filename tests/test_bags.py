@@ -452,3 +452,46 @@ def test_not_a_bag_and_not_sqlite_are_refused(tmp_path, run_cli):
     fake.write_bytes(b"SQLite format 3\x00" + b"\xff" * 200)
     _hostile(run_cli, str(fake), "fake.db3", "damaged")
     _hostile(run_cli, str(tmp_path / "absent.mcap"), "no such bag")
+
+
+def test_rosbags_decompressor_table_is_still_what_bras_kit_patches():
+    from rosbags.rosbag2 import storage_mcap
+
+    from bras_kit.bags._compat import PATCHED_KEYS
+
+    assert sorted(storage_mcap.DECOMPRESSORS) == sorted(PATCHED_KEYS)
+
+
+def test_decompression_bomb_is_refused_without_filling_memory(tmp_path, run_cli):
+    """A chunk declaring 1 KiB that would expand to 64 MiB: refused after reading at most the declared size."""
+    import tracemalloc
+
+    from backports import zstd
+
+    from bras_kit.authoring import arm
+    from bras_kit.motion import motion_from_specs
+
+    bag = _foxglove_bag(str(tmp_path / "bomb.mcap"), _tutorial_samples(20.0), chunk_size=64 << 20)
+    bomb = zstd.compress(b"\0" * (64 << 20))
+    data = bytearray(open(bag, "rb").read())
+    fields = _chunk_index_fields(bytes(data))
+    (start,) = struct.unpack_from("<Q", data, fields["chunk_start_offset"])
+    (compressed,) = struct.unpack_from("<Q", data, fields["compressed_size"])
+    (declared,) = struct.unpack_from("<Q", data, fields["uncompressed_size"])
+    assert len(bomb) < compressed  # the bomb fits where the real chunk was
+    records = start + 9 + 8 + 8 + 8 + 4 + 4 + len("zstd") + 8
+    data[records: records + len(bomb)] = bomb
+    struct.pack_into("<Q", data, fields["compressed_size"], len(bomb))
+    struct.pack_into("<Q", data, records - 8, len(bomb))
+    open(bag, "wb").write(bytes(data))
+    assert declared < 1 << 20
+    tracemalloc.start()
+    try:
+        with pytest.raises(Exception) as caught:
+            motion_from_specs(arm(), [bag])
+        peak = tracemalloc.get_traced_memory()[1]
+    finally:
+        tracemalloc.stop()
+    assert "damaged" in str(caught.value) and "bomb.mcap" in str(caught.value)
+    assert peak < 16 << 20
+    _hostile(run_cli, bag, "bomb.mcap", "damaged")

@@ -39,7 +39,6 @@ MAX_CHUNK_BYTES = 256 << 20  # an MCAP chunk holds a few MiB; ros2 bag's default
 MAX_MESSAGES = 2_000_000  # messages read from the topic (about 28 hours at 20 Hz)
 GAP_FACTOR = 5.0  # a pause longer than 5 typical periods is a gap
 BAG_SUFFIXES = (".mcap", ".db3")
-_WHAT_TO_DO = "record it again, or check it with ros2 bag info"
 
 
 class BagError(BrasKitError):
@@ -82,7 +81,7 @@ def is_bag(path: str) -> bool:
 # ------------------------------------------------------------------ opening, as untrusted input
 
 def _fail(path: str, what: Message, hint: Message | None = None) -> BagError:
-    return BagError(what, path=path, hint=hint or M(_WHAT_TO_DO))
+    return BagError(what, path=path, hint=hint or M("record it again, or check it with ros2 bag info"))
 
 
 def _resolve(path: str) -> tuple[str, str | None]:
@@ -168,13 +167,20 @@ def _check_chunks(reader: Any, path: str) -> None:
 
 def _damaged(path: str, exc: BaseException) -> BagError:
     why = str(exc).strip().splitlines()[0] if str(exc).strip() else type(exc).__name__
-    return _fail(path, M("the bag is damaged or not a ROS 2 bag: {why}", why=why))
+    if os.path.isdir(path) or not path.lower().endswith(".mcap"):
+        hint = M("record it again; an SQLite bag cut short can be rebuilt with ros2 bag reindex")
+    else:
+        hint = M("record it again; an MCAP file cut short can be rescued with Foxglove's mcap recover")
+    return _fail(path, M("the bag is damaged or not a ROS 2 bag: {why}", why=why), hint)
 
 
 def _messages(path: str, topic: str) -> Iterator[tuple[int, bytes] | tuple[str, Any]]:
     """First ("type", msgtype), then (timestamp ns, raw CDR bytes) for each message of ``topic``."""
     from rosbags.rosbag2 import Reader
 
+    from ._compat import bounded_decompression
+
+    bounded_decompression()
     opened, _ = _resolve(path)
     try:
         reader = Reader(opened)

@@ -143,7 +143,8 @@ def _transforms(store: Any, stamp: Any, frames: list[tuple[str, str]], matrices:
 def _frame_split(robot: Robot) -> tuple[Any, list[int], list[int]]:
     """The TF tree, and the links whose joint moves (-> /tf) and those whose joint does not (-> /tf_static)."""
     tree = tf_tree(robot)
-    moving, fixed = [], []
+    moving: list[int] = []
+    fixed: list[int] = []
     for i in range(1, len(tree.links)):
         (moving if tree.joint_motion(i).kind != "fixed" else fixed).append(i)
     return tree, moving, fixed

@@ -10,7 +10,6 @@ Samples are taken at k / rate for k = 0 .. floor(duration * rate): 10 s at 20 Hz
 from __future__ import annotations
 
 import argparse
-import os
 import sys
 
 from ..errors import ParameterError

@@ -16,6 +16,7 @@ import numpy as np
 from ..errors import ParameterError
 from ..expr import compile_expression
 from ..kinematics import TFTree, tf_tree
+from ..message import M
 from ..model import Joint, Robot
 from .core import Motion, Track, check_joint
 from .interpolation import interpolator
@@ -227,9 +228,9 @@ def spec_kind(spec: str) -> str:
         return "file"
     if "=" in text:
         return "formula"
-    raise ParameterError(f"'{spec}' is not a motion",
-                         hint="give 'tutorial', JOINT=FORMULA (e.g. epaule=0.8*sin(t)), "
-                              "a waypoint file (.csv, .json, .yaml) or a ROS 2 bag (folder, .mcap, .db3)")
+    raise ParameterError(M("'{spec}' is not a motion", spec=spec),
+                         hint=M("give 'tutorial', JOINT=FORMULA (e.g. epaule=0.8*sin(t)), "
+                                "a waypoint file (.csv, .json, .yaml) or a ROS 2 bag (folder, .mcap, .db3)"))
 
 
 def motion_from_specs(robot: Robot, specs: Sequence[str], set_values: Mapping[str, float] | None = None,
