@@ -23,7 +23,7 @@ def test_docs_rules_md_is_current():
 
 
 def test_codes_are_well_formed_and_names_unique():
-    assert len([code for code in RULES if code < "BK6"]) == 64  # URDF and xacro rules
+    assert len([code for code in RULES if code < "BK6"]) == 65  # URDF and xacro rules
     assert len([code for code in RULES if code >= "BK6"]) == 15  # package rules
     for code, rule in RULES.items():
         assert re.fullmatch(r"BK[1-6]\d\d", code) and rule.code == code

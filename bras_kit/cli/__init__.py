@@ -12,6 +12,7 @@ import gc
 import importlib
 import os
 import sys
+import warnings
 from collections.abc import Sequence
 
 from .. import __version__
@@ -129,6 +130,10 @@ def _language_in(argv: Sequence[str]) -> str | None:
 
 def main(argv: Sequence[str] | None = None) -> int:
     argv = list(sys.argv[1:] if argv is None else argv)
+    if not os.environ.get("BRAS_KIT_DEBUG"):
+        # numpy's "overflow encountered in ..." with a source path is no message for a user: the
+        # commands check the numbers they print (non-finite origins, diverging simulations)
+        warnings.simplefilter("ignore", RuntimeWarning)
     try:
         lang = set_language(_language_in(argv))
     except BrasKitError as exc:  # BRAS_KIT_LANG holds an unknown language
