@@ -13,6 +13,7 @@ import os
 from collections.abc import Sequence
 from dataclasses import dataclass
 
+from .. import backends
 from ..errors import ModelError
 from ..model import Robot
 from .mjcf import WATER_DENSITY, MjcfModel
@@ -138,7 +139,7 @@ def physics_notes(robot: Robot, built: MjcfModel, lang: str = "en", package_path
              if not (f.code in ("BK500", "BK501") and f.name in frames)]
     if built.density_links:
         model = built.compile()
-        import mujoco
+        mujoco = backends.mujoco()
 
         for link in built.density_links:
             body = mujoco.mj_name2id(model, mujoco.mjtObj.mjOBJ_BODY, link)

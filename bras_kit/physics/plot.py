@@ -10,6 +10,7 @@ from typing import TYPE_CHECKING, Any
 
 import numpy as np
 
+from .. import backends
 from ..diagrams.output import FIGURE_FORMATS, output_suffix, save_figure
 from ..model import Robot
 
@@ -28,6 +29,7 @@ _WORDS = {
 
 def torque_figure(robot: Robot, states: Any, lang: str = "en") -> Figure:
     """Two rows per run: positions (measured, reference) and torques with +-effort, one column per joint."""
+    backends.matplotlib()
     from matplotlib.figure import Figure
 
     words = _WORDS["fr" if lang == "fr" else "en"]

@@ -15,6 +15,7 @@ from dataclasses import dataclass, field
 
 import numpy as np
 
+from .. import backends
 from ..errors import ParameterError
 from ..kinematics import tf_tree
 from ..model import Robot
@@ -117,7 +118,7 @@ def simulate(robot: Robot, motion: Motion | Sequence[str] | None = None, *, cont
     ``<limit effort>``. ``damping`` (N.m.s/rad) is a little joint friction so a falling arm comes
     to rest; 0 makes the joints frictionless. ``lang`` (``en``/``fr``): the words of a model error.
     """
-    import mujoco
+    mujoco = backends.mujoco()
 
     from .diagnostics import check_physics_ready
 
@@ -194,14 +195,14 @@ def simulate(robot: Robot, motion: Motion | Sequence[str] | None = None, *, cont
 
 
 def _geom_name(model, geom: int) -> str:  # type: ignore[no-untyped-def]
-    import mujoco
+    mujoco = backends.mujoco()
 
     return mujoco.mj_id2name(model, mujoco.mjtObj.mjOBJ_GEOM, geom) or f"geom {geom}"
 
 
 def _needed_torques(model, qadr, vadr, times, q_ref, qd_ref) -> np.ndarray:  # type: ignore[no-untyped-def]
     """Inverse dynamics along the reference: the torque each joint would need to follow it exactly."""
-    import mujoco
+    mujoco = backends.mujoco()
 
     data = mujoco.MjData(model)
     qdd = np.gradient(qd_ref, times, axis=0) if len(times) > 1 else np.zeros_like(qd_ref)
