@@ -39,6 +39,7 @@ COMMANDS: dict[str, str] = {
     "mjcf": "write the MuJoCo model (MJCF) bras-kit builds from the URDF",
     "view": "the arm live in the browser: sliders, TF frames, motion playback, reload on save",
     "grade": "for teachers: check, draw and score a class's submissions (process pool or Dask)",
+    "doctor": "what this install can do (OpenGL, MuJoCo, viewer, browser, cache) and how to fix the rest",
 }
 
 _MODULES = {"xacro": "xacro_cmd"}

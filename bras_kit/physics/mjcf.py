@@ -21,6 +21,7 @@ from xml.sax.saxutils import quoteattr
 
 import numpy as np
 
+from .. import backends
 from ..errors import ModelError
 from ..kinematics import matrix_to_quat_xyzw, rpy_to_matrix
 from ..message import M, Mn
@@ -103,7 +104,7 @@ def quiet_mujoco() -> Iterator[list[str]]:
 
 
 def compile_xml(xml: str, assets: Mapping[str, bytes], name: str = "robot"):  # type: ignore[no-untyped-def]
-    import mujoco
+    mujoco = backends.mujoco()
 
     try:
         with quiet_mujoco():
@@ -448,7 +449,7 @@ def _document(robot: Robot, bodies: list[str], meshes: _Meshes, actuators: list[
 
 def _world_boxes(model) -> tuple[np.ndarray, np.ndarray]:  # type: ignore[no-untyped-def]
     """Each geom's axis-aligned box in the world at the zero pose: centres and half sizes."""
-    import mujoco
+    mujoco = backends.mujoco()
 
     data = mujoco.MjData(model)
     mujoco.mj_kinematics(model, data)
@@ -464,7 +465,7 @@ def _world_boxes(model) -> tuple[np.ndarray, np.ndarray]:  # type: ignore[no-unt
 
 def _floor_and_touching(model, robot: Robot) -> tuple[float, list[tuple[str, str, str]]]:  # type: ignore[no-untyped-def]
     """The floor height (under the fixed base's lowest point) and the parent/child pairs whose shapes touch."""
-    import mujoco
+    mujoco = backends.mujoco()
 
     centres, halves = _world_boxes(model)
     floor_geom = mujoco.mj_name2id(model, mujoco.mjtObj.mjOBJ_GEOM, "floor")
@@ -493,7 +494,7 @@ def _overlapping_at_start(model, floor_geom: int) -> list[tuple[str, str, str]]:
     Left alone they push each other apart for ever (fingers of a gripper, a hand folded on the
     wrist): MuJoCo's own models exclude such pairs, so does bras-kit. The joint name is empty.
     """
-    import mujoco
+    mujoco = backends.mujoco()
 
     data = mujoco.MjData(model)
     mujoco.mj_forward(model, data)

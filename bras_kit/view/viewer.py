@@ -11,6 +11,7 @@ from collections.abc import Callable, Iterator, Sequence
 from dataclasses import dataclass, field
 from typing import Any
 
+from .. import backends
 from ..errors import BrasKitError
 from ..i18n import say_error
 from ..model import Robot
@@ -53,7 +54,7 @@ class Viewer:
 
     def __init__(self, source: Source, *, host: str = LOCAL_HOST, port: int = 8080, lang: str = "en",
                  motion_specs: Sequence[str] = (), loop_seconds: float = 10.0, watch: bool = True) -> None:
-        import viser
+        viser = backends.viser()
 
         from ..i18n import translator
 
