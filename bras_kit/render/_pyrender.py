@@ -338,6 +338,26 @@ def _make_framebuffers(inner, width: int, height: int, samples: int,  # type: ig
     return framebuffer(0) if spare and not samples else None
 
 
+FLAT_SHADER = os.path.join(os.path.dirname(os.path.abspath(__file__)), "shaders", "flat_mesh.frag")
+
+
+def use_flat_shading(pyrender, inner) -> None:  # type: ignore[no-untyped-def]
+    """Give pyrender's renderer ``inner`` a shader cache whose lit meshes (``mesh.frag``) use
+    bras-kit's copy of that shader, where a primitive with no normals is lit flat, facet by
+    facet, from the screen derivatives of its position (pyrender's own faces it to the camera).
+    Meshes are then sent indexed, each vertex once, instead of three times per facet."""
+    base = pyrender.shader_program.ShaderProgramCache
+
+    class FlatShaderCache(base):  # type: ignore[misc, valid-type]
+        def get_program(self, vertex_shader, fragment_shader, geometry_shader=None, defines=None):  # type: ignore[no-untyped-def]
+            if fragment_shader == "mesh.frag":
+                fragment_shader = FLAT_SHADER  # an absolute path: os.path.join keeps it
+            return super().get_program(vertex_shader, fragment_shader, geometry_shader, defines)
+
+    inner._program_cache.clear()
+    inner._program_cache = FlatShaderCache()
+
+
 class _ColorReader:
     """Stands in for pyrender's ``Renderer._read_main_framebuffer``: reads the colour alone,
     straight into reused buffers, rows unpadded, as a ``height`` x ``width`` picture. With
@@ -418,6 +438,24 @@ class _ColorReader:
         return picture.copy()
 
 
+def _merged(parts) -> dict[tuple[int, bool], dict[tuple[float, ...], tuple[np.ndarray, np.ndarray]]]:  # type: ignore[no-untyped-def]
+    """The parts grouped by link and lighting, then by colour, each group's triangles in one
+    vertex array (float32) and one index array (uint32): one scene node per link and one draw
+    call per colour, however many visuals and material pieces the link's meshes have."""
+    grouped: dict[tuple[int, bool], dict[tuple[float, ...], list]] = {}  # type: ignore[type-arg]
+    for part in parts:
+        grouped.setdefault((part.link, part.unlit), {}).setdefault(tuple(part.color), []).append(part)
+    out: dict[tuple[int, bool], dict[tuple[float, ...], tuple[np.ndarray, np.ndarray]]] = {}
+    for key, colours in grouped.items():
+        out[key] = {}
+        for color, members in colours.items():
+            starts = np.cumsum([0] + [len(p.vertices) for p in members])
+            vertices = np.concatenate([p.vertices for p in members]).astype(np.float32)
+            faces = np.concatenate([np.asarray(p.faces) + start for p, start in zip(members, starts)])
+            out[key][color] = (vertices, faces.astype(np.uint32))
+    return out
+
+
 def _emissive(pyrender, rgb: tuple[float, ...]):  # type: ignore[no-untyped-def]
     """A material that shows exactly ``rgb`` whatever the lights: black metal (no diffuse light, no
     specular reflection at the shader's floor of 4 %) that glows; the shader squares the glow."""
@@ -450,10 +488,11 @@ class PyrenderBackend:
         self._nodes = []
         self._solids: list[Any] = []  # meshes hidden while the TF axes are drawn on top
         self._overlays: list[Any] = []  # TF axes and targets: drawn in a second pass, over the solids
-        for part in scene.parts:
-            mesh = pyrender.Mesh([self._primitive(pyrender, part)])
-            self._nodes.append((self._scene.add(mesh), part.link))
-            (self._overlays if part.unlit else self._solids).append(mesh)
+        for (link, unlit), groups in _merged(scene.parts).items():
+            mesh = pyrender.Mesh([self._primitive(pyrender, vertices, faces, color, unlit)
+                                  for color, (vertices, faces) in groups.items()])
+            self._nodes.append((self._scene.add(mesh), link))
+            (self._overlays if unlit else self._solids).append(mesh)
         if scene.grid is not None:
             material = _emissive(pyrender, scene.grid.color)
             lines = pyrender.Primitive(positions=scene.grid.segments.reshape(-1, 3).astype(np.float32),
@@ -509,25 +548,24 @@ class PyrenderBackend:
             GL.glLineWidth(float(scale))  # the grid's lines keep one pixel once averaged
         reader = _ColorReader(camera.width, camera.height, scale, spare)
         inner._read_main_framebuffer = types.MethodType(reader, inner)
+        use_flat_shading(pyrender, inner)
         renderer._bras_kit_reader = reader  # its spare framebuffer is deleted with the renderer (_delete)
         return renderer
 
     @staticmethod
-    def _primitive(pyrender, part):  # type: ignore[no-untyped-def]
-        triangles = part.vertices[part.faces]  # (F, 3, 3)
-        normals = np.cross(triangles[:, 1] - triangles[:, 0], triangles[:, 2] - triangles[:, 0])
-        lengths = np.linalg.norm(normals, axis=1, keepdims=True)
-        normals = normals / np.where(lengths > 0, lengths, 1.0)
-        rgb, alpha = part.color[:3], float(part.color[3])
-        if part.unlit:
+    def _primitive(pyrender, vertices: np.ndarray, faces: np.ndarray,  # type: ignore[no-untyped-def]
+                   color: tuple[float, ...], unlit: bool):
+        """Indexed triangles of one colour, with no normals: the fragment shader lights each
+        facet flat from the derivatives of its position (see :func:`_compat.use_flat_shading`),
+        so a vertex shared by several facets is sent once."""
+        rgb, alpha = color[:3], float(color[3])
+        if unlit:
             material = _emissive(pyrender, rgb)
         else:
             material = pyrender.MetallicRoughnessMaterial(
                 baseColorFactor=list(_linear(rgb)) + [alpha], metallicFactor=0.0, roughnessFactor=1.0,
                 alphaMode="BLEND" if alpha < 1.0 else "OPAQUE")
-        return pyrender.Primitive(positions=triangles.reshape(-1, 3).astype(np.float32),
-                                  normals=np.repeat(normals, 3, axis=0).astype(np.float32),
-                                  material=material)
+        return pyrender.Primitive(positions=vertices, indices=faces, material=material)
 
     def render(self, transforms: np.ndarray) -> np.ndarray:
         """The picture for link transforms ``transforms`` (L, 4, 4): (H, W, 3) uint8.
