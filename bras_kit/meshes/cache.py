@@ -137,7 +137,7 @@ def write(key: str, mesh: MeshData, where: str | None = None, max_bytes: int | N
 
 def _entries(place: str) -> list[tuple[float, int, str]]:
     """(last use, size, path) of each entry file in ``place``; links and other files are skipped."""
-    out = []
+    out: list[tuple[float, int, str]] = []
     try:
         names = os.listdir(place)
     except OSError:
