@@ -154,5 +154,11 @@ def test_patch_loaded_platform_knows_pyopengls_platform_classes(module, name):
     spec = importlib.util.find_spec(module)
     assert spec is not None and f"class {name}(" in Path(spec.origin).read_text()
     assert name in _PLATFORM_CLASSES
-    platform = Path(importlib.util.find_spec("OpenGL.platform").origin).read_text()
-    assert "PLATFORM = " in platform
+    import os
+
+    if os.environ.get("PYOPENGL_PLATFORM") == name[:-len("Platform")].lower():
+        from bras_kit.render._compat import loaded_platform
+
+        _pyrender()  # loads OpenGL.platform for this platform
+        assert type(sys.modules["OpenGL.platform"].PLATFORM).__name__ == name
+        assert loaded_platform() == _PLATFORM_CLASSES[name]
