@@ -169,3 +169,16 @@ def test_indexed_meshes_lit_from_derivatives_look_as_per_facet_normals_did():
     difference = np.abs(new.astype(int) - old.astype(int)).max(axis=2)
     assert _robot_pixels(old).sum() > 2000
     assert difference.mean() < 1.0 and (difference > 24).mean() < 0.005
+
+
+def test_the_viewer_gets_each_dae_colour_one_mesh_per_link_and_colour():
+    from bras_kit.view.model import view_model
+
+    robot = load(str(ROBOTS / "panda_description" / "urdf" / "panda.urdf"), package_paths=[str(SHARE)])
+    model = view_model(robot, [str(SHARE)])
+    link0 = model.tree.index("panda_link0")
+    colours = {m.color for m in model.visuals if m.link == link0}
+    wanted = {tuple(int(round(255 * c)) for c in colour)
+              for colour in _dae_colours(ROBOTS / "panda_description" / "meshes" / "visual" / "link0.dae")}
+    assert colours == wanted
+    assert len([m for m in model.visuals if m.link == link0]) == len(wanted)
