@@ -151,6 +151,11 @@ def main(argv: Sequence[str] | None = None) -> int:
         return 0
     args.lang = lang
     command = args.command
+    if getattr(args, "no_cache", False):
+        from ..meshes import set_disk_cache
+
+        set_disk_cache(False)
+        os.environ["BRAS_KIT_NO_CACHE"] = "1"  # worker processes (grade) inherit it
     try:
         return int(_command_module(command).run(args) or 0)
     except UnknownJointError as exc:

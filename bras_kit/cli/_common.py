@@ -18,6 +18,7 @@ def add_model_arguments(parser: argparse.ArgumentParser, *, variants: bool = Tru
                         help="folder holding ROS packages, for $(find pkg) and package:// (repeatable)")
     parser.add_argument("--xacro-arg", action="append", default=[], metavar="NAME:=VALUE",
                         help="xacro argument when FILE is a .xacro (repeatable)")
+    add_cache_argument(parser)
     if variants:
         parser.add_argument("--wrist", action="store_true",
                             help="built-in arm: add the wrist joint 'poignet' (the tutorial's exercise)")
@@ -27,6 +28,12 @@ def add_model_arguments(parser: argparse.ArgumentParser, *, variants: bool = Tru
                             help="built-in arm: add <collision> shapes equal to the visuals (on with --inertials)")
         parser.add_argument("--param", action="append", default=[], metavar="NAME=VALUE",
                             help="built-in arm: change a template parameter (e.g. bras_length=0.8)")
+
+
+def add_cache_argument(parser: argparse.ArgumentParser) -> None:
+    """``--no-cache``: decode every mesh file again, neither reading nor writing the cache."""
+    parser.add_argument("--no-cache", action="store_true",
+                        help="decode mesh files again, without the cache of decoded meshes")
 
 
 def xacro_mappings(items: Iterable[str]) -> dict[str, str]:
