@@ -70,8 +70,13 @@ def node_raised(run: RunContext) -> Iterator[Hit]:
         return
     frame = failure.frames[-1] if failure.frames else None
     yield _at(frame.path if frame else run.recording.source, frame.line if frame else None,
-              kind=failure.kind, detail=failure.detail.splitlines()[0][:300] if failure.detail else "-",
+              kind=failure.kind, detail=_first_line(failure.detail),
               time=round(failure.time, 3))
+
+
+def _first_line(text: str, limit: int = 160) -> str:
+    line = text.strip().splitlines()[0] if text.strip() else "-"
+    return line if len(line) <= limit else line[:limit] + "..."
 
 
 @run_rule("BK641", "node-uses-unsimulated-ros", WARNING)
