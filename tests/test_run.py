@@ -128,7 +128,7 @@ def test_exception_at_tick_3_shows_the_learners_line_and_the_simulated_time():
     # main() -> rclpy.spin -> the timer callback: only the learner's two frames are kept
     assert [(f.path, f.function) for f in frames] == [("raises_at_tick_3.py", "main"), ("raises_at_tick_3.py", "tick")]
     source = (NODES / "raises_at_tick_3.py").read_text(encoding="utf-8").splitlines()
-    assert "self.angles[self.ticks - 1]" in source[frames[0].line - 1]
+    assert "self.angles[self.ticks - 1]" in source[frames[-1].line - 1]
 
 
 def test_while_ok_loop_with_sleep_publishes_at_20_hz():
