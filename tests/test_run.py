@@ -167,3 +167,9 @@ def test_ten_simulated_seconds_take_well_under_a_second(tutorial_run):
 def test_robot_of_a_package_is_its_urdf():
     robot = robot_of(str(TUTORIAL))
     assert [j.name for j in robot.movable_joints()] == ["epaule", "coude"]
+
+
+def test_every_run_rule_is_triggered_by_a_beginner_node():
+    from bras_kit.validate.package.run_rules import RUN_CHECKS
+
+    assert {code for *_, codes in BEGINNER_NODES for code in codes} == set(RUN_CHECKS)

@@ -21,7 +21,7 @@ def ending(recording: Recording) -> Message:
         return M("raised an exception at t={time} s", time=time)
     if ended == "not_simulated":
         return M("used something bras-kit does not simulate, at t={time} s", time=time)
-    return M("main() returned at t={time} s", time=time)
+    return M("returned from main() at t={time} s", time=time)
 
 
 def summary(recording: Recording) -> list[Message]:
