@@ -1,0 +1,109 @@
+"""bras-kit run on the command line: the tutorial's node and the scaffolded ones, -o, --gif."""
+
+from __future__ import annotations
+
+import importlib.util
+import math
+from pathlib import Path
+
+import numpy as np
+import pytest
+
+from bras_kit.motion.states_io import read_states
+from bras_kit.run import run_node
+from bras_kit.run.findings import robot_of, run_findings
+from bras_kit.scaffold import scaffold_package
+
+TUTORIAL = Path(__file__).parent / "data" / "run" / "tutorial_node"
+ORANGE_HUE = 28.2  # the forearm's material (0.95 0.5 0.1)
+GREY = 0.08  # saturation under which a pixel is the grey base
+
+
+def test_run_writes_the_joint_states_as_csv_that_read_back(run_cli, tmp_path):
+    out = tmp_path / "states.csv"
+    code, _, err = run_cli("run", str(TUTORIAL), "animation", "--duration", "1", "--quiet", "-o", str(out),
+                           "--lang", "en")
+    assert code == 0, err
+    assert "/joint_states: 20 messages at 20 Hz" in err
+    states = read_states(str(out))
+    k = np.arange(1, 21)
+    assert states.names == ["epaule", "coude"]
+    assert states.times == pytest.approx(0.05 * k)
+    assert states.positions[:, 1] == pytest.approx(1.2 * np.sin(0.7 * 0.05 * k), abs=1e-12)
+
+
+def test_run_refuses_to_overwrite_without_force(run_cli, tmp_path):
+    out = tmp_path / "states.csv"
+    out.write_text("mine\n", encoding="utf-8")
+    code, _, err = run_cli("run", str(TUTORIAL), "--duration", "1", "-o", str(out), "--lang", "en")
+    assert code == 2 and "--force" in err and out.read_text(encoding="utf-8") == "mine\n"
+
+
+def test_run_exits_1_with_the_finding_of_a_broken_node(run_cli, tmp_path):
+    node = Path(__file__).parent / "data" / "run" / "nodes" / "wrong_topic.py"
+    code, out, err = run_cli("run", str(node), "--urdf", str(TUTORIAL / "urdf" / "bras.urdf"), "--duration", "1",
+                             "--quiet", "--lang", "fr")
+    assert code == 1
+    assert "wrong_topic.py:11: BK644 error: rien n'a été publié sur /joint_states" in out
+    assert "Traceback" not in err
+
+
+def test_unknown_executable_lists_the_ones_there_are(run_cli):
+    code, _, err = run_cli("run", str(TUTORIAL), "animaton", "--lang", "en")
+    assert code == 2
+    assert "no executable 'animaton' in console_scripts" in err and "'animation'" in err
+
+
+def _hue_mask(image: np.ndarray, hue: float) -> np.ndarray:
+    rgb = image.astype(float) / 255.0
+    high, low = rgb.max(axis=2), rgb.min(axis=2)
+    span = np.where(high > low, high - low, 1.0)
+    r, g, b = rgb[..., 0], rgb[..., 1], rgb[..., 2]
+    h = np.where(high == r, ((g - b) / span) % 6, np.where(high == g, (b - r) / span + 2, (r - g) / span + 4)) * 60
+    s = np.where(high > 0, (high - low) / np.where(high > 0, high, 1), 0)
+    return (np.abs((h - hue + 180) % 360 - 180) < 12) & (s > 0.4) & (high > 0.25)
+
+
+def _base_mask(image: np.ndarray) -> np.ndarray:
+    rgb = image.astype(float) / 255.0
+    high, low = rgb.max(axis=2), rgb.min(axis=2)
+    return (high - low < GREY) & (high < 0.6) & (high > 0.25)
+
+
+def test_gif_forearm_leans_the_way_the_sines_say(run_cli, tmp_path):
+    from PIL import Image
+
+    gif = tmp_path / "arm.gif"
+    code, _, err = run_cli("run", str(TUTORIAL), "--duration", "6", "--quiet", "--gif", str(gif), "--lang", "en")
+    assert code == 0, err
+    image = Image.open(gif)
+    assert image.n_frames == 120
+    leans = {}
+    for t in (2.0, 5.0):  # frame k shows tick k + 1, t = 0.05 (k + 1)
+        image.seek(round(t / 0.05) - 1)
+        frame = np.asarray(image.convert("RGB"))
+        forearm, base = _hue_mask(frame, ORANGE_HUE), _base_mask(frame)
+        assert forearm.sum() > 200 and base.sum() > 200
+        leans[t] = np.nonzero(forearm)[1].mean() - np.nonzero(base)[1].mean()
+    # the forearm points at epaule + coude from the vertical, towards +x (right) when positive
+    assert 0.8 * math.sin(2.0) + 1.2 * math.sin(1.4) > 0 and leans[2.0] > 50
+    assert 0.8 * math.sin(5.0) + 1.2 * math.sin(3.5) < 0 and leans[5.0] < -50
+
+
+@pytest.mark.parametrize("lang", ["en", "fr"])
+@pytest.mark.parametrize("wrist", [False, True])
+def test_scaffolded_node_publishes_its_own_motion_with_no_finding(tmp_path, lang, wrist):
+    package = tmp_path / "bras_description"
+    scaffold_package(package, wrist=wrist, lang=lang)
+    recording = run_node(str(package), "animation", duration=2.0)
+    spec = importlib.util.spec_from_file_location("scaffolded_motion", package / "bras_description" / "motion.py")
+    motion = importlib.util.module_from_spec(spec)
+    spec.loader.exec_module(motion)  # plain maths, no ROS: the scaffold's own oracle
+    messages = recording.joint_state_messages()
+    assert len(messages) == 40
+    expected_names = ["epaule", "coude"] + (["poignet"] if wrist else [])
+    for k, message in enumerate(messages, start=1):
+        assert message.fields["name"] == expected_names
+        assert message.fields["position"] == pytest.approx(motion.joint_positions(0.05 * k), abs=1e-12)
+        assert message.fields["velocity"] == pytest.approx(motion.joint_velocities(0.05 * k), abs=1e-12)
+    assert run_findings(recording, robot_of(str(package)), lang=lang) == []
