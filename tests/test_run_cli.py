@@ -107,3 +107,33 @@ def test_scaffolded_node_publishes_its_own_motion_with_no_finding(tmp_path, lang
         assert message.fields["position"] == pytest.approx(motion.joint_positions(0.05 * k), abs=1e-12)
         assert message.fields["velocity"] == pytest.approx(motion.joint_velocities(0.05 * k), abs=1e-12)
     assert run_findings(recording, robot_of(str(package)), lang=lang) == []
+
+
+def test_motion_node_samples_what_the_node_published(run_cli, tmp_path):
+    out = tmp_path / "states.csv"
+    code, _, err = run_cli("motion", "--node", f"{TUTORIAL}:animation", "--duration", "2", "-o", str(out),
+                           "--lang", "en")
+    assert code == 0, err
+    states = read_states(str(out))
+    # the motion starts with the node's first message, sent at t = 0.05 s on the node's clock
+    t = states.times + 0.05
+    assert states.positions[:40, 0] == pytest.approx(0.8 * np.sin(t[:40]), abs=1e-12)
+    assert states.positions[:40, 1] == pytest.approx(1.2 * np.sin(0.7 * t[:40]), abs=1e-12)
+
+
+def test_motion_node_checks_the_limits_with_the_motion_checks(run_cli):
+    node = Path(__file__).parent / "data" / "run" / "nodes" / "degrees.py"
+    code, out, err = run_cli("motion", str(TUTORIAL / "urdf" / "bras.urdf"), "--node", str(node), "--duration", "1",
+                             "--strict", "--lang", "en")
+    assert code == 1
+    assert "coude goes past its upper limit 2 by 88 rad" in err
+
+
+def test_render_node_and_view_export_use_the_same_recording(run_cli, tmp_path):
+    gif, page = tmp_path / "arm.gif", tmp_path / "arm.html"
+    code, _, err = run_cli("render", "--node", str(TUTORIAL), "--duration", "1", "--gif", str(gif), "--lang", "en")
+    assert code == 0, err
+    assert "20 frames at 20 fps" in err
+    code, _, err = run_cli("view", "--node", str(TUTORIAL), "--duration", "1", "--export", str(page), "--lang", "en")
+    assert code == 0, err
+    assert "21 frames of animation.csv" in err

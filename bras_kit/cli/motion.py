@@ -18,6 +18,8 @@ from ..i18n import _, translate_message
 from ._common import (
     add_force_argument,
     add_model_arguments,
+    add_node_argument,
+    apply_node,
     check_writable,
     joint_values,
     load_model,
@@ -50,6 +52,7 @@ def configure(parser: argparse.ArgumentParser) -> None:
     add_model_arguments(parser)
     parser.add_argument("-m", "--motion", action="append", default=[], metavar="SPEC",
                         help="tutorial, JOINT=FORMULA or a waypoint file (repeatable; default: tutorial)")
+    add_node_argument(parser)
     parser.add_argument("--set", dest="set_values", action="append", default=[], metavar="JOINT=VALUE",
                         help="hold a joint at a value in radians (metres if prismatic) (repeatable)")
     parser.add_argument("--duration", type=float, metavar="S",
@@ -108,6 +111,7 @@ def run(args: argparse.Namespace) -> int:
     fmt = _output_format(args)
     if fmt is not None and args.output != "-":
         check_writable(args.output, args.force)
+    apply_node(args, args.duration)
     robot = load_model(args)
     motion = motion_from_specs(robot, args.motion, joint_values(args.set_values), args.interpolation)
     if args.interpolation and not any(t.waypoints is not None for t in motion.tracks):
