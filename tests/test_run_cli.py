@@ -137,3 +137,39 @@ def test_render_node_and_view_export_use_the_same_recording(run_cli, tmp_path):
     code, _, err = run_cli("view", "--node", str(TUTORIAL), "--duration", "1", "--export", str(page), "--lang", "en")
     assert code == 0, err
     assert "21 frames of animation.csv" in err
+
+
+def test_validate_run_adds_what_the_node_did_to_the_static_findings(run_cli, tmp_path):
+    import shutil
+
+    package = tmp_path / "bras_description"
+    shutil.copytree(TUTORIAL, package)
+    node = package / "bras_description" / "animation.py"
+    node.write_text(node.read_text(encoding="utf-8").replace("'joint_states', 10", "'joint_state', 10"),
+                    encoding="utf-8")
+    code, out, _ = run_cli("validate", str(package), "--lang", "en")
+    assert "BK644" not in out  # the static rules see a publisher: they cannot tell the topic is wrong
+    code, out, _ = run_cli("validate", str(package), "--run", "--duration", "1", "--lang", "en")
+    assert code == 1
+    assert f"{node}:9: BK644 error nothing was published on /joint_states" in out
+
+
+def test_grade_runs_nodes_only_when_asked(tmp_path):
+    import shutil
+
+    from bras_kit.grade import Options, load_rubric
+    from bras_kit.grade.submissions import Submission
+    from bras_kit.grade.worker import grade
+
+    package = tmp_path / "alice" / "bras_description"
+    shutil.copytree(TUTORIAL, package)
+    node = package / "bras_description" / "animation.py"
+    node.write_text(node.read_text(encoding="utf-8").replace("'joint_states', 10", "'joint_state', 10"),
+                    encoding="utf-8")
+    submission = Submission("alice", str(tmp_path / "alice"), "folder")
+    rubric = load_rubric(None)
+    quiet = grade(submission, rubric, Options(lang="en"))
+    assert not any(f["code"].startswith("BK64") for f in quiet["findings"])
+    ran = grade(submission, rubric, Options(lang="en", run_nodes=True))
+    [finding] = [f for f in ran["findings"] if f["code"].startswith("BK64")]
+    assert finding["code"] == "BK644" and finding["file"].endswith("bras_description/animation.py")
