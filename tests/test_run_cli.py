@@ -173,3 +173,18 @@ def test_grade_runs_nodes_only_when_asked(tmp_path):
     ran = grade(submission, rubric, Options(lang="en", run_nodes=True))
     [finding] = [f for f in ran["findings"] if f["code"].startswith("BK64")]
     assert finding["code"] == "BK644" and finding["file"].endswith("bras_description/animation.py")
+
+
+@pytest.mark.parametrize("lang", ["en", "fr"])
+def test_scaffold_readme_run_commands_work_as_written(run_cli, tmp_path, monkeypatch, lang):
+    import shlex
+
+    scaffold_package(tmp_path / "bras_description", lang=lang)
+    readme = (tmp_path / "bras_description" / "README.md").read_text(encoding="utf-8")
+    commands = [line.split("#")[0].strip() for line in readme.splitlines() if line.startswith("bras-kit run ")]
+    assert len(commands) == 2
+    monkeypatch.chdir(tmp_path)  # where bras-kit new made the package, as the README assumes
+    for command in commands:
+        code, _, err = run_cli(*shlex.split(command)[1:], "--duration", "1", "--quiet")
+        assert code == 0, (command, err)
+    assert (tmp_path / "states.csv").is_file() and (tmp_path / "arm.gif").is_file()
