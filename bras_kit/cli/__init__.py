@@ -38,6 +38,7 @@ COMMANDS: dict[str, str] = {
     "simulate": "physics with MuJoCo: gravity, motors limited by effort, collisions",
     "mjcf": "write the MuJoCo model (MJCF) bras-kit builds from the URDF",
     "view": "the arm live in the browser: sliders, TF frames, motion playback, reload on save",
+    "run": "run your own ROS 2 node without ROS (like ros2 run), record and check what it publishes",
     "grade": "for teachers: check, draw and score a class's submissions (process pool or Dask)",
     "doctor": "what this install can do (OpenGL, MuJoCo, viewer, browser, cache) and how to fix the rest",
 }

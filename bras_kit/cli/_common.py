@@ -3,6 +3,7 @@
 from __future__ import annotations
 
 import argparse
+import os
 import sys
 from collections.abc import Callable, Iterable, Mapping
 from typing import Any
@@ -180,3 +181,62 @@ def format_config(config: Mapping[str, float]) -> str:
     from ..i18n import _
 
     return ", ".join(f"{k}={v:g}" for k, v in config.items()) or _("zero pose")
+
+
+def add_node_argument(parser: argparse.ArgumentParser) -> None:
+    parser.add_argument("--node", metavar="PKG_DIR[:EXE]",
+                        help="the motion is what your node publishes on /joint_states (run with bras-kit run's "
+                             "stand-in for rclpy, simulated time); the robot is the package's URDF unless FILE is given")
+
+
+def apply_node(args: argparse.Namespace, duration: float | None) -> None:
+    """``--node PKG_DIR[:EXE]``: run the node (as ``bras-kit run`` does), write what it published on
+    /joint_states as a joint-state file in a temporary folder, and make that file the motion;
+    FILE defaults to the package's robot description."""
+    import atexit
+    import shutil
+    import tempfile
+
+    from ..message import M
+    from ..motion.states_io import states_to_csv
+
+    spec = getattr(args, "node", None)
+    if not spec:
+        return
+    if args.motion:
+        raise ParameterError(M("--node and --motion both say how the arm moves"), hint=M("give one of them"))
+    where, executable = _node_spec(spec)
+    if args.file is None and os.path.isdir(where):
+        from ..validate.package.sources import Package
+
+        source = Package(where).description_source()
+        if source is not None:
+            args.file = os.path.join(where, source)
+            args.package_path = [*args.package_path, os.path.dirname(os.path.abspath(where))]
+    from ..run import run_node
+    from ..run.recording import states_for
+
+    recording = run_node(where, executable, duration=duration or 10.0)
+    robot = load_model(args)
+    from ..kinematics import tf_tree
+
+    states = states_for(recording, tf_tree(robot).dof)
+    if not len(states):
+        raise ParameterError(M("the node published nothing on /joint_states in {time} s", time=recording.end),
+                             hint=M("run it with 'bras-kit run {spec}' to see what it did", spec=spec))
+    folder = tempfile.mkdtemp(prefix="bras-kit-node-")
+    atexit.register(shutil.rmtree, folder, True)
+    path = os.path.join(folder, f"{os.path.splitext(os.path.basename(recording.source))[0]}.csv")
+    with open(path, "w", encoding="utf-8") as handle:
+        handle.write(states_to_csv(states))
+    args.motion = [path]
+
+
+def _node_spec(spec: str) -> tuple[str, str | None]:
+    """``PKG_DIR``, ``PKG_DIR:EXE`` or ``node.py``."""
+    if os.path.exists(spec):
+        return spec, None
+    where, sep, executable = spec.rpartition(":")
+    if sep and where and os.path.isdir(where):
+        return where, executable or None
+    return spec, None

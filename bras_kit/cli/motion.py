@@ -17,7 +17,9 @@ from ..i18n import _, say, translate_message
 from ._common import (
     add_force_argument,
     add_model_arguments,
+    add_node_argument,
     add_topic_argument,
+    apply_node,
     joint_values,
     load_model,
     warn,
@@ -53,6 +55,7 @@ def configure(parser: argparse.ArgumentParser) -> None:
     add_model_arguments(parser)
     parser.add_argument("-m", "--motion", action="append", default=[], metavar="SPEC",
                         help="tutorial, JOINT=FORMULA or a waypoint file (repeatable; default: tutorial)")
+    add_node_argument(parser)
     parser.add_argument("--set", dest="set_values", action="append", default=[], metavar="JOINT=VALUE",
                         help="hold a joint at a value in radians (metres if prismatic) (repeatable)")
     parser.add_argument("--duration", type=float, metavar="S",
@@ -115,6 +118,7 @@ def run(args: argparse.Namespace) -> int:
                              hint="give -o run.mcap (the bag is the folder run/)")
     if fmt is not None and args.output != "-":
         check_states_output(args.output, args.force, fmt)
+    apply_node(args, args.duration)
     robot = load_model(args)
     motion = motion_from_specs(robot, args.motion, joint_values(args.set_values), args.interpolation, args.topic)
     warn_motion_notes(motion)

@@ -18,7 +18,9 @@ from ..i18n import _
 from ._common import (
     add_force_argument,
     add_model_arguments,
+    add_node_argument,
     add_topic_argument,
+    apply_node,
     check_writable,
     format_config,
     joint_values,
@@ -60,6 +62,7 @@ def configure(parser: argparse.ArgumentParser) -> None:
                         help="a joint value in rad (m if prismatic); repeatable; others are 0")
     parser.add_argument("-m", "--motion", action="append", default=[], metavar="SPEC",
                         help="tutorial, JOINT=FORMULA or a waypoint file (repeatable; default: tutorial)")
+    add_node_argument(parser)
     parser.add_argument("-o", "--output", metavar="PNG", help="write the picture of the pose here")
     parser.add_argument("--gif", nargs="?", const="", metavar="FILE", help="write the motion as a GIF")
     parser.add_argument("--mp4", nargs="?", const="", metavar="FILE", help="write the motion as an MP4")
@@ -136,6 +139,7 @@ def run(args: argparse.Namespace) -> int:
                 backend=args.backend, azimuth=args.azimuth, elevation=args.elevation, distance=args.distance,
                 antialias=args.antialias, package_paths=tuple(args.package_path))
     options = render_options(**opts)  # bad values fail before the model is even loaded
+    apply_node(args, args.duration)
     robot = load_model(args)
     if not (math.isfinite(args.fps) and 1 <= args.fps <= 120):
         raise ParameterError(f"--fps {args.fps:g} is out of range", hint="give frames per second between 1 and 120, e.g. 20")
