@@ -8,7 +8,6 @@ and, in plain words, which motor is too weak. Writes the measured joint states (
 from __future__ import annotations
 
 import argparse
-import os
 import sys
 
 from ..errors import BrasKitError, ParameterError
@@ -17,10 +16,11 @@ from ..message import M
 from ._common import (
     add_force_argument,
     add_model_arguments,
+    add_topic_argument,
     check_writable,
     joint_values,
     load_model,
-    write_text,
+    warn_motion_notes,
 )
 
 NUDGE = 0.05  # rad: the upright arm is balanced at 0; motors off, it needs a push to fall
@@ -46,6 +46,7 @@ def configure(parser: argparse.ArgumentParser) -> None:
     add_model_arguments(parser)
     parser.add_argument("-m", "--motion", action="append", default=[], metavar="SPEC",
                         help="tutorial, JOINT=FORMULA or a waypoint file (repeatable; default: tutorial)")
+    add_topic_argument(parser)
     parser.add_argument("--control", choices=("none", "pd", "pd+gravity"), default="pd",
                         help="how the motors behave (default: pd)")
     parser.add_argument("--kp", type=float, default=None, metavar="GAIN",
@@ -67,23 +68,25 @@ def configure(parser: argparse.ArgumentParser) -> None:
                              "none when absent, as in Gazebo)")
     parser.add_argument("--gif", metavar="FILE", help="draw the simulated motion as a GIF (bras-kit's renderer)")
     parser.add_argument("-o", "--output", metavar="FILE",
-                        help="write the measured joint states: .csv (time,name,position,velocity,effort) or .json")
+                        help="write the measured joint states: .csv (time,name,position,velocity,effort), .json, "
+                             "or .mcap/.db3 for a ROS 2 bag (/robot_description, /tf, /joint_states with effort)")
     parser.add_argument("--plot", metavar="FILE", help="plot positions and torques with the effort limits (.png/.svg/.pdf)")
     parser.add_argument("--strict", action="store_true", help="exit with status 1 when a motor is too weak")
     add_force_argument(parser)
 
 
 def _output_format(path: str) -> str:
-    suffix = os.path.splitext(path)[1].lower()
-    if path == "-" or suffix == ".csv":
-        return "csv"
-    if suffix == ".json":
-        return "json"
-    raise ParameterError(M("cannot tell the format of '{path}'", path=path), hint=M("end the file name in .csv or .json"))
+    from ..motion.states_io import states_format
+
+    fmt = states_format(path)
+    if fmt is None:
+        raise ParameterError(M("cannot tell the format of '{path}'", path=path),
+                             hint=M("end the file name in .csv, .json or .mcap (a ROS 2 bag)"))
+    return fmt
 
 
 def run(args: argparse.Namespace) -> int:
-    from ..motion import motion_from_specs, states_to_csv, states_to_json
+    from ..motion import motion_from_specs
     from ..physics import mjcf
     from ..physics.diagnostics import (
         DIVERGENCE_HINT,
@@ -104,12 +107,17 @@ def run(args: argparse.Namespace) -> int:
         output_suffix(args.plot, FIGURE_FORMATS)
     if args.gif and not args.gif.lower().endswith(".gif"):
         raise ParameterError(M("cannot write '{path}' as a GIF", path=args.gif), hint=M("end the file name in .gif"))
-    for path in (args.output, args.plot, args.gif):
+    if args.output and args.output != "-":
+        from ..motion.states_io import check_states_output
+
+        check_states_output(args.output, args.force, fmt)
+    for path in (args.plot, args.gif):
         if path and path != "-":
             check_writable(path, args.force)
     robot = load_model(args)
     check_physics_ready(robot, lang)
-    motion = motion_from_specs(robot, args.motion)
+    motion = motion_from_specs(robot, args.motion, topic=args.topic)
+    warn_motion_notes(motion)
     start = joint_values(args.start)
     if args.control == "none" and not start:
         from ..kinematics import tf_tree
@@ -132,7 +140,11 @@ def run(args: argparse.Namespace) -> int:
         return 1
     try:
         if fmt is not None:
-            write_text(args.output, states_to_json(states) if fmt == "json" else states_to_csv(states), args.force)
+            from ..motion.states_io import write_states
+
+            written = write_states(robot, states, args.output, args.force, fmt)
+            if written is not None:
+                print(say(written), file=sys.stderr)
         if args.plot:
             from ..physics.plot import save_torque_plot
 

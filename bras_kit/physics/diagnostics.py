@@ -13,6 +13,7 @@ import os
 from collections.abc import Sequence
 from dataclasses import dataclass
 
+from .. import backends
 from ..errors import ModelError
 from ..i18n import current_language, say
 from ..message import M, Message, Mn
@@ -72,7 +73,7 @@ def physics_notes(robot: Robot, built: MjcfModel, lang: str | None = None,
              if not (f.code in ("BK500", "BK501") and f.name in frames)]
     if built.density_links:
         model = built.compile()
-        import mujoco
+        mujoco = backends.mujoco()
 
         for link in built.density_links:
             body = mujoco.mj_name2id(model, mujoco.mjtObj.mjOBJ_BODY, link)

@@ -7,7 +7,9 @@ Visual shapes are drawn but never touch anything (``contype=0``); ``<collision>`
 with each other and with a floor put under the lowest point of the fixed base.
 
 Meshes are resolved by bras-kit (``package://``, relative paths) and handed to MuJoCo as assets;
-formats MuJoCo cannot read (DAE) are converted to STL through trimesh.
+formats MuJoCo cannot read (DAE) are converted to STL from the decoded mesh (:mod:`bras_kit.meshes`).
+A visual mesh whose file gives its own materials becomes one geom per material piece, each with
+that colour (RViz's rule: the mesh's materials win, the URDF ``<material>`` colours the rest).
 """
 
 from __future__ import annotations
@@ -21,6 +23,7 @@ from xml.sax.saxutils import quoteattr
 
 import numpy as np
 
+from .. import backends
 from ..errors import ModelError
 from ..kinematics import matrix_to_quat_xyzw, rpy_to_matrix
 from ..message import M, Mn
@@ -103,7 +106,7 @@ def quiet_mujoco() -> Iterator[list[str]]:
 
 
 def compile_xml(xml: str, assets: Mapping[str, bytes], name: str = "robot"):  # type: ignore[no-untyped-def]
-    import mujoco
+    mujoco = backends.mujoco()
 
     try:
         with quiet_mujoco():
@@ -155,6 +158,7 @@ class _Meshes:
         self.robot, self.package_paths = robot, package_paths
         self.assets: dict[str, MeshAsset] = {}
         self._keys: dict[tuple[str, tuple[float, ...]], str] = {}
+        self._piece_names: dict[tuple[str, str], list[tuple[str, tuple[float, float, float, float] | None]]] = {}
         self.converted: list[str] = []
 
     def asset(self, geometry: Geometry) -> tuple[str, str]:
@@ -165,40 +169,67 @@ class _Meshes:
         scale = tuple(geometry.scale or (1.0, 1.0, 1.0))
         key = (path, scale)
         if key not in self._keys:
-            stem = os.path.splitext(os.path.basename(path))[0]
-            name = f"m{len(self._keys)}_{stem}"
+            name = self._name(path)
             suffix = os.path.splitext(path)[1].lower()
             if suffix in MUJOCO_MESH_SUFFIXES:
                 with open(path, "rb") as handle:
                     data = handle.read()
                 self.assets[name] = MeshAsset(name + suffix, data, path)
             else:
-                self.assets[name] = MeshAsset(name + ".stl", _to_stl(path, self.robot, geometry.line), path, True)
+                data = self._decoded(path, geometry)
+                self.assets[name] = MeshAsset(name + ".stl", binary_stl(data.vertices, data.faces), path, True)
                 self.converted.append(path)
             self._keys[key] = name
-        name = self._keys[key]
-        scale_attr = f' scale="{_vec(scale)}"' if scale != (1.0, 1.0, 1.0) else ""
-        return name, scale_attr
+        return self._keys[key], _scale_attr(scale)
+
+    def pieces(self, geometry: Geometry) -> list[tuple[str, tuple[float, float, float, float] | None]] | None:
+        """(mesh name, own colour) of each material piece of a mesh whose file gives colours of
+        its own; None for a mesh with one piece and no material (the URDF's colour applies)."""
+        from ..render.scene import resolve_mesh_path
+
+        path = resolve_mesh_path(geometry.filename or "", self.robot, self.package_paths, geometry.line)
+        data = self._decoded(path, geometry)
+        if len(data) == 1 and all(p.color is None for p in data.pieces()):
+            return None
+        key = (path, "pieces")
+        if key not in self._piece_names:
+            names = []
+            for piece in data.pieces():
+                name = self._name(path)
+                self.assets[name] = MeshAsset(name + ".stl", binary_stl(piece.vertices, piece.faces), path, True)
+                names.append((name, piece.color))
+            self._piece_names[key] = names
+            if path not in self.converted:
+                self.converted.append(path)
+        return self._piece_names[key]
+
+    def _name(self, path: str) -> str:
+        stem = os.path.splitext(os.path.basename(path))[0]
+        name = f"m{len(self.assets)}_{stem}"
+        return name
+
+    def _decoded(self, path: str, geometry: Geometry):  # type: ignore[no-untyped-def]
+        from ..render.scene import mesh_file_data
+
+        return mesh_file_data(path, self.robot, geometry.line)
 
     def xml(self) -> list[str]:
         return [f'    <mesh name="{name}" file="{asset.name}" inertia="shell"/>' for name, asset in self.assets.items()]
 
 
-def _to_stl(path: str, robot: Robot, line: int | None) -> bytes:
-    """A mesh MuJoCo cannot read (DAE, PLY...) as binary STL, through trimesh."""
-    import trimesh
+def _scale_attr(scale: tuple[float, ...]) -> str:
+    return f' scale="{_vec(scale)}"' if scale != (1.0, 1.0, 1.0) else ""
 
-    try:
-        mesh = trimesh.load(path, force="mesh")
-    except Exception as exc:  # trimesh raises many kinds for bad files
-        raise ModelError(M("cannot convert mesh {path} for MuJoCo: {reason}", path=path, reason=str(exc)),
-                         path=robot.path, line=line, element="mesh",
-                         hint=M("export it as STL or OBJ, which MuJoCo reads directly")) from None
-    if not isinstance(mesh, trimesh.Trimesh) or len(mesh.faces) == 0:
-        raise ModelError(M("mesh {path} holds no triangles", path=path), path=robot.path, line=line, element="mesh",
-                         hint=M("export the mesh as triangles (STL or OBJ)"))
-    data = mesh.export(file_type="stl")
-    return data if isinstance(data, bytes) else str(data).encode()
+
+def binary_stl(vertices: np.ndarray, faces: np.ndarray) -> bytes:
+    """Triangles as a binary STL file (facet normals from the winding)."""
+    corners = np.asarray(vertices, dtype=np.float32)[np.asarray(faces)]  # (F, 3, 3)
+    normals = np.cross(corners[:, 1] - corners[:, 0], corners[:, 2] - corners[:, 0])
+    lengths = np.linalg.norm(normals, axis=1, keepdims=True)
+    normals = (normals / np.where(lengths > 0, lengths, 1.0)).astype(np.float32)
+    records = np.zeros(len(faces), dtype=[("normal", "<f4", 3), ("corners", "<f4", (3, 3)), ("attribute", "<u2")])
+    records["normal"], records["corners"] = normals, corners
+    return b"bras-kit".ljust(80, b" ") + np.uint32(len(faces)).tobytes() + records.tobytes()
 
 
 def _geom_shape(geometry: Geometry | None, meshes: _Meshes) -> str | None:
@@ -358,6 +389,17 @@ def build_mjcf(robot: Robot, *, package_paths: Sequence[str] = (), kp: float | M
                 else:
                     massless.append(link_name)
             for n, visual in enumerate(link.visuals, 1):
+                pieces = meshes.pieces(visual.geometry) if visual.geometry is not None and \
+                    visual.geometry.kind == "mesh" and visual.geometry.filename else None
+                if pieces:
+                    scale = _scale_attr(tuple(visual.geometry.scale or (1.0, 1.0, 1.0)))  # type: ignore[union-attr]
+                    fallback = robot.material_rgba(visual) or (0.7, 0.7, 0.7, 1.0)
+                    for k, (mesh_name, own) in enumerate(pieces, 1):
+                        body_lines.append(
+                            f'{pad}  <geom name={_name(f"{link_name}/visual{n}.{k}")} type="mesh" mesh="{mesh_name}"'
+                            f'{scale}{_pose_attrs(visual.origin)} rgba="{_vec(own or fallback)}" contype="0" '
+                            f'conaffinity="0" group="{VISUAL_GROUP}" density="0"/>')
+                    continue
                 shape = _geom_shape(visual.geometry, meshes)
                 if shape:
                     body_lines.append(
@@ -448,7 +490,7 @@ def _document(robot: Robot, bodies: list[str], meshes: _Meshes, actuators: list[
 
 def _world_boxes(model) -> tuple[np.ndarray, np.ndarray]:  # type: ignore[no-untyped-def]
     """Each geom's axis-aligned box in the world at the zero pose: centres and half sizes."""
-    import mujoco
+    mujoco = backends.mujoco()
 
     data = mujoco.MjData(model)
     mujoco.mj_kinematics(model, data)
@@ -464,7 +506,7 @@ def _world_boxes(model) -> tuple[np.ndarray, np.ndarray]:  # type: ignore[no-unt
 
 def _floor_and_touching(model, robot: Robot) -> tuple[float, list[tuple[str, str, str]]]:  # type: ignore[no-untyped-def]
     """The floor height (under the fixed base's lowest point) and the parent/child pairs whose shapes touch."""
-    import mujoco
+    mujoco = backends.mujoco()
 
     centres, halves = _world_boxes(model)
     floor_geom = mujoco.mj_name2id(model, mujoco.mjtObj.mjOBJ_GEOM, "floor")
@@ -493,7 +535,7 @@ def _overlapping_at_start(model, floor_geom: int) -> list[tuple[str, str, str]]:
     Left alone they push each other apart for ever (fingers of a gripper, a hand folded on the
     wrist): MuJoCo's own models exclude such pairs, so does bras-kit. The joint name is empty.
     """
-    import mujoco
+    mujoco = backends.mujoco()
 
     data = mujoco.MjData(model)
     mujoco.mj_forward(model, data)

@@ -10,6 +10,7 @@ from typing import TYPE_CHECKING, Any
 
 import numpy as np
 
+from .. import backends
 from ..diagrams.output import FIGURE_FORMATS, output_suffix, save_figure
 from ..i18n import say
 from ..message import M
@@ -23,6 +24,7 @@ _LIMIT_LINE = "#b03a2e"
 
 def torque_figure(robot: Robot, states: Any, lang: str | None = None) -> Figure:
     """Two rows per run: positions (measured, reference) and torques with +-effort, one column per joint."""
+    backends.matplotlib()
     from matplotlib.figure import Figure
 
     position, torque = say(M("position"), lang), say(M("torque"), lang)

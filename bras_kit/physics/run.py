@@ -15,6 +15,7 @@ from dataclasses import dataclass, field
 
 import numpy as np
 
+from .. import backends
 from ..errors import ParameterError
 from ..kinematics import tf_tree
 from ..message import M, Message
@@ -130,7 +131,7 @@ def simulate(robot: Robot, motion: Motion | Sequence[str] | None = None, *, cont
     every joint. A run that becomes unstable (NaN) stops there: ``diverged`` says when and where.
     ``lang`` (``en``/``fr``): the words of a model error.
     """
-    import mujoco
+    mujoco = backends.mujoco()
 
     from .diagnostics import check_physics_ready
 
@@ -243,14 +244,14 @@ def _steps(model, data, steps: int, start: float, timestep: float) -> Divergence
 
 
 def _geom_name(model, geom: int) -> str:  # type: ignore[no-untyped-def]
-    import mujoco
+    mujoco = backends.mujoco()
 
     return mujoco.mj_id2name(model, mujoco.mjtObj.mjOBJ_GEOM, geom) or f"geom {geom}"
 
 
 def _needed_torques(model, qadr, vadr, times, q_ref, qd_ref) -> np.ndarray:  # type: ignore[no-untyped-def]
     """Inverse dynamics along the reference: the torque each joint would need to follow it exactly."""
-    import mujoco
+    mujoco = backends.mujoco()
 
     data = mujoco.MjData(model)
     qdd = np.gradient(qd_ref, times, axis=0) if len(times) > 1 else np.zeros_like(qd_ref)

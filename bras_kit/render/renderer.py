@@ -105,6 +105,11 @@ def open_backend(scene: Scene, camera: Camera, options: RenderOptions,  # type: 
     return SoftwareBackend(scene, camera, options.background)
 
 
+def used_software_fallback() -> bool:
+    """Whether backend 'auto' fell back to the pure-CPU renderer in this process (no OpenGL here)."""
+    return _announced_fallback
+
+
 MAX_RENDER_LINKS = 5000  # real robots have a few hundred at most; each link costs a scene node
 MAX_DRAWN_METRES = 1e6  # a joint offset past this is a typo or a fuzzer: no camera frames it
 
