@@ -495,3 +495,20 @@ def test_decompression_bomb_is_refused_without_filling_memory(tmp_path, run_cli)
     assert "damaged" in str(caught.value) and "bomb.mcap" in str(caught.value)
     assert peak < 16 << 20
     _hostile(run_cli, bag, "bomb.mcap", "damaged")
+
+
+def test_a_name_ending_in_a_slash_is_the_bag_folder(tmp_path, run_cli):
+    code, _, err = run_cli("motion", "--duration", "0.5", "-o", str(tmp_path / "trial") + "/")
+    assert code == 0, err
+    assert sorted(os.listdir(tmp_path / "trial")) == ["metadata.yaml", "trial.mcap"]
+    assert len(_read_foxglove(str(tmp_path / "trial" / "trial.mcap"))["/joint_states"]) == 11
+
+
+def test_bag_errors_and_findings_speak_french(tmp_path, run_cli):
+    bag = _foxglove_bag(str(tmp_path / "pince.mcap"),
+                        [(t, ["epaule", "coude", "pince"], [0.1, 0.2, 0.3]) for t in (0.0, 0.05, 0.1)])
+    code, _, err = run_cli("--lang", "fr", "motion", "--motion", bag)
+    assert code == 0, err
+    assert "l'enregistrement nomme des articulations que ce robot ne peut pas bouger: 'pince'" in err
+    code, _, err = run_cli("--lang", "fr", "motion", "--motion", bag, "--topic", "/autre")
+    assert code == 2 and "le bag n'a pas de sujet /autre" in err and "choisissez-en un avec --topic" in err
