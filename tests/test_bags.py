@@ -512,3 +512,13 @@ def test_bag_errors_and_findings_speak_french(tmp_path, run_cli):
     assert "l'enregistrement nomme des articulations que ce robot ne peut pas bouger: 'pince'" in err
     code, _, err = run_cli("--lang", "fr", "motion", "--motion", bag, "--topic", "/autre")
     assert code == 2 and "le bag n'a pas de sujet /autre" in err and "choisissez-en un avec --topic" in err
+
+
+def test_simulate_records_measured_states_with_their_torques(tmp_path, run_cli):
+    code, _, err = run_cli("simulate", "--inertials", "--duration", "1", "-o", str(tmp_path / "sim.mcap"))
+    assert code == 0, err
+    topics = _read_foxglove(str(tmp_path / "sim" / "sim.mcap"))
+    states = [message for _, _, message in topics["/joint_states"]]
+    assert len(states) == 21 and len(topics["/tf"]) == 21
+    assert all(list(m.name) == ["epaule", "coude"] and len(m.effort) == 2 for m in states)
+    assert any(abs(e) > 0.01 for m in states for e in m.effort)  # the motors work against gravity
