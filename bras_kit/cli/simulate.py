@@ -11,7 +11,8 @@ import argparse
 import sys
 
 from ..errors import BrasKitError, ParameterError
-from ..i18n import _
+from ..i18n import say
+from ..message import M
 from ._common import (
     add_force_argument,
     add_model_arguments,
@@ -26,7 +27,7 @@ NUDGE = 0.05  # rad: the upright arm is balanced at 0; motors off, it needs a pu
 
 _EPILOG = """\
 control:
-  none         motors off: the arm falls from --start and comes to rest on its limits (or the floor)
+  none         motors off: the arm falls from --set and comes to rest on its limits (or the floor)
   pd           motors follow the motion: torque = kp (target - q) + kd (target speed - speed),
                clipped to each joint's <limit effort>
   pd+gravity   the same plus gravity compensation (inside the same effort clip)
@@ -52,9 +53,9 @@ def configure(parser: argparse.ArgumentParser) -> None:
                         help="stiffness of every motor, N·m/rad (default: 100)")
     parser.add_argument("--kd", type=float, default=None, metavar="GAIN",
                         help="damping of every motor, N·m·s/rad (default: 10)")
-    parser.add_argument("--start", action="append", default=[], metavar="JOINT=VALUE",
+    parser.add_argument("--set", "--start", dest="start", action="append", default=[], metavar="JOINT=VALUE",
                         help="pose at t=0, at rest (default: the motion's first pose; "
-                             f"with --control none, {NUDGE:g} rad on every joint)")
+                             f"with --control none, {NUDGE:g} rad on every joint); --start is the old name")
     parser.add_argument("--duration", type=float, metavar="S",
                         help="seconds to simulate (default: the last waypoint's time, else 10)")
     parser.add_argument("--rate", type=float, default=20.0, metavar="HZ",
@@ -63,7 +64,8 @@ def configure(parser: argparse.ArgumentParser) -> None:
     parser.add_argument("--integrator", choices=("implicitfast", "implicit", "RK4", "Euler"), default=None,
                         help="MuJoCo integrator (default: implicitfast)")
     parser.add_argument("--damping", type=float, default=None, metavar="B",
-                        help="joint friction, N·m·s/rad (default: 0.05; 0 for none)")
+                        help="joint damping on every joint, N·m·s/rad (default: each joint's <dynamics damping>, "
+                             "none when absent, as in Gazebo)")
     parser.add_argument("--gif", metavar="FILE", help="draw the simulated motion as a GIF (bras-kit's renderer)")
     parser.add_argument("-o", "--output", metavar="FILE",
                         help="write the measured joint states: .csv (time,name,position,velocity,effort), .json, "
@@ -78,15 +80,22 @@ def _output_format(path: str) -> str:
 
     fmt = states_format(path)
     if fmt is None:
-        raise ParameterError(f"cannot tell the format of '{path}'",
-                             hint="end the file name in .csv, .json or .mcap (a ROS 2 bag)")
+        raise ParameterError(M("cannot tell the format of '{path}'", path=path),
+                             hint=M("end the file name in .csv, .json or .mcap (a ROS 2 bag)"))
     return fmt
 
 
 def run(args: argparse.Namespace) -> int:
     from ..motion import motion_from_specs
     from ..physics import mjcf
-    from ..physics.diagnostics import check_physics_ready, physics_notes, report_text
+    from ..physics.diagnostics import (
+        DIVERGENCE_HINT,
+        LEVELS,
+        check_physics_ready,
+        divergence_message,
+        physics_notes,
+        report_text,
+    )
     from ..physics.run import simulate
     from ..validate.i18n import default_language
 
@@ -97,7 +106,7 @@ def run(args: argparse.Namespace) -> int:
 
         output_suffix(args.plot, FIGURE_FORMATS)
     if args.gif and not args.gif.lower().endswith(".gif"):
-        raise ParameterError(f"cannot write '{args.gif}' as a GIF", hint="end the file name in .gif")
+        raise ParameterError(M("cannot write '{path}' as a GIF", path=args.gif), hint=M("end the file name in .gif"))
     if args.output and args.output != "-":
         from ..motion.states_io import check_states_output
 
@@ -120,14 +129,17 @@ def run(args: argparse.Namespace) -> int:
                       duration=args.duration, rate=args.rate, start=start or None,
                       timestep=mjcf.DEFAULT_TIMESTEP if args.timestep is None else args.timestep,
                       integrator=args.integrator or mjcf.DEFAULT_INTEGRATOR,
-                      damping=mjcf.DEFAULT_DAMPING if args.damping is None else args.damping,
-                      package_paths=args.package_path)
+                      damping=args.damping, package_paths=args.package_path)
     for note in physics_notes(robot, states.model, lang, args.package_path):  # type: ignore[arg-type]
-        print(f"{_(note.level)}: {note.text}", file=sys.stderr)
+        print(f"{say(LEVELS[note.level], lang)}: {note.worded(lang)}", file=sys.stderr)
     print(report_text(robot, states, lang))
+    diverged = divergence_message(states)
+    if diverged is not None:  # a failure: no file is written from numbers that stopped being numbers
+        print(f"bras-kit simulate: {say(M('error'), lang)}: {say(diverged, lang)}\n"
+              f"  {say(M('hint'), lang)}: {say(DIVERGENCE_HINT, lang)}", file=sys.stderr)
+        return 1
     try:
         if fmt is not None:
-            from ..i18n import say
             from ..motion.states_io import write_states
 
             written = write_states(robot, states, args.output, args.force, fmt)
@@ -137,15 +149,15 @@ def run(args: argparse.Namespace) -> int:
             from ..physics.plot import save_torque_plot
 
             save_torque_plot(robot, states, args.plot, lang)
-            print(_("wrote {path}").format(path=args.plot), file=sys.stderr)
+            print(say(M("wrote {path}", path=args.plot), lang), file=sys.stderr)
         if args.gif:
             from ..render import render_motion, save_gif
 
             with render_motion(robot, states, package_paths=tuple(args.package_path)) as frames:
                 count = save_gif(frames, args.gif, fps=args.rate)
-            print(_("wrote {path}: {count} frames at {fps:g} fps").format(path=args.gif, count=count, fps=args.rate),
-                  file=sys.stderr)
+            print(say(M("wrote {path}: {count} frames at {fps} fps", path=args.gif, count=count, fps=args.rate),
+                      lang), file=sys.stderr)
     except OSError as exc:
-        raise BrasKitError(f"cannot write {exc.filename or 'the output'}: {exc.strerror or exc}",
-                           hint="check the folder exists, is writable and has space") from None
+        raise BrasKitError(M("cannot write {path}: {reason}", path=exc.filename or "-", reason=exc.strerror or str(exc)),
+                           hint=M("check the folder exists, is writable and has space")) from None
     return 1 if args.strict and states.weak_joints else 0

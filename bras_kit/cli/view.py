@@ -8,7 +8,7 @@ import os
 import sys
 
 from ..i18n import _
-from ._common import add_force_argument, add_model_arguments
+from ._common import add_force_argument, add_model_arguments, add_node_argument, apply_node
 
 EPILOG = """\
 examples:
@@ -24,6 +24,7 @@ def configure(parser: argparse.ArgumentParser) -> None:
     add_model_arguments(parser)
     parser.add_argument("-m", "--motion", action="append", default=[], metavar="SPEC",
                         help="a motion to play: 'tutorial', JOINT=FORMULA or a waypoint/joint-state file (repeatable)")
+    add_node_argument(parser)
     parser.add_argument("--port", type=int, default=8080, help="port of the page (default 8080; the next free one if taken)")
     parser.add_argument("--host", default="127.0.0.1",
                         help="address to listen on (default 127.0.0.1: this computer only)")
@@ -43,6 +44,7 @@ def run(args: argparse.Namespace) -> int:
 
     if not 0 <= args.port <= 65535:
         raise ParameterError(f"--port {args.port} is out of range", hint="give a port between 1024 and 65535, e.g. 8080")
+    apply_node(args, args.duration)
     if args.file is not None and (args.wrist or args.inertials or args.param or args.collisions):
         raise ParameterError("--wrist, --inertials, --collisions and --param apply to the built-in arm only",
                              hint="drop FILE to use the built-in arm, or edit your file")
