@@ -522,3 +522,19 @@ def test_simulate_records_measured_states_with_their_torques(tmp_path, run_cli):
     assert len(states) == 21 and len(topics["/tf"]) == 21
     assert all(list(m.name) == ["epaule", "coude"] and len(m.effort) == 2 for m in states)
     assert any(abs(e) > 0.01 for m in states for e in m.effort)  # the motors work against gravity
+
+
+def test_run_records_what_the_tutorial_node_published(tmp_path, run_cli):
+    """bras-kit run -o run.mcap: the node's /joint_states, with the package's URDF and its TF."""
+    node = os.path.join(os.path.dirname(__file__), "data", "run", "tutorial_node")
+    code, _, err = run_cli("run", node, "animation", "--duration", "1", "--quiet", "-o", str(tmp_path / "node.mcap"))
+    assert code == 0, err
+    topics = _read_foxglove(str(tmp_path / "node" / "node.mcap"))
+    states = topics["/joint_states"]
+    assert len(states) == 20 and len(topics["/tf"]) == 20
+    for _, log_time, message in states:
+        t = log_time * 1e-9
+        assert message.position == pytest.approx(list(_tutorial(np.array(t))), abs=1e-9)
+    (_, _, description), = topics["/robot_description"]
+    with open(os.path.join(node, "urdf", "bras.urdf"), encoding="utf-8") as handle:
+        assert description.data == handle.read()
