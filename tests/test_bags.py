@@ -538,3 +538,11 @@ def test_run_records_what_the_tutorial_node_published(tmp_path, run_cli):
     (_, _, description), = topics["/robot_description"]
     with open(os.path.join(node, "urdf", "bras.urdf"), encoding="utf-8") as handle:
         assert description.data == handle.read()
+
+
+def test_validate_finds_a_recording_past_the_limits(tmp_path, run_cli):
+    samples = [(t, ["epaule", "coude"], [e, 2.5 * math.sin(t)]) for t, _, (e, _) in _tutorial_samples(3.0)]
+    bag = _foxglove_bag(str(tmp_path / "far.mcap"), samples)
+    code, out, err = run_cli("validate", "--motion", bag, "--lang", "en")
+    assert code == 1, out + err
+    assert "BK304" in out and "coude" in out
