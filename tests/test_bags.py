@@ -546,3 +546,12 @@ def test_validate_finds_a_recording_past_the_limits(tmp_path, run_cli):
     code, out, err = run_cli("validate", "--motion", bag, "--lang", "en")
     assert code == 1, out + err
     assert "BK304" in out and "coude" in out
+
+
+def test_view_exports_a_page_replaying_a_recording_on_another_topic(tmp_path, run_cli):
+    bag = _foxglove_bag(str(tmp_path / "arm.mcap"), _tutorial_samples(), topic="/arm/joint_states")
+    code, _, err = run_cli("view", "--motion", bag, "--topic", "/arm/joint_states", "--export",
+                           str(tmp_path / "replay.html"))
+    assert code == 0, err
+    assert "41 frames" in err and "arm.mcap /arm/joint_states" in err
+    assert (tmp_path / "replay.html").stat().st_size > 0

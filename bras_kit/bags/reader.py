@@ -246,7 +246,7 @@ def read_recording(path: str, topic: str | None = None) -> Recording:
     for timestamp, data in stream:  # type: ignore[misc]
         count += 1
         try:
-            message = store.deserialize_cdr(data, JOINT_STATE_TYPE)
+            message: Any = store.deserialize_cdr(data, JOINT_STATE_TYPE)
             names = [str(n) for n in message.name]
             positions = np.asarray(message.position, dtype=float)
             stamp = int(message.header.stamp.sec) * 1_000_000_000 + int(message.header.stamp.nanosec)
