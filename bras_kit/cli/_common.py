@@ -19,6 +19,7 @@ def add_model_arguments(parser: argparse.ArgumentParser, *, variants: bool = Tru
                         help="folder holding ROS packages, for $(find pkg) and package:// (repeatable)")
     parser.add_argument("--xacro-arg", action="append", default=[], metavar="NAME:=VALUE",
                         help="xacro argument when FILE is a .xacro (repeatable)")
+    add_cache_argument(parser)
     if variants:
         parser.add_argument("--wrist", action="store_true",
                             help="built-in arm: add the wrist joint 'poignet' (the tutorial's exercise)")
@@ -28,6 +29,12 @@ def add_model_arguments(parser: argparse.ArgumentParser, *, variants: bool = Tru
                             help="built-in arm: add <collision> shapes equal to the visuals (on with --inertials)")
         parser.add_argument("--param", action="append", default=[], metavar="NAME=VALUE",
                             help="built-in arm: change a template parameter (e.g. bras_length=0.8)")
+
+
+def add_cache_argument(parser: argparse.ArgumentParser) -> None:
+    """``--no-cache``: decode every mesh file again, neither reading nor writing the cache."""
+    parser.add_argument("--no-cache", action="store_true",
+                        help="decode mesh files again, without the cache of decoded meshes")
 
 
 def xacro_mappings(items: Iterable[str]) -> dict[str, str]:
@@ -72,6 +79,18 @@ def joint_values(items: Iterable[str]) -> dict[str, float]:
                                  hint="give radians for revolute joints and metres for prismatic ones: "
                                       "0.5, 1,5, pi/2, -0.5*pi, or degrees said explicitly: 90deg") from None
     return values
+
+
+def add_topic_argument(parser: argparse.ArgumentParser) -> None:
+    """``--topic``: which JointState topic a ROS 2 bag given to --motion is read from."""
+    parser.add_argument("--topic", metavar="NAME", default=None,
+                        help="with a ROS 2 bag as --motion: the JointState topic to replay (default: /joint_states)")
+
+
+def warn_motion_notes(motion: Any) -> None:
+    """What was odd in the motion's input (a recording's gaps, unknown joints...), one warning each."""
+    for note in getattr(motion, "notes", ()):
+        warn(note)
 
 
 def add_force_argument(parser: argparse.ArgumentParser) -> None:

@@ -8,7 +8,7 @@ import sys
 import time
 
 from ..i18n import _
-from ._common import add_force_argument
+from ._common import add_cache_argument, add_force_argument
 
 EPILOG = """\
 examples:
@@ -37,6 +37,7 @@ def configure(parser: argparse.ArgumentParser) -> None:
     parser.add_argument("--gradescope", action="store_true",
                         help="also write one results.json per learner in Gradescope's shape (gradescope/)")
     parser.add_argument("--no-pictures", action="store_true", help="skip the pictures (faster)")
+    add_cache_argument(parser)
     parser.add_argument("--gif", action="store_true",
                         help="also draw each arm moving (the tutorial's motion) as pictures/LEARNER.gif")
     parser.add_argument("--run-nodes", action="store_true",

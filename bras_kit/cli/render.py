@@ -19,12 +19,14 @@ from ._common import (
     add_force_argument,
     add_model_arguments,
     add_node_argument,
+    add_topic_argument,
     apply_node,
     check_writable,
     format_config,
     joint_values,
     load_model,
     warn,
+    warn_motion_notes,
     warn_out_of_limits,
 )
 
@@ -39,7 +41,8 @@ outputs (any together; with none, writes ROBOT.png of the pose):
   --gif [anim.gif]          the motion as a looping GIF (default name: ROBOT.gif)
   --mp4 [anim.mp4]          the motion as an H.264 video (default name: ROBOT.mp4)
   --frames-dir DIR          the motion as DIR/frame_0000.png, frame_0001.png ...
-The motion is --motion SPEC (tutorial, JOINT=FORMULA or a waypoint file, as in 'bras-kit motion');
+  --record run.mcap         the joint states drawn, as a ROS 2 bag (or .csv, .json)
+The motion is --motion SPEC (tutorial, JOINT=FORMULA, a waypoint file or a ROS 2 bag, as in 'bras-kit motion');
 without it, the tutorial's animation node. It lasts --duration seconds at --fps: duration x fps frames.
 
 examples:
@@ -64,6 +67,10 @@ def configure(parser: argparse.ArgumentParser) -> None:
     parser.add_argument("--gif", nargs="?", const="", metavar="FILE", help="write the motion as a GIF")
     parser.add_argument("--mp4", nargs="?", const="", metavar="FILE", help="write the motion as an MP4")
     parser.add_argument("--frames-dir", metavar="DIR", help="write each frame as DIR/frame_NNNN.png")
+    parser.add_argument("--record", metavar="FILE",
+                        help="also write the joint states drawn: .mcap/.db3 (a ROS 2 bag for Foxglove and "
+                             "ros2 bag play), .csv or .json")
+    add_topic_argument(parser)
     parser.add_argument("--size", default="640x480", metavar="WxH", help="picture size in pixels (default 640x480)")
     parser.add_argument("--fps", type=float, default=20.0, metavar="N",
                         help="frames per second of the animation (default 20, like the tutorial's node)")
@@ -151,7 +158,7 @@ def run(args: argparse.Namespace) -> int:
     animated = args.gif is not None or args.mp4 is not None or args.frames_dir is not None
     defaulted = []
     if not animated and args.output is None:
-        if args.motion:  # a motion asks for an animation
+        if args.motion or args.record:  # a motion (or its recording) asks for an animation
             args.gif = ""
             animated = True
         else:
@@ -176,6 +183,10 @@ def run(args: argparse.Namespace) -> int:
             check_writable(path, args.force, option=option)
     if args.frames_dir is not None:
         _check_frames_dir(args.frames_dir, args.force)
+    if args.record is not None:
+        from ..motion.states_io import check_states_output
+
+        check_states_output(args.record, args.force, option="--record")
     size = f"{options.width}x{options.height}"
 
     if not animated:
@@ -188,7 +199,8 @@ def run(args: argparse.Namespace) -> int:
 
     from ..motion import motion_from_specs, sample_loop
 
-    motion = motion_from_specs(robot, args.motion, set_values or None)
+    motion = motion_from_specs(robot, args.motion, set_values or None, topic=args.topic)
+    warn_motion_notes(motion)
     states = sample_loop(motion, args.duration, args.fps)
     _warn_limits(robot, states)
     if args.gif and gif_delay(args.fps) * args.fps > 100.5:
@@ -211,6 +223,11 @@ def run(args: argparse.Namespace) -> int:
             save_png(frames[0], target(args.output, "-o"))
         backend = frames.renderer.backend
         written = write_frames(stream, writers)
+    if args.record is not None:  # the states drawn, once the pictures are safely written
+        from ..i18n import say
+        from ..motion.states_io import write_states
+
+        print(say(write_states(robot, states, args.record, args.force, option="--record")), file=sys.stderr)
     what = motion.label or "motion"
     details = f"{written} frames at {args.fps:g} fps ({written / args.fps:g} s), {size}, {what}, {backend}"
     for path in (args.gif, args.mp4):

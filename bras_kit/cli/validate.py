@@ -60,10 +60,11 @@ def configure(parser: argparse.ArgumentParser) -> None:
 
 
 def _print_packages() -> None:
+    from ..i18n import say
     from ..xacrotools import describe_package_folder, packages_used
 
     for name, folder in packages_used().items():
-        print(describe_package_folder(name, folder), file=sys.stderr)
+        print(say(describe_package_folder(name, folder)), file=sys.stderr)
 
 
 def _assignments(items: list[str]) -> list[str]:

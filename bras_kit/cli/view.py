@@ -66,13 +66,14 @@ def _export(args: argparse.Namespace, source: object) -> int:
     from ..motion import motion_from_specs, sample
     from ..outputs import write_text
     from ..view import export_html
-    from ._common import check_writable
+    from ._common import check_writable, warn_motion_notes
 
     if not 1 <= args.fps <= 120:
         raise ParameterError(f"--fps {args.fps:g} is out of range", hint="give frames per second between 1 and 120, e.g. 20")
     check_writable(args.export, args.force, option="--export")
     robot = source.load()  # type: ignore[attr-defined]
     motion = motion_from_specs(robot, args.motion)
+    warn_motion_notes(motion)
     states = sample(motion, args.duration if args.duration is not None else (motion.duration or 10.0), args.fps)
     page = export_html(robot, states, package_paths=source.package_paths)  # type: ignore[attr-defined]
     write_text(args.export, page, args.force, announce=False)
