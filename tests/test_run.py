@@ -103,6 +103,10 @@ BEGINNER_NODES = [
     # rmw/src/validate_node_name.c: only alphanumerics and '_' (rclpy/validate_node_name.py raises)
     ("bad_node_name.py", "error", "InvalidNodeNameException", ["BK640"]),
     ("stamp_zero_wrong_names.py", "duration", None, ["BK646", "BK647", "BK650"]),
+    # rcl/validate_topic_name.c: alphanumerics, '_', '~', '{', '}' and '/' only (rclpy/validate_topic_name.py raises)
+    ("topic_with_space.py", "error", "InvalidTopicNameException", ["BK640"]),
+    # rclpy/publisher.py Publisher.publish: raise TypeError('Expected {}, got {}')
+    ("publishes_wrong_type.py", "error", "TypeError", ["BK640"]),
     # rclpy/timer.py Rate.sleep(): waits for a timer an executor must spin in another thread
     ("rate_loop.py", "duration", None, ["BK643"]),
     ("flood.py", "storm", None, ["BK642", "BK650"]),
@@ -129,6 +133,13 @@ def test_exception_at_tick_3_shows_the_learners_line_and_the_simulated_time():
     assert [(f.path, f.function) for f in frames] == [("raises_at_tick_3.py", "main"), ("raises_at_tick_3.py", "tick")]
     source = (NODES / "raises_at_tick_3.py").read_text(encoding="utf-8").splitlines()
     assert "self.angles[self.ticks - 1]" in source[frames[-1].line - 1]
+
+
+def test_topic_name_errors_read_as_rclpy_words_them():
+    recording = run_node(str(NODES / "topic_with_space.py"), duration=1.0)
+    assert recording.failure.detail.splitlines() == [
+        "Invalid topic name: topic name must not contain characters other than alphanumerics, '_', '~', '{', or '}':",
+        "  'joint states'", "        ^"]  # under the space (rclpy/exceptions.py NameValidationException)
 
 
 def test_while_ok_loop_with_sleep_publishes_at_20_hz():
