@@ -96,7 +96,8 @@ def _limit_error(kind: str, target: Target, reached: float, cpu: int, wall: floa
         return NodeRunError(
             M("the node took more than {wall} s of real time (simulated clock at t={time} s) and was stopped",
               wall=wall, time=reached),
-            hint=M("it may wait for something that never comes (input(), a thread, a socket)"),
+            hint=M("a loop that never sleeps nor spins (the clock cannot move), or a wait for something that "
+                   "never comes (input(), a thread, a socket)"),
             kind=kind, time=reached, **place)
     if kind == "memory":
         return NodeRunError(
