@@ -184,3 +184,13 @@ def test_every_run_rule_is_triggered_by_a_beginner_node():
     from bras_kit.validate.package.run_rules import RUN_CHECKS
 
     assert {code for *_, codes in BEGINNER_NODES for code in codes} == set(RUN_CHECKS)
+
+
+def test_subscriptions_hear_what_is_published_and_logs_carry_the_simulated_time():
+    recording = run_node(str(NODES / "talker_listener.py"), duration=2.0)
+    assert recording.ended == "returned"  # it catches the end-of-run KeyboardInterrupt and shuts down
+    assert [m.fields["data"] for m in recording.on("/chatter")] == ["bonjour 1", "bonjour 2", "bonjour 3", "bonjour 4"]
+    assert [(t, level, node, text) for t, level, node, text in recording.logs] == [
+        (0.5 * k, "INFO", "talker_listener", f"heard: bonjour {k}") for k in range(1, 5)]
+    assert [(s.node, s.topic, s.type) for s in recording.subscriptions] == [
+        ("talker_listener", "/chatter", "std_msgs/msg/String")]
