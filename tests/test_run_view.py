@@ -34,7 +34,7 @@ def _orange(page) -> np.ndarray:
 
     from PIL import Image
 
-    image = np.asarray(Image.open(BytesIO(page.screenshot())).convert("RGB"))[SCENE].astype(int)
+    image = np.asarray(Image.open(BytesIO(page.screenshot(timeout=120_000))).convert("RGB"))[SCENE].astype(int)
     r, g, b = image[..., 0], image[..., 1], image[..., 2]
     return np.argwhere((r > 120) & (r - b > 100) & (g > 0.35 * r) & (g < 0.7 * r))
 
