@@ -44,7 +44,7 @@ def test_run_exits_1_with_the_finding_of_a_broken_node(run_cli, tmp_path):
     code, out, err = run_cli("run", str(node), "--urdf", str(TUTORIAL / "urdf" / "bras.urdf"), "--duration", "1",
                              "--quiet", "--lang", "fr")
     assert code == 1
-    assert "wrong_topic.py:11: BK644 error: rien n'a été publié sur /joint_states" in out
+    assert "wrong_topic.py:11: BK644 erreur rien n'a été publié sur /joint_states" in out
     assert "Traceback" not in err
 
 
