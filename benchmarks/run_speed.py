@@ -44,8 +44,9 @@ def simulated_speed(repeat: int = 5) -> None:
 
 
 def _first_frame(arguments: list[str]) -> float:
-    from benchmarks.view_latency import _free_port, _orange_pixels  # type: ignore[import-not-found]
     from playwright.sync_api import sync_playwright
+
+    from benchmarks.view_latency import _free_port, _orange_pixels  # type: ignore[import-not-found]
 
     port = _free_port()
     with sync_playwright() as playwright:
