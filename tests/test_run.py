@@ -105,6 +105,8 @@ BEGINNER_NODES = [
     ("stamp_zero_wrong_names.py", "duration", None, ["BK646", "BK647", "BK650"]),
     # rcl/validate_topic_name.c: alphanumerics, '_', '~', '{', '}' and '/' only (rclpy/validate_topic_name.py raises)
     ("topic_with_space.py", "error", "InvalidTopicNameException", ["BK640"]),
+    # rclpy/context.py Context.init: RuntimeError('Context.init() must only be called once')
+    ("init_twice.py", "error", "RuntimeError", ["BK640"]),
     # rclpy/publisher.py Publisher.publish: raise TypeError('Expected {}, got {}')
     ("publishes_wrong_type.py", "error", "TypeError", ["BK640"]),
     # rclpy/timer.py Rate.sleep(): waits for a timer an executor must spin in another thread
@@ -194,3 +196,9 @@ def test_subscriptions_hear_what_is_published_and_logs_carry_the_simulated_time(
         (0.5 * k, "INFO", "talker_listener", f"heard: bonjour {k}") for k in range(1, 5)]
     assert [(s.node, s.topic, s.type) for s in recording.subscriptions] == [
         ("talker_listener", "/chatter", "std_msgs/msg/String")]
+
+
+def test_a_polling_spin_once_loop_still_sees_its_timer_on_time():
+    recording = run_node(str(NODES / "spin_once_poll.py"), duration=1.0)
+    assert [m.time for m in recording.on("/angle")] == pytest.approx([0.1 * k for k in range(1, 11)], abs=1e-3)
+    assert recording.ended == "duration"
