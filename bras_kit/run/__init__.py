@@ -8,9 +8,11 @@ only), on a simulated clock, and every message it publishes is recorded (:mod:`.
 
 ::
 
-    from bras_kit.run import run_node, joint_states
+    from bras_kit.run import joint_states, robot_of, run_findings, run_node
     recording = run_node("bras_description", "animation", duration=5)
     states = joint_states(recording)          # what /joint_states carried, as JointStates
+    for finding in run_findings(recording, robot_of("bras_description")):
+        print(finding.code, finding.message)
 """
 
 from __future__ import annotations
@@ -21,11 +23,12 @@ import tempfile
 
 from ..errors import BrasKitError
 from ..message import M
+from .findings import robot_of, run_findings
 from .locate import Target, locate
 from .recording import JOINT_STATES, NodeFailure, Published, Recording, joint_states, stamp_seconds
 
 __all__ = ["JOINT_STATES", "NodeFailure", "NodeRunError", "Published", "Recording", "Target",
-           "joint_states", "locate", "run_node", "stamp_seconds"]
+           "joint_states", "locate", "robot_of", "run_findings", "run_node", "stamp_seconds"]
 
 DEFAULT_DURATION = 10.0
 MAX_DURATION = 3600.0
