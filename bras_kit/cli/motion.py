@@ -13,7 +13,8 @@ import argparse
 import sys
 
 from ..errors import ParameterError
-from ..i18n import _, say, translate_message
+from ..i18n import say
+from ..message import M, Mn
 from ._common import (
     add_force_argument,
     add_model_arguments,
@@ -82,7 +83,7 @@ def configure(parser: argparse.ArgumentParser) -> None:
 def _output_format(args: argparse.Namespace) -> str | None:
     if args.output is None:
         if args.format:
-            raise ParameterError("--format needs -o FILE (or -o - for stdout)")
+            raise ParameterError(M("--format needs -o FILE (or -o - for stdout)"))
         return None
     if args.format:
         return str(args.format)
@@ -90,8 +91,8 @@ def _output_format(args: argparse.Namespace) -> str | None:
 
     fmt = states_format(args.output)
     if fmt is None:
-        raise ParameterError(f"cannot tell the format of '{args.output}'",
-                             hint="end the file name in .csv, .json or .mcap (a ROS 2 bag), or pass --format csv|json")
+        raise ParameterError(M("cannot tell the format of '{path}'", path=args.output),
+                             hint=M("end the file name in .csv, .json or .mcap (a ROS 2 bag), or pass --format csv|json"))
     return fmt
 
 
@@ -110,12 +111,12 @@ def run(args: argparse.Namespace) -> int:
     from ..motion.states_io import check_states_output, write_states
 
     if args.file and args.file.lower().endswith(WAYPOINT_SUFFIXES):
-        raise ParameterError(f"'{args.file}' looks like a waypoint file, not a robot",
-                             hint=f"pass it as --motion {args.file} (FILE is the robot: .urdf or .xacro)")
+        raise ParameterError(M("'{path}' looks like a waypoint file, not a robot", path=args.file),
+                             hint=M("pass it as --motion {path} (FILE is the robot: .urdf or .xacro)", path=args.file))
     fmt = _output_format(args)
     if fmt == "bag" and args.output == "-":
-        raise ParameterError("a ROS 2 bag is a folder: it cannot go to standard output",
-                             hint="give -o run.mcap (the bag is the folder run/)")
+        raise ParameterError(M("a ROS 2 bag is a folder: it cannot go to standard output"),
+                             hint=M("give -o run.mcap (the bag is the folder run/)"))
     if fmt is not None and args.output != "-":
         check_states_output(args.output, args.force, fmt)
     apply_node(args, args.duration)
@@ -123,7 +124,7 @@ def run(args: argparse.Namespace) -> int:
     motion = motion_from_specs(robot, args.motion, joint_values(args.set_values), args.interpolation, args.topic)
     warn_motion_notes(motion)
     if args.interpolation and not any(t.waypoints is not None for t in motion.tracks):
-        warn("--interpolation only applies to waypoint files")
+        warn(M("--interpolation only applies to waypoint files"), args.lang)
     rate = DEFAULT_RATE if args.rate is None else args.rate
     states = sample(motion, args.duration, rate)
     segments = waypoint_speeds(robot, motion)
@@ -133,22 +134,24 @@ def run(args: argparse.Namespace) -> int:
         clamped = [v for v in violations if v.kind == "position"]
         states = clamp(robot, states)
         violations = check_limits(robot, states)
+    lang = args.lang
     for segment in segments[:10]:
-        warn(describe_segment(segment))
+        warn(describe_segment(segment), lang)
     if len(segments) > 10:
-        warn(_("... and {count} more waypoint segments too fast").format(count=len(segments) - 10))
+        warn(M("... and {count} more waypoint segments too fast", count=len(segments) - 10), lang)
     reported = {s.joint for s in segments}
     for v in clamped:
-        print(f"{_('warning')}: {_('clamped')}: {translate_message(describe_violation(v))}", file=sys.stderr)
+        warn(M("clamped: {what}", what=describe_violation(v)), lang)
     for v in violations:
         if v.kind == "velocity" and v.joint in reported:
             continue  # already named segment by segment
-        warn(describe_violation(v))
+        warn(describe_violation(v), lang)
     if any(v.kind == "position" for v in violations):
-        print("  " + _("hint") + ": " + _("pass --clamp to keep positions inside the limits, or lower the amplitude"),
+        print(f"  {say(M('hint'), lang)}: "
+              + say(M("pass --clamp to keep positions inside the limits, or lower the amplitude"), lang),
               file=sys.stderr)
     if fmt is None:
-        print(_summary(robot, motion, states, violations, clamped, rate))
+        print(_summary(robot, motion, states, violations, clamped, rate, lang))
     else:
         written = write_states(robot, states, args.output, args.force, fmt)
         if written is not None:
@@ -156,25 +159,29 @@ def run(args: argparse.Namespace) -> int:
     return 1 if args.strict and (violations or segments) else 0
 
 
-def _summary(robot, motion, states, violations, clamped, rate: float) -> str:  # type: ignore[no-untyped-def]
+def _summary(robot, motion, states, violations, clamped, rate: float, lang: str) -> str:  # type: ignore[no-untyped-def]
     from ..motion import joint_unit
+    from ..motion.sources import motion_title
 
     duration = float(states.times[-1]) if len(states) else 0.0
-    lines = [_("motion: {label}; {duration:g} s at {rate:g} Hz, {samples} samples x {joints} joints").format(
-        label=motion.label or _("fixed pose"), duration=duration, rate=rate, samples=len(states),
-        joints=len(states.names))]
+    lines = [say(M("motion: {label}; {duration:g} s at {rate:g} Hz, {samples} samples x {joints} joints",
+                   label=motion_title(motion.label) if motion.label else M("fixed pose"), duration=duration,
+                   rate=rate, samples=len(states), joints=len(states.names)), lang)]
     if not states.names:
-        lines.append(_("the robot has no movable joint"))
+        lines.append(say(M("the robot has no movable joint"), lang))
         return "\n".join(lines)
-    header = (_("joint"), "min", "max", _("lower"), _("upper"), "max|vel|", _("vel.limit"), _("limits"), _("source"))
+    header = tuple(say(word, lang) for word in (M("joint"), "min", "max", M("lower"), M("upper"), "max|vel|",
+                                                 M("vel.limit"), M("limits"), M("source")))
     rows = [header]
     sources = motion.sources()
     for k, name in enumerate(states.names):
         joint = robot.joint(name)
         lower, upper = joint.bounds() if joint else (float("-inf"), float("inf"))
         speed = joint.limit.velocity if joint is not None and joint.limit is not None else None
-        status = [_("clamped ({side})").format(side=_(v.side)) for v in clamped if v.joint == name]
-        status += [(_("too fast") if v.kind == "velocity" else _("past {side}").format(side=_(v.side)))
+        status = [say(M("clamped (upper)") if v.side == "upper" else M("clamped (lower)"), lang)
+                  for v in clamped if v.joint == name]
+        status += [say(M("too fast") if v.kind == "velocity" else M("past upper") if v.side == "upper"
+                       else M("past lower"), lang)
                    for v in violations if v.joint == name]
         unit = joint_unit(joint)
         rows.append((
@@ -184,8 +191,8 @@ def _summary(robot, motion, states, violations, clamped, rate: float) -> str:  #
             f"{lower:g}", f"{upper:g}",
             f"{abs(states.velocities[:, k]).max():.3f}",
             f"{speed:g} {unit}/s" if speed else "-",
-            ", ".join(status) or _("ok"),
-            sources.get(name, ""),
+            ", ".join(status) or say(M("ok"), lang),
+            say(sources.get(name, ""), lang),
         ))
     widths = [max(len(row[i]) for row in rows) for i in range(len(header))]
     for row in rows:
@@ -193,6 +200,7 @@ def _summary(robot, motion, states, violations, clamped, rate: float) -> str:  #
                  for i, (cell, width) in enumerate(zip(row, widths))]
         lines.append("  ".join(cells).rstrip())
     problems = len(violations)
-    lines.append(_("all within limits") if not problems else
-                 _("{count} limit violations (see the warnings above)").format(count=problems))
+    lines.append(say(M("all within limits") if not problems else
+                     Mn("{n} limit violation (see the warnings above)", "{n} limit violations (see the warnings above)",
+                        problems), lang))
     return "\n".join(lines)

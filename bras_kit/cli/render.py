@@ -14,7 +14,8 @@ import sys
 from collections.abc import Iterable, Iterator
 from typing import TYPE_CHECKING
 
-from ..i18n import _
+from ..i18n import say
+from ..message import M, Message, Mn
 from ._common import (
     add_force_argument,
     add_model_arguments,
@@ -102,21 +103,27 @@ def _check_frames_dir(folder: str, force: bool) -> None:
     from ..errors import OutputExistsError
 
     if os.path.isdir(folder) and not force and any(re.fullmatch(r"frame_\d+\.png", n) for n in os.listdir(folder)):
-        raise OutputExistsError(f"{folder} already holds frame_*.png files",
-                                hint="pass --force to overwrite them, or choose another --frames-dir")
+        raise OutputExistsError(M("{folder} already holds frame_*.png files", folder=folder),
+                                hint=M("pass --force to overwrite them, or choose another --frames-dir"))
     if os.path.islink(folder):
-        raise OutputExistsError(f"{folder} is a symbolic link: refused", hint="choose another --frames-dir")
+        raise OutputExistsError(M("{folder} is a symbolic link: refused", folder=folder),
+                                hint=M("choose another --frames-dir"))
     if os.path.exists(folder) and not os.path.isdir(folder):
-        raise OutputExistsError(f"{folder} exists and is not a folder", hint="choose another --frames-dir")
+        raise OutputExistsError(M("{folder} exists and is not a folder", folder=folder),
+                                hint=M("choose another --frames-dir"))
 
 
-def _warn_limits(robot, states) -> None:  # type: ignore[no-untyped-def]
+def _warn_limits(robot, states, lang: str | None) -> None:  # type: ignore[no-untyped-def]
     from ..motion import check_limits
 
     for v in check_limits(robot, states):
-        what = "speed" if v.kind == "velocity" else "position"
-        warn(f"{v.joint}: {what} {v.value:.4g} passes its limit {v.bound:g} at t={v.time:.2f} s "
-             "(drawn anyway, as RViz would)")
+        if v.kind == "velocity":
+            text = M("{joint}: speed {value:.4g} passes its limit {bound:g} at t={time:.2f} s "
+                     "(drawn anyway, as RViz would)", joint=v.joint, value=v.value, bound=v.bound, time=v.time)
+        else:
+            text = M("{joint}: position {value:.4g} passes its limit {bound:g} at t={time:.2f} s "
+                     "(drawn anyway, as RViz would)", joint=v.joint, value=v.value, bound=v.bound, time=v.time)
+        warn(text, lang)
 
 
 def run(args: argparse.Namespace) -> int:
@@ -142,17 +149,21 @@ def run(args: argparse.Namespace) -> int:
     apply_node(args, args.duration)
     robot = load_model(args)
     if not (math.isfinite(args.fps) and 1 <= args.fps <= 120):
-        raise ParameterError(f"--fps {args.fps:g} is out of range", hint="give frames per second between 1 and 120, e.g. 20")
+        raise ParameterError(M("--fps {fps:g} is out of range", fps=args.fps),
+                             hint=M("give frames per second between 1 and 120, e.g. 20"))
     for option, path, suffix in (("--gif", args.gif, ".gif"), ("--mp4", args.mp4, ".mp4")):
         if path and path != "-" and not path.lower().endswith(suffix):
-            raise ParameterError(f"{option} {path}: the file name does not end in {suffix}",
-                                 hint=f"name the file like {option} arm{suffix} (the format follows the option)")
+            raise ParameterError(M("{option} {path}: the file name does not end in {suffix}", option=option,
+                                   path=path, suffix=suffix),
+                                 hint=M("name the file like {option} arm{suffix} (the format follows the option)",
+                                        option=option, suffix=suffix))
     if args.duration is not None and not (math.isfinite(args.duration) and args.duration > 0):
-        raise ParameterError(f"--duration {args.duration:g} is not a positive time", hint="give seconds, e.g. 10")
+        raise ParameterError(M("--duration {duration:g} is not a positive time", duration=args.duration),
+                             hint=M("give seconds, e.g. 10"))
     tree = tf_tree(robot)
     set_values = joint_values(args.set_values)
     tree.config_vector(set_values)  # unknown joints fail before anything is drawn
-    warn_out_of_limits(tree, set_values, _("drawn anyway"))
+    warn_out_of_limits(tree, set_values, M("drawn anyway"), args.lang)
 
     stem = _file_name(robot.name)
     animated = args.gif is not None or args.mp4 is not None or args.frames_dir is not None
@@ -176,8 +187,8 @@ def run(args: argparse.Namespace) -> int:
         sys.stdout.flush()
         return 0
     if args.output is not None and not args.output.lower().endswith(PICTURE_SUFFIXES):
-        raise ParameterError(f"-o {args.output}: cannot tell the picture format from the name",
-                             hint="end the name with " + ", ".join(PICTURE_SUFFIXES))
+        raise ParameterError(M("-o {path}: cannot tell the picture format from the name", path=args.output),
+                             hint=M("end the name with {suffixes}", suffixes=", ".join(PICTURE_SUFFIXES)))
     for path, option in ((args.output, "-o"), (args.gif, "--gif"), (args.mp4, "--mp4")):
         if path is not None:
             check_writable(path, args.force, option=option)
@@ -194,17 +205,19 @@ def run(args: argparse.Namespace) -> int:
                 staged(args.output, args.force) as temporary:
             save_png(renderer.render(set_values), temporary)
             backend = renderer.backend
-        _report(args.output, f"{format_config(set_values)}, {size}, {backend}", args.output in defaulted)
+        _report(args.output, M("{pose}, {size}, {backend}", pose=format_config(set_values), size=size,
+                               backend=backend), args.output in defaulted, args.lang)
         return 0
 
     from ..motion import motion_from_specs, sample_loop
+    from ..motion.sources import motion_title
 
     motion = motion_from_specs(robot, args.motion, set_values or None, topic=args.topic)
     warn_motion_notes(motion)
     states = sample_loop(motion, args.duration, args.fps)
-    _warn_limits(robot, states)
+    _warn_limits(robot, states, args.lang)
     if args.gif and gif_delay(args.fps) * args.fps > 100.5:
-        warn(f"a GIF plays at most 50 frames per second; {args.fps:g} fps will play slower")
+        warn(M("a GIF plays at most 50 frames per second; {fps:g} fps will play slower", fps=args.fps), args.lang)
     frames = render_motion(robot, states, label="rendering", **opts)
     with frames, _writing(), contextlib.ExitStack() as outputs:
         def target(path: str, option: str) -> str:
@@ -224,34 +237,41 @@ def run(args: argparse.Namespace) -> int:
         backend = frames.renderer.backend
         written = write_frames(stream, writers)
     if args.record is not None:  # the states drawn, once the pictures are safely written
-        from ..i18n import say
         from ..motion.states_io import write_states
 
-        print(say(write_states(robot, states, args.record, args.force, option="--record")), file=sys.stderr)
-    what = motion.label or "motion"
-    details = f"{written} frames at {args.fps:g} fps ({written / args.fps:g} s), {size}, {what}, {backend}"
+        print(say(write_states(robot, states, args.record, args.force, option="--record"), args.lang), file=sys.stderr)
+    details = Mn("{n} frame at {fps:g} fps ({seconds:g} s), {size}, {what}, {backend}",
+                 "{n} frames at {fps:g} fps ({seconds:g} s), {size}, {what}, {backend}", written,
+                 fps=args.fps, seconds=written / args.fps, size=size, what=motion_title(motion.label), backend=backend)
     for path in (args.gif, args.mp4):
         if path:
-            _report(path, details, path in defaulted)
+            _report(path, details, path in defaulted, args.lang)
     if args.frames_dir is not None:
-        _report(os.path.join(args.frames_dir, "frame_*.png"), details, False)
+        _report(os.path.join(args.frames_dir, "frame_*.png"), details, False, args.lang)
     if args.output:
-        _report(args.output, f"first frame, {size}, {backend}", False)
+        _report(args.output, M("first frame, {size}, {backend}", size=size, backend=backend), False, args.lang)
     return 0
 
 
 @contextlib.contextmanager
 def _writing() -> Iterator[None]:
     """A file that cannot be written (permissions, full disk) is a user error, not a traceback."""
-    from ..errors import BrasKitError
+    from ..errors import BrasKitError, os_reason
 
     try:
         yield
     except OSError as exc:
-        raise BrasKitError(f"cannot write {exc.filename or 'the output'}: {exc.strerror or exc}",
-                           hint="check the folder exists, is writable and has space") from None
+        raise BrasKitError(M("cannot write {path}: {reason}", path=exc.filename or M("the output"),
+                             reason=os_reason(exc)),
+                           hint=M("check the folder exists, is writable and has space")) from None
 
 
-def _report(path: str, details: str, defaulted: bool) -> None:
-    where = " " + _("in the current folder (choose the name with the output option)") if defaulted else ""
-    print(_("wrote {path}").format(path=path) + f"{where}: {details}", file=sys.stderr)
+def _report(path: str, details: Message, defaulted: bool, lang: str | None) -> None:
+    from ..i18n import say
+
+    if defaulted:
+        text = M("wrote {path} in the current folder (choose the name with the output option): {details}",
+                 path=path, details=details)
+    else:
+        text = M("wrote {path}: {details}", path=path, details=details)
+    print(say(text, lang), file=sys.stderr)
