@@ -202,3 +202,12 @@ def test_a_polling_spin_once_loop_still_sees_its_timer_on_time():
     recording = run_node(str(NODES / "spin_once_poll.py"), duration=1.0)
     assert [m.time for m in recording.on("/angle")] == pytest.approx([0.1 * k for k in range(1, 11)], abs=1e-3)
     assert recording.ended == "duration"
+
+
+def test_parameters_given_as_ros_args_reach_declare_parameter():
+    from bras_kit.run import parse_parameters
+
+    assert parse_parameters(["greeting:=salut", "rate:=20", "gain:=0.5", "on:=true"]) == {
+        "greeting": "salut", "rate": 20, "gain": 0.5, "on": True}
+    recording = run_node(str(NODES / "talker_listener.py"), duration=1.0, parameters={"greeting": "salut"})
+    assert [m.fields["data"] for m in recording.on("/chatter")] == ["salut 1", "salut 2"]

@@ -38,6 +38,9 @@ def configure(parser: argparse.ArgumentParser) -> None:
     parser.add_argument("--urdf", metavar="FILE",
                         help="the robot the node drives (default: the package's urdf/ file)")
     parser.add_argument("--quiet", action="store_true", help="do not show the node's logs and prints")
+    parser.add_argument("-p", "--param", dest="params", action="append", default=[], metavar="NAME:=VALUE",
+                        help="a value for a parameter the node declares, as 'ros2 run ... --ros-args -p "
+                        "NAME:=VALUE' gives it (repeatable)")
     parser.add_argument("--json", action="store_true", help="print the findings as JSON")
     add_force_argument(parser)
 
@@ -45,7 +48,7 @@ def configure(parser: argparse.ArgumentParser) -> None:
 def run(args: argparse.Namespace) -> int:
     from ..i18n import current_language, say
     from ..motion.states_io import check_states_output
-    from ..run import run_node
+    from ..run import parse_parameters, run_node
     from ..run.report import failure_lines, summary
     from ..validate.report import exit_code, format_json, format_text
 
@@ -54,8 +57,10 @@ def run(args: argparse.Namespace) -> int:
         check_states_output(args.output, args.force)
     if args.gif is not None:
         check_writable(args.gif, args.force, option="--gif")
+    parameters = parse_parameters(args.params)
     robot = _robot(args)  # a wrong --urdf fails before the node runs
-    recording = run_node(args.target, args.executable, duration=args.duration, echo=not args.quiet)
+    recording = run_node(args.target, args.executable, duration=args.duration, echo=not args.quiet,
+                         parameters=parameters)
     for message in summary(recording):
         print(say(message, lang), file=sys.stderr)
     for text in failure_lines(recording):

@@ -98,7 +98,8 @@ def _place(path: str, line: int, target: Target) -> tuple[str, int]:
     return "", 0
 
 
-def run_node_here(target: Target, duration: float, echo: bool, workdir: str, watch: Any = None) -> Recording:
+def run_node_here(target: Target, duration: float, echo: bool, workdir: str, watch: Any = None,
+                  parameters: dict[str, Any] | None = None) -> Recording:
     """Run the node in this (child) process and return what it did."""
     import time
 
@@ -110,6 +111,7 @@ def run_node_here(target: Target, duration: float, echo: bool, workdir: str, wat
 
     sim.STATE.end_ns = int(round(duration * 1e9))
     sim.STATE.echo = echo
+    sim.STATE.parameters = dict(parameters or {})
     if watch is not None:
         sim.STATE.on_advance = watch
     sys.path.insert(0, target.root)

@@ -53,6 +53,7 @@ class State:
         self.same_time_count = 0
         self.same_time_ns = -1
         self.sleeps = 0
+        self.parameters: dict = {}  # --ros-args -p NAME:=VALUE, for every node
         self.on_advance = None  # called with the new time (the parent watches it through shared memory)
 
 
