@@ -112,6 +112,9 @@ BEGINNER_NODES = [
     # rclpy/timer.py Rate.sleep(): waits for a timer an executor must spin in another thread
     ("rate_loop.py", "duration", None, ["BK643"]),
     ("flood.py", "storm", None, ["BK642", "BK650"]),
+    # the usual cure: rclpy.spin in a thread, so the rate's timer is spun (rclpy/timer.py Rate)
+    ("spin_in_thread.py", "duration", None, []),
+    ("other_thread.py", "not_simulated", "NotSimulated", ["BK641"]),
     ("uses_action.py", "not_simulated", "NotSimulated", ["BK641"]),
     ("twice_per_tick.py", "duration", None, ["BK651"]),
     ("nan_and_lengths.py", "duration", None, ["BK645", "BK648"]),
@@ -211,3 +214,9 @@ def test_parameters_given_as_ros_args_reach_declare_parameter():
         "greeting": "salut", "rate": 20, "gain": 0.5, "on": True}
     recording = run_node(str(NODES / "talker_listener.py"), duration=1.0, parameters={"greeting": "salut"})
     assert [m.fields["data"] for m in recording.on("/chatter")] == ["salut 1", "salut 2"]
+
+
+def test_spin_in_a_thread_lets_the_main_loop_rate_sleep_at_its_rate():
+    recording = run_node(str(NODES / "spin_in_thread.py"), duration=2.0)
+    assert [m.time for m in recording.messages] == pytest.approx([0.1 * k for k in range(21)], abs=1e-9)
+    assert recording.rate_sleeps == 0
