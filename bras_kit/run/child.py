@@ -104,7 +104,7 @@ def _patch_threads(sim: Any) -> Any:
             raise sim.NotSimulated("threading.Thread")
         sim.STATE.background.append(executor)
 
-    threading.Thread.start = start  # type: ignore[method-assign]
+    threading.Thread.start = start  # type: ignore[method-assign,assignment]
     return original
 
 
