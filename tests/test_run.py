@@ -220,3 +220,10 @@ def test_spin_in_a_thread_lets_the_main_loop_rate_sleep_at_its_rate():
     recording = run_node(str(NODES / "spin_in_thread.py"), duration=2.0)
     assert [m.time for m in recording.messages] == pytest.approx([0.1 * k for k in range(21)], abs=1e-9)
     assert recording.rate_sleeps == 0
+
+
+def test_spin_until_future_complete_returns_when_the_future_is_done():
+    recording = run_node(str(NODES / "future_and_time.py"), duration=5.0)
+    assert recording.ended == "returned" and recording.end == pytest.approx(0.6)  # third tick of 0.2 s
+    assert [m.fields["data"] for m in recording.on("/elapsed")] == pytest.approx([0.6, 500_000_000.0])
+    assert [text for *_, text in recording.logs] == ["three ticks"]
