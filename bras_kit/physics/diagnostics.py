@@ -133,7 +133,7 @@ def physics_notes(robot: Robot, built: MjcfModel, lang: str = "en", package_path
 
     words = text(lang)
     frames = _frame_only_links(robot)
-    notes = [Note(f.severity, f.code, words["finding"].format(code=f.code, message=f.message))
+    notes = [Note(f.severity, f.code, words["finding"].format(code=f.code, message=f.text(lang)))
              for f in validate(robot, lang=lang, package_paths=package_paths, select=VALIDATOR_CODES)
              if not (f.code in ("BK500", "BK501") and f.name in frames)]
     if built.density_links:

@@ -137,7 +137,7 @@ class Session:
             colour = {"error": "#c62828", "warning": "#e65100"}.get(finding.severity, "#455a64")
             line = f":{finding.line}" if finding.line else ""
             rows.append(f"<p style='margin:2px 0'><b style='color:{colour}'>{finding.code}</b>{line} "
-                        f"{html.escape(finding.message)}</p>")
+                        f"{html.escape(finding.text(viewer.lang))}</p>")
         if not rows:
             rows.append(f"<p style='color:#2e7d32'>{html.escape(t('No finding'))}</p>")
         self.findings.content = "".join(rows)

@@ -56,6 +56,7 @@ LESSON.cells = [
         import yaml
 
         import bras_kit
+        from bras_kit.i18n import say
         from bras_kit.motion import formula_motion, sample, tutorial_motion
         from bras_kit.render import Renderer
         from bras_kit.scaffold import scaffold_package
@@ -74,8 +75,8 @@ LESSON.cells = [
 
         def show(findings):
             for f in findings:
-                print(f"{f.code} [{SEVERITE[f.severity]}] ligne {f.line} : {f.message}")
-                print("    ->", f.hint)
+                print(f"{f.code} [{SEVERITE[f.severity]}] ligne {f.line} : {f.text('@LANG@')}")
+                print("    ->", f.hint_text("@LANG@"))
             if not findings:
                 print("aucun problème trouvé")
 
@@ -96,6 +97,7 @@ LESSON.cells = [
         import yaml
 
         import bras_kit
+        from bras_kit.i18n import say
         from bras_kit.motion import formula_motion, sample, tutorial_motion
         from bras_kit.render import Renderer
         from bras_kit.scaffold import scaffold_package
@@ -111,8 +113,8 @@ LESSON.cells = [
 
         def show(findings):
             for f in findings:
-                print(f"{f.code} [{f.severity}] line {f.line}: {f.message}")
-                print("    ->", f.hint)
+                print(f"{f.code} [{f.severity}] line {f.line}: {f.text('@LANG@')}")
+                print("    ->", f.hint_text("@LANG@"))
             if not findings:
                 print("no problem found")
 
@@ -283,7 +285,7 @@ LESSON.cells = [
         try:
             formula_motion(robot, ["shoulder=0.8*sin(t)", "elbow=1.2*sin(0.7*t)"])
         except bras_kit.BrasKitError as error:
-            print(error)
+            print(say(error, "@LANG@"))
 
         fixed = sample(formula_motion(robot, ["epaule=0.8*sin(t)", "coude=1.2*sin(0.7*t)"]), duration=10.0)
         print(np.allclose(fixed.positions, states.positions))

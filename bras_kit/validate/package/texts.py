@@ -1,0 +1,247 @@
+"""The English words of the package rules (BK6xx). French: ``validate.po`` (msgctxt = code)."""
+
+from __future__ import annotations
+
+from ..registry import describe
+
+# ------------------------------------------------------------------ BK6xx the ROS 2 package
+
+describe(
+    "BK600",
+    title="a file of the package cannot be read",
+    message={
+        "missing": "{file} is missing: this is not a complete ament_python package",
+        "": "{file} cannot be read: {detail}",
+    },
+    hint={
+        "missing": "run 'bras-kit new' to see a complete package, or add the missing file",
+        "": "fix this line; the package rules that need this file were skipped",
+    },
+    explanation="""\
+The package checks read `package.xml` (as XML), `setup.py`, the launch files and the Python
+nodes (as Python source, without running them) and the `.rviz` files (as YAML). A file that is
+missing or cannot be parsed is reported here, and the checks that need it say nothing: fix this
+first. colcon and `ros2 launch` would fail on the same file.""",
+)
+describe(
+    "BK601",
+    title="a folder the launch needs is not installed by setup.py",
+    message={
+        "all": "setup.py does not install {folder}/ ({files}): 'ros2 launch' will say file not found",
+        "some": "setup.py does not install {files} from {folder}/: 'ros2 launch' will not find them",
+        "": "setup.py does not install {files} from {folder}/",
+    },
+    hint="add {entry} to data_files, then run colcon build again",
+    explanation="""\
+colcon copies into `install/PKG/share/PKG/` only what `data_files` in `setup.py` lists. The
+launch file then looks for the URDF (and itself is found) there, not in the source folder. A
+package that forgets `urdf/` or `launch/` builds without a word and fails at `ros2 launch`
+with "file not found": the tutorial's third pitfall. Each folder needs its own entry
+`(os.path.join('share', package_name, 'urdf'), glob('urdf/*.urdf'))`, and a new build.""",
+)
+describe(
+    "BK602",
+    title="the launch file opens a file that is not installed",
+    message={
+        "exists": "opens share/{package}/{path}: {path} exists but setup.py does not install it",
+        "other": "opens share/{package}/{path}, but setup.py installs only {installed} in {folder}/",
+        "": "opens share/{package}/{path}, which no file of the package installs",
+    },
+    hint={
+        "exists": "add {path} to data_files in setup.py, then run colcon build again",
+        "other": "use one of the installed names ({installed}), or install {path}",
+        "": "fix the file name, or add the file to the package and to data_files",
+    },
+    explanation="""\
+The launch file builds paths in the installed share folder (`get_package_share_directory`,
+`FindPackageShare`) and opens them, or passes them to a node (RViz's `-d`). Such a path must
+name a file that `setup.py` installs there, with the same folder and name: otherwise launching
+fails with "file not found" (or RViz opens with no configuration). A renamed URDF or a typo
+in the launch file is the usual cause.""",
+)
+describe(
+    "BK603",
+    title="the package is not registered in the ament index",
+    message={
+        "file": "{marker} is missing: ros2 cannot find the package {package} once installed",
+        "entry": "data_files does not install {marker} in share/ament_index/resource_index/packages: ros2 cannot find the package {package}",
+        "": "the package {package} is not registered in the ament index ({marker})",
+    },
+    hint={
+        "file": "create the empty file {marker}",
+        "": "add ('share/ament_index/resource_index/packages', ['{marker}']) to data_files",
+    },
+    explanation="""\
+`ros2 launch`, `ros2 run` and `get_package_share_directory` find installed packages through the
+ament index: an empty file named after the package, installed in
+`share/ament_index/resource_index/packages`. `ros2 pkg create` makes `resource/PKG` and the
+`data_files` entry; deleting either gives "package not found" although the build succeeded.""",
+)
+describe(
+    "BK604",
+    title="the names in package.xml and setup.py differ",
+    message="package.xml names the package '{xml_name}' but setup.py (line {setup_line}) names it '{setup_name}'",
+    hint="use one name everywhere: <name> in package.xml, package_name in setup.py, resource/NAME",
+    explanation="""\
+colcon knows the package by the `<name>` of `package.xml`; setuptools installs it under the
+name given in `setup.py`, and the launch file looks for its share folder by name. When they
+differ, files land in one folder and are looked for in another: "package not found" or
+"file not found" at launch. Renaming a package means changing all of them.""",
+)
+describe(
+    "BK605",
+    title="a package the launch file starts is not declared in package.xml",
+    message="the launch file {launch} (line {launch_line}) starts a node of '{dependency}', which package.xml does not list as <exec_depend>",
+    hint="add <exec_depend>{dependency}</exec_depend> to package.xml",
+    explanation="""\
+`rosdep install` installs what `package.xml` declares. A node started by the launch file
+but not declared works on the machine where it happens to be installed, and fails elsewhere
+with "package not found". Every package whose nodes the launch file starts
+(robot_state_publisher, joint_state_publisher_gui, rviz2...) belongs in an `<exec_depend>`.""",
+)
+describe(
+    "BK606",
+    title="invalid maintainer email in package.xml",
+    message={
+        "none": "package.xml has no <maintainer>",
+        "missing": "maintainer '{maintainer}' has no email attribute",
+        "": "maintainer '{maintainer}' has an invalid email '{email}': colcon will not see a ROS package",
+    },
+    hint={
+        "none": 'add <maintainer email="you@example.com">Your Name</maintainer>',
+        "": 'write a real address: <maintainer email="you@example.com">',
+    },
+    explanation="""\
+colcon reads `package.xml` with catkin_pkg, which refuses a maintainer without a valid email
+address (name@domain.tld). colcon then ignores the manifest, builds the folder as a plain Python
+package and never installs the ament index marker: `ros2 launch` cannot find the package
+although the build looked fine. Placeholders such as `TODO` are the usual cause.""",
+)
+describe(
+    "BK610",
+    title="the RViz Fixed Frame is not a link of the robot",
+    message={
+        "missing": "the RViz configuration sets no Fixed Frame: RViz uses 'map', which this robot does not publish",
+        "": "Fixed Frame '{frame}' is not a link of the robot ({links}): RViz shows nothing",
+    },
+    hint="set Fixed Frame to '{root}' (Global Options > Fixed Frame)",
+    explanation="""\
+RViz draws everything relative to its Fixed Frame. When no TF frame has that name (the
+default `map`, or a link that was renamed), RViz shows "Frame does not exist" and an empty
+view: the tutorial's first pitfall. Use the robot's root link, `base` in the tutorial.""",
+)
+describe(
+    "BK611",
+    title="the RViz configuration does not show the robot model",
+    message={
+        "missing": "the RViz configuration has no RobotModel display: the arm is not drawn",
+        "disabled": "the RobotModel display is disabled: the arm is not drawn",
+        "topic": "RobotModel reads its description from '{topic}', not /robot_description",
+        "": "the RobotModel display is not set up",
+    },
+    hint={
+        "missing": "add a RobotModel display with Description Topic /robot_description, and save the configuration",
+        "disabled": "tick the RobotModel display (Enabled: true) and save the configuration",
+        "": "set Description Topic to /robot_description",
+    },
+    explanation="""\
+robot_state_publisher publishes the URDF on the topic `/robot_description`. RViz's RobotModel
+display draws the links only when it reads that topic; with another topic, or no RobotModel at
+all, RViz stays empty although everything runs: the tutorial's first pitfall.""",
+)
+describe(
+    "BK612",
+    title="the RViz configuration has no TF display",
+    message="no TF display: the link frames are not shown",
+    hint="add a TF display (Add > TF) to see each link's frame, and save the configuration",
+    explanation="""\
+The TF display draws each link's frame and names: it is how the tutorial shows what
+robot_state_publisher computes. The robot model still appears without it, so this is advice,
+not a defect.""",
+)
+describe(
+    "BK613",
+    title="RViz is started without a configuration",
+    message={
+        "unused": "rviz2 is started without -d, so {config} is not used: RViz opens empty",
+        "": "rviz2 is started without a configuration: RViz opens empty",
+    },
+    hint={
+        "unused": "pass arguments=['-d', os.path.join(get_package_share_directory('{package}'), '{config}')]",
+        "": "save a configuration to rviz/{package}.rviz, install it, and pass it with arguments=['-d', ...]",
+    },
+    explanation="""\
+Started with no `-d`, RViz opens its default configuration: Fixed Frame `map`, no robot model.
+The tutorial then sets Fixed Frame and adds RobotModel by hand, at every launch. Saving that
+configuration in the package, installing it and passing it with `-d` shows the arm at once.""",
+)
+describe(
+    "BK620",
+    title="nothing publishes /joint_states",
+    message={
+        "nodes": "the launch file starts robot_state_publisher but nothing that publishes /joint_states ({node} does, but is not started): the joints {joints} have no angle",
+        "": "the launch file starts robot_state_publisher but nothing that publishes /joint_states: the joints {joints} have no angle",
+    },
+    hint="start joint_state_publisher_gui (or your animation node) in the launch file",
+    explanation="""\
+robot_state_publisher computes the frames of moving links from the angles it receives on
+`/joint_states`. With no publisher, those links have no transform: RViz shows them at the
+origin or not at all, and nothing moves. The tutorial's second pitfall; joint_state_publisher_gui
+or an animation node must run.""",
+)
+describe(
+    "BK621",
+    title="a node publishes JointState names that are not the robot's joints",
+    message={
+        "unknown": "JointState names {names}, which are not movable joints of the robot ({joints})",
+        "missing": "JointState never names {names} (it names {published}): those joints do not move",
+        "": "JointState names do not match the robot's movable joints",
+    },
+    hint={
+        "unknown": "use the joint names of the URDF: {joints}",
+        "missing": "add {names} to the names, with a position for each",
+        "": "name every movable joint of the URDF",
+    },
+    explanation="""\
+robot_state_publisher matches JointState entries to the URDF by name. A name the robot does
+not have is ignored; a movable joint that is never named has no transform, so its child link
+and everything after it do not move (or disappear from RViz). The usual cause: a joint added
+to the URDF, such as the tutorial's `poignet`, but not to the node's `msg.name`.""",
+)
+describe(
+    "BK622",
+    title="a node has no console_scripts entry point",
+    message={
+        "launch": "the launch file starts '{executable}' of {package}, but setup.py declares no console_scripts entry of that name",
+        "node": "{node_file} publishes JointState and has main(), but no console_scripts entry runs it",
+        "module": "console_scripts entry '{executable}' points to {module}, which does not exist",
+        "function": "console_scripts entry '{executable}' points to {module}:{function}, which is not defined",
+        "": "a node has no console_scripts entry point",
+    },
+    hint={
+        "launch": "add {entry} to entry_points['console_scripts'] in setup.py",
+        "node": "add {entry} to entry_points['console_scripts'] in setup.py",
+        "": "point the entry at an existing module and function (module.path:main)",
+    },
+    explanation="""\
+`ros2 run PKG NAME` and a launch file's `Node(package=PKG, executable=NAME)` run the programs
+that `setup.py` declares under `entry_points['console_scripts']` (`'NAME = PKG.module:main'`).
+A node without an entry is never installed as a program: "No executable found", and the robot
+does not move.""",
+)
+describe(
+    "BK623",
+    title="a node's motion leaves the joint limits",
+    message={
+        "upper": "joint '{joint}' follows {formula}: above its upper limit {bound} from t = {time} s, up to {value} {unit}",
+        "lower": "joint '{joint}' follows {formula}: below its lower limit {bound} from t = {time} s, down to {value} {unit}",
+        "": "joint '{joint}' follows {formula}, which leaves its limits",
+    },
+    hint="shrink the amplitude so that it stays between lower and upper, or widen the URDF's limits",
+    explanation="""\
+When a node writes its positions as literal formulas (`0.8 * math.sin(t)`), bras-kit follows
+each one for a minute with the same limit checks as `--motion` and compares it with the
+joint's `<limit>`. robot_state_publisher draws what it receives, so the arm goes past its
+stops in RViz, and a real robot or a simulator would refuse it: the tutorial's fifth pitfall.
+Formulas that are not literal (read from parameters, computed elsewhere) are not judged.""",
+)
