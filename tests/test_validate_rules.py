@@ -90,13 +90,14 @@ def test_not_well_formed_xml_names_the_line(check):
     assert len(findings) == 1
     f = findings[0]
     assert (f.code, f.severity, f.line, f.element) == ("BK100", "error", 16, "file")
-    assert f.text("en") == "not well-formed XML: mismatched tag (column 45)"
+    assert f.text("en") == ("not well-formed XML: the tag <box> opened on line 16 is never closed: "
+                            "the reader met </geometry> on line 16 while <box> was still open")
     assert "BK100" not in codes(check(BRAS))
 
 
 def test_truncated_file_is_not_well_formed(check):
     f = only(check(BRAS[: BRAS.index("<joint name=\"coude\"")]), "BK100")
-    assert f.text("en").startswith("not well-formed XML: no element found")
+    assert f.text("en").startswith("not well-formed XML: the tag <robot name=\"bras\"> opened on line 4 is never closed")
 
 
 def test_doctype_with_an_external_dtd_is_refused(check):
@@ -525,10 +526,13 @@ def test_elbow_past_the_upper_arm_end(check):
     assert f.hint_text("en") == "put the joint at the end of 'bras': <origin xyz=\"0 0 0.6\" rpy=\"0 0.1 0\"/>"
 
 
-def test_joint_off_a_parent_that_is_not_a_segment_is_not_judged(check):
-    # the base is a flat cylinder (0.3 wide, 0.1 high), not a segment: a shoulder above it is a design
-    # choice the heuristic cannot judge (motors on a chassis, a cart on a rail look the same)
-    assert "BK301" not in codes(check(edited(('<origin xyz="0 0 0.05"/>', '<origin xyz="0 0 0.1"/>'))))
+def test_segment_hung_above_the_base_is_a_warning_with_the_origin_on_the_base(check):
+    # issue 19: the base is a flat cylinder (z -0.05..0.05); a shoulder at z=0.1 leaves the upper arm
+    # (drawn from its joint up) 5 cm in the air: the origin to write is on the base's top face
+    f = only(check(edited(('<origin xyz="0 0 0.05"/>', '<origin xyz="0 0 0.1"/>'))), "BK301")
+    assert (f.name, f.variant, f.severity) == ("epaule", "detached", "warning")
+    assert abs(f.data["distance"] - 0.05) < 1e-9
+    assert f.hint_text("en") == "put the joint on the <cylinder> of 'base': <origin xyz=\"0 0 0.05\"/>"
 
 
 def test_prismatic_carriage_mid_rail_is_not_a_segment_mistake(check):
@@ -542,10 +546,11 @@ def test_prismatic_carriage_mid_rail_is_not_a_segment_mistake(check):
     assert only(check(revolute), "BK301").severity == "warning"
 
 
-def test_joint_far_past_the_segment_is_not_judged(check):
-    # a knee 1.5 segment lengths past a thin 0.2 m box: not on that segment at all
-    far = edited(('<origin xyz="0 0 0.6"/>', '<origin xyz="0 0 1.5"/>'))
-    assert "BK301" not in codes(check(far))
+def test_joint_far_past_the_tutorial_segment_is_a_warning_at_any_distance(check):
+    # issue 19: 0.9 m past the end of the 0.6 m upper arm, the forearm floats; the old quarter-length window missed it
+    f = only(check(edited(('<origin xyz="0 0 0.6"/>', '<origin xyz="0 0 1.5"/>'))), "BK301")
+    assert (f.variant, round(f.data["distance"], 9)) == ("beyond", 0.9)
+    assert f.hint_text("en") == "put the joint at the end of 'bras': <origin xyz=\"0 0 0.6\"/>"
 
 
 def test_joint_within_tolerance_of_the_end_or_fixed_is_not_flagged(check):

@@ -27,6 +27,7 @@ from typing import Any
 
 from ..errors import BrasKitError, ParameterError, XacroError, XMLSafetyError, XMLSyntaxError
 from ..i18n import LANGUAGES, resolve_language
+from ..message import M
 from ..model import Robot
 from . import geometry, inertia, joints, package, pitfalls, structure, texts  # noqa: F401  (importing registers the rules)
 from .context import Context
@@ -232,11 +233,30 @@ def load_for_validation(path: str, *, mappings: Mapping[str, str] | None = None,
     elif os.path.isdir(path):
         return _loader_finding("BK103", Hit("file", None, None, {"path": path}, "folder"))
     elif not os.path.exists(path):
-        return _loader_finding("BK103", Hit("file", None, None, {"path": path}, "missing"))
+        return _loader_finding("BK103", _missing_file(path))
     try:
         return load(path, mappings=mappings, package_paths=package_paths)
     except BrasKitError as exc:
         return _unreadable(path, exc)
+
+
+def _missing_file(path: str) -> Hit:
+    """BK103 for a path that does not exist: a Windows-style path, or a near name in the same folder."""
+    if "\\" in path:
+        fixed = path.replace("\\", "/")
+        return Hit("file", None, None, {"path": path, "suggestion": fixed}, "windows")
+    import difflib
+
+    folder = os.path.dirname(path) or "."
+    try:
+        names = [n for n in os.listdir(folder) if n.endswith(SOURCE_SUFFIXES)]
+    except OSError:
+        names = []
+    close = difflib.get_close_matches(os.path.basename(path), names, n=1, cutoff=0.6)
+    if close:
+        return Hit("file", None, None, {"path": path, "suggestion": os.path.join(os.path.dirname(path), close[0])},
+                   "near")
+    return Hit("file", None, None, {"path": path}, "missing")
 
 
 def _unreadable(path: str, exc: BrasKitError) -> Finding:
@@ -256,8 +276,10 @@ def _unreadable(path: str, exc: BrasKitError) -> Finding:
             at, byte, guess = encoding
             return _loader_finding("BK100", Hit("file", None, at, {"at": at, "byte": byte, "guess": guess},
                                                 "encoding"))
-        detail = str(exc.message).removeprefix("not well-formed XML: ")
-        return _loader_finding("BK100", Hit("file", None, line, {"detail": where + detail}))
+        detail: Any = exc.detail if exc.detail is not None else exc.message
+        if where:
+            detail = M("{where}{detail}", where=where, detail=detail)
+        return _loader_finding("BK100", Hit("file", None, line, {"detail": detail}))
     if isinstance(exc, XacroError):
         detail = str(exc.message).removeprefix("xacro failed: ")
         return _loader_finding("BK102", Hit("file", None, line, {"detail": where + detail}, _xacro_kind(detail)))

@@ -77,11 +77,15 @@ describe(
     title="the file cannot be read",
     message={
         "missing": "no such file: {path}",
+        "near": "no such file: {path}",
+        "windows": "no such file: {path} (its '\\' separators are Windows's: on Linux and macOS they are part of the file's name)",
         "folder": "{path} is a folder, not a file",
         "": "cannot read {path}: {detail}",
     },
     hint={
         "missing": "check the path and its spelling",
+        "near": "did you mean {suggestion}? It is in the same folder",
+        "windows": "write the path with '/': {suggestion}",
         "folder": "give the folder itself to bras-kit validate: it checks the .urdf and .xacro files inside",
         "": "check the file exists and you may read it",
     },
@@ -548,8 +552,11 @@ describe(
     message={
         "short": "joint '{joint}' is at {coord}, but the {tag} of link '{link}' runs {span}: the child hangs {distance} m short of the segment's end",
         "beyond": "joint '{joint}' is at {coord}, {distance} m past the end of link '{link}' (its {tag} runs {span}): the child floats in the air",
+        "beside": "joint '{joint}' is at xyz {xyz}, beside link '{link}' (its {tag} runs {span}): the child hangs {distance} m away from the segment's end",
+        "detached": "joint '{joint}' is at xyz {xyz}, {distance} m away from the {tag} of link '{link}': segment '{child}' starts in the air, not on its parent",
     },
     hint={
+        "detached": "put the joint on the {tag} of '{link}': {origin}",
         "": "put the joint at the end of '{link}': {origin}",
     },
     explanation="""\
@@ -561,10 +568,14 @@ segment starts inside the parent or floats away from it ("segments mal positionn
 This is the tutorial's rule of thumb, so it is a warning, and bras-kit applies it only where
 the parent looks like the tutorial's segments: a revolute or continuous joint whose parent link
 has one box or cylinder visual clearly longer along one axis, with the joint on that axis and
-within a quarter of the segment's length of its ends. It then says where the segment ends and
-which origin fits (within 2 mm or 5 % of the length). Prismatic joints (a carriage anywhere on
-its rail), joints beside the parent's shape (motors on a chassis, a wheel under a cart) and
-fixed joints (sensor mounts, tool frames) are not checked.""",
+within a quarter of the segment's length of its ends. When the parent is drawn exactly the
+tutorial's way (its shape starts at its own joint and runs along one axis) and the child's
+shape does not touch it, a joint at any distance past the end, or beside the segment, is
+reported too, and so is a segment hung in the air away from any parent's shape (the arm
+floating above the base). It then says where the segment ends and which origin fits (within 2 mm or 5 % of
+the length). Prismatic joints (a carriage anywhere on its rail), joints beside other shapes
+(motors on a chassis, a wheel under a cart) and fixed joints (sensor mounts, tool frames) are
+not checked.""",
 )
 describe(
     "BK302",

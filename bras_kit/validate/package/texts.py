@@ -97,7 +97,9 @@ describe(
 `rosdep install` installs what `package.xml` declares. A node started by the launch file
 but not declared works on the machine where it happens to be installed, and fails elsewhere
 with "package not found". Every package whose nodes the launch file starts
-(robot_state_publisher, joint_state_publisher_gui, rviz2...) belongs in an `<exec_depend>`.""",
+(robot_state_publisher, joint_state_publisher_gui, rviz2...) belongs in an `<exec_depend>`.
+This is advice (info): the tutorial's own package declares none of them and runs on a machine
+where ROS 2 desktop is installed.""",
 )
 describe(
     "BK606",
@@ -394,4 +396,61 @@ describe(
 A node with one timer that publishes once per tick sends messages at the timer's rate (20 Hz
 for the tutorial's 0.05 s). A very different rate means the callback publishes several times,
 or only now and then, or that another loop publishes: the motion in RViz then jerks or races.""",
+)
+describe(
+    "BK624",
+    title="the node publishes JointState on another topic than /joint_states",
+    message="the node publishes its JointState on '{topic}': robot_state_publisher listens on /joint_states only, so the arm never moves",
+    hint="publish on 'joint_states': {fix}",
+    explanation="""\
+robot_state_publisher subscribes to `/joint_states` and nothing else. A publisher created on
+`'joint_state'`, `'/joint_states/'` misspelled or any other name sends its messages to a topic
+nobody listens to: no error anywhere, the arm simply stays still in RViz (the tutorial's
+"le robot ne bouge pas"). The topic is read from the `create_publisher` call, written literally
+or as a constant of the module; `'joint_states'` and `'/joint_states'` are both right.""",
+)
+describe(
+    "BK625",
+    title="the node never sends its JointState",
+    message={
+        "publish": "the node creates a JointState publisher but never calls publish(): nothing reaches /joint_states",
+        "timer": "the node creates a JointState publisher but no timer or loop ever runs the code that publishes: nothing reaches /joint_states",
+    },
+    hint={
+        "publish": "publish the message at the end of the callback: {fix}",
+        "timer": "schedule the callback in __init__: {fix}",
+    },
+    explanation="""\
+Creating a publisher sends nothing by itself. The tutorial's node builds a JointState in
+`tick()`, sends it with `self.pub.publish(msg)`, and `self.create_timer(0.05, self.tick)` calls
+`tick()` twenty times a second while `rclpy.spin()` runs. Without the timer (and without a loop
+of its own) the callback never runs; without `publish()` the message is built and thrown away.
+Either way robot_state_publisher receives no angle and the arm does not move.""",
+)
+describe(
+    "BK626",
+    title="the node publishes angles in degrees",
+    message="the node writes its angles in degrees ({what}): JointState positions are radians, so the arm turns 57 times too far",
+    hint="give radians: drop the conversion (math.radians(45) if you think in degrees; 0.8 rad is about 46 degrees)",
+    explanation="""\
+Every angle in ROS is in radians: URDF limits, `JointState.position`, TF. A node that converts
+with `math.degrees(...)`, multiplies by `180 / math.pi`, or writes amplitudes such as `45 *
+math.sin(t)` for a revolute joint sends numbers 57 times too large: the arm spins through its
+stops in RViz, and a real controller would refuse them. An amplitude beyond 2 pi (a full turn)
+on a revolute joint is read as degrees.""",
+)
+describe(
+    "BK607",
+    title="setup.py uses a name it never imports or defines",
+    message="setup.py uses '{undefined}', which it never imports or defines: colcon build will stop with NameError: name '{undefined}' is not defined",
+    hint={
+        "known": "add this line at the top of setup.py: {fix}",
+        "": "import or define '{undefined}' before setup(...), or write its value instead",
+    },
+    explanation="""\
+colcon builds an ament_python package by running its `setup.py` as a Python program. The
+tutorial's data_files lines call `os.path.join(...)` and `glob(...)` and use `package_name`:
+they need `import os`, `from glob import glob` and `package_name = '...'` at the top of the
+file. A `setup.py` made by `ros2 pkg create` defines `package_name` but imports neither `os`
+nor `glob`, so pasting the tutorial's lines there alone stops the build with `NameError`.""",
 )
