@@ -17,7 +17,7 @@ import re
 from collections.abc import Callable, Iterable, Iterator
 from typing import Any
 
-from ..registry import ERROR, INFO, WARNING, Hit, hit, rule
+from ..registry import ERROR, INFO, Hit, hit, rule
 from .sources import (
     INDEX_FOLDER,
     JOINT_STATE_PUBLISHERS,

@@ -355,9 +355,11 @@ def _module_names(tree: ast.Module) -> dict[str, str]:
         elif isinstance(node, ast.ImportFrom):
             for alias in node.names:
                 out[alias.asname or alias.name] = "value"
-        elif isinstance(node, (ast.FunctionDef, ast.AsyncFunctionDef, ast.ClassDef)):
+        elif isinstance(node, (ast.FunctionDef, ast.AsyncFunctionDef)):
             out[node.name] = "value"
             out.update((a.arg, "value") for a in ast.walk(node.args) if isinstance(a, ast.arg))
+        elif isinstance(node, ast.ClassDef):
+            out[node.name] = "value"
         elif isinstance(node, ast.Name) and isinstance(node.ctx, ast.Store):
             out.setdefault(node.id, "value")
     return out
