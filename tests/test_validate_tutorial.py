@@ -209,3 +209,19 @@ def test_a_windows_style_path_is_recognised():
     assert (f.code, f.variant) == ("BK103", "windows")
     assert f.hint_text("en") == "write the path with '/': urdf/bras.urdf"
     assert "Windows" in f.text("fr")
+
+
+# ---------------------------------------------------------------- the launch file
+
+
+@pytest.mark.parametrize("mistake, variant", [("launch_no_parameters.launch.py", "none"),
+                                               ("launch_wrong_parameter.launch.py", "")])
+def test_robot_state_publisher_without_robot_description_is_an_error(tmp_path, mistake, variant):
+    root = tmp_path / "bras_description"
+    shutil.copytree(TUTORIAL, root)
+    shutil.copy(MISTAKES / mistake, root / "launch" / "affichage.launch.py")
+    found = [(Path(path).relative_to(root).as_posix(), f) for path, f in _findings(root) if f.severity != "info"]
+    assert [(path, f.code, f.line, f.variant) for path, f in found] == [
+        ("launch/affichage.launch.py", "BK614", 13, variant)]
+    assert "parameters=[{'robot_description': description}]" in found[0][1].hint_text("en")
+    assert "RViz reste" in found[0][1].text("fr")

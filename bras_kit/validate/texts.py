@@ -794,6 +794,31 @@ balance inertias) or simulate it wrongly. It usually means one value was mistype
 taken from another link; many published robots carry such values.""",
 )
 describe(
+    "BK507",
+    title="a moving body's moments of inertia are impossible",
+    message="link '{link}': principal moments {a}, {b}, {c}: the largest is {ratio:.2f} times the sum of the two others, which no body can have; MuJoCo refuses to load it",
+    hint="recompute the inertia from the shape and mass (bras-kit urdf --inertials shows the formulas for the tutorial's boxes)",
+    explanation="""\
+For any real body the principal moments satisfy A + B >= C. A small breach is rounding (BK502,
+a warning); here the largest moment is more than 1.5 times the sum of the two others, on a
+link that moves. A simulator integrates that body's rotation with these numbers: MuJoCo stops
+with "mass and inertia of moving bodies must satisfy A + B >= C", other engines spin it
+wildly. The usual cause is a value typed in the wrong place (`izz` for `iyy`) or copied from
+another link.""",
+)
+describe(
+    "BK508",
+    title="a massless appendage fused into a valid body has a negative moment",
+    message="link '{link}': principal moments {moments} include a negative one, but the link is massless and fused by fixed joints into '{body}', whose inertia is valid",
+    hint="write a zero inertia (or a small positive one) for this frame link",
+    explanation="""\
+A negative moment of inertia is impossible (BK501 says so as an error on a body that moves).
+Here it belongs to a massless link fixed to a body that has a valid inertia, such as a sensor
+or antenna frame: ROS tools and physics engines merge fixed links into one body, adding the
+tensors, and a tiny defect of a massless part does not change what is simulated. Still worth a
+clean zero.""",
+)
+describe(
     "BK503",
     title="inertia far from the link's shape",
     message={

@@ -440,6 +440,18 @@ def _violations(robot: Any, formulas: dict[str, str]) -> Iterator[tuple[str, str
                 yield joint, text, violation
 
 
+@package_rule("BK614", "robot-description-not-given", ERROR)
+def robot_description_not_given(pkg: Package) -> Iterator[Hit]:
+    """robot_state_publisher needs the URDF text in its robot_description parameter."""
+    for launch in pkg.launch_files:
+        for node in launch.nodes:
+            if node.package != "robot_state_publisher" or node.parameters is None:
+                continue  # parameters built in a way only running the file would tell
+            if "robot_description" not in node.parameters:
+                yield _at(launch.path, node.line, "" if node.has_parameters else "none",
+                          fix="parameters=[{'robot_description': description}]")
+
+
 # ---------------------------------------------------------------- the node, read without running it
 
 

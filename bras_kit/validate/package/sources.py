@@ -88,6 +88,8 @@ class NodeCall:
     executable: Any
     arguments: Any
     line: int
+    parameters: Any = None  # the parameters= list as far as it can be read (None: not given)
+    has_parameters: bool = False
 
 
 @dataclass(frozen=True)
@@ -448,9 +450,11 @@ def _launch(tree: ast.Module, rel: str, root: str) -> LaunchFile:
         name = call_name(call.func)
         if name.rsplit(".", 1)[-1] == "Node":
             arguments = keyword(call, "arguments")
+            parameters = keyword(call, "parameters")
             nodes.append(NodeCall(evaluator.value(keyword(call, "package"), scope),
                                   evaluator.value(keyword(call, "executable"), scope),
-                                  [] if arguments is None else evaluator.value(arguments, scope), call.lineno))
+                                  [] if arguments is None else evaluator.value(arguments, scope), call.lineno,
+                                  _parameter_keys(parameters), parameters is not None))
             includes = includes or nodes[-1].package == "tf2_ros"
         elif name.rsplit(".", 1)[-1] in ("IncludeLaunchDescription", "ExecuteProcess", "OpaqueFunction"):
             includes = True
@@ -459,6 +463,21 @@ def _launch(tree: ast.Module, rel: str, root: str) -> LaunchFile:
             if isinstance(value, ShareFile) and value.relative:
                 share_files.append((value, call.lineno))
     return LaunchFile(rel, nodes, share_files, includes)
+
+
+def _parameter_keys(node: ast.expr | None) -> Any:
+    """The parameter names a ``parameters=[{...}, ...]`` list gives, as a set; None when a part of
+    it cannot be read without running the file (a YAML path, a variable, a substitution)."""
+    if node is None:
+        return set()
+    if not isinstance(node, (ast.List, ast.Tuple)):
+        return None
+    keys: set[str] = set()
+    for item in node.elts:
+        if not isinstance(item, ast.Dict) or any(k is None or not isinstance(k, ast.Constant) for k in item.keys):
+            return None
+        keys |= {str(k.value) for k in item.keys if isinstance(k, ast.Constant)}
+    return keys
 
 
 # ---------------------------------------------------------------- nodes publishing JointState

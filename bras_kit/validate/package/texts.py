@@ -454,3 +454,19 @@ they need `import os`, `from glob import glob` and `package_name = '...'` at the
 file. A `setup.py` made by `ros2 pkg create` defines `package_name` but imports neither `os`
 nor `glob`, so pasting the tutorial's lines there alone stops the build with `NameError`.""",
 )
+describe(
+    "BK614",
+    title="robot_state_publisher is started without robot_description",
+    message={
+        "none": "the launch file starts robot_state_publisher without parameters: it never gets the robot_description, so RViz stays empty",
+        "": "the launch file starts robot_state_publisher without a robot_description parameter: RViz stays empty",
+    },
+    hint="read the installed URDF and pass its text: {fix}",
+    explanation="""\
+robot_state_publisher learns the robot's shape from one parameter, `robot_description`, which
+holds the URDF's text (not its path). The tutorial's launch file reads the installed
+`urdf/bras.urdf` and passes `parameters=[{'robot_description': description}]`. Without it the
+node waits for a description that never comes: no `/robot_description`, no TF frames, and
+RViz's RobotModel stays empty. Parameters given as a YAML file or built by substitutions are
+not judged here.""",
+)
