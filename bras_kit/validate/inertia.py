@@ -130,7 +130,7 @@ def inertia_not_positive_definite(ctx: Context) -> Iterator[Hit]:
 GROSS_BREACH = 1.5  # largest moment over the sum of the two others: beyond this, no rounding explains it
 
 
-def _fused_appendage(ctx: Context, body: Body, definite: set[str]) -> bool:
+def _fused_appendage(ctx: Context, body: Body, definite: set[str | None]) -> bool:
     """A massless link (under a thousandth of the rest of its body's mass) fused by fixed joints into a
     body that has a valid inertia (TIAGo's antennas):
     physics engines add its tensor into that body's, so a tiny defect of its own changes nothing."""
@@ -139,8 +139,8 @@ def _fused_appendage(ctx: Context, body: Body, definite: set[str]) -> bool:
     if head == body.link.name or not any(name in definite for name in others):
         return False
     mass = body.inertial.mass or 0.0
-    rest = sum(ctx.links[name].inertial.mass or 0.0 for name in others  # type: ignore[union-attr]
-               if name in ctx.links and ctx.links[name].inertial is not None)
+    inertials = [ctx.links[name].inertial for name in others if name in ctx.links]
+    rest = sum(float(i.mass or 0.0) for i in inertials if i is not None)
     return 0 <= mass <= 1e-3 * rest  # massless next to the body it is fused into (TIAGo's 1 mg antennas)
 
 
