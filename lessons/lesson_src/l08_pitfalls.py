@@ -342,6 +342,27 @@ LESSON.cells = [
     ),
     md(
         """
+        Le même outil lit le nœud sans le lancer. **On casse** : un `s` oublié dans le nom du
+        topic, `'joint_state'`. Aucune erreur ne s'afficherait nulle part avec ROS : le bras
+        resterait immobile dans RViz. **On répare** : `'joint_states'`.
+        """,
+        """
+        The same tool reads the node without running it. **Break it**: an `s` forgotten in the
+        topic's name, `'joint_state'`. ROS would show no error anywhere: the arm would just stay
+        still in RViz. **Fix it**: `'joint_states'`.
+        """,
+    ),
+    code(
+        """
+        node_file = package / "bras_description" / "animation.py"
+        node_text = node_file.read_text()
+        node_file.write_text(node_text.replace("'joint_states', 10", "'joint_state', 10"))
+        validate_folder(package)
+        node_file.write_text(node_text)
+        """
+    ),
+    md(
+        """
         Le correctif : remettre la ligne dans `data_files`, puis `colcon build` de nouveau. (Le
         `setup.py` généré va plus loin : si le dossier `urdf/` est vide, la construction s'arrête
         avec un message, au lieu d'échouer plus tard au lancement.)
