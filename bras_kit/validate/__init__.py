@@ -264,10 +264,7 @@ def _unreadable(path: str, exc: BrasKitError) -> Finding:
     where = f"{other}:{exc.line}: " if other and exc.line else (f"{other}: " if other else "")
     line = None if other else exc.line
     if isinstance(exc, XMLSafetyError):
-        message = str(exc.message)
-        variant = ("undefined" if "undefined entity" in message else "dtd" if "DTD" in message
-                   else "entity" if "entity declaration" in message
-                   else "external" if "external entity" in message else "")
+        variant = {"attlist": "dtd"}.get(exc.kind, exc.kind)
         hit = Hit("file", None, line, {"where": f" ({where.rstrip(': ')})" if where else ""}, variant)
         return _loader_finding("BK101", hit)
     if isinstance(exc, XMLSyntaxError):
