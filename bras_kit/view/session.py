@@ -208,7 +208,7 @@ class Session:
         handle = gui.add_slider(slider.joint, slider.lower, slider.upper, _step(slider), _clip(value, slider),
                                 hint=f"{slider.lower:g} .. {slider.upper:g} {slider.unit}")
         handle.on_update(lambda _event, name=slider.joint, h=handle: self._slider_moved(name, h))
-        box = gui.add_text("", joint_box_text(value),
+        box = gui.add_text(f"{slider.joint} =", joint_box_text(value),
                            hint=self.s(M("a value for {joint}: 0.5, 0,5, pi/4, 90deg", joint=slider.joint)))
         box.on_update(lambda event, name=slider.joint, b=box: event.client is None or self._box_typed(name, b))
         self._sliders[slider.joint] = handle
