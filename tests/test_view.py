@@ -353,7 +353,8 @@ def test_typed_joint_values_read_like_the_command_line(browser, viewer):
     for typed, expected in (("0,5", 0.5), ("pi/4", np.pi / 4), ("30deg", np.radians(30)), ("-1,25", -1.25)):
         coude.fill("")
         coude.type(typed, delay=30)
-        assert _wait(lambda: session.values["coude"] == pytest.approx(expected, abs=1e-12), 30), (typed, session.values)
+        assert _wait(lambda want=expected: session.values["coude"] == pytest.approx(want, abs=1e-12), 30), \
+            (typed, session.values)
     assert 'data-note' not in session.joint_note.content
     coude.fill("")
     coude.type("90", delay=30)  # coude's limits are -2 .. 2 rad: 90 rad means 90 degrees
