@@ -69,7 +69,7 @@ def _orange(page) -> np.ndarray:
 
     from PIL import Image
 
-    image = np.asarray(Image.open(BytesIO(page.screenshot())).convert("RGB"))[SCENE].astype(int)
+    image = np.asarray(Image.open(BytesIO(page.screenshot(timeout=120_000))).convert("RGB"))[SCENE].astype(int)
     r, g, b = image[..., 0], image[..., 1], image[..., 2]
     mask = (r > 120) & (r - b > 100) & (g > 0.35 * r) & (g < 0.7 * r)
     return np.argwhere(mask)
@@ -255,7 +255,7 @@ def _screenshot(page) -> np.ndarray:
 
     from PIL import Image
 
-    return np.asarray(Image.open(BytesIO(page.screenshot())).convert("RGB")).astype(int)
+    return np.asarray(Image.open(BytesIO(page.screenshot(timeout=120_000))).convert("RGB")).astype(int)
 
 
 def _close_notices(page) -> None:
