@@ -288,7 +288,7 @@ class Frames:
 
 def render_pose(robot: Robot, config: Mapping[str, float] | Sequence[float] | None = None, **opts: Any) -> np.ndarray:
     """One picture of ``robot`` at ``config`` (missing joints at 0), framed on that pose: (H, W, 3) uint8."""
-    with Renderer(robot, fit=config, **opts) as renderer:
+    with Renderer(robot, fit={} if config is None else config, **opts) as renderer:  # {}: the zero pose
         return renderer.render(config)
 
 
