@@ -7,6 +7,7 @@ from typing import Any
 
 import numpy as np
 
+from .. import backends
 from ..model import Robot
 from .model import view_model, wxyz
 from .session import ROOT, _nice
@@ -16,7 +17,7 @@ from .viewer import never_share, quiet
 def export_html(robot: Robot, states: Any, *, package_paths: tuple[str, ...] = (),
                 frames: bool = True, names: bool = True) -> str:
     """The HTML page replaying ``states`` (a :class:`~bras_kit.motion.JointStates`) on ``robot``."""
-    import viser
+    viser = backends.viser()
 
     model = view_model(robot, package_paths)
     times = np.asarray(states.times, dtype=float)

@@ -116,14 +116,28 @@ def _rgb(color: Sequence[float]) -> Color:
     return tuple(int(round(255 * min(max(float(c), 0.0), 1.0))) for c in color[:3])  # type: ignore[return-value]
 
 
+def _merged_by_colour(parts) -> list[Mesh]:  # type: ignore[no-untyped-def]
+    """One mesh per link and colour: a mesh file's material pieces (Panda's link0 has 12) and a
+    link's visuals of one colour reach the browser as one object."""
+    groups: dict[tuple[int, tuple[float, ...]], list] = {}  # type: ignore[type-arg]
+    for part in parts:
+        groups.setdefault((part.link, tuple(part.color)), []).append(part)
+    out = []
+    for (link, color), members in groups.items():
+        starts = np.cumsum([0] + [len(p.vertices) for p in members])
+        vertices = np.concatenate([p.vertices for p in members])
+        faces = np.concatenate([np.asarray(p.faces) + start for p, start in zip(members, starts)])
+        out.append(Mesh(link, vertices, faces, _rgb(color), float(color[3]) if len(color) > 3 else 1.0))
+    return out
+
+
 def view_model(robot: Robot, package_paths: Sequence[str] = ()) -> ViewModel:
     """The robot ready to show: visual and collision meshes per link, sliders, the tool tip."""
     from ..render.scene import collision_parts, robot_parts
     from ..tip import tool_tip
 
     tree = tf_tree(robot)
-    visuals = [Mesh(p.link, p.vertices, p.faces, _rgb(p.color), float(p.color[3]) if len(p.color) > 3 else 1.0)
-               for p in robot_parts(tree, package_paths)]
+    visuals = _merged_by_colour(robot_parts(tree, package_paths))
     collisions = [Mesh(p.link, p.vertices, p.faces, COLLISION_COLOR, 0.6) for p in collision_parts(tree, package_paths)]
     sliders = []
     for joint in tree.dof_joints():

@@ -11,6 +11,7 @@ from collections.abc import Callable, Iterator, Sequence
 from dataclasses import dataclass, field
 from typing import Any
 
+from .. import backends
 from ..errors import BrasKitError
 from ..message import M
 from ..model import Robot
@@ -54,7 +55,7 @@ class Viewer:
     def __init__(self, source: Source, *, host: str = LOCAL_HOST, port: int = 8080, lang: str = "en",
                  motion_specs: Sequence[str] = (), loop_seconds: float = 10.0, watch: bool = True,
                  geometry: str = "visual") -> None:
-        import viser
+        viser = backends.viser()
 
         from .session import GEOMETRIES
 
