@@ -76,7 +76,7 @@ def _plot_joint(ax: Any, robot: Robot, name: str, times: np.ndarray, values: np.
                 zorder=4, gid=f"violations:{name}")
         excess = np.where(values > upper, values - upper, lower - values)
         worst = int(np.argmax(excess))
-        ax.annotate(say(M("{excess} {unit} beyond limit at t={time} s", excess=float(excess[worst]),
+        ax.annotate(say(M("{excess:.4g} {unit} beyond limit at t={time:.4g} s", excess=float(excess[worst]),
                               unit=joint_unit(joint) if joint else "", time=float(times[worst])), lang),
                     (times[worst], values[worst]),
                     xytext=(6, 6), textcoords="offset points", fontsize=8, color=_VIOLATION)
