@@ -292,3 +292,18 @@ def test_typed_joint_values_follow_the_command_line_parser_and_its_degrees_hint(
     value, note, accepted = read_joint_box("2,5", coude, joint, True)  # asked to go past: applied, still said
     assert (value, accepted) == (2.5, True) and "past its limits" in str(note)
     assert read_joint_box("pi/", coude, joint, False)[:1] == (None,)
+
+
+def test_geometry_collision_at_startup_shows_the_collision_shapes_only():
+    from bras_kit.authoring import arm
+    from bras_kit.errors import ParameterError
+    from bras_kit.view import Source, Viewer
+
+    with Viewer(Source(robot=arm(collisions=True)), port=_free_port(), watch=False, geometry="collision") as viewer:
+        session = _session(viewer)
+        assert not session.show_visual.value and session.show_collision.value
+        assert len(session._collision_nodes) == 3  # base, bras, avant_bras: one <collision> each
+        assert all(node.visible for node in session._collision_nodes)
+        assert not any(node.visible for node in session._visual_nodes)
+    with pytest.raises(ParameterError):
+        Viewer(Source(robot=arm()), port=_free_port(), watch=False, geometry="collisions")
