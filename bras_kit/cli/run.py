@@ -3,10 +3,9 @@
 from __future__ import annotations
 
 import argparse
-import os
 import sys
 
-from ._common import add_force_argument, check_writable, warn, write_text
+from ._common import add_force_argument, check_writable, warn
 
 _EPILOG = """\
 The node's main() runs in a child process, against bras-kit's stand-in for rclpy, on a
@@ -33,7 +32,7 @@ def configure(parser: argparse.ArgumentParser) -> None:
     parser.add_argument("--duration", type=float, default=10.0, metavar="S",
                         help="seconds of simulated time to run the node for (default: 10)")
     parser.add_argument("-o", "--output", metavar="FILE",
-                        help="write what /joint_states carried (.csv or .json, like bras-kit motion)")
+                        help="write what /joint_states carried (.csv, .json, or .mcap for a ROS 2 bag, like bras-kit motion)")
     parser.add_argument("--gif", metavar="FILE", help="draw the arm moved by the node as a GIF")
     parser.add_argument("--urdf", metavar="FILE",
                         help="the robot the node drives (default: the package's urdf/ file)")
@@ -43,18 +42,17 @@ def configure(parser: argparse.ArgumentParser) -> None:
 
 
 def run(args: argparse.Namespace) -> int:
-    from ..errors import ParameterError
     from ..i18n import say
     from ..run import run_node
     from ..run.report import failure_lines, summary
 
     lang = args.lang
-    if args.output is not None and os.path.splitext(args.output)[1].lower() not in (".csv", ".json"):
-        raise ParameterError(f"-o: cannot tell the format of '{args.output}'",
-                             hint="end the file name in .csv or .json")
-    for path, option in ((args.output, "-o"), (args.gif, "--gif")):
-        if path is not None:
-            check_writable(path, args.force, option=option)
+    if args.output is not None:  # CSV, JSON or a ROS 2 bag, by the name (the one states writer)
+        from ..motion.states_io import check_states_output
+
+        check_states_output(args.output, args.force)
+    if args.gif is not None:
+        check_writable(args.gif, args.force, option="--gif")
     recording = run_node(args.target, args.executable, duration=args.duration, echo=not args.quiet)
     for message in summary(recording):
         print(say(message, lang), file=sys.stderr)
@@ -98,15 +96,20 @@ def _print_findings(findings, recording, args) -> None:  # type: ignore[no-untyp
 
 def _write_states(recording, robot, args) -> None:  # type: ignore[no-untyped-def]
     from ..errors import BrasKitError
+    from ..i18n import say
     from ..message import M
-    from ..motion.states_io import states_to_csv, states_to_json
+    from ..motion.states_io import states_format, write_states
     from ..run import joint_states
 
     states = joint_states(recording)
     if not len(states):
         raise BrasKitError(M("nothing was published on /joint_states: no joint states to write"))
-    text = states_to_json(states) if args.output.lower().endswith(".json") else states_to_csv(states)
-    write_text(args.output, text, args.force)
+    if states_format(args.output) == "bag" and robot is None:
+        raise BrasKitError(M("a ROS 2 bag holds the robot (/robot_description, /tf): the package has no urdf/ file"),
+                           hint=M("give one with --urdf FILE"))
+    written = write_states(robot, states, args.output, args.force)
+    if written is not None:
+        print(say(written, args.lang), file=sys.stderr)
 
 
 def _write_gif(recording, robot, args) -> None:  # type: ignore[no-untyped-def]
