@@ -48,7 +48,7 @@ def run(args: argparse.Namespace) -> int:
     motion = motion_from_specs(robot, args.motion, joint_values(args.values) or None, args.interpolation, args.topic)
     warn_motion_notes(motion)
     states = sample(motion, args.duration, args.rate if args.rate is not None else DEFAULT_RATE)
-    save_with(output, args.force, lambda temporary: plot_motion(robot, states, path=temporary), announce=False)
+    save_with(output, args.force, lambda temporary: plot_motion(robot, states, path=temporary, lang=args.lang), announce=False)
     link, offset = tip_point(robot)
     duration = float(states.times[-1]) if len(states.times) else 0.0
     print(_("wrote {path}: {count} samples over {duration:g} s; tip = '{link}' + ({offset})").format(

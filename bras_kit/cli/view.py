@@ -35,6 +35,9 @@ def configure(parser: argparse.ArgumentParser) -> None:
     parser.add_argument("--port", type=int, default=8080, help="port of the page (default 8080; the next free one if taken)")
     parser.add_argument("--host", default="127.0.0.1",
                         help="address to listen on (default 127.0.0.1: this computer only)")
+    parser.add_argument("--geometry", choices=("visual", "collision", "both"), default="visual",
+                        help="what the page shows first: the links' <visual> shapes (default), their <collision> "
+                        "shapes, or both (the Display checkboxes change it)")
     parser.add_argument("--no-browser", action="store_true", help="print the address without opening a browser")
     parser.add_argument("--export", metavar="HTML",
                         help="write one self-contained HTML file replaying the motion, then stop")
@@ -96,7 +99,7 @@ def _serve(args: argparse.Namespace, source: object) -> int:
         print(_("warning") + ": " + _("listening on {host}: anyone who can reach this computer can see and move "
                                      "the arm").format(host=args.host), file=sys.stderr)
     viewer = Viewer(source, host=args.host, port=args.port, lang=args.lang, motion_specs=args.motion,  # type: ignore[arg-type]
-                    motion_topic=args.topic)
+                    motion_topic=args.topic, geometry=args.geometry)
     try:
         print(_("bras-kit view: {url} (Ctrl-C to stop)").format(url=viewer.url), flush=True)
         if source.path:  # type: ignore[attr-defined]

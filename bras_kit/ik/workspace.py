@@ -169,6 +169,16 @@ def workspace_figure(model: TFTree | Robot, samples: int = 100_000, *, tip_link:
         bottoms = [patch.get_y() for patch in axes.patches if isinstance(patch, Rectangle)]
         floor = min(bottoms) if bottoms else float(zero[0][2, 3])
         axes.axhline(floor, color=(0.45, 0.3, 0.15), linewidth=2, zorder=3, label=_("floor"))
+        if (free[:, v] < floor - 1e-9).any():  # the model's tip reaches below the floor: say so on the figure
+            from ..i18n import say
+            from ..message import M
+
+            axes.axhspan(y_edges[0], floor, facecolor="none", edgecolor=(0.45, 0.3, 0.15, 0.55), hatch="///",
+                         linewidth=0, zorder=2.5)
+            axes.text((x_edges[0] + x_edges[-1]) / 2, (y_edges[0] + floor) / 2,
+                      say(M("below the floor: reached by the model, not by a real arm")), ha="center", va="center",
+                      fontsize=8, color=(0.35, 0.22, 0.1), zorder=6,
+                      bbox={"facecolor": "white", "edgecolor": "none", "alpha": 0.85, "pad": 2})
     axes.plot(arm_points[:, h], arm_points[:, v], "-", color=(0.95, 0.5, 0.1), linewidth=3, zorder=4,
               label=_("arm at zero pose"))
     axes.plot(arm_points[1:-1, h], arm_points[1:-1, v], "o", color="black", markersize=5, zorder=5)

@@ -25,6 +25,7 @@ VIEWS: dict[str, tuple[float, float]] = {
     "top": (-90.0, 90.0),
 }
 BACKENDS = ("auto", "egl", "osmesa", "software")
+GEOMETRIES = ("visual", "collision", "both")  # RViz's RobotModel: Visual Enabled / Collision Enabled
 MAX_SIDE = 8192  # larger than this, GL renderbuffers fail on common drivers
 
 # Colours that have a name here but not in CSS.
@@ -51,6 +52,7 @@ class RenderOptions:
     antialias: bool | None = None
     package_paths: Sequence[str] = field(default_factory=tuple)
     targets: Sequence[Sequence[float]] = field(default_factory=tuple)  # points marked in the world (reach)
+    geometry: str = "visual"  # what of each link is drawn: its <visual>s, its <collision>s or both
 
     @property
     def width(self) -> int:
@@ -189,6 +191,12 @@ def render_options(**opts: object) -> RenderOptions:
     backend = values.get("backend", "auto")
     if backend not in BACKENDS:
         raise ParameterError(f"unknown backend '{backend}'", hint="backends: " + ", ".join(BACKENDS))
+    geometry = values.get("geometry", "visual")
+    if geometry not in GEOMETRIES:
+        from ..message import M
+
+        raise ParameterError(M("unknown geometry '{value}'", value=geometry),
+                             hint=M("geometries: {names}", names=list(GEOMETRIES)))
     values["azimuth"] = _angle("azimuth", values.get("azimuth"), -360.0, 360.0)
     values["elevation"] = _angle("elevation", values.get("elevation"), -90.0, 90.0)
     distance = values.get("distance")

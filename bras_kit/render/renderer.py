@@ -139,7 +139,10 @@ MAX_NAMED_FRAMES = 60  # past that, names would hide the robot
 
 def frame_names(image: np.ndarray, camera: Any, names: Any, origins: np.ndarray) -> np.ndarray:
     """``image`` with each frame's name written beside its origin, over everything, like RViz's TF
-    display with "Show Names" on: dark text with a light outline, readable on any colour."""
+    display with "Show Names" on: dark text with a light outline, readable on any colour. A name
+    that would cover one already written moves up until it is clear (frames that coincide, such
+    as a link and the base it sits on, get one name above the other). A legend in the lower left
+    corner gives the axes' colours: x red, y green, z blue."""
     from PIL import Image, ImageDraw, ImageFont
 
     points = np.hstack([origins, np.ones((len(origins), 1))]) @ (camera.projection() @ camera.view()).T
@@ -150,14 +153,37 @@ def frame_names(image: np.ndarray, camera: Any, names: Any, origins: np.ndarray)
         font: Any = ImageFont.load_default(size=size)
     except TypeError:  # Pillow without FreeType sizes
         font = ImageFont.load_default()
+    placed: list[tuple[float, float, float, float]] = []
     for name, (x, y, _depth, w) in zip(names, points):
         if w <= 1e-9:  # behind the camera
             continue
         column = (x / w + 1.0) / 2.0 * camera.width + 4
         row = (1.0 - y / w) / 2.0 * camera.height - size - 2
+        for _ in range(len(placed) + 1):
+            left, top, right, bottom = draw.textbbox((column, row), str(name), font=font, stroke_width=2)
+            clash = next((box for box in placed if left < box[2] and box[0] < right and top < box[3] and box[1] < bottom),
+                         None)
+            if clash is None:
+                break
+            row -= bottom - clash[1] + 1  # just above the name it covered
+        placed.append(draw.textbbox((column, row), str(name), font=font, stroke_width=2))
         draw.text((column, row), str(name), fill=(20, 20, 20), font=font, stroke_width=2,
                   stroke_fill=(255, 255, 255))
+    axes_legend(draw, font, size, camera.height)
     return np.asarray(picture)
+
+
+LEGEND_COLOURS = (("x", (255, 0, 0)), ("y", (0, 255, 0)), ("z", (0, 0, 255)))  # the triads' (scene.AXIS_COLORS)
+
+
+def axes_legend(draw: Any, font: Any, size: int, height: int) -> None:
+    """"— x  — y  — z" in the axes' colours, in the lower left corner (no words: no language)."""
+    column, row = 8, height - size - 8
+    for letter, colour in LEGEND_COLOURS:
+        draw.line([(column, row + size * 0.6), (column + 2 * size, row + size * 0.6)], fill=colour, width=max(2, size // 5))
+        column += 2 * size + 4
+        draw.text((column, row), letter, fill=colour, font=font, stroke_width=2, stroke_fill=(255, 255, 255))
+        column += size + 8
 
 
 class Renderer:
@@ -185,7 +211,7 @@ class Renderer:
         fit_q = workspace_samples(self.tree) if fit is None else configurations(self.tree, fit)
         self.scene, points = build_scene(self.tree, fk_batch(self.tree, fit_q), tf=self.options.tf,
                                          grid=self.options.grid, package_paths=self.options.package_paths,
-                                         targets=self.options.targets)
+                                         targets=self.options.targets, geometry=self.options.geometry)
         self.camera = fit_camera(points, self.options)
         self._backend = open_backend(self.scene, self.camera, self.options, sequence)
 
@@ -289,7 +315,7 @@ class Frames:
 
 def render_pose(robot: Robot, config: Mapping[str, float] | Sequence[float] | None = None, **opts: Any) -> np.ndarray:
     """One picture of ``robot`` at ``config`` (missing joints at 0), framed on that pose: (H, W, 3) uint8."""
-    with Renderer(robot, fit=config, **opts) as renderer:
+    with Renderer(robot, fit={} if config is None else config, **opts) as renderer:  # {}: the zero pose
         return renderer.render(config)
 
 

@@ -285,6 +285,30 @@ def robot_parts(tree: TFTree, package_paths: Sequence[str] = (), lang: str | Non
     return parts
 
 
+COLLISION_COLOR = (0.35, 0.63, 0.35, 1.0)  # green-grey, as the viewer draws collision shapes
+
+
+def collision_parts(tree: TFTree, package_paths: Sequence[str] = (), opacity: float = 1.0) -> list[Part]:
+    """A :class:`Part` per drawable ``<collision>`` of every link (RViz's "Collision Enabled"),
+    in one colour; an unreadable collision mesh is drawn as the visuals' red stand-in."""
+    robot = tree.robot
+    parts = []
+    for index, name in enumerate(tree.links):
+        link = robot.link(name)
+        for number, collision in enumerate(link.collisions if link is not None else [], 1):
+            shape = Visual(collision.origin, collision.geometry)
+            color = (*COLLISION_COLOR[:3], opacity)
+            try:
+                mesh = visual_mesh(robot, shape, package_paths)
+            except ModelError:
+                mesh, color = placeholder_mesh(robot, link, shape), PLACEHOLDER_COLOR
+            if mesh is None:
+                continue
+            parts.append(Part(index, np.asarray(mesh.vertices, dtype=float), np.asarray(mesh.faces, dtype=np.int64),
+                              color, label=f"{name} collision {number}"))  # type: ignore[arg-type]
+    return parts
+
+
 def triad_parts(tree: TFTree, length: float) -> list[Part]:
     """Red, green and blue rods along each link's x, y and z axes (RViz's TF display)."""
     radius = length / 22.0
@@ -360,9 +384,13 @@ def target_parts(targets: Sequence[Sequence[float]], size: float) -> list[Part]:
 
 
 def build_scene(tree: TFTree, fit_transforms: np.ndarray, *, tf: bool = False, grid: bool = True,
-                package_paths: Sequence[str] = (), targets: Sequence[Sequence[float]] = ()) -> tuple[Scene, np.ndarray]:
-    """The scene and the world points the camera must keep in view (every part over ``fit_transforms``)."""
-    parts = robot_parts(tree, package_paths)
+                package_paths: Sequence[str] = (), targets: Sequence[Sequence[float]] = (),
+                geometry: str = "visual") -> tuple[Scene, np.ndarray]:
+    """The scene and the world points the camera must keep in view (every part over ``fit_transforms``).
+    ``geometry``: draw the links' visuals, their collision shapes, or both (collisions see-through)."""
+    parts = robot_parts(tree, package_paths) if geometry != "collision" else []
+    if geometry != "visual":
+        parts = parts + collision_parts(tree, package_paths, 0.5 if geometry == "both" else 1.0)
     points = world_points(parts, fit_transforms)
     if len(targets):
         extent = float(np.ptp(points, axis=0).max()) if len(parts) else 0.5
