@@ -21,6 +21,7 @@ import numpy as np
 
 from ..errors import BrasKitError
 from ..i18n import say, say_error
+from ..message import M
 from .rubric import SEVERITIES, Item, Rubric
 from .submissions import MAX_SUBMISSION_BYTES, Submission, SubmissionError, content_hash, unpack
 
@@ -79,12 +80,12 @@ def grade(submission: Submission, rubric: Rubric, options: Options) -> dict[str,
 
 def _materialise(submission: Submission, workdir: str) -> str:
     if submission.kind == "other":
-        raise SubmissionError("not a robot description: hand in a folder, a .urdf or .xacro file, or a .zip/.tar.gz",
+        raise SubmissionError(M("not a robot description: hand in a folder, a .urdf or .xacro file, or a .zip/.tar.gz"),
                               path=submission.path)
     size = _size(submission.path)
     if size > MAX_SUBMISSION_BYTES:
-        raise SubmissionError(f"the submission holds {size >> 20} MB, more than {MAX_SUBMISSION_BYTES >> 20} MB",
-                              path=submission.path, hint="hand in the package only")
+        raise SubmissionError(M("the submission holds {size} MB, more than {most} MB", size=size >> 20,
+                                most=MAX_SUBMISSION_BYTES >> 20), path=submission.path, hint=M("hand in the package only"))
     if submission.kind == "archive":
         target = os.path.join(workdir, "unpacked")
         os.makedirs(target)
