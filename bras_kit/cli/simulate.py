@@ -11,9 +11,11 @@ import argparse
 import os
 import sys
 
-from ..errors import BrasKitError, ParameterError
-from ..i18n import _
+from ..errors import BrasKitError, ParameterError, os_reason
+from ..i18n import say
+from ..message import M
 from ._common import (
+    SEVERITY_WORDS,
     add_force_argument,
     add_model_arguments,
     check_writable,
@@ -77,7 +79,7 @@ def _output_format(path: str) -> str:
         return "csv"
     if suffix == ".json":
         return "json"
-    raise ParameterError(f"cannot tell the format of '{path}'", hint="end the file name in .csv or .json")
+    raise ParameterError(M("cannot tell the format of '{path}'", path=path), hint=M("end the file name in .csv or .json"))
 
 
 def run(args: argparse.Namespace) -> int:
@@ -85,16 +87,15 @@ def run(args: argparse.Namespace) -> int:
     from ..physics import mjcf
     from ..physics.diagnostics import check_physics_ready, physics_notes, report_text
     from ..physics.run import simulate
-    from ..validate.i18n import default_language
 
-    lang = args.lang or default_language()
+    lang = args.lang
     fmt = _output_format(args.output) if args.output else None
     if args.plot:
         from ..diagrams.output import FIGURE_FORMATS, output_suffix
 
         output_suffix(args.plot, FIGURE_FORMATS)
     if args.gif and not args.gif.lower().endswith(".gif"):
-        raise ParameterError(f"cannot write '{args.gif}' as a GIF", hint="end the file name in .gif")
+        raise ParameterError(M("cannot write '{path}' as a GIF", path=args.gif), hint=M("end the file name in .gif"))
     for path in (args.output, args.plot, args.gif):
         if path and path != "-":
             check_writable(path, args.force)
@@ -115,7 +116,7 @@ def run(args: argparse.Namespace) -> int:
                       damping=mjcf.DEFAULT_DAMPING if args.damping is None else args.damping,
                       package_paths=args.package_path)
     for note in physics_notes(robot, states.model, lang, args.package_path):  # type: ignore[arg-type]
-        print(f"{_(note.level)}: {note.text}", file=sys.stderr)
+        print(f"{say(SEVERITY_WORDS.get(note.level, note.level), lang)}: {say(note.text, lang)}", file=sys.stderr)
     print(report_text(robot, states, lang))
     try:
         if fmt is not None:
@@ -124,15 +125,16 @@ def run(args: argparse.Namespace) -> int:
             from ..physics.plot import save_torque_plot
 
             save_torque_plot(robot, states, args.plot, lang)
-            print(_("wrote {path}").format(path=args.plot), file=sys.stderr)
+            print(say(M("wrote {path}", path=args.plot), args.lang), file=sys.stderr)
         if args.gif:
             from ..render import render_motion, save_gif
 
             with render_motion(robot, states, package_paths=tuple(args.package_path)) as frames:
                 count = save_gif(frames, args.gif, fps=args.rate)
-            print(_("wrote {path}: {count} frames at {fps:g} fps").format(path=args.gif, count=count, fps=args.rate),
-                  file=sys.stderr)
+            print(say(M("wrote {path}: {count} frames at {fps:g} fps", path=args.gif, count=count, fps=args.rate),
+                      args.lang), file=sys.stderr)
     except OSError as exc:
-        raise BrasKitError(f"cannot write {exc.filename or 'the output'}: {exc.strerror or exc}",
-                           hint="check the folder exists, is writable and has space") from None
+        raise BrasKitError(M("cannot write {path}: {reason}", path=exc.filename or M("the output"),
+                             reason=os_reason(exc)),
+                           hint=M("check the folder exists, is writable and has space")) from None
     return 1 if args.strict and states.weak_joints else 0
