@@ -289,8 +289,9 @@ def _expand_template(mappings: Mapping[str, str]) -> str:
     template = robot_template()
     source = template.read_bytes()
     key = hashlib.sha256(json.dumps([__version__, sorted(mappings.items())]).encode() + source).hexdigest()[:32]
-    folder = os.path.join(os.environ.get("XDG_CACHE_HOME") or os.path.join(os.path.expanduser("~"), ".cache"),
-                          "bras-kit")
+    from .cachedir import cache_home
+
+    folder = cache_home()
     cached = os.path.join(folder, f"arm-{key}.urdf")
     try:
         if os.path.isfile(cached) and not os.path.islink(cached):

@@ -3,6 +3,7 @@
 from __future__ import annotations
 
 import argparse
+import os
 import sys
 from collections.abc import Callable, Iterable, Mapping
 from typing import Any
@@ -22,6 +23,7 @@ def add_model_arguments(parser: argparse.ArgumentParser, *, variants: bool = Tru
                         help="folder holding ROS packages, for $(find pkg) and package:// (repeatable)")
     parser.add_argument("--xacro-arg", action="append", default=[], metavar="NAME:=VALUE",
                         help="xacro argument when FILE is a .xacro (repeatable)")
+    add_cache_argument(parser)
     if variants:
         parser.add_argument("--wrist", action="store_true",
                             help="built-in arm: add the wrist joint 'poignet' (the tutorial's exercise)")
@@ -31,6 +33,12 @@ def add_model_arguments(parser: argparse.ArgumentParser, *, variants: bool = Tru
                             help="built-in arm: add <collision> shapes equal to the visuals (on with --inertials)")
         parser.add_argument("--param", action="append", default=[], metavar="NAME=VALUE",
                             help="built-in arm: change a template parameter (e.g. bras_length=0.8)")
+
+
+def add_cache_argument(parser: argparse.ArgumentParser) -> None:
+    """``--no-cache``: decode every mesh file again, neither reading nor writing the cache."""
+    parser.add_argument("--no-cache", action="store_true",
+                        help="decode mesh files again, without the cache of decoded meshes")
 
 
 def xacro_mappings(items: Iterable[str]) -> dict[str, str]:
@@ -77,6 +85,18 @@ def joint_values(items: Iterable[str]) -> dict[str, float]:
                                  hint=M("give radians for revolute joints and metres for prismatic ones: "
                                         "0.5, 1,5, pi/2, -0.5*pi, or degrees said explicitly: 90deg")) from None
     return values
+
+
+def add_topic_argument(parser: argparse.ArgumentParser) -> None:
+    """``--topic``: which JointState topic a ROS 2 bag given to --motion is read from."""
+    parser.add_argument("--topic", metavar="NAME", default=None,
+                        help="with a ROS 2 bag as --motion: the JointState topic to replay (default: /joint_states)")
+
+
+def warn_motion_notes(motion: Any) -> None:
+    """What was odd in the motion's input (a recording's gaps, unknown joints...), one warning each."""
+    for note in getattr(motion, "notes", ()):
+        warn(note)
 
 
 def add_force_argument(parser: argparse.ArgumentParser) -> None:
@@ -167,3 +187,62 @@ def format_config(config: Mapping[str, float]) -> Message | str:
     if not config:
         return M("zero pose")
     return ", ".join(f"{k}={v:g}" for k, v in config.items())
+
+
+def add_node_argument(parser: argparse.ArgumentParser) -> None:
+    parser.add_argument("--node", metavar="PKG_DIR[:EXE]",
+                        help="the motion is what your node publishes on /joint_states (run with bras-kit run's "
+                             "stand-in for rclpy, simulated time); the robot is the package's URDF unless FILE is given")
+
+
+def apply_node(args: argparse.Namespace, duration: float | None) -> None:
+    """``--node PKG_DIR[:EXE]``: run the node (as ``bras-kit run`` does), write what it published on
+    /joint_states as a joint-state file in a temporary folder, and make that file the motion;
+    FILE defaults to the package's robot description."""
+    import atexit
+    import shutil
+    import tempfile
+
+    from ..message import M
+    from ..motion.states_io import states_to_csv
+
+    spec = getattr(args, "node", None)
+    if not spec:
+        return
+    if args.motion:
+        raise ParameterError(M("--node and --motion both say how the arm moves"), hint=M("give one of them"))
+    where, executable = _node_spec(spec)
+    if args.file is None and os.path.isdir(where):
+        from ..validate.package.sources import Package
+
+        source = Package(where).description_source()
+        if source is not None:
+            args.file = os.path.join(where, source)
+            args.package_path = [*args.package_path, os.path.dirname(os.path.abspath(where))]
+    from ..run import run_node
+    from ..run.recording import states_for
+
+    recording = run_node(where, executable, duration=duration or 10.0)
+    robot = load_model(args)
+    from ..kinematics import tf_tree
+
+    states = states_for(recording, tf_tree(robot).dof)
+    if not len(states):
+        raise ParameterError(M("the node published nothing on /joint_states in {time} s", time=recording.end),
+                             hint=M("run it with 'bras-kit run {spec}' to see what it did", spec=spec))
+    folder = tempfile.mkdtemp(prefix="bras-kit-node-")
+    atexit.register(shutil.rmtree, folder, True)
+    path = os.path.join(folder, f"{os.path.splitext(os.path.basename(recording.source))[0]}.csv")
+    with open(path, "w", encoding="utf-8") as handle:
+        handle.write(states_to_csv(states))
+    args.motion = [path]
+
+
+def _node_spec(spec: str) -> tuple[str, str | None]:
+    """``PKG_DIR``, ``PKG_DIR:EXE`` or ``node.py``."""
+    if os.path.exists(spec):
+        return spec, None
+    where, sep, executable = spec.rpartition(":")
+    if sep and where and os.path.isdir(where):
+        return where, executable or None
+    return spec, None

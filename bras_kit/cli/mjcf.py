@@ -13,13 +13,7 @@ import sys
 from ..errors import BrasKitError, os_reason
 from ..i18n import say
 from ..message import M, Mn
-from ._common import (
-    SEVERITY_WORDS,
-    add_force_argument,
-    add_model_arguments,
-    check_writable,
-    write_text,
-)
+from ._common import add_force_argument, add_model_arguments, check_writable, write_text
 
 _EPILOG = """\
 examples:
@@ -44,7 +38,7 @@ def configure(parser: argparse.ArgumentParser) -> None:
 def run(args: argparse.Namespace) -> int:
     from ..physics import mjcf
     from ..physics.controllers import gain_vector
-    from ..physics.diagnostics import check_physics_ready, physics_notes
+    from ..physics.diagnostics import LEVELS, check_physics_ready, physics_notes
 
     lang = args.lang
     if args.output and args.output != "-":
@@ -55,10 +49,10 @@ def run(args: argparse.Namespace) -> int:
     kd = mjcf.DEFAULT_KD if args.kd is None else float(gain_vector(args.kd, ["all"], mjcf.DEFAULT_KD, "kd")[0])
     built = mjcf.build_mjcf(robot, package_paths=args.package_path, kp=kp, kd=kd, control=args.control)
     for note in physics_notes(robot, built, lang, args.package_path):
-        print(f"{say(SEVERITY_WORDS.get(note.level, note.level), lang)}: {say(note.text, lang)}", file=sys.stderr)
+        print(f"{say(LEVELS[note.level], lang)}: {note.worded(lang)}", file=sys.stderr)
     if not args.output or args.output == "-":
         if built.assets:
-            print(say(M("note: the meshes are not printed; write with -o FILE to get them in FILE_meshes/"), args.lang),
+            print(say(M("note: the meshes are not printed; write with -o FILE to get them in FILE_meshes/"), lang),
                   file=sys.stderr)
         write_text(None, built.xml, args.force)
         return 0
@@ -83,7 +77,7 @@ def run(args: argparse.Namespace) -> int:
         for asset in built.assets.values():  # each through the one safe write: no link followed
             write_bytes(os.path.join(target, asset.name), asset.data, args.force, announce=False)
         print(say(Mn("wrote {n} mesh in {folder}/", "wrote {n} meshes in {folder}/", len(built.assets), folder=target),
-                  args.lang), file=sys.stderr)
+                  lang), file=sys.stderr)
     return 0
 
 

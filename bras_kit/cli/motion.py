@@ -10,7 +10,6 @@ Samples are taken at k / rate for k = 0 .. floor(duration * rate): 10 s at 20 Hz
 from __future__ import annotations
 
 import argparse
-import os
 import sys
 
 from ..errors import ParameterError
@@ -19,11 +18,13 @@ from ..message import M, Mn
 from ._common import (
     add_force_argument,
     add_model_arguments,
-    check_writable,
+    add_node_argument,
+    add_topic_argument,
+    apply_node,
     joint_values,
     load_model,
     warn,
-    write_text,
+    warn_motion_notes,
 )
 
 _EPILOG = """\
@@ -34,6 +35,8 @@ motion SPEC (repeatable):
                            sqrt exp log abs min max clip floor ceil deg)
   FILE.csv|.json|.yaml     waypoints: time,JOINT,... (CSV) or {"waypoints": [{"time": 0,
                            "positions": {"epaule": 0}}, ...]}
+  BAG                      a ROS 2 bag (folder with metadata.yaml, .mcap or .db3): its
+                           /joint_states (or --topic NAME), linear between samples
 Joints no spec drives stay at 0 (or their --set value; 'tutorial' drives all the others).
 
 examples:
@@ -42,6 +45,8 @@ examples:
   bras-kit motion --motion coude=2.5*sin(t)        warns: coude goes past its upper limit
   bras-kit motion --wrist --motion tutorial --set poignet=0.5 -o states.json
   bras-kit motion --motion path.yaml --interpolation cubic --clamp -o states.csv
+  bras-kit motion -o run.mcap                      a ROS 2 bag: run/run.mcap + run/metadata.yaml
+  bras-kit motion --motion ~/bags/rosbag2_2024_05_01/   limits checked on a real recording
 """
 
 
@@ -51,6 +56,7 @@ def configure(parser: argparse.ArgumentParser) -> None:
     add_model_arguments(parser)
     parser.add_argument("-m", "--motion", action="append", default=[], metavar="SPEC",
                         help="tutorial, JOINT=FORMULA or a waypoint file (repeatable; default: tutorial)")
+    add_node_argument(parser)
     parser.add_argument("--set", dest="set_values", action="append", default=[], metavar="JOINT=VALUE",
                         help="hold a joint at a value in radians (metres if prismatic) (repeatable)")
     parser.add_argument("--duration", type=float, metavar="S",
@@ -64,10 +70,12 @@ def configure(parser: argparse.ArgumentParser) -> None:
                         help="keep positions inside the joint limits (default: warn only)")
     parser.add_argument("--strict", action="store_true",
                         help="exit with status 1 when a limit is still exceeded")
+    add_topic_argument(parser)
     parser.add_argument("-o", "--output", metavar="FILE",
-                        help="write the joint states to FILE (.csv or .json; '-' for stdout) "
+                        help="write the joint states to FILE (.csv or .json; '-' for stdout; .mcap, .db3 or "
+                             "FOLDER/ for a ROS 2 bag with /robot_description, /tf and /joint_states) "
                              "instead of printing a summary")
-    parser.add_argument("--format", choices=("csv", "json"),
+    parser.add_argument("--format", choices=("csv", "json", "bag"),
                         help="output format (default: from the -o extension; csv for '-')")
     add_force_argument(parser)
 
@@ -79,13 +87,13 @@ def _output_format(args: argparse.Namespace) -> str | None:
         return None
     if args.format:
         return str(args.format)
-    if args.output == "-":
-        return "csv"
-    suffix = os.path.splitext(args.output)[1].lower()
-    if suffix in (".csv", ".json"):
-        return suffix[1:]
-    raise ParameterError(M("cannot tell the format of '{path}'", path=args.output),
-                         hint=M("end the file name in .csv or .json, or pass --format csv|json"))
+    from ..motion.states_io import states_format
+
+    fmt = states_format(args.output)
+    if fmt is None:
+        raise ParameterError(M("cannot tell the format of '{path}'", path=args.output),
+                             hint=M("end the file name in .csv, .json or .mcap (a ROS 2 bag), or pass --format csv|json"))
+    return fmt
 
 
 def run(args: argparse.Namespace) -> int:
@@ -98,19 +106,23 @@ def run(args: argparse.Namespace) -> int:
         describe_violation,
         motion_from_specs,
         sample,
-        states_to_csv,
-        states_to_json,
         waypoint_speeds,
     )
+    from ..motion.states_io import check_states_output, write_states
 
     if args.file and args.file.lower().endswith(WAYPOINT_SUFFIXES):
         raise ParameterError(M("'{path}' looks like a waypoint file, not a robot", path=args.file),
                              hint=M("pass it as --motion {path} (FILE is the robot: .urdf or .xacro)", path=args.file))
     fmt = _output_format(args)
+    if fmt == "bag" and args.output == "-":
+        raise ParameterError(M("a ROS 2 bag is a folder: it cannot go to standard output"),
+                             hint=M("give -o run.mcap (the bag is the folder run/)"))
     if fmt is not None and args.output != "-":
-        check_writable(args.output, args.force)
+        check_states_output(args.output, args.force, fmt)
+    apply_node(args, args.duration)
     robot = load_model(args)
-    motion = motion_from_specs(robot, args.motion, joint_values(args.set_values), args.interpolation)
+    motion = motion_from_specs(robot, args.motion, joint_values(args.set_values), args.interpolation, args.topic)
+    warn_motion_notes(motion)
     if args.interpolation and not any(t.waypoints is not None for t in motion.tracks):
         warn(M("--interpolation only applies to waypoint files"), args.lang)
     rate = DEFAULT_RATE if args.rate is None else args.rate
@@ -141,8 +153,9 @@ def run(args: argparse.Namespace) -> int:
     if fmt is None:
         print(_summary(robot, motion, states, violations, clamped, rate, lang))
     else:
-        text = states_to_json(states) if fmt == "json" else states_to_csv(states)
-        write_text(args.output, text, args.force)
+        written = write_states(robot, states, args.output, args.force, fmt)
+        if written is not None:
+            print(say(written), file=sys.stderr)
     return 1 if args.strict and (violations or segments) else 0
 
 

@@ -14,15 +14,20 @@ import sys
 from collections.abc import Iterable, Iterator
 from typing import TYPE_CHECKING
 
+from ..i18n import say
 from ..message import M, Message, Mn
 from ._common import (
     add_force_argument,
     add_model_arguments,
+    add_node_argument,
+    add_topic_argument,
+    apply_node,
     check_writable,
     format_config,
     joint_values,
     load_model,
     warn,
+    warn_motion_notes,
     warn_out_of_limits,
 )
 
@@ -37,7 +42,8 @@ outputs (any together; with none, writes ROBOT.png of the pose):
   --gif [anim.gif]          the motion as a looping GIF (default name: ROBOT.gif)
   --mp4 [anim.mp4]          the motion as an H.264 video (default name: ROBOT.mp4)
   --frames-dir DIR          the motion as DIR/frame_0000.png, frame_0001.png ...
-The motion is --motion SPEC (tutorial, JOINT=FORMULA or a waypoint file, as in 'bras-kit motion');
+  --record run.mcap         the joint states drawn, as a ROS 2 bag (or .csv, .json)
+The motion is --motion SPEC (tutorial, JOINT=FORMULA, a waypoint file or a ROS 2 bag, as in 'bras-kit motion');
 without it, the tutorial's animation node. It lasts --duration seconds at --fps: duration x fps frames.
 
 examples:
@@ -57,10 +63,15 @@ def configure(parser: argparse.ArgumentParser) -> None:
                         help="a joint value in rad (m if prismatic); repeatable; others are 0")
     parser.add_argument("-m", "--motion", action="append", default=[], metavar="SPEC",
                         help="tutorial, JOINT=FORMULA or a waypoint file (repeatable; default: tutorial)")
+    add_node_argument(parser)
     parser.add_argument("-o", "--output", metavar="PNG", help="write the picture of the pose here")
     parser.add_argument("--gif", nargs="?", const="", metavar="FILE", help="write the motion as a GIF")
     parser.add_argument("--mp4", nargs="?", const="", metavar="FILE", help="write the motion as an MP4")
     parser.add_argument("--frames-dir", metavar="DIR", help="write each frame as DIR/frame_NNNN.png")
+    parser.add_argument("--record", metavar="FILE",
+                        help="also write the joint states drawn: .mcap/.db3 (a ROS 2 bag for Foxglove and "
+                             "ros2 bag play), .csv or .json")
+    add_topic_argument(parser)
     parser.add_argument("--size", default="640x480", metavar="WxH", help="picture size in pixels (default 640x480)")
     parser.add_argument("--fps", type=float, default=20.0, metavar="N",
                         help="frames per second of the animation (default 20, like the tutorial's node)")
@@ -135,6 +146,7 @@ def run(args: argparse.Namespace) -> int:
                 backend=args.backend, azimuth=args.azimuth, elevation=args.elevation, distance=args.distance,
                 antialias=args.antialias, package_paths=tuple(args.package_path))
     options = render_options(**opts)  # bad values fail before the model is even loaded
+    apply_node(args, args.duration)
     robot = load_model(args)
     if not (math.isfinite(args.fps) and 1 <= args.fps <= 120):
         raise ParameterError(M("--fps {fps:g} is out of range", fps=args.fps),
@@ -157,7 +169,7 @@ def run(args: argparse.Namespace) -> int:
     animated = args.gif is not None or args.mp4 is not None or args.frames_dir is not None
     defaulted = []
     if not animated and args.output is None:
-        if args.motion:  # a motion asks for an animation
+        if args.motion or args.record:  # a motion (or its recording) asks for an animation
             args.gif = ""
             animated = True
         else:
@@ -182,6 +194,10 @@ def run(args: argparse.Namespace) -> int:
             check_writable(path, args.force, option=option)
     if args.frames_dir is not None:
         _check_frames_dir(args.frames_dir, args.force)
+    if args.record is not None:
+        from ..motion.states_io import check_states_output
+
+        check_states_output(args.record, args.force, option="--record")
     size = f"{options.width}x{options.height}"
 
     if not animated:
@@ -196,7 +212,8 @@ def run(args: argparse.Namespace) -> int:
     from ..motion import motion_from_specs, sample_loop
     from ..motion.sources import motion_title
 
-    motion = motion_from_specs(robot, args.motion, set_values or None)
+    motion = motion_from_specs(robot, args.motion, set_values or None, topic=args.topic)
+    warn_motion_notes(motion)
     states = sample_loop(motion, args.duration, args.fps)
     _warn_limits(robot, states, args.lang)
     if args.gif and gif_delay(args.fps) * args.fps > 100.5:
@@ -219,6 +236,10 @@ def run(args: argparse.Namespace) -> int:
             save_png(frames[0], target(args.output, "-o"))
         backend = frames.renderer.backend
         written = write_frames(stream, writers)
+    if args.record is not None:  # the states drawn, once the pictures are safely written
+        from ..motion.states_io import write_states
+
+        print(say(write_states(robot, states, args.record, args.force, option="--record"), args.lang), file=sys.stderr)
     details = Mn("{n} frame at {fps:g} fps ({seconds:g} s), {size}, {what}, {backend}",
                  "{n} frames at {fps:g} fps ({seconds:g} s), {size}, {what}, {backend}", written,
                  fps=args.fps, seconds=written / args.fps, size=size, what=motion_title(motion.label), backend=backend)

@@ -8,7 +8,8 @@ from __future__ import annotations
 
 import math
 from collections.abc import Callable
-from dataclasses import dataclass
+from dataclasses import dataclass, field
+from typing import Any
 
 import numpy as np
 
@@ -82,12 +83,15 @@ class Motion:
     """Every movable joint's position as a function of time.
 
     ``duration`` is the natural length (the last waypoint's time) or None for endless motions.
+    ``notes`` are messages about the input the motion came from (a recording's gaps, unknown
+    joints...), for the command to show as warnings.
     """
 
     names: list[str]
     tracks: list[Track]
     duration: float | None = None
     label: str = ""
+    notes: list[Any] = field(default_factory=list)
 
     def evaluate(self, t: np.ndarray | float) -> tuple[np.ndarray, np.ndarray]:
         """Positions and velocities, each of shape (len(t), len(names))."""

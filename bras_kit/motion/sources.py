@@ -29,6 +29,7 @@ class _Layer:
     tracks: dict[str, Track] = field(default_factory=dict)
     duration: float | None = None
     label: str = ""
+    notes: list = field(default_factory=list)  # Messages about the input (a recording's gaps...)
 
 
 def _formula_track(joint: str, formula: str, prefix: str = "") -> Track:
@@ -157,8 +158,9 @@ def _build(tree: TFTree, layers: Sequence[_Layer], base: _Layer | None = None, l
             track = base.tracks.get(name)
         tracks.append(track or _constant_track(name, 0.0))
     durations = [layer.duration for layer in layers if layer.duration is not None]
+    notes = [note for layer in layers for note in layer.notes]
     return Motion(list(tree.dof), tracks, max(durations) if durations else None,
-                  label or " + ".join(layer.label for layer in layers if layer.label))
+                  label or " + ".join(layer.label for layer in layers if layer.label), notes)
 
 
 def _base_layer(tree: TFTree, base: Mapping[str, float] | Motion | None) -> _Layer | None:
@@ -206,23 +208,37 @@ def _waypoint_layer(tree: TFTree, path: str, interpolation: str | None) -> _Laye
     return _Layer(tracks, points.duration, os.path.basename(path))
 
 
+def _bag_layer(tree: TFTree, path: str, topic: str | None) -> _Layer:
+    """A recorded JointState topic of a ROS 2 bag, linear between samples (see :mod:`bras_kit.bags`)."""
+    from ..bags import recorded_tracks  # a feature above motion: only loaded for a bag
+
+    tracks, duration, notes, label = recorded_tracks(tree.dof, lambda name: check_joint(tree, name), path, topic)
+    return _Layer(tracks, duration, label, notes)
+
+
 def spec_kind(spec: str) -> str:
-    """"tutorial", "file" (a waypoint file) or "formula"; anything else is a ParameterError."""
+    """"tutorial", "file" (a waypoint file), "bag" (a ROS 2 bag) or "formula"; else a ParameterError."""
     text = spec.strip()
     if text.lower() == "tutorial":
         return "tutorial"
+    if text.lower().rstrip("/").endswith((".mcap", ".db3", "metadata.yaml")) or (
+            "=" not in text and os.path.isfile(os.path.join(text, "metadata.yaml"))):
+        return "bag"
     if text.lower().endswith(WAYPOINT_SUFFIXES):
         return "file"
     if "=" in text:
         return "formula"
     raise ParameterError(M("'{spec}' is not a motion", spec=spec),
-                         hint=M("give 'tutorial', JOINT=FORMULA (e.g. epaule=0.8*sin(t)) "
-                                "or a waypoint file (.csv, .json, .yaml)"))
+                         hint=M("give 'tutorial', JOINT=FORMULA (e.g. epaule=0.8*sin(t)), "
+                                "a waypoint file (.csv, .json, .yaml) or a ROS 2 bag (folder, .mcap, .db3)"))
 
 
 def motion_from_specs(robot: Robot, specs: Sequence[str], set_values: Mapping[str, float] | None = None,
-                      interpolation: str | None = None) -> Motion:
-    """Combine motion specs: "tutorial", "JOINT=FORMULA" and waypoint files, plus fixed values.
+                      interpolation: str | None = None, topic: str | None = None) -> Motion:
+    """Combine motion specs: "tutorial", "JOINT=FORMULA", waypoint files and bags, plus fixed values.
+
+    A ROS 2 bag (a folder with metadata.yaml, or its .mcap/.db3 file) drives the joints its
+    ``topic`` (default /joint_states) records; what was odd in it is in ``motion.notes``.
 
     Formulas and files drive the joints they name (two specs for one joint are an error);
     ``set_values`` hold joints still; "tutorial" drives every joint left over. With no specs and
@@ -242,6 +258,8 @@ def motion_from_specs(robot: Robot, specs: Sequence[str], set_values: Mapping[st
             background = _tutorial_layer(tree)
         elif kind == "file":
             layers.append(_waypoint_layer(tree, spec.strip(), interpolation))
+        elif kind == "bag":
+            layers.append(_bag_layer(tree, spec.strip(), topic))
         else:
             formulas.append(spec)
     if formulas:

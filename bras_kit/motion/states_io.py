@@ -1,4 +1,8 @@
-"""Joint states to and from files: /joint_states-like CSV (long form), JSON messages."""
+"""Joint states to and from files: /joint_states-like CSV (long form), JSON messages, ROS 2 bags.
+
+:func:`write_states` is the one writer every command uses (``motion``, ``simulate``,
+``render --record``, ``run``): the format follows the file name.
+"""
 
 from __future__ import annotations
 
@@ -7,7 +11,8 @@ import os
 import numpy as np
 
 from ..errors import ParameterError, os_reason
-from ..message import M
+from ..message import M, Message
+from ..model import Robot
 from .core import JointStates
 
 
@@ -56,6 +61,62 @@ def states_to_csv(states: JointStates) -> str:
         rows.extend(f"{time},{name},{float(p)!r},{float(v)!r}"
                     for name, p, v in zip(states.names, position, velocity))
     return "\n".join(rows) + "\n"
+
+
+STATES_SUFFIXES = (".csv", ".json", ".mcap", ".db3")
+
+
+def states_format(path: str) -> str | None:
+    """"csv", "json" or "bag" (``.mcap``, ``.db3`` or a folder name ending in /) from a file name; None if unknown.
+
+    ``-`` (standard output) is CSV.
+    """
+    if path == "-":
+        return "csv"
+    suffix = os.path.splitext(path)[1].lower()
+    if suffix in (".csv", ".json"):
+        return suffix[1:]
+    if suffix in (".mcap", ".db3") or (path.endswith(("/", os.sep)) and path.strip("/" + os.sep)):
+        return "bag"
+    return None
+
+
+def check_states_output(path: str, force: bool, fmt: str | None = None, option: str = "-o") -> str:
+    """Raise unless joint states may be written to ``path`` (before any work is done); returns the format."""
+    fmt = fmt or states_format(path)
+    if fmt is None:
+        raise ParameterError(M("cannot tell the format of '{path}'", path=path),
+                             hint=M("end the file name in .csv, .json or .mcap (a ROS 2 bag)"))
+    if fmt == "bag":
+        from ..bags.writer import check_bag_output  # a feature above motion: loaded for bags only
+
+        check_bag_output(path, force, option)
+    elif path != "-":
+        from ..outputs import check_output
+
+        check_output(path, force, option=option)
+    return fmt
+
+
+def write_states(robot: Robot, states: JointStates, path: str, force: bool = False, fmt: str | None = None,
+                 option: str = "-o") -> Message | None:
+    """Write joint states to ``path`` in the format its name says (or ``fmt``): CSV, JSON or a ROS 2 bag.
+
+    Returns what was written, for the command to show (the bag folder and its topics, or the
+    file); None for standard output (``-``).
+    """
+    fmt = check_states_output(path, force, fmt, option)
+    if fmt == "bag":
+        from ..bags import write_bag
+
+        summary = write_bag(robot, states, path, force=force, option=option)
+        return M("wrote the ROS 2 bag {folder} ({storage}: {messages} messages on /robot_description, /tf_static, "
+                 "/tf, /joint_states; {duration} s): ros2 bag play {folder}", folder=summary.folder,
+                 storage=summary.storage_file, messages=summary.messages, duration=summary.duration)
+    from ..outputs import write_text
+
+    write_text(path, states_to_json(states) if fmt == "json" else states_to_csv(states), force, announce=False)
+    return None if path == "-" else M("wrote {path}", path=path)
 
 
 def read_states(path: str) -> JointStates:
