@@ -10,6 +10,7 @@ from typing import TYPE_CHECKING, Any
 from .. import backends
 from ..errors import ModelError
 from ..kinematics import tf_tree
+from ..message import M
 from ..model import Robot
 from ._labels import beyond_limits
 from .dot import frames_dot, graph_title, joint_label, link_label, pose_facts
@@ -59,9 +60,9 @@ def frame_diagram(robot: Robot, config: Mapping[str, float] | None = None,
     tree = tf_tree(robot)
     n = len(tree.links)
     if n > MAX_DIAGRAM_LINKS:
-        raise ModelError(f"the robot has {n:,} links: a frame diagram of more than {MAX_DIAGRAM_LINKS} "
-                         "cannot be read (nor drawn in reasonable memory)",
-                         hint="use 'bras-kit tree' for the text tree, or 'bras-kit frames -o tree.dot' for Graphviz")
+        raise ModelError(M("the robot has {count:,} links: a frame diagram of more than {most} cannot be read "
+                           "(nor drawn in reasonable memory)", count=n, most=MAX_DIAGRAM_LINKS),
+                         hint=M("use 'bras-kit tree' for the text tree, or 'bras-kit frames -o tree.dot' for Graphviz"))
     values, positions = pose_facts(tree, config)
     link_lines = [link_label(link, positions[i] if positions is not None else None, lang).split("\n")
                   for i, link in enumerate(tree.links)]

@@ -133,7 +133,7 @@ def _inspect_limited(root: str, lang: str) -> dict[str, Any]:
     from ..validate import package  # noqa: F401  (else every submission would pay for importing them)
 
     return run_limited(_inspect, root, lang, cpu_seconds=CHECK_CPU_SECONDS, memory_bytes=CHECK_MEMORY_BYTES,
-                       wall_seconds=CHECK_WALL_SECONDS, what=f"checking {os.path.basename(root)}")
+                       wall_seconds=CHECK_WALL_SECONDS, what=M("checking {name}", name=os.path.basename(root)))
 
 
 def _inspect(root: str, lang: str) -> dict[str, Any]:
