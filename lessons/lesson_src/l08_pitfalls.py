@@ -283,7 +283,7 @@ LESSON.cells = [
         try:
             formula_motion(robot, ["shoulder=0.8*sin(t)", "elbow=1.2*sin(0.7*t)"])
         except bras_kit.BrasKitError as error:
-            print(error)
+            print(bras_kit.say(error))
 
         fixed = sample(formula_motion(robot, ["epaule=0.8*sin(t)", "coude=1.2*sin(0.7*t)"]), duration=10.0)
         print(np.allclose(fixed.positions, states.positions))

@@ -42,7 +42,7 @@ LESSON.cells = [
         try:
             bras_kit.simulate(bras_kit.arm(), lang="@LANG@")
         except bras_kit.ModelError as error:
-            print(error)
+            print(bras_kit.say(error))
         """
     ),
     md(
