@@ -110,6 +110,9 @@ CASES: dict[str, list[str]] = {
     "motion-bad-joint": ["motion", "--motion", str(DATA / "motion" / "bad_joint.csv")],
     "motion-bad-order": ["motion", "--motion", str(DATA / "motion" / "bad_order.csv")],
     "motion-bad-yaml": ["motion", "--motion", str(DATA / "motion" / "bad_indent.yaml")],
+    "motion-wrist-narrow": ["motion", "--wrist", "--param", "poignet_upper=0.87", "--param", "poignet_lower=-0.87",
+                            "--duration", "0.2"],
+    "motion-bad-waypoint-json": ["motion", "--motion", str(DATA / "motion" / "bad_missing.json")],
     # plot (the figure's words are checked too)
     "plot-overrun": ["plot", "--motion", "coude=2.5*sin(t)", "-o", f"{T}/p.png"],
     "plot-missing-folder": ["plot", "-o", f"{T}/absent/p.png"],

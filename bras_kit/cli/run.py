@@ -6,6 +6,7 @@ import argparse
 import os
 import sys
 
+from ..message import M
 from ._common import add_force_argument, check_writable, warn, write_text
 
 _EPILOG = """\
@@ -50,8 +51,8 @@ def run(args: argparse.Namespace) -> int:
 
     lang = args.lang
     if args.output is not None and os.path.splitext(args.output)[1].lower() not in (".csv", ".json"):
-        raise ParameterError(f"-o: cannot tell the format of '{args.output}'",
-                             hint="end the file name in .csv or .json")
+        raise ParameterError(M("-o: cannot tell the format of '{path}'", path=args.output),
+                             hint=M("end the file name in .csv or .json"))
     for path, option in ((args.output, "-o"), (args.gif, "--gif")):
         if path is not None:
             check_writable(path, args.force, option=option)
