@@ -176,7 +176,7 @@ CASES: dict[str, list[str]] = {
     "view-export-exists": ["view", "--export", f"{T}/exists.png"],
 }
 # What a figure draws: plot files whose words are read back from the matplotlib figure.
-DRAWN = {"plot-overrun"}
+DRAWN = {"plot-overrun", "frames-svg", "frames-past-limit", "workspace-ok"}
 
 
 def _normalise(text: str, tmp: Path) -> str:
