@@ -68,6 +68,8 @@ _LAZY = {
     "view": "bras_kit.view",
     "set_language": "bras_kit.i18n",
     "say": "bras_kit.i18n",
+    "run_node": "bras_kit.run",
+    "run_findings": "bras_kit.run",
 }
 
 
