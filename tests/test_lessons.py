@@ -138,8 +138,6 @@ def english_in_output(text: str) -> list[str]:
 LIBRARY_ENGLISH = [
     r"it uses the name .*",  # bras_kit xacro sandbox
     r"xacro expressions may only .*",
-    r"(?m)^joint(?= +(position finale|err\.moy))",  # bras_kit.physics report: table header
-    r"aucun joint n'a demandé",  # bras_kit.physics report: verdict
 ]
 
 
