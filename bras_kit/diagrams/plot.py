@@ -12,10 +12,11 @@ import numpy as np
 from .. import backends
 from ..i18n import say
 from ..kinematics import TFTree, fk_batch, tf_tree
-from ..message import M
+from ..message import M, Mn
 from ..model import Robot
 from ..motion import TOLERANCE, joint_unit
 from ..tip import tool_tip
+from ._labels import format_number
 from .output import FIGURE_FORMATS, output_suffix, save_figure
 from .trajectory import motion_plane, states_matrix, tip_positions
 
@@ -76,8 +77,8 @@ def _plot_joint(ax: Any, robot: Robot, name: str, times: np.ndarray, values: np.
                 zorder=4, gid=f"violations:{name}")
         excess = np.where(values > upper, values - upper, lower - values)
         worst = int(np.argmax(excess))
-        ax.annotate(say(M("{excess:.4g} {unit} beyond limit at t={time:.4g} s", excess=float(excess[worst]),
-                              unit=joint_unit(joint) if joint else "", time=float(times[worst])), lang),
+        ax.annotate(say(M("{excess} {unit} beyond limit at t={time} s", excess=format_number(excess[worst]),
+                          unit=joint_unit(joint) if joint else "", time=format_number(times[worst])), lang),
                     (times[worst], values[worst]),
                     xytext=(6, 6), textcoords="offset points", fontsize=8, color=_VIOLATION)
     unit = joint_unit(joint)
@@ -91,7 +92,7 @@ def plot_motion(robot: Robot, states: Any, path: str | os.PathLike[str] | None =
 
     ``states`` is a JointStates (``times``, ``names``, ``positions``). Out-of-limit regions are
     shaded, limits dashed and samples beyond them marked in red. With ``path`` the figure is
-    saved (.png, .svg or .pdf).
+    saved (.png, .svg or .pdf). Its words are in ``lang`` (default: the library's language).
     """
     if path is not None:
         output_suffix(path, FIGURE_FORMATS)
@@ -119,8 +120,9 @@ def plot_motion(robot: Robot, states: Any, path: str | os.PathLike[str] | None =
     left = grid[0].subgridspec(rows, 1)
     right = grid[1].subgridspec(2, 1)
     duration = float(times[-1] - times[0]) if times.size > 1 else 0.0
-    figure.suptitle(say(M("{robot}: {count} samples over {duration} s, tip = end of '{link}'",
-                          robot=robot.name or "robot", count=len(times), duration=duration, link=link), lang),
+    figure.suptitle(say(Mn("{robot}: {n} sample over {duration} s, tip = end of '{link}'",
+                           "{robot}: {n} samples over {duration} s, tip = end of '{link}'", len(times),
+                           robot=robot.name or M("robot"), duration=format_number(duration), link=link), lang),
                     fontsize=12)
     first_ax = None
     for k, name in enumerate(names):

@@ -14,8 +14,10 @@ from typing import Any
 import numpy as np
 
 from ..errors import BackendError, ParameterError
-from ..kinematics import TFTree, fk_batch, tf_tree
+from ..kinematics import TFTree, fk_batch, movable_joints_hint, tf_tree
+from ..message import M
 from ..model import Robot
+from ..wording import quoted
 from .camera import Camera, fit_camera
 from .options import RenderOptions, render_options
 from .scene import Scene, build_scene
@@ -41,8 +43,8 @@ def configurations(tree: TFTree, value: Any) -> np.ndarray:
         out = np.zeros((len(positions), len(tree.dof)))
         for column, name in enumerate(names):
             if name not in tree.dof:
-                raise ParameterError(f"joint states name '{name}', which is not a movable joint of the robot",
-                                     hint="movable joints: " + (", ".join(tree.dof) or "none"))
+                raise ParameterError(M("joint states name '{name}', which is not a movable joint of the robot", name=name),
+                                     hint=movable_joints_hint(tree.dof))
             out[:, tree.dof.index(name)] = positions[:, column]
         return out
     if isinstance(value, (list, tuple)) and value and isinstance(value[0], Mapping):
@@ -51,8 +53,8 @@ def configurations(tree: TFTree, value: Any) -> np.ndarray:
     if q.ndim == 1:
         q = q[None, :]
     if q.ndim != 2 or q.shape[1] != len(tree.dof):
-        raise ParameterError(f"expected joint values with {len(tree.dof)} columns ({', '.join(tree.dof)}), "
-                             f"got shape {q.shape}")
+        raise ParameterError(M("expected joint values with {count} columns ({names}), got shape {shape}",
+                               count=len(tree.dof), names=", ".join(tree.dof), shape=str(q.shape)))
     return q
 
 
@@ -92,7 +94,8 @@ def open_backend(scene: Scene, camera: Camera, options: RenderOptions,  # type: 
         return PyrenderBackend(scene, camera, options.background, platform,
                                antialias=options.antialias is not False, supersample=not sequence)
     except ImportError as exc:
-        error = BackendError(f"cannot load pyrender: {exc}", hint="pip install pyrender, or use backend software")
+        error = BackendError(M("cannot load pyrender: {reason}", reason=quoted(str(exc))),
+                             hint=M("pip install pyrender, or use backend software"))
     except BackendError as exc:
         error = exc
     if options.backend != "auto":
@@ -100,8 +103,10 @@ def open_backend(scene: Scene, camera: Camera, options: RenderOptions,  # type: 
     global _announced_fallback
     if not _announced_fallback:
         _announced_fallback = True
-        print(f"bras-kit render: no OpenGL here ({error.message}); using the software renderer, slower",
-              file=sys.stderr)
+        from ..i18n import say
+
+        print(say(M("bras-kit render: no OpenGL here ({reason}); using the software renderer, slower",
+                    reason=error.message)), file=sys.stderr)
     return SoftwareBackend(scene, camera, options.background)
 
 
@@ -205,8 +210,9 @@ class Renderer:
         if len(self.tree.links) > MAX_RENDER_LINKS:
             from ..errors import ModelError
 
-            raise ModelError(f"the robot has {len(self.tree.links):,} links, more than the {MAX_RENDER_LINKS:,} "
-                             "bras-kit draws", hint="'bras-kit tree' and 'bras-kit validate' work on models of any size")
+            raise ModelError(M("the robot has {count:,} links, more than the {most:,} bras-kit draws",
+                               count=len(self.tree.links), most=MAX_RENDER_LINKS),
+                             hint=M("'bras-kit tree' and 'bras-kit validate' work on models of any size"))
         check_drawable(robot)
         fit_q = workspace_samples(self.tree) if fit is None else configurations(self.tree, fit)
         self.scene, points = build_scene(self.tree, fk_batch(self.tree, fit_q), tf=self.options.tf,
@@ -224,7 +230,8 @@ class Renderer:
         """The picture of one pose ({joint: value} or a vector in ``tree.dof`` order): (H, W, 3) uint8."""
         q = configurations(self.tree, config)
         if len(q) != 1:
-            raise ParameterError(f"render draws one pose, got {len(q)}", hint="use frames() for a sequence")
+            raise ParameterError(M("render draws one pose, got {count}", count=len(q)),
+                                 hint=M("use frames() for a sequence"))
         return self._draw(fk_batch(self.tree, q[0]))
 
     def frames(self, positions: Any) -> Iterator[np.ndarray]:

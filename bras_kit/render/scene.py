@@ -68,9 +68,10 @@ def resolve_mesh_path(filename: str, robot: Robot, package_paths: Sequence[str] 
         try:
             folder = find_package(package, package_roots(roots))
         except XacroError:
-            raise ModelError(f"mesh '{filename}': package '{package}' not found",
+            raise ModelError(M("mesh '{file}': package '{package}' not found", file=filename, package=package),
                              path=robot.path, line=line, element="mesh",
-                             hint=f"pass --package-path DIR, a folder holding {package}/ (with its package.xml)") from None
+                             hint=M("pass --package-path DIR, a folder holding {package}/ (with its package.xml)",
+                                    package=package)) from None
         path = os.path.join(folder, rest)
     elif filename.startswith("file://"):
         path = filename[len("file://"):]
@@ -78,11 +79,11 @@ def resolve_mesh_path(filename: str, robot: Robot, package_paths: Sequence[str] 
         base = os.path.dirname(os.path.abspath(robot.path)) if robot.path and os.path.exists(robot.path) else os.getcwd()
         path = os.path.join(base, filename)
     if not os.path.isfile(path):
-        raise ModelError(f"mesh file not found: {path}", path=robot.path, line=line, element="mesh",
-                         hint="check the filename, or pass --package-path for package:// names")
+        raise ModelError(M("mesh file not found: {path}", path=path), path=robot.path, line=line, element="mesh",
+                         hint=M("check the filename, or pass --package-path for package:// names"))
     if os.path.getsize(path) > MAX_MESH_BYTES:
-        raise ModelError(f"mesh file {path} is larger than {MAX_MESH_BYTES >> 20} MiB", path=robot.path,
-                         line=line, element="mesh", hint="simplify the mesh (fewer triangles)")
+        raise ModelError(M("mesh file {path} is larger than {most} MiB", path=path, most=MAX_MESH_BYTES >> 20),
+                         path=robot.path, line=line, element="mesh", hint=M("simplify the mesh (fewer triangles)"))
     return path
 
 
