@@ -24,7 +24,7 @@ from functools import cache
 from pathlib import Path
 from typing import Any
 
-from .message import Message, english_template, fill
+from .message import M, Message, english_template, fill
 
 LANGUAGES = ("en", "fr")
 DEFAULT_LANGUAGE = "en"
@@ -41,7 +41,7 @@ def resolve_language(value: str | None = None, environ: Mapping[str, str] | None
         if chosen not in LANGUAGES:
             from .errors import ParameterError
 
-            raise ParameterError(f"unknown language '{chosen}'", hint="use --lang en or --lang fr")
+            raise ParameterError(M("unknown language '{lang}'", lang=chosen), hint=M("use --lang en or --lang fr"))
         return chosen
     for var in ("LC_ALL", "LC_MESSAGES", "LANG"):
         found = env.get(var, "")

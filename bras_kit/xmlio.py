@@ -14,7 +14,7 @@ import xml.parsers.expat
 from collections.abc import Iterator
 from dataclasses import dataclass, field
 
-from .errors import BrasKitError, XMLSafetyError, XMLSyntaxError
+from .errors import BrasKitError, XMLSafetyError, XMLSyntaxError, os_reason
 from .message import M, Message
 
 _DTD_HINT = M("remove the <!DOCTYPE ...> block: URDF files never need one")
@@ -226,24 +226,24 @@ def read_bytes(path: str | os.PathLike[str]) -> bytes:
 
         data = sys.stdin.buffer.read(MAX_READ_BYTES + 1)
         if len(data) > MAX_READ_BYTES:
-            raise BrasKitError(f"refused to read standard input: more than {MAX_READ_BYTES >> 20} MiB")
+            raise BrasKitError(M("refused to read standard input: more than {mib} MiB", mib=MAX_READ_BYTES >> 20))
         return data
     try:
         info = os.stat(path)
         if not stat.S_ISREG(info.st_mode) and not stat.S_ISDIR(info.st_mode):
-            raise BrasKitError(f"refused to read {path}: it is not a regular file (a device, pipe or socket)",
-                               hint="give the path of a .urdf or .xacro file")
+            raise BrasKitError(M("refused to read {path}: it is not a regular file (a device, pipe or socket)",
+                                 path=path), hint=M("give the path of a .urdf or .xacro file"))
         if info.st_size > MAX_READ_BYTES:
-            raise BrasKitError(f"refused to read {path}: {info.st_size:,} bytes is more than the "
-                               f"{MAX_READ_BYTES >> 20} MiB a robot description may have")
+            raise BrasKitError(M("refused to read {path}: {size} bytes is more than the {mib} MiB a robot "
+                                 "description may have", path=path, size=info.st_size, mib=MAX_READ_BYTES >> 20))
         with open(path, "rb") as handle:
             return handle.read()
     except FileNotFoundError:
-        raise BrasKitError(f"no such file: {path}", hint="check the path and spelling") from None
+        raise BrasKitError(M("no such file: {path}", path=path), hint=M("check the path and spelling")) from None
     except IsADirectoryError:
-        raise BrasKitError(f"{path} is a folder, not a file") from None
+        raise BrasKitError(M("{path} is a folder, not a file", path=path)) from None
     except OSError as exc:
-        raise BrasKitError(f"cannot read {path}: {exc.strerror}") from None
+        raise BrasKitError(M("cannot read {path}: {reason}", path=path, reason=os_reason(exc))) from None
 
 
 def read_xml(path: str | os.PathLike[str]) -> Node:
