@@ -313,7 +313,7 @@ def test_osmesa_cannot_start_once_opengl_runs_on_egl(tutorial_robot):
     with pytest.raises(BackendError) as info:
         render_pose(tutorial_robot, None, backend="osmesa", size=(32, 32))
     assert "already set up for egl in this process, so osmesa cannot start" in str(info.value)
-    assert "PYOPENGL_PLATFORM=osmesa" in info.value.hint
+    assert "PYOPENGL_PLATFORM=osmesa" in str(info.value.hint)
 
 
 def test_osmesa_needs_a_newer_pyopengl_than_pyrender_pins(monkeypatch):
@@ -430,7 +430,7 @@ def test_unknown_package_says_how_to_find_it(tmp_path):
     with pytest.raises(ModelError) as info:
         resolve_mesh_path("package://elsewhere/meshes/cube.stl", robot)
     assert "package 'elsewhere' not found" in str(info.value)
-    assert "--package-path" in info.value.hint
+    assert "--package-path" in str(info.value.hint)
 
 
 def test_tf_axes_are_drawn_over_the_segments_with_their_names(tutorial_robot):

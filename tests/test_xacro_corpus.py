@@ -26,8 +26,6 @@ def _site_dirs() -> list[Path]:
 
 
 def _corpus() -> tuple[list[Path], list[Path]]:
-    import pybullet_data
-
     trees, roots = [], []
     for base in _site_dirs():
         erd = base / "cmeel.prefix" / "share" / "example-robot-data"
@@ -38,7 +36,6 @@ def _corpus() -> tuple[list[Path], list[Path]]:
         if rtb.is_dir():
             trees.append(rtb)
             roots += [rtb / "xacro", rtb / "xacro" / "kuka_description", rtb / "armer_xarm" / "data" / "xacro"]
-    trees.append(Path(pybullet_data.getDataPath()))
     files = sorted({f for tree in trees for f in tree.rglob("*.xacro")})
     return files, roots
 

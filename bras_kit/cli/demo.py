@@ -8,7 +8,7 @@ import sys
 import time
 
 from ..i18n import _
-from ._common import add_force_argument
+from ._common import add_force_argument, warn
 
 DEMO_POSE = {"epaule": 0.8, "coude": 1.2}
 
@@ -36,9 +36,11 @@ def _done(start: float, path: str) -> None:
 
 def run(args: argparse.Namespace) -> int:
     from ..authoring import arm
+    from ..message import M
     from ..motion import check_limits, sample_loop, tutorial_motion
     from ..outputs import write_to
     from ..render import parse_size, render_motion, render_pose, save_gif, save_png
+    from ..render.renderer import used_software_fallback
     from ..scaffold import scaffold_package
     from ..validate import validate
 
@@ -87,6 +89,9 @@ def run(args: argparse.Namespace) -> int:
         gif = save(f"{robot.name}.gif",
                    lambda path: save_gif(render_motion(robot, states, size=size, backend=args.backend), path, fps=args.fps))
         _done(start, gif)
+        if used_software_fallback():
+            warn(M("the pictures came from the pure-CPU renderer (no OpenGL here): "
+                   "'bras-kit doctor' says what to install"))
         for violation in check_limits(robot, states):
             print("    " + _("warning") + ": " + _("{joint} leaves its {kind} limit at t={time:.2f} s").format(
                 joint=violation.joint, kind=_(violation.kind), time=violation.time))

@@ -7,6 +7,7 @@ from collections.abc import Mapping, Sequence
 from dataclasses import dataclass
 from typing import TYPE_CHECKING, Any
 
+from .. import backends
 from ..errors import ModelError
 from ..kinematics import tf_tree
 from ..model import Robot
@@ -97,6 +98,7 @@ def frame_diagram(robot: Robot, config: Mapping[str, float] | None = None,
     labels = [_Box(left + layout.x[i], label_bottom[layout.depth[i]] - joint_size[i][1], *joint_size[i])
               for i in range(n)]
 
+    backends.matplotlib()
     from matplotlib.figure import Figure
     from matplotlib.patches import FancyArrowPatch, FancyBboxPatch
 

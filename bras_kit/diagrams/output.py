@@ -7,6 +7,7 @@ import os
 from collections.abc import Sequence
 from typing import TYPE_CHECKING
 
+from .. import backends
 from ..errors import ParameterError
 
 if TYPE_CHECKING:  # pragma: no cover
@@ -30,7 +31,7 @@ def save_figure(figure: Figure, path: str | os.PathLike[str], dpi: float = 100.0
 
     A PNG's size is capped (:data:`MAX_RASTER_SIDE`, :data:`MAX_RASTER_PIXELS`) by lowering its resolution.
     """
-    import matplotlib
+    matplotlib = backends.matplotlib()
 
     suffix = output_suffix(path, FIGURE_FORMATS)
     width, height = figure.get_size_inches()

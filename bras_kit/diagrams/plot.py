@@ -9,6 +9,7 @@ from typing import TYPE_CHECKING, Any
 
 import numpy as np
 
+from .. import backends
 from ..i18n import _
 from ..kinematics import TFTree, fk_batch, tf_tree
 from ..model import Robot
@@ -104,6 +105,7 @@ def plot_motion(robot: Robot, states: Any, path: str | os.PathLike[str] | None =
     bad = out_of_limits_mask(robot, names, positions).any(axis=1)
     plane = motion_plane(robot)
 
+    backends.matplotlib()
     from matplotlib.collections import LineCollection
     from matplotlib.figure import Figure
     from matplotlib.lines import Line2D

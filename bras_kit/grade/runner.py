@@ -14,7 +14,8 @@ from collections.abc import Callable, Iterator, Sequence
 from concurrent.futures.process import BrokenProcessPool
 from typing import IO, Any
 
-from ..errors import BrasKitError, ParameterError
+from .. import backends
+from ..errors import BrasKitError
 from .rubric import Rubric
 from .submissions import Submission, content_hash
 from .worker import Options, grade
@@ -24,11 +25,7 @@ from .worker import Options, grade
 def executor(jobs: int | None = None, scheduler: str | None = None) -> Iterator[futures.Executor]:
     """A local process pool of ``jobs`` workers, or the Dask cluster at ``scheduler``."""
     if scheduler:
-        try:
-            from distributed import Client
-        except ImportError:
-            raise ParameterError("--scheduler needs Dask's distributed package",
-                                 hint="pip install 'bras-kit[cluster]'") from None
+        Client = backends.dask_distributed().Client  # noqa: N806  (a class)
         try:
             client = Client(scheduler, timeout=10)
         except (OSError, TimeoutError) as exc:

@@ -8,6 +8,7 @@ from typing import Any
 
 import numpy as np
 
+from .. import backends
 from ..errors import ParameterError
 from ..i18n import _
 from ..kinematics import TFTree, fk_batch
@@ -111,6 +112,7 @@ def workspace_figure(model: TFTree | Robot, samples: int = 100_000, *, tip_link:
     Faint: every joint turning freely; solid: within the limits; the base and the arm at its
     zero pose on top. Returns (figure, axes, :class:`WorkspaceSummary`).
     """
+    backends.matplotlib()
     from matplotlib.backends.backend_agg import FigureCanvasAgg
     from matplotlib.figure import Figure
     from matplotlib.patches import Patch, Rectangle

@@ -14,22 +14,25 @@ that colour (RViz's rule: the mesh's materials win, the URDF ``<material>`` colo
 
 from __future__ import annotations
 
+import contextlib
 import math
 import os
-from collections.abc import Mapping, Sequence
+from collections.abc import Iterator, Mapping, Sequence
 from dataclasses import dataclass, field
 from xml.sax.saxutils import quoteattr
 
 import numpy as np
 
+from .. import backends
 from ..errors import ModelError
 from ..kinematics import matrix_to_quat_xyzw, rpy_to_matrix
+from ..message import M, Mn
 from ..model import Geometry, Joint, Origin, Robot
 
 MUJOCO_MESH_SUFFIXES = (".stl", ".obj", ".msh")
 DEFAULT_KP = 100.0  # N.m/rad (N/m for sliders)
 DEFAULT_KD = 10.0  # N.m.s/rad
-DEFAULT_DAMPING = 0.05  # N.m.s/rad: a little joint friction, so a falling arm comes to rest
+MAX_NESTED_BODIES = 496  # MuJoCo's XML reader (tinyxml2) stops at 500 nested elements
 DEFAULT_TIMESTEP = 0.002  # s, MuJoCo's own default
 DEFAULT_INTEGRATOR = "implicitfast"  # stable with stiff motor damping; RK4 for energy studies
 WATER_DENSITY = 1000.0  # kg/m^3, what MuJoCo gives a body known only by its shapes
@@ -72,6 +75,8 @@ class MjcfModel:
     density_links: list[str] = field(default_factory=list)  # massed from <collision> at 1000 kg/m^3
     massless_links: list[str] = field(default_factory=list)  # moving, no inertial, no collision
     converted: list[str] = field(default_factory=list)  # DAE (or other) meshes turned into STL
+    dynamics: dict[str, tuple[float, float]] = field(default_factory=dict)  # joint -> (damping, friction) written
+    damping_given: bool = False  # True: one damping for every joint was asked for, not the URDF's <dynamics>
 
     def compile(self):  # type: ignore[no-untyped-def]
         """The ``mujoco.MjModel`` (a :class:`ModelError` with MuJoCo's reason when it refuses)."""
@@ -81,19 +86,40 @@ class MjcfModel:
         return self.xml.replace('<compiler angle="radian"', f'<compiler meshdir={quoteattr(meshdir)} angle="radian"', 1)
 
 
-def compile_xml(xml: str, assets: Mapping[str, bytes], name: str = "robot"):  # type: ignore[no-untyped-def]
+@contextlib.contextmanager
+def quiet_mujoco() -> Iterator[list[str]]:
+    """MuJoCo's warnings collected in a list instead of printed and appended to ./MUJOCO_LOG.TXT.
+
+    Without a handler, MuJoCo writes every warning to stderr and to a log file in the working
+    folder; bras-kit writes nothing but the outputs asked for, and reports instability itself
+    (the simulation's time and joint, from ``MjData.warning``).
+    """
     import mujoco
 
+    collected: list[str] = []
+    previous = mujoco.get_mju_user_warning()
+    mujoco.set_mju_user_warning(collected.append)
     try:
-        return mujoco.MjModel.from_xml_string(xml, dict(assets))
+        yield collected
+    finally:
+        mujoco.set_mju_user_warning(previous)
+
+
+def compile_xml(xml: str, assets: Mapping[str, bytes], name: str = "robot"):  # type: ignore[no-untyped-def]
+    mujoco = backends.mujoco()
+
+    try:
+        with quiet_mujoco():
+            return mujoco.MjModel.from_xml_string(xml, dict(assets))
     except ValueError as exc:
         reason = " ".join(str(exc).split())
-        hint = "check the file with bras-kit validate; bras-kit mjcf -o model.xml shows what MuJoCo was given"
+        hint = M("check the file with bras-kit validate; bras-kit mjcf -o model.xml shows what MuJoCo was given")
         if "inertia" in reason:
-            hint = "check the <inertial> of that link (bras-kit validate)"
+            hint = M("check the <inertial> of that link (bras-kit validate)")
         if "mass and inertia" in reason:
-            hint = "give every moving link an <inertial> (built-in arm: --inertials)"
-        raise ModelError(f"MuJoCo refuses the model of '{name}': {reason}", element="mujoco", hint=hint) from None
+            hint = M("give every moving link an <inertial> (built-in arm: --inertials)")
+        raise ModelError(M("MuJoCo refuses the model of '{name}': {reason}", name=name, reason=reason),
+                         element="mujoco", hint=hint) from None
 
 
 def _f(value: float) -> str:
@@ -248,7 +274,20 @@ def _inertial_xml(link) -> str:  # type: ignore[no-untyped-def]
     return f'<inertial{pose} mass="{_f(inertial.mass or 0.0)}" fullinertia="{full}"/>'
 
 
-def _joint_xml(joint: Joint, kp_effort: float, gravity_compensation: bool, damping: float) -> str:
+def joint_dynamics(joint: Joint, damping: float | None = None) -> tuple[float, float]:
+    """(damping, friction) of ``joint``: its ``<dynamics>`` (0 when not written, as Gazebo does);
+    ``damping``, when given, replaces the URDF's damping on every joint."""
+    dynamics = joint.dynamics
+
+    def usable(value: float | None) -> float:
+        return float(value) if value is not None and math.isfinite(value) and value > 0 else 0.0
+
+    written = usable(dynamics.damping) if dynamics is not None else 0.0
+    friction = usable(dynamics.friction) if dynamics is not None else 0.0
+    return (usable(damping) if damping is not None else written), friction
+
+
+def _joint_xml(joint: Joint, kp_effort: float, gravity_compensation: bool, damping: float, friction: float) -> str:
     kind = "slide" if joint.type == "prismatic" else "hinge"
     attrs = f'name={_name(joint.name)} type="{kind}" axis="{_vec(_unit(joint.axis_or_default))}"'
     if joint.type != "continuous" and joint.limit is not None:
@@ -261,6 +300,8 @@ def _joint_xml(joint: Joint, kp_effort: float, gravity_compensation: bool, dampi
         attrs += ' actuatorgravcomp="true"'
     if damping:
         attrs += f' damping="{_f(damping)}"'
+    if friction:
+        attrs += f' frictionloss="{_f(friction)}"'
     return f"<joint {attrs}/>"
 
 
@@ -290,14 +331,16 @@ def _tree(robot: Robot) -> tuple[str, dict[str, list[Joint]]]:
 
 def build_mjcf(robot: Robot, *, package_paths: Sequence[str] = (), kp: float | Mapping[str, float] = DEFAULT_KP,
                kd: float | Mapping[str, float] = DEFAULT_KD, timestep: float = DEFAULT_TIMESTEP,
-               integrator: str = DEFAULT_INTEGRATOR, control: str = "pd", damping: float = DEFAULT_DAMPING) -> MjcfModel:
+               integrator: str = DEFAULT_INTEGRATOR, control: str = "pd", damping: float | None = None) -> MjcfModel:
     """The MJCF of ``robot``: bodies, joints with ranges, motors at +-effort, collisions, a floor.
 
     ``control``: ``none`` (no motor: the arm only falls), ``pd`` (motors are PD servos,
     ``force = kp (ctrl - q) - kd qdot`` clipped to the effort) or ``pd+gravity`` (MuJoCo also
-    adds each joint's gravity torque to its motor, inside the same effort clip). ``damping``
-    (N.m.s/rad or N.s/m) is written on every movable joint. A moving link without ``<inertial>`` and without ``<collision>`` is a
-    :class:`ModelError` (MuJoCo cannot move a body with no mass).
+    adds each joint's gravity torque to its motor, inside the same effort clip). Each joint's
+    damping and friction come from its ``<dynamics>`` (none when absent, as in Gazebo);
+    ``damping`` (N.m.s/rad or N.s/m), when given, replaces the damping of every movable joint.
+    A moving link without ``<inertial>`` and without ``<collision>`` is a :class:`ModelError`
+    (MuJoCo cannot move a body with no mass).
     """
     from .controllers import check_control
 
@@ -309,11 +352,13 @@ def build_mjcf(robot: Robot, *, package_paths: Sequence[str] = (), kp: float | M
     density_links: list[str] = []
     massless: list[str] = []
     body_lines: list[str] = []
+    dynamics: dict[str, tuple[float, float]] = {}
 
     def gain(value: float | Mapping[str, float], joint: str, default: float) -> float:
         return float(value.get(joint, default)) if isinstance(value, Mapping) else float(value)
 
-    def emit(link_name: str, joint: Joint | None, depth: int) -> None:
+    def emit(link_name: str, joint: Joint | None, depth: int) -> str | None:
+        """Write one body's opening and contents; return its closing line (None for the world)."""
         link = robot.link(link_name)
         pad = "  " * depth
         attrs = f"name={_name(link_name)}"
@@ -328,7 +373,9 @@ def build_mjcf(robot: Robot, *, package_paths: Sequence[str] = (), kp: float | M
         moving = joint is not None and joint.type in ("revolute", "continuous", "prismatic")
         if moving and joint is not None:
             effort = joint_effort(joint) if joint.mimic is None else math.inf
-            body_lines.append(f"{pad}  {_joint_xml(joint, effort, gravity_compensation, damping)}")
+            joint_damping, friction = joint_dynamics(joint, damping)
+            dynamics[joint.name or ""] = (joint_damping, friction)
+            body_lines.append(f"{pad}  {_joint_xml(joint, effort, gravity_compensation, joint_damping, friction)}")
             if joint.mimic is not None:
                 mimics.append((joint.name or "", joint.mimic.joint or "", joint.mimic.multiplier, joint.mimic.offset))
             else:
@@ -367,19 +414,33 @@ def build_mjcf(robot: Robot, *, package_paths: Sequence[str] = (), kp: float | M
                         f'{pad}  <geom name={_name(f"{link_name}/collision{n}")} {shape}'
                         f'{_mesh_scale(collision.geometry, meshes)}{_pose_attrs(collision.origin)} '
                         f'rgba="{COLLISION_RGBA}" group="{COLLISION_GROUP}"{mass}/>')
-        for child in children.get(link_name, []):
-            emit(child.child or "", child, depth + 1)
-        if opened:
-            body_lines.append(f"{pad}</body>")
+        return f"{pad}</body>" if opened else None
 
-    emit(root, None, 2)
+    # depth first with a stack, not recursion: a chain of a thousand links is a valid URDF
+    stack: list[tuple[str, Joint | None, int] | str | None] = [(root, None, 2)]
+    while stack:
+        item = stack.pop()
+        if item is None or isinstance(item, str):
+            if item is not None:
+                body_lines.append(item)
+            continue
+        link_name, joint, depth = item
+        if depth - 1 > MAX_NESTED_BODIES:
+            raise ModelError(M("link '{link}' is {count} links down its chain; MuJoCo reads at most {limit} bodies "
+                               "nested in one another", link=link_name, count=depth - 1, limit=MAX_NESTED_BODIES),
+                             path=robot.path, line=(robot.link(link_name) or robot.links[0]).line, element="link",
+                             hint=M("simulate a shorter chain ('bras-kit tree' and 'bras-kit validate' read any size)"))
+        stack.append(emit(link_name, joint, depth))
+        stack.extend((child.child or "", child, depth + 1) for child in reversed(children.get(link_name, [])))
     if massless:
         raise ModelError(
-            f"link '{massless[0]}' moves but has no <inertial> (and no <collision> to weigh): "
-            "MuJoCo cannot simulate a body with no mass"
-            + (f" ({len(massless)} such links: {', '.join(massless)})" if len(massless) > 1 else ""),
+            Mn("link {links} moves but has no <inertial> (and no <collision> to weigh): MuJoCo cannot simulate "
+               "a body with no mass",
+               "{n} links move but have no <inertial> (and no <collision> to weigh): {links}; MuJoCo cannot simulate "
+               "a body with no mass", len(massless), links=massless),
             path=robot.path, line=(robot.link(massless[0]) or robot.links[0]).line, element="link",
-            hint="built-in arm: pass --inertials; your own file: add <inertial> with mass and inertia to each moving link")
+            hint=M("built-in arm: pass --inertials; your own file: add <inertial> with mass and inertia to each "
+                   "moving link"))
 
     actuators = []
     for a in actuated if control != "none" else []:
@@ -395,7 +456,7 @@ def build_mjcf(robot: Robot, *, package_paths: Sequence[str] = (), kp: float | M
     contact = [f'    <exclude body1={_name(p)} body2={_name(c)}/>' for p, c, _ in excluded]
     xml = _document(robot, body_lines, meshes, actuators, equality, contact, floor_z, timestep, integrator)
     return MjcfModel(robot.name or "robot", xml, dict(meshes.assets), actuated, mimics, floor_z, excluded,
-                     density_links, massless, meshes.converted)
+                     density_links, massless, meshes.converted, dynamics, damping is not None)
 
 
 def _document(robot: Robot, bodies: list[str], meshes: _Meshes, actuators: list[str], equality: list[str],
@@ -429,7 +490,7 @@ def _document(robot: Robot, bodies: list[str], meshes: _Meshes, actuators: list[
 
 def _world_boxes(model) -> tuple[np.ndarray, np.ndarray]:  # type: ignore[no-untyped-def]
     """Each geom's axis-aligned box in the world at the zero pose: centres and half sizes."""
-    import mujoco
+    mujoco = backends.mujoco()
 
     data = mujoco.MjData(model)
     mujoco.mj_kinematics(model, data)
@@ -445,7 +506,7 @@ def _world_boxes(model) -> tuple[np.ndarray, np.ndarray]:  # type: ignore[no-unt
 
 def _floor_and_touching(model, robot: Robot) -> tuple[float, list[tuple[str, str, str]]]:  # type: ignore[no-untyped-def]
     """The floor height (under the fixed base's lowest point) and the parent/child pairs whose shapes touch."""
-    import mujoco
+    mujoco = backends.mujoco()
 
     centres, halves = _world_boxes(model)
     floor_geom = mujoco.mj_name2id(model, mujoco.mjtObj.mjOBJ_GEOM, "floor")
@@ -474,7 +535,7 @@ def _overlapping_at_start(model, floor_geom: int) -> list[tuple[str, str, str]]:
     Left alone they push each other apart for ever (fingers of a gripper, a hand folded on the
     wrist): MuJoCo's own models exclude such pairs, so does bras-kit. The joint name is empty.
     """
-    import mujoco
+    mujoco = backends.mujoco()
 
     data = mujoco.MjData(model)
     mujoco.mj_forward(model, data)

@@ -32,7 +32,7 @@ from typing import Any
 
 import numpy as np
 
-from ..errors import BackendError
+from .. import backends
 
 _PLATFORM_CLASSES = {"EGLPlatform": "egl", "OSMesaPlatform": "osmesa"}
 
@@ -47,10 +47,7 @@ def loaded_platform() -> str | None:
 
 
 def pyopengl_version() -> tuple[int, ...]:
-    try:
-        import OpenGL  # the package alone: the platform is chosen by OpenGL.platform, not here
-    except ImportError:
-        raise BackendError("PyOpenGL is not installed", hint="pip install pyrender (it brings PyOpenGL)") from None
+    OpenGL = backends.opengl()  # noqa: N806  (the package alone: the platform is chosen by OpenGL.platform)
     return tuple(int(p) for p in OpenGL.__version__.split(".")[:3] if p.isdigit())
 
 
@@ -66,14 +63,12 @@ def import_pyrender():  # type: ignore[no-untyped-def]
     if not hasattr(np, "infty"):
         np.infty = np.inf  # type: ignore[attr-defined]
     if "pyrender" in sys.modules:
-        import pyrender
-
-        return pyrender
+        return backends.pyrender()
     stand_ins = _stand_ins()
     for name, module in stand_ins.items():
         sys.modules[name] = module
     try:
-        import pyrender
+        pyrender = backends.pyrender()
     finally:
         for name, module in stand_ins.items():
             _forget(name, module)

@@ -64,9 +64,11 @@ class ViewModel:
     tip_offset: np.ndarray
     scale: float  # metres: the size of the robot, for triads, labels and the grid
     _zero: np.ndarray = field(init=False, repr=False)
+    _boxes: list[tuple[np.ndarray, np.ndarray, int]] = field(init=False, repr=False)
 
     def __post_init__(self) -> None:
         self._zero = np.zeros(len(self.tree.dof))
+        self._boxes = [(m.vertices.min(axis=0), m.vertices.max(axis=0), m.link) for m in self.visuals if len(m.vertices)]
 
     def config_vector(self, values: Mapping[str, float]) -> np.ndarray:
         q = self._zero.copy()
@@ -81,6 +83,17 @@ class ViewModel:
         if fixed_frame:
             world = np.linalg.inv(world[fixed_frame]) @ world
         return world
+
+    def box_points(self, values: Mapping[str, float] | None = None, fixed_frame: int = 0) -> np.ndarray:
+        """The corners of each visual's bounding box and every frame origin, in the fixed frame
+        (N x 3): what the camera must keep in view."""
+        poses = self.poses(values or {}, fixed_frame)
+        points = [poses[:, :3, 3]]
+        for low, high, link in self._boxes:
+            corners = np.array([[x, y, z] for x in (low[0], high[0]) for y in (low[1], high[1])
+                                for z in (low[2], high[2])])
+            points.append(corners @ poses[link][:3, :3].T + poses[link][:3, 3])
+        return np.vstack(points)
 
     def tip(self, poses: np.ndarray) -> np.ndarray:
         pose = poses[self.tip_link]
