@@ -256,3 +256,24 @@ def test_no_cache_flag_renders_without_touching_the_cache(own_cache, tmp_path, r
     _forget(monkeypatch)
     code, _, _ = run_cli("render", str(urdf), "-o", str(tmp_path / "b.png"), "--size", "64x48")
     assert code == 0 and len(list(own_cache.glob("*.npz"))) == 1
+
+
+def test_a_collada_file_in_inches_is_read_in_metres_as_rviz_does():
+    """KUKA KR210's link 2 is written in inches (<unit meter="0.0254">) and its URDF gives no
+    scale: RViz (assimp) applies the unit. Oracle: the unit and the raw coordinates from the XML."""
+    rtb = next(Path(base) / "rtbdata" for base in site.getsitepackages() if (Path(base) / "rtbdata").is_dir())
+    path = rtb / "xacro" / "kuka_description" / "kuka_kr210" / "meshes" / "kr210l150" / "visual" / "link_2.dae"
+    root = ET.parse(path).getroot()
+    unit = float(root.find(".//c:asset/c:unit", COLLADA).get("meter"))
+    assert unit == pytest.approx(0.0254)
+    mesh = meshes.load_mesh(str(path))
+    sources = {source.get("id"): source for source in root.iterfind(".//c:source", COLLADA)}
+    raw = []
+    for vertices in root.iterfind(".//c:vertices", COLLADA):  # the POSITION input of each mesh
+        position = vertices.find("c:input[@semantic='POSITION']", COLLADA)
+        array = sources[position.get("source").lstrip("#")].find("c:float_array", COLLADA)
+        raw.append(np.array(array.text.split(), dtype=float).reshape(-1, 3))
+    assert raw, "the oracle found no positions in the file"
+    extent = np.ptp(np.vstack(raw), axis=0).max() * unit  # the file's node matrices are identities
+    assert np.ptp(mesh.vertices, axis=0).max() == pytest.approx(extent, rel=1e-3)
+    assert 0.5 < np.ptp(mesh.vertices, axis=0).max() < 2.0  # a link of a 2.7 m-reach robot, not 56 m
