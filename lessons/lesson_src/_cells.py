@@ -46,6 +46,7 @@ def code(src: str, en: str | None = None, *, hidden: bool = False) -> Cell:
 
 # English comment of a shared code cell -> its French words.
 FR_COMMENTS = {
+    "1.0: radians": "1.0 : radians",
     "joint epaule": "articulation epaule",
     "joint coude": "articulation coude",
     "the library's messages and picture words in this notebook's language":
