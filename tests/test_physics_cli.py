@@ -67,7 +67,8 @@ def test_real_robot_loads_in_mujoco_with_its_meshes_and_efforts(name):
     assert list(model.actuator_forcerange[:, 1]) == pytest.approx([e for _, e in driven])
     # a STL is one mesh; a DAE visual one mesh per material piece (each geom with its colour)
     files = {name: Path(PACKAGES).parent / name[len("package://"):] for name in meshes}
-    assert model.nmesh == sum(_dae_pieces(f) if f.suffix == ".dae" else 1 for f in files.values())
+    assert model.nmesh == len(built.assets) == sum(_dae_pieces(f) if f.suffix == ".dae" else 1 for f in files.values())
+    assert {Path(asset.source).name for asset in built.assets.values()} == {Path(m).name for m in meshes}
     assert any(source.endswith(".dae") for source in built.converted)  # both robots draw with DAE visuals
     assert all(model.mesh_vertnum[m] > 0 for m in range(model.nmesh))
 
