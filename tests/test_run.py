@@ -159,13 +159,13 @@ def test_degrees_are_reported_with_joint_value_and_time(robot):
     recording = run_node(str(NODES / "degrees.py"), duration=2.0)
     coude = next(f for f in run_findings(recording, robot, lang="en") if f.data["joint"] == "coude")
     assert coude.data["value"] == 90.0 and coude.data["first"] == pytest.approx(0.05)
-    assert "degrees" in coude.message and "math.radians" in coude.hint
+    assert "degrees" in coude.text("en") and "math.radians" in coude.hint_text("en")
 
 
 def test_wrong_topic_says_where_the_messages_went(robot):
     recording = run_node(str(NODES / "wrong_topic.py"), duration=1.0)
     [finding] = run_findings(recording, robot, lang="fr")
-    assert "'/joint_state'" in finding.message and finding.line == 11
+    assert "'/joint_state'" in finding.text("en") and finding.line == 11
     assert finding.data["count"] == 20
 
 

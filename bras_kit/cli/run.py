@@ -67,7 +67,7 @@ def run(args: argparse.Namespace) -> int:
         print(text, file=sys.stderr)
     results = _results(recording, robot, args)
     if args.json:
-        sys.stdout.write(format_json(results))
+        sys.stdout.write(format_json(results, lang=lang))
     else:
         sys.stdout.write(format_text(results, lang or current_language()))
     if args.output is not None:

@@ -15,7 +15,7 @@ from dataclasses import dataclass
 
 from .. import backends
 from ..errors import ModelError
-from ..i18n import current_language, say
+from ..i18n import say
 from ..message import M, Message, Mn
 from ..model import Robot
 from .mjcf import WATER_DENSITY, MjcfModel
@@ -67,8 +67,8 @@ def physics_notes(robot: Robot, built: MjcfModel, lang: str | None = None,
     from ..validate import validate
 
     frames = _frame_only_links(robot)
-    notes = [Note(f.severity, f.code, f"{f.code} {f.message}")
-             for f in validate(robot, lang=lang or current_language(), package_paths=package_paths,
+    notes = [Note(f.severity, f.code, f"{f.code} {f.text(lang)}")
+             for f in validate(robot, package_paths=package_paths,
                                select=VALIDATOR_CODES)
              if not (f.code in ("BK500", "BK501") and f.name in frames)]
     if built.density_links:

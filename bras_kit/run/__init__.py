@@ -12,7 +12,7 @@ only), on a simulated clock, and every message it publishes is recorded (:mod:`.
     recording = run_node("bras_description", "animation", duration=5)
     states = joint_states(recording)          # what /joint_states carried, as JointStates
     for finding in run_findings(recording, robot_of("bras_description")):
-        print(finding.code, finding.message)
+        print(finding.code, finding.text())
 """
 
 from __future__ import annotations

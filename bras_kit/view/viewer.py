@@ -107,7 +107,7 @@ class Viewer:
     def _check(self, robot: Robot) -> None:
         from ..validate import validate
 
-        self.findings = validate(robot, lang=self.lang, package_paths=self.source.package_paths)
+        self.findings = validate(robot, package_paths=self.source.package_paths)
 
     def reload(self) -> bool:
         """Read the source again; on success show the new model in every browser, else keep the
