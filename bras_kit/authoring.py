@@ -16,7 +16,9 @@ from typing import Any
 
 from ._resources import robot_template
 from .errors import ParameterError
+from .message import M, Message
 from .model import Robot, robot_from_xml
+from .wording import either
 from .xacrotools import expand_xacro
 from .xmlio import parse_xml, read_bytes, read_xml
 
@@ -48,14 +50,17 @@ def template_parameters() -> dict[str, Parameter]:
     return params
 
 
-def parse_assignments(items: Iterable[str], what: str = "parameter") -> dict[str, str]:
-    """``["a=1", "b=2"]`` -> ``{"a": "1", "b": "2"}``; a missing '=' is a :class:`ParameterError`."""
+def parse_assignments(items: Iterable[str], what: Message | None = None) -> dict[str, str]:
+    """``["a=1", "b=2"]`` -> ``{"a": "1", "b": "2"}``; a missing '=' is a :class:`ParameterError`
+    (``what`` names the value in the hint: "parameter" unless told)."""
     out: dict[str, str] = {}
     for item in items:
         name, sep, value = item.partition("=")
         name = name.strip()
         if not sep or not name:
-            raise ParameterError(f"'{item}' is not NAME=VALUE", hint=f"write the {what} as NAME=VALUE, e.g. bras_length=0.8")
+            raise ParameterError(M("'{item}' is not NAME=VALUE", item=item),
+                                 hint=M("write the {what} as NAME=VALUE, e.g. bras_length=0.8",
+                                        what=what or M("parameter")))
         out[name] = value.strip()
     return out
 
@@ -81,23 +86,25 @@ def normalise_parameters(values: Mapping[str, object]) -> dict[str, str]:
     for name, raw in values.items():
         if name not in settable:
             close = [n for n in settable if n.split("_")[0] == name.split("_")[0]]
+            valid = M("valid names: {names}", names=", ".join(settable))
             raise ParameterError(
-                f"unknown parameter '{name}'",
-                hint=("did you mean " + " or ".join(close) + "? " if close else "")
-                + "valid names: " + ", ".join(settable),
+                M("unknown parameter '{name}'", name=name),
+                hint=M("did you mean {close}? {valid}", close=either(close), valid=valid) if close else valid,
             )
         text = " ".join(str(v) for v in raw) if isinstance(raw, (list, tuple)) else str(raw)
         if settable[name].kind == "colour":
             parts = [_number(p) for p in text.replace(",", " ").split()]
             if len(parts) != 4 or any(p is None or not 0.0 <= p <= 1.0 for p in parts):
-                raise ParameterError(f"{name}={text!r} is not a colour",
-                                     hint=f"give four numbers between 0 and 1 (r g b a), e.g. {name}=\"0.2 0.4 0.9 1\"")
+                raise ParameterError(M("{name}={text!r} is not a colour", name=name, text=text),
+                                     hint=M("give four numbers between 0 and 1 (r g b a), e.g. {name}=\"0.2 0.4 0.9 1\"",
+                                            name=name))
             out[name] = " ".join(repr(p) for p in parts)  # type: ignore[arg-type]
         else:
             value = _limit_value(text) if name.endswith(("_lower", "_upper")) else _number(text)
             if value is None:
-                raise ParameterError(f"{name}={text!r} is not a number",
-                                     hint=f"give a finite number, e.g. {name}={settable[name].default}")
+                raise ParameterError(M("{name}={text!r} is not a number", name=name, text=text),
+                                     hint=M("give a finite number, e.g. {name}={default}", name=name,
+                                            default=settable[name].default))
             _check_range(name, text, value, settable[name].default)
             out[name] = repr(value)
     _check_limit_order(out, settable)
@@ -116,28 +123,28 @@ class Range:
 
     lowest: float
     highest: float
-    message: str  # English id in the ``package`` catalog: {name}, {value}, {lowest}, {highest}
-    hint: str
+    message: Message  # filled in with {name}, {value}, {lowest}, {highest}
+    hint: Message  # filled in with {name}, {default}
 
 
 _TURN = round(2 * math.pi, 4)
-_SIZE_HINT = "sizes are in metres (0.6 is 60 cm): give e.g. {name}={default}"
+_SIZE_HINT = M("sizes are in metres (0.6 is 60 cm): give e.g. {name}={default}")
 RANGES: dict[str, Range] = {  # by the parameter name's last word
-    "length": Range(0.001, 10.0, "{name}={value}: a length must be between {lowest} and {highest} m", _SIZE_HINT),
-    "width": Range(0.001, 10.0, "{name}={value}: a width must be between {lowest} and {highest} m", _SIZE_HINT),
-    "radius": Range(0.001, 10.0, "{name}={value}: a radius must be between {lowest} and {highest} m", _SIZE_HINT),
-    "mass": Range(0.001, 1000.0, "{name}={value}: a mass must be between {lowest} and {highest} kg",
-                  "masses are in kilograms: give e.g. {name}={default}"),
+    "length": Range(0.001, 10.0, M("{name}={value}: a length must be between {lowest} and {highest} m"), _SIZE_HINT),
+    "width": Range(0.001, 10.0, M("{name}={value}: a width must be between {lowest} and {highest} m"), _SIZE_HINT),
+    "radius": Range(0.001, 10.0, M("{name}={value}: a radius must be between {lowest} and {highest} m"), _SIZE_HINT),
+    "mass": Range(0.001, 1000.0, M("{name}={value}: a mass must be between {lowest} and {highest} kg"),
+                  M("masses are in kilograms: give e.g. {name}={default}")),
     "effort": Range(0.001, 10000.0,
-                    "{name}={value}: an effort limit must be between {lowest} and {highest} N.m",
-                    "give the largest torque of the joint's motor, e.g. {name}={default}"),
+                    M("{name}={value}: an effort limit must be between {lowest} and {highest} N.m"),
+                    M("give the largest torque of the joint's motor, e.g. {name}={default}")),
     "velocity": Range(0.001, 100.0,
-                      "{name}={value}: a velocity limit must be between {lowest} and {highest} rad/s",
-                      "give the largest speed of the joint, e.g. {name}={default}"),
-    "lower": Range(-_TURN, _TURN, "{name}={value}: a joint limit must be between {lowest} and {highest} rad",
-                   "limits are in radians: give e.g. {name}={default}, pi/2 or 90deg"),
-    "upper": Range(-_TURN, _TURN, "{name}={value}: a joint limit must be between {lowest} and {highest} rad",
-                   "limits are in radians: give e.g. {name}={default}, pi/2 or 90deg"),
+                      M("{name}={value}: a velocity limit must be between {lowest} and {highest} rad/s"),
+                      M("give the largest speed of the joint, e.g. {name}={default}")),
+    "lower": Range(-_TURN, _TURN, M("{name}={value}: a joint limit must be between {lowest} and {highest} rad"),
+                   M("limits are in radians: give e.g. {name}={default}, pi/2 or 90deg")),
+    "upper": Range(-_TURN, _TURN, M("{name}={value}: a joint limit must be between {lowest} and {highest} rad"),
+                   M("limits are in radians: give e.g. {name}={default}, pi/2 or 90deg")),
 }
 
 
@@ -146,32 +153,16 @@ def parameter_range(name: str) -> Range | None:
     return RANGES.get(name.rsplit("_", 1)[-1])
 
 
-def _say(message: str) -> str:
-    """``message`` in the current language, from the generator's own ``package`` catalog."""
-    from .i18n import current_language, translator
-
-    return translator(current_language(), "package")(message)
-
-
-def _prose_number(value: float) -> str:
-    """A bound as a learner reads it: ``0.001``, or ``0,001`` in French prose."""
-    from .i18n import current_language
-
-    text = f"{value:g}"
-    return text.replace(".", ",") if current_language() == "fr" else text
-
-
 def _check_range(name: str, text: str, value: float, default: str) -> None:
     allowed = parameter_range(name)
     if allowed is None or allowed.lowest <= value <= allowed.highest:
         return
-    message = _say(allowed.message).format(name=name, value=text, lowest=_prose_number(allowed.lowest),
-                                           highest=_prose_number(allowed.highest))
-    hint = _say(allowed.hint).format(name=name, default=default)
+    message = allowed.message.with_params(name=name, value=text, lowest=allowed.lowest, highest=allowed.highest)
+    hint = allowed.hint.with_params(name=name, default=default)
     in_degrees = math.radians(value)
     if name.endswith(("_lower", "_upper")) and allowed.lowest <= in_degrees <= allowed.highest:
-        hint = _say("{value} looks like degrees: write {name}={value}deg ({radians} rad)").format(
-            name=name, value=text, radians=f"{in_degrees:.4f}")
+        hint = M("{value} looks like degrees: write {name}={value}deg ({radians} rad)",
+                 name=name, value=text, radians=f"{in_degrees:.4f}")
     raise ParameterError(message, hint=hint)
 
 
@@ -195,10 +186,9 @@ def _check_limit_order(values: Mapping[str, str], settable: Mapping[str, Any]) -
         upper = float(values.get(f"{joint}_upper", settable[f"{joint}_upper"].default))
         if not lower <= upper:
             raise ParameterError(
-                _say("{joint}_lower={lower} is above {joint}_upper={upper}").format(
-                    joint=joint, lower=f"{lower:g}", upper=f"{upper:g}"),
-                hint=_say("the lower limit of a joint must not be above its upper limit: "
-                          "swap the values, or change {joint}_lower and {joint}_upper together").format(joint=joint))
+                M("{joint}_lower={lower:g} is above {joint}_upper={upper:g}", joint=joint, lower=lower, upper=upper),
+                hint=M("the lower limit of a joint must not be above its upper limit: "
+                       "swap the values, or change {joint}_lower and {joint}_upper together", joint=joint))
 
 
 _BANNER = re.compile(r"<!-- =+ -->\s*<!-- \|.*?\| -->\s*<!-- \|.*?\| -->\s*<!-- =+ -->\s*", re.S)
@@ -299,8 +289,9 @@ def _expand_template(mappings: Mapping[str, str]) -> str:
     template = robot_template()
     source = template.read_bytes()
     key = hashlib.sha256(json.dumps([__version__, sorted(mappings.items())]).encode() + source).hexdigest()[:32]
-    folder = os.path.join(os.environ.get("XDG_CACHE_HOME") or os.path.join(os.path.expanduser("~"), ".cache"),
-                          "bras-kit")
+    from .cachedir import cache_home
+
+    folder = cache_home()
     cached = os.path.join(folder, f"arm-{key}.urdf")
     try:
         if os.path.isfile(cached) and not os.path.islink(cached):

@@ -2,7 +2,9 @@
 
 from __future__ import annotations
 
-from .message import Message
+import errno
+
+from .message import M, Mc, Message
 
 
 class BrasKitError(Exception):
@@ -83,3 +85,41 @@ class OutputExistsError(BrasKitError):
 
 class BackendError(BrasKitError):
     """An optional backend (OpenGL, ffmpeg, ...) is missing or failed."""
+
+
+class TimeInJointValueError(ParameterError):
+    """A joint value (``--set``, ``--pose``) is a formula of the time ``t``: one number is wanted."""
+
+
+# The operating system's reasons a user can meet, by errno: the English id is the C library's
+# own text (what ``strerror`` says on Linux, so English output is unchanged) and the catalogs
+# translate it; any other reason is quoted as the system wrote it.
+_OS_REASONS = {
+    errno.ENOENT: M("No such file or directory"),
+    errno.EACCES: M("Permission denied"),
+    errno.EPERM: M("Operation not permitted"),
+    errno.EISDIR: M("Is a directory"),
+    errno.ENOTDIR: M("Not a directory"),
+    errno.EEXIST: M("File exists"),
+    errno.ENOSPC: M("No space left on device"),
+    errno.EDQUOT: M("Disk quota exceeded"),
+    errno.EROFS: M("Read-only file system"),
+    errno.ELOOP: M("Too many levels of symbolic links"),
+    errno.ENAMETOOLONG: M("File name too long"),
+    errno.ENOTEMPTY: M("Directory not empty"),
+    errno.EBUSY: M("Device or resource busy"),
+    errno.EMFILE: M("Too many open files"),
+    errno.EXDEV: M("Invalid cross-device link"),
+    errno.EIO: M("Input/output error"),
+    errno.EINVAL: M("Invalid argument"),
+    errno.ETXTBSY: M("Text file busy"),
+}
+
+
+def os_reason(exc: OSError) -> Message:
+    """Why an :class:`OSError` happened, as a message: translated for the usual errno values,
+    else the system's own words (in French after a sentence saying they are the system's)."""
+    known = _OS_REASONS.get(exc.errno) if exc.errno is not None else None
+    if known is not None and (exc.strerror is None or exc.strerror == known.id):
+        return known
+    return Mc("system", "{reason}", reason=exc.strerror or str(exc))

@@ -22,7 +22,8 @@ from dataclasses import dataclass
 
 import numpy as np
 
-from .errors import ParameterError, UnsafeExpressionError
+from .errors import ParameterError, TimeInJointValueError, UnsafeExpressionError
+from .message import M, Message, Mn
 
 MAX_LENGTH = 1000  # characters of a formula
 MAX_DEPTH = 100  # nesting of operations (a sum of n terms nests n deep)
@@ -105,30 +106,30 @@ FUNCTIONS: dict[str, tuple[int, int, Callable[..., _Pair]]] = {
     "deg": (1, 1, _deg),
 }
 
-ALLOWED = ("numbers, the time t (seconds), the constants pi e tau, + - * / ** % and parentheses, "
-           "and the functions " + " ".join(FUNCTIONS)
-           + " (deg(x) turns x degrees into radians; clip(x, low, high))")
+ALLOWED = M("allowed: numbers, the time t (seconds), the constants pi e tau, + - * / ** % and parentheses, "
+            "and the functions {functions} (deg(x) turns x degrees into radians; clip(x, low, high))",
+            functions=" ".join(FUNCTIONS))
 
 _OPERATORS = {ast.Add: "+", ast.Sub: "-", ast.Mult: "*", ast.Div: "/", ast.Pow: "**", ast.Mod: "%"}
 
 _REFUSED = {
-    ast.Attribute: "attribute access ('.') is not allowed",
-    ast.Subscript: "subscripts ('[...]') are not allowed",
-    ast.Lambda: "lambda is not allowed",
-    ast.ListComp: "comprehensions are not allowed",
-    ast.SetComp: "comprehensions are not allowed",
-    ast.DictComp: "comprehensions are not allowed",
-    ast.GeneratorExp: "comprehensions are not allowed",
-    ast.NamedExpr: "assignment (':=') is not allowed",
-    ast.Starred: "'*' unpacking is not allowed",
-    ast.JoinedStr: "strings are not allowed",
-    ast.List: "lists are not allowed",
-    ast.Tuple: "tuples are not allowed",
-    ast.Set: "sets are not allowed",
-    ast.Dict: "dicts are not allowed",
-    ast.Await: "await is not allowed",
-    ast.Yield: "yield is not allowed",
-    ast.YieldFrom: "yield is not allowed",
+    ast.Attribute: M("attribute access ('.') is not allowed"),
+    ast.Subscript: M("subscripts ('[...]') are not allowed"),
+    ast.Lambda: M("lambda is not allowed"),
+    ast.ListComp: M("comprehensions are not allowed"),
+    ast.SetComp: M("comprehensions are not allowed"),
+    ast.DictComp: M("comprehensions are not allowed"),
+    ast.GeneratorExp: M("comprehensions are not allowed"),
+    ast.NamedExpr: M("assignment (':=') is not allowed"),
+    ast.Starred: M("'*' unpacking is not allowed"),
+    ast.JoinedStr: M("strings are not allowed"),
+    ast.List: M("lists are not allowed"),
+    ast.Tuple: M("tuples are not allowed"),
+    ast.Set: M("sets are not allowed"),
+    ast.Dict: M("dicts are not allowed"),
+    ast.Await: M("await is not allowed"),
+    ast.Yield: M("yield is not allowed"),
+    ast.YieldFrom: M("yield is not allowed"),
 }
 
 
@@ -165,27 +166,28 @@ def compile_expression(text: str, *, prefix: str = "") -> Expression:
     ``column`` attribute is that character's index in ``text``.
     """
     if not isinstance(text, str):
-        raise ParameterError(f"a formula must be text, not {type(text).__name__}", hint="allowed: " + ALLOWED)
+        raise ParameterError(M("a formula must be text, not {kind}", kind=type(text).__name__), hint=ALLOWED)
     source = text.strip()
     lead = len(text) - len(text.lstrip())
     if not source:
-        raise _error(ParameterError, "the formula is empty", text, len(text), prefix)
+        raise _error(ParameterError, M("the formula is empty"), text, len(text), prefix)
     if len(source) > MAX_LENGTH:
-        raise _error(UnsafeExpressionError, f"the formula is too long ({len(source)} characters, "
-                     f"at most {MAX_LENGTH})", text, lead + MAX_LENGTH, prefix)
+        raise _error(UnsafeExpressionError, M("the formula is too long ({count} characters, at most {most})",
+                                                        count=len(source), most=MAX_LENGTH), text, lead + MAX_LENGTH, prefix)
     if "\n" in source or "\r" in source:
-        raise _error(ParameterError, "a formula must fit on one line", text,
+        raise _error(ParameterError, M("a formula must fit on one line"), text,
                      text.index("\n") if "\n" in text else text.index("\r"), prefix)
     try:
         tree = ast.parse(source, mode="eval")
     except SyntaxError as exc:
+        why: Message | str
         if not exc.offset or exc.offset > len(source):  # Python says 0 when the text stops short
-            column, why = lead + len(source), "it ends too early"
-        else:
+            column, why = lead + len(source), M("it ends too early")
+        else:  # Python's own words, quoted after the sentence that says what went wrong
             column, why = lead + exc.offset - 1, exc.msg
-        raise _error(ParameterError, f"the formula is not valid: {why}", text, column, prefix) from None
+        raise _error(ParameterError, M("the formula is not valid: {why}", why=why), text, column, prefix) from None
     except (RecursionError, MemoryError, ValueError):
-        raise _error(UnsafeExpressionError, "the formula is nested too deeply", text, 0, prefix) from None
+        raise _error(UnsafeExpressionError, M("the formula is nested too deeply"), text, 0, prefix) from None
     compiler = _Compiler(source, text, lead, prefix)
     node, uses_t = compiler.compile(tree.body, 0)
     return Expression(text=source, uses_t=uses_t, _node=node)
@@ -219,19 +221,20 @@ def parse_joint_value(text: str) -> float:
         except ValueError:
             expression = compile_expression(raw)
             if expression.uses_t:
-                raise ParameterError(f"'{raw}' depends on the time t: a joint value is one number",
-                                     hint="give a number such as 0.5, pi/2 or 90deg; formulas of t go in --motion") from None
+                raise TimeInJointValueError(M("'{raw}' depends on the time t: a joint value is one number", raw=raw),
+                                            hint=M("give a number such as 0.5, pi/2 or 90deg; formulas of t go in --motion")) from None
             value = float(expression(0.0))
     if not math.isfinite(value):
-        raise ParameterError(f"'{text}' is not a finite number",
-                             hint="give a number such as 0.5, pi/2 or 90deg")
+        raise ParameterError(M("'{text}' is not a finite number", text=text),
+                             hint=M("give a number such as 0.5, pi/2 or 90deg"))
     return value
 
 
 _SHOWN = 72  # longest excerpt of a formula shown above the caret
 
 
-def _error(kind: type, message: str, text: str, column: int, prefix: str, hint: str | None = None):  # type: ignore[no-untyped-def]
+def _error(kind: type, message: Message, text: str, column: int, prefix: str,  # type: ignore[no-untyped-def]
+           hint: Message | None = None):
     """The error ``kind`` with the formula and a caret under ``column`` (an index in ``text``)."""
     shown, at = prefix + text, len(prefix) + column
     if len(shown) > _SHOWN:  # a window around the caret, marked with ellipses
@@ -243,8 +246,10 @@ def _error(kind: type, message: str, text: str, column: int, prefix: str, hint: 
         if end < len(shown):
             excerpt += "..."
         shown = excerpt
-    exc = kind(f"{message}\n    {shown}\n    {' ' * at}^", hint=hint or "allowed: " + ALLOWED)
+    exc = kind(M("{reason}\n    {formula}\n    {caret}^", reason=message, formula=shown, caret=" " * at),
+               hint=hint or ALLOWED)
     exc.column = column
+    exc.reason = message  # what is wrong, without the formula and its caret
     return exc
 
 
@@ -259,13 +264,13 @@ class _Compiler:
         offset = getattr(node, "col_offset", 0) if byte_offset is None else byte_offset
         return self.lead + len(self.source.encode("utf-8")[:offset].decode("utf-8", errors="ignore"))
 
-    def fail(self, node: ast.AST, message: str, kind: type = UnsafeExpressionError,
-             hint: str | None = None, byte_offset: int | None = None):  # type: ignore[no-untyped-def]
+    def fail(self, node: ast.AST, message: Message, kind: type = UnsafeExpressionError,
+             hint: Message | None = None, byte_offset: int | None = None):  # type: ignore[no-untyped-def]
         return _error(kind, message, self.text, self.column(node, byte_offset), self.prefix, hint)
 
     def compile(self, node: ast.AST, depth: int) -> tuple[_Node, bool]:
         if depth > MAX_DEPTH:
-            raise self.fail(node, f"the formula is nested too deeply (more than {MAX_DEPTH} levels)")
+            raise self.fail(node, M("the formula is nested too deeply (more than {most} levels)", most=MAX_DEPTH))
         if isinstance(node, ast.Constant):
             return self.constant(node)
         if isinstance(node, ast.Name):
@@ -280,29 +285,30 @@ class _Compiler:
             # point at the '.' or '[' rather than at the start of the object
             raise self.fail(node, _REFUSED[type(node)], byte_offset=node.value.end_col_offset)
         if isinstance(node, ast.Tuple) and _decimal_comma(node):
-            raise self.fail(node, "a comma cannot be a decimal point in a formula",
-                            hint="write 1.2 with a dot: in a formula the comma separates the "
-                                 "arguments of a function, as in atan2(y, x)")
+            raise self.fail(node, M("a comma cannot be a decimal point in a formula"),
+                            hint=M("write 1.2 with a dot: in a formula the comma separates the "
+                                   "arguments of a function, as in atan2(y, x)"))
         if type(node) in _REFUSED:
             raise self.fail(node, _REFUSED[type(node)])
         if isinstance(node, ast.Compare):
-            raise self.fail(node, "comparisons are not allowed", hint="use min, max or clip; allowed: " + ALLOWED)
+            raise self.fail(node, M("comparisons are not allowed"), hint=M("use min, max or clip; {allowed}", allowed=ALLOWED))
         if isinstance(node, (ast.BoolOp, ast.IfExp)):
-            raise self.fail(node, "conditions (and, or, if) are not allowed",
-                            hint="use min, max or clip; allowed: " + ALLOWED)
-        raise self.fail(node, f"'{type(node).__name__}' is not allowed in a formula")
+            raise self.fail(node, M("conditions (and, or, if) are not allowed"),
+                            hint=M("use min, max or clip; {allowed}", allowed=ALLOWED))
+        raise self.fail(node, M("'{name}' is not allowed in a formula", name=type(node).__name__))
 
     def constant(self, node: ast.Constant) -> tuple[_Node, bool]:
         value = node.value
         if isinstance(value, bool) or not isinstance(value, (int, float)):
-            kind = "strings" if isinstance(value, (str, bytes)) else f"{type(value).__name__} values"
-            raise self.fail(node, f"{kind} are not allowed, only real numbers")
+            if isinstance(value, (str, bytes)):
+                raise self.fail(node, M("strings are not allowed, only real numbers"))
+            raise self.fail(node, M("{kind} values are not allowed, only real numbers", kind=type(value).__name__))
         try:
             number = float(value)
         except OverflowError:
             number = math.inf
         if not math.isfinite(number):
-            raise self.fail(node, "the number is too large", kind=ParameterError)
+            raise self.fail(node, M("the number is too large"), kind=ParameterError)
         return (lambda t: (number, 0.0)), False
 
     def name(self, node: ast.Name) -> tuple[_Node, bool]:
@@ -312,15 +318,15 @@ class _Compiler:
             number = CONSTANTS[node.id]
             return (lambda t: (number, 0.0)), False
         if node.id in FUNCTIONS:
-            raise self.fail(node, f"'{node.id}' is a function: call it, e.g. {node.id}(t)", kind=ParameterError)
+            raise self.fail(node, M("'{name}' is a function: call it, e.g. {name}(t)", name=node.id), kind=ParameterError)
         raise self.unknown(node, node.id)
 
     def unknown(self, node: ast.AST, name: str):  # type: ignore[no-untyped-def]
         if name.startswith("_") or hasattr(builtins, name):
-            return self.fail(node, f"'{name}' is not allowed in a formula")
+            return self.fail(node, M("'{name}' is not allowed in a formula", name=name))
         close = difflib.get_close_matches(name, [VARIABLE, *CONSTANTS, *FUNCTIONS], n=1)
-        hint = (f"did you mean '{close[0]}'? " if close else "") + "allowed: " + ALLOWED
-        return self.fail(node, f"unknown name '{name}'", kind=ParameterError, hint=hint)
+        hint = M("did you mean '{close}'? {allowed}", close=close[0], allowed=ALLOWED) if close else ALLOWED
+        return self.fail(node, M("unknown name '{name}'", name=name), kind=ParameterError, hint=hint)
 
     def unary(self, node: ast.UnaryOp, depth: int) -> tuple[_Node, bool]:
         operand, uses_t = self.compile(node.operand, depth + 1)
@@ -331,14 +337,14 @@ class _Compiler:
             return negate, uses_t
         if isinstance(node.op, ast.UAdd):
             return operand, uses_t
-        raise self.fail(node, "only unary '-' and '+' are allowed")
+        raise self.fail(node, M("only unary '-' and '+' are allowed"))
 
     def binary(self, node: ast.BinOp, depth: int) -> tuple[_Node, bool]:
         if type(node.op) not in _OPERATORS:
             symbol = {ast.FloorDiv: "//", ast.MatMult: "@", ast.BitAnd: "&", ast.BitOr: "|",
                       ast.BitXor: "^", ast.LShift: "<<", ast.RShift: ">>"}.get(type(node.op), "?")
-            hint = "use floor(a / b); allowed: " + ALLOWED if symbol == "//" else None
-            raise self.fail(node, f"the operator '{symbol}' is not allowed", hint=hint,
+            hint = M("use floor(a / b); {allowed}", allowed=ALLOWED) if symbol == "//" else None
+            raise self.fail(node, M("the operator '{symbol}' is not allowed", symbol=symbol), hint=hint,
                             byte_offset=node.left.end_col_offset)
         if isinstance(node.op, ast.Pow):
             self.check_tower(node.right)
@@ -357,34 +363,38 @@ class _Compiler:
     def check_tower(self, exponent: ast.AST) -> None:
         for inner in ast.walk(exponent):
             if isinstance(inner, ast.BinOp) and isinstance(inner.op, ast.Pow):
-                raise self.fail(exponent, "power towers (a**b**c) are not allowed",
-                                hint="write the exponent without **; allowed: " + ALLOWED)
+                raise self.fail(exponent, M("power towers (a**b**c) are not allowed"),
+                                hint=M("write the exponent without **; {allowed}", allowed=ALLOWED))
 
     def check_exponent(self, exponent: ast.AST, compiled: _Node) -> None:
         """A constant exponent must stay within MAX_EXPONENT (numpy would only give inf)."""
         with np.errstate(all="ignore"):
             value = float(np.asarray(compiled(np.zeros(1))[0]).ravel()[0])
         if not abs(value) <= MAX_EXPONENT:
-            raise self.fail(exponent, f"the exponent {value:g} is too large (at most {MAX_EXPONENT:g})")
+            raise self.fail(exponent, M("the exponent {value:g} is too large (at most {most:g})", value=value, most=MAX_EXPONENT))
 
     def call(self, node: ast.Call, depth: int) -> tuple[_Node, bool]:
         if not isinstance(node.func, ast.Name):
             self.compile(node.func, depth + 1)  # refuses attributes, lambdas... with their own caret
-            raise self.fail(node, "only the listed functions can be called")
+            raise self.fail(node, M("only the listed functions can be called"))
         name = node.func.id
         if name not in FUNCTIONS:
             if name in CONSTANTS or name == VARIABLE:
-                raise self.fail(node.func, f"'{name}' is not a function", kind=ParameterError,
-                                hint="write a '*' for a product, e.g. 2*pi*t; allowed: " + ALLOWED)
+                raise self.fail(node.func, M("'{name}' is not a function", name=name), kind=ParameterError,
+                                hint=M("write a '*' for a product, e.g. 2*pi*t; {allowed}", allowed=ALLOWED))
             raise self.unknown(node.func, name)
         if node.keywords:
-            raise self.fail(node.keywords[0].value, "keyword arguments are not allowed")
+            raise self.fail(node.keywords[0].value, M("keyword arguments are not allowed"))
         low, high, rule = FUNCTIONS[name]
         count = len(node.args)
         if not low <= count <= high:
-            wanted = str(low) if low == high else f"{low} to {high}"
-            raise self.fail(node.func, f"{name}() takes {wanted} argument{'s' if high > 1 else ''}, "
-                            f"got {count}", kind=ParameterError)
+            if low == high:
+                takes = Mn("{name}() takes {n} argument, got {count}", "{name}() takes {n} arguments, got {count}",
+                           low, name=name, count=count)
+            else:
+                takes = M("{name}() takes {low} to {high} arguments, got {count}", name=name, low=low, high=high,
+                          count=count)
+            raise self.fail(node.func, takes, kind=ParameterError)
         compiled = [self.compile(arg, depth + 1) for arg in node.args]
         parts = [c[0] for c in compiled]
 

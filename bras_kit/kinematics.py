@@ -14,7 +14,15 @@ from dataclasses import dataclass
 import numpy as np
 
 from .errors import ModelError, ParameterError, UnknownJointError
+from .message import M, Message
 from .model import MOVABLE_TYPES, Joint, Robot
+
+
+def movable_joints_hint(names: Sequence[str]) -> Message:
+    """"movable joints: epaule, coude" (or none), the hint of every unknown-joint error."""
+    if not names:
+        return M("movable joints: none")
+    return M("movable joints: {names}", names=", ".join(names))
 
 # ---------------------------------------------------------------- rotations
 
@@ -150,7 +158,7 @@ class TFTree:
             return self._index[link]  # type: ignore[attr-defined]
         except KeyError:
             raise ParameterError(
-                f"unknown link '{link}'", hint="valid links: " + ", ".join(self.links)
+                M("unknown link '{link}'", link=link), hint=M("valid links: {names}", names=", ".join(self.links))
             ) from None
 
     def children(self, link: str) -> list[str]:
@@ -172,8 +180,9 @@ class TFTree:
         for name, value in (config or {}).items():
             if name not in self._dof_index:  # type: ignore[attr-defined]
                 joint = self.robot.joint(name)
-                why = f"joint '{name}' is {joint.type} and cannot be set" if joint else f"unknown joint '{name}'"
-                raise UnknownJointError(why, name, hint="movable joints: " + (", ".join(self.dof) or "none"))
+                why = M("joint '{name}' is {type} and cannot be set", name=name, type=joint.type) if joint \
+                    else M("unknown joint '{name}'", name=name)
+                raise UnknownJointError(why, name, hint=movable_joints_hint(self.dof))
             q[self._dof_index[name]] = float(value)  # type: ignore[attr-defined]
         return q
 
@@ -207,31 +216,34 @@ def tf_tree(robot: Robot) -> TFTree:
     where = robot.path
     names = robot.link_names
     if not names:
-        raise ModelError("the robot has no <link>", path=where, line=robot.line,
-                         hint="add at least one <link name=\"...\">")
+        raise ModelError(M("the robot has no <link>"), path=where, line=robot.line,
+                         hint=M("add at least one <link name=\"...\">"))
     known = set(names)
     parent_of: dict[str, Joint] = {}
     for joint in robot.joints:
         for role, link in (("parent", joint.parent), ("child", joint.child)):
             if link is None or link not in known:
                 raise ModelError(
-                    f"joint '{joint.name}' names {role} link '{link}', which does not exist",
+                    M("joint '{joint}' names parent link '{link}', which does not exist", joint=joint.name, link=link)
+                    if role == "parent" else
+                    M("joint '{joint}' names child link '{link}', which does not exist", joint=joint.name, link=link),
                     path=where, line=joint.line, element="joint",
-                    hint="links: " + ", ".join(names))
+                    hint=M("links: {names}", names=", ".join(names)))
         if joint.child in parent_of:
             first = parent_of[joint.child]
             raise ModelError(
-                f"link '{joint.child}' has two parents: joints '{first.name}' (line {first.line}) "
-                f"and '{joint.name}'", path=where, line=joint.line, element="joint",
-                hint="a URDF is a tree: each link is the child of at most one joint")
+                M("link '{link}' has two parents: joints '{first}' (line {line}) and '{second}'",
+                  link=joint.child, first=first.name, line=first.line, second=joint.name),
+                path=where, line=joint.line, element="joint",
+                hint=M("a URDF is a tree: each link is the child of at most one joint"))
         parent_of[joint.child] = joint  # type: ignore[index]
     roots = [n for n in dict.fromkeys(names) if n not in parent_of]
     if not roots:
-        raise ModelError("every link has a parent: the joints form a loop", path=where,
-                         hint="one link (the base) must be the child of no joint")
+        raise ModelError(M("every link has a parent: the joints form a loop"), path=where,
+                         hint=M("one link (the base) must be the child of no joint"))
     if len(roots) > 1:
-        raise ModelError("several root links: " + ", ".join(roots), path=where,
-                         hint="connect them with joints so that one link is the root")
+        raise ModelError(M("several root links: {names}", names=", ".join(roots)), path=where,
+                         hint=M("connect them with joints so that one link is the root"))
     children: dict[str, list[Joint]] = {}
     for joint in robot.joints:
         children.setdefault(joint.parent, []).append(joint)  # type: ignore[arg-type]
@@ -249,8 +261,8 @@ def tf_tree(robot: Robot) -> TFTree:
         i += 1
     if len(order) != len(set(names)):
         loop = sorted(set(names) - set(order))
-        raise ModelError("links in a loop, not reachable from the root: " + ", ".join(loop),
-                         path=where, hint="break the loop: one of these joints points back up the tree")
+        raise ModelError(M("links in a loop, not reachable from the root: {names}", names=", ".join(loop)),
+                         path=where, hint=M("break the loop: one of these joints points back up the tree"))
     movable = [j.name for j in robot.joints if j.movable and j.name]
     dof_index = {name: k for k, name in enumerate(movable)}
     kinds, origins, axes, sources, gains, offsets = [], [], [], [], [], []
@@ -289,14 +301,15 @@ def _driver(robot: Robot, joint: Joint, dof_index: dict[str, int]) -> tuple[int,
     current: Joint | None = joint
     while current is not None and current.mimic is not None:
         if current.name in seen:
-            raise ModelError(f"mimic joints follow each other in a loop at '{joint.name}'",
+            raise ModelError(M("mimic joints follow each other in a loop at '{name}'", name=joint.name),
                              path=robot.path, line=joint.line, element="mimic")
         seen.add(current.name)
         leader = robot.joint(current.mimic.joint or "")
         if leader is None or leader.name is None:
-            raise ModelError(f"joint '{current.name}' mimics unknown joint '{current.mimic.joint}'",
+            raise ModelError(M("joint '{name}' mimics unknown joint '{leader}'", name=current.name,
+                               leader=current.mimic.joint),
                              path=robot.path, line=current.mimic.line, element="mimic",
-                             hint="joints: " + ", ".join(robot.joint_names))
+                             hint=M("joints: {names}", names=", ".join(robot.joint_names)))
         offset = gain * current.mimic.offset + offset
         gain = gain * current.mimic.multiplier
         current = leader
@@ -328,7 +341,8 @@ def fk_batch(tree: TFTree, q: np.ndarray) -> np.ndarray:
     if single:
         q = q[None, :]
     if q.ndim != 2 or q.shape[-1] != len(tree.dof):
-        raise ParameterError(f"expected {len(tree.dof)} joint values ({', '.join(tree.dof)}), got {q.shape[-1]}")
+        raise ParameterError(M("expected {count} joint values ({names}), got {got}", count=len(tree.dof),
+                               names=", ".join(tree.dof), got=q.shape[-1]))
     n, count = q.shape[0], len(tree.links)
     out = np.empty((n, count, 4, 4))
     out[:, :, 3, :3] = 0.0

@@ -9,6 +9,7 @@ which raises a clear :class:`~bras_kit.errors.ModelError` instead.
 from __future__ import annotations
 
 import math
+import re
 from dataclasses import dataclass, field
 
 from .xmlio import Node
@@ -123,6 +124,23 @@ class Mimic:
 
 
 @dataclass
+class Dynamics:
+    """``<dynamics damping friction>``: N.m.s/rad (N.s/m) and N.m (N); None when not written."""
+
+    damping: float | None = None
+    friction: float | None = None
+    line: int | None = None
+
+
+@dataclass
+class SafetyController:
+    """``<safety_controller>`` as written: attribute -> text (checked by the validator, BK230)."""
+
+    attributes: dict[str, str] = field(default_factory=dict)
+    line: int | None = None
+
+
+@dataclass
 class Joint:
     name: str | None
     type: str | None
@@ -134,6 +152,8 @@ class Joint:
     mimic: Mimic | None = None
     line: int | None = None
     axis_line: int | None = None
+    dynamics: Dynamics | None = None
+    safety: SafetyController | None = None
 
     @property
     def movable(self) -> bool:
@@ -202,6 +222,24 @@ class Robot:
         return None
 
 
+# What urdfdom reads as a number (a C++ stream in the classic locale): ASCII digits, a sign, a
+# decimal point, an exponent. Python's float() also takes '١' (Arabic-Indic), '１' (full width)
+# and '1_0', which no URDF reader does; nan and inf are kept (the validator reports them, BK207).
+_NUMBER = re.compile(r"[+-]?(?:(?:[0-9]+\.?[0-9]*|\.[0-9]+)(?:[eE][+-]?[0-9]+)?|nan|inf|infinity)",
+                     re.IGNORECASE | re.ASCII)
+
+
+def parse_number(text: str) -> float | None:
+    """``text`` as urdfdom reads a number, or None when it is not one."""
+    return float(text) if _NUMBER.fullmatch(text) else None
+
+
+def parse_numbers(text: str) -> tuple[float, ...] | None:
+    """Space-separated numbers as urdfdom reads them (``"0 0 0.6"``), or None when one is not a number."""
+    values = tuple(parse_number(part) for part in text.split()) if text.isascii() else (None,)
+    return None if any(v is None for v in values) else values  # type: ignore[return-value]
+
+
 class _Reader:
     """Reads typed attributes from nodes, recording an Issue instead of raising."""
 
@@ -225,10 +263,8 @@ class _Reader:
             if required:
                 self.issue("missing_attribute", node, owner, attribute)
             return None
-        parts = raw.split()
-        try:
-            values = tuple(float(p) for p in parts)
-        except ValueError:
+        values = parse_numbers(raw)
+        if values is None:
             self.issue("bad_number", node, owner, attribute, raw)
             return None
         if len(values) != count:
@@ -357,6 +393,13 @@ class _Reader:
                 0.0 if offset is None else offset,
                 mimic_node.line,
             )
+        dynamics_node = node.find("dynamics")
+        if dynamics_node is not None:
+            joint.dynamics = Dynamics(self.number(dynamics_node, "damping", name),
+                                      self.number(dynamics_node, "friction", name), dynamics_node.line)
+        safety_node = node.find("safety_controller")
+        if safety_node is not None:
+            joint.safety = SafetyController(dict(safety_node.attrib), safety_node.line)
         return joint
 
 

@@ -38,7 +38,16 @@ MAX_RESULT_BYTES = 256 << 20
 
 
 class ResourceLimitError(BrasKitError):
-    """The child ran out of time or memory, or died."""
+    """The child ran out of time or memory, or died. ``kind`` says which limit: "wall", "cpu",
+    "memory", "size" (a result too large) or "signal" (the child was killed otherwise)."""
+
+    kind = "limit"
+
+
+def _limit_error(kind: str, message: str, **where: Any) -> ResourceLimitError:
+    error = ResourceLimitError(message, **where)
+    error.kind = kind
+    return error
 
 
 def available() -> bool:
@@ -173,28 +182,28 @@ def run_limited(function: Callable[..., T], *args: Any, cpu_seconds: int = DEFAU
             _kill(pid)
         _, status = os.waitpid(pid, 0)
     if timed_out:
-        raise ResourceLimitError(f"{what} took more than {wall_seconds:g} s and was stopped",
-                                 hint="the file may loop or recurse without end; simplify it")
+        raise _limit_error("wall", f"{what} took more than {wall_seconds:g} s and was stopped",
+                           hint="the file may loop or recurse without end; simplify it")
     if too_big:
-        raise ResourceLimitError(f"{what} made a result larger than {MAX_RESULT_BYTES >> 20} MiB and was stopped")
+        raise _limit_error("size", f"{what} made a result larger than {MAX_RESULT_BYTES >> 20} MiB and was stopped")
     if os.WIFSIGNALED(status):
         sig = os.WTERMSIG(status)
         if sig in (signal.SIGXCPU, signal.SIGKILL):
-            raise ResourceLimitError(f"{what} used more than {cpu_seconds} s of CPU and was stopped",
-                                     hint="the file may loop or recurse without end; simplify it")
-        raise ResourceLimitError(f"{what} stopped the worker process (signal {sig})",
-                                 hint="it may need more memory than allowed; simplify the file")
+            raise _limit_error("cpu", f"{what} used more than {cpu_seconds} s of CPU and was stopped",
+                               hint="the file may loop or recurse without end; simplify it")
+        raise _limit_error("signal", f"{what} stopped the worker process (signal {sig})",
+                           hint="it may need more memory than allowed; simplify the file")
     if not chunks:
-        raise ResourceLimitError(f"{what} ran out of memory and was stopped",
-                                 hint=f"the limit is {memory_bytes >> 20} MiB above the program's own size")
+        raise _limit_error("memory", f"{what} ran out of memory and was stopped",
+                           hint=f"the limit is {memory_bytes >> 20} MiB above the program's own size")
     kind, value = pickle.loads(b"".join(chunks))  # noqa: S301 - our own child's bytes
     if kind == "ok":
         return value  # type: ignore[no-any-return]
     if kind == "error":
         raise _rebuild_error(*value)
     if kind == "limit":
-        raise ResourceLimitError(f"{what} needed more {value} than allowed and was stopped",
-                                 hint="simplify the file (no huge values, no deep recursion)")
+        raise _limit_error("memory", f"{what} needed more {value} than allowed and was stopped",
+                           hint="simplify the file (no huge values, no deep recursion)")
     raise BrasKitError(f"{what} failed: {value}")
 
 

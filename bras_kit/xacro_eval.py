@@ -24,12 +24,14 @@ import ast
 import math
 import operator
 import re
+import string
 import time
-from collections.abc import Callable, Mapping
+from collections.abc import Callable, ItemsView, Iterator, KeysView, Mapping, Sequence, ValuesView
 from dataclasses import dataclass, field
 from typing import Any
 
 from .errors import XacroError
+from .message import M, Message
 
 MAX_INT_BITS = 4096  # about 1,233 decimal digits
 MAX_TEXT = 1_000_000  # characters of any string made by an expression
@@ -45,6 +47,11 @@ class UnsafeXacroExpression(XacroError):
     """An expression uses something outside the allow-list, or grows past a bound."""
 
 
+_TEXT_LIMIT = M("texts are limited to {count} characters", count=MAX_TEXT)
+_ITEMS_LIMIT = M("lists are limited to {count} items", count=MAX_ITEMS)
+_SIZE_LIMIT = M("results are limited to {chars} characters or {items} items", chars=MAX_TEXT, items=MAX_ITEMS)
+
+
 @dataclass
 class Budget:
     """Steps and time shared by every expression of one expansion."""
@@ -55,11 +62,13 @@ class Budget:
     def spend(self, n: int = 1) -> None:
         self.steps -= n
         if self.steps < 0:
-            raise UnsafeXacroExpression("the expressions of this file take too many steps",
-                                        hint=f"xacro expressions are limited to {MAX_STEPS:,} steps per file")
+            raise UnsafeXacroExpression(M("the expressions of this file take too many steps"),
+                                        hint=M("xacro expressions are limited to {count} steps per file",
+                                               count=MAX_STEPS))
         if self.steps % 4096 == 0 and time.monotonic() > self.deadline:
-            raise UnsafeXacroExpression(f"the expressions of this file take more than {MAX_SECONDS:g} s",
-                                        hint="simplify the expressions (no large loops or recursion)")
+            raise UnsafeXacroExpression(M("the expressions of this file take more than {seconds} s",
+                                          seconds=MAX_SECONDS),
+                                        hint=M("simplify the expressions (no large loops or recursion)"))
 
 
 class Method:
@@ -71,12 +80,15 @@ class Method:
         self.owner, self.name = owner, name
 
     def __repr__(self) -> str:
-        return f"<method {self.name} of {type(self.owner).__name__}>"
+        return f"<built-in method {self.name} of {type(self.owner).__name__} object>"
+
+    def __call__(self, *args: Any, **kwargs: Any) -> Any:  # map('{:.2f}'.format, values)
+        return _call_method(self, list(args), kwargs)
 
 
-def _refuse(what: str) -> UnsafeXacroExpression:
-    return UnsafeXacroExpression(f"it uses {what}",
-                                 hint="xacro expressions may only compute numbers, text and lists from properties")
+def _refuse(what: Message) -> UnsafeXacroExpression:
+    return UnsafeXacroExpression(M("it uses {what}", what=what),
+                                 hint=M("xacro expressions may only compute numbers, text and lists from properties"))
 
 
 # ---------------------------------------------------------------------------- size checks
@@ -87,16 +99,16 @@ def check_value(value: Any) -> Any:
         return value
     if isinstance(value, int):
         if value.bit_length() > MAX_INT_BITS:
-            raise UnsafeXacroExpression(f"an integer of {value.bit_length():,} bits is too large",
-                                        hint=f"integers are limited to {MAX_INT_BITS} bits")
+            raise UnsafeXacroExpression(M("an integer of {bits} bits is too large", bits=value.bit_length()),
+                                        hint=M("integers are limited to {bits} bits", bits=MAX_INT_BITS))
     elif isinstance(value, (str, bytes)):
         if len(value) > MAX_TEXT:
-            raise UnsafeXacroExpression(f"a text of {len(value):,} characters is too long",
-                                        hint=f"texts are limited to {MAX_TEXT:,} characters")
+            raise UnsafeXacroExpression(M("a text of {count} characters is too long", count=len(value)),
+                                        hint=_TEXT_LIMIT)
     elif isinstance(value, (list, tuple, dict, set, frozenset, range)):
         if len(value) > MAX_ITEMS:
-            raise UnsafeXacroExpression(f"a collection of {len(value):,} items is too large",
-                                        hint=f"lists are limited to {MAX_ITEMS:,} items")
+            raise UnsafeXacroExpression(M("a collection of {count} items is too large", count=len(value)),
+                                        hint=_ITEMS_LIMIT)
     return value
 
 
@@ -118,8 +130,9 @@ def check_nested(value: Any) -> Any:
             stack.extend(dict.keys(item))
             stack.extend(dict.values(item))
         if seen > MAX_ITEMS:
-            raise UnsafeXacroExpression(f"a value holding more than {MAX_ITEMS:,} items in all is too large",
-                                        hint="data from YAML anchors may repeat itself many times over")
+            raise UnsafeXacroExpression(M("a value holding more than {count} items in all is too large",
+                                          count=MAX_ITEMS),
+                                        hint=M("data from YAML anchors may repeat itself many times over"))
     return value
 
 
@@ -133,8 +146,7 @@ def _length(value: Any) -> int:
 def _check_repeat(seq: Any, count: Any) -> None:
     if isinstance(count, int) and not isinstance(count, bool) and isinstance(seq, (str, bytes, list, tuple)):
         if count > 0 and _length(seq) * count > (MAX_TEXT if isinstance(seq, (str, bytes)) else MAX_ITEMS):
-            raise UnsafeXacroExpression("repeating this text or list makes it too large",
-                                        hint=f"results are limited to {MAX_TEXT:,} characters or {MAX_ITEMS:,} items")
+            raise UnsafeXacroExpression(M("repeating this text or list makes it too large"), hint=_SIZE_LIMIT)
 
 
 def _int_bits(value: Any) -> int:
@@ -144,13 +156,15 @@ def _int_bits(value: Any) -> int:
 def _check_power(base: Any, exponent: Any) -> None:
     if isinstance(base, int) and isinstance(exponent, int) and exponent > 0 and abs(base) > 1:
         if (abs(base).bit_length() - 1) * exponent > MAX_INT_BITS:
-            raise UnsafeXacroExpression(f"{base} ** {exponent} is too large",
-                                        hint=f"integers are limited to {MAX_INT_BITS} bits; use a float (e.g. 10.0**n)")
+            raise UnsafeXacroExpression(M("{base} ** {exponent} is too large", base=base, exponent=exponent),
+                                        hint=M("integers are limited to {bits} bits; use a float (e.g. 10.0**n)",
+                                               bits=MAX_INT_BITS))
 
 
 def _check_shift(left: Any, right: Any) -> None:
     if isinstance(right, int) and right > MAX_INT_BITS:
-        raise UnsafeXacroExpression(f"a shift by {right} bits is too large", hint=f"integers are limited to {MAX_INT_BITS} bits")
+        raise UnsafeXacroExpression(M("a shift by {bits} bits is too large", bits=right),
+                                    hint=M("integers are limited to {bits} bits", bits=MAX_INT_BITS))
 
 
 _PERCENT_SPEC = re.compile(r"%(?:\([^)]*\))?[-#0 +]*(\*|\d+)?(?:\.(\*|\d+))?[hlL]?[a-zA-Z%]")
@@ -160,10 +174,19 @@ def _check_percent_format(template: str) -> None:
     for match in _PERCENT_SPEC.finditer(template):
         for group in match.groups():
             if group == "*":
-                raise _refuse("'*' widths in % formatting")
+                raise _refuse(M("'*' widths in % formatting"))
             if group and int(group) > MAX_FORMAT_WIDTH:
-                raise UnsafeXacroExpression(f"the format width {group} is too large",
-                                            hint=f"widths and precisions are limited to {MAX_FORMAT_WIDTH}")
+                raise _width_refused(group)
+
+
+def _width_refused(width: Any) -> UnsafeXacroExpression:
+    return UnsafeXacroExpression(M("the format width {width} is too large", width=width),
+                                 hint=M("widths and precisions are limited to {limit}", limit=MAX_FORMAT_WIDTH))
+
+
+def _comb_refused(n: Any) -> UnsafeXacroExpression:
+    return UnsafeXacroExpression(M("comb/perm of {n} is too large", n=n),
+                                 hint=M("limited to n <= {limit}", limit=MAX_FACTORIAL))
 
 
 def _binop(op: Callable[[Any, Any], Any]) -> Callable[[Any, Any], Any]:
@@ -180,8 +203,7 @@ def _binop(op: Callable[[Any, Any], Any]) -> Callable[[Any, Any], Any]:
             check_nested(right)
         elif op is operator.add and isinstance(left, (str, list, tuple)) and isinstance(right, type(left)):
             if _length(left) + _length(right) > (MAX_TEXT if isinstance(left, str) else MAX_ITEMS):
-                raise UnsafeXacroExpression("joining these makes a value too large",
-                                            hint=f"results are limited to {MAX_TEXT:,} characters or {MAX_ITEMS:,} items")
+                raise UnsafeXacroExpression(M("joining these makes a value too large"), hint=_SIZE_LIMIT)
         return check_value(op(left, right))
 
     return apply
@@ -212,19 +234,20 @@ def _bounded_range(*args: Any) -> range:
 
 def _bounded_factorial(n: Any) -> Any:
     if isinstance(n, int) and n > MAX_FACTORIAL:
-        raise UnsafeXacroExpression(f"factorial({n}) is too large", hint=f"factorial is limited to n <= {MAX_FACTORIAL}")
+        raise UnsafeXacroExpression(M("factorial({n}) is too large", n=n),
+                                    hint=M("factorial is limited to n <= {limit}", limit=MAX_FACTORIAL))
     return math.factorial(n)
 
 
 def _bounded_comb(n: Any, k: Any = None) -> Any:
     if isinstance(n, int) and n > MAX_FACTORIAL:
-        raise UnsafeXacroExpression(f"comb/perm of {n} is too large", hint=f"limited to n <= {MAX_FACTORIAL}")
+        raise _comb_refused(n)
     return math.comb(n, k) if k is not None else math.perm(n)
 
 
 def _bounded_perm(n: Any, k: Any = None) -> Any:
     if isinstance(n, int) and n > MAX_FACTORIAL:
-        raise UnsafeXacroExpression(f"comb/perm of {n} is too large", hint=f"limited to n <= {MAX_FACTORIAL}")
+        raise _comb_refused(n)
     return math.perm(n, k)
 
 
@@ -236,20 +259,20 @@ def _bounded_pow(base: Any, exponent: Any, modulo: Any = None) -> Any:
 
 
 def _bounded_collection(kind: Callable[..., Any]) -> Callable[..., Any]:
-    def make(*args: Any) -> Any:
-        for arg in args:
+    def make(*args: Any, **kwargs: Any) -> Any:
+        for arg in (*args, *kwargs.values()):
             if isinstance(arg, range):
                 check_value(arg)
-        return check_value(kind(*args))
+        return check_value(kind(*args, **kwargs))
 
     make.__name__ = getattr(kind, "__name__", "collection")
     return make
 
 
-def _safe_str(*args: Any) -> str:
+def _safe_str(*args: Any, **kwargs: Any) -> str:
     if args:
         check_nested(args[0])
-    return check_value(str(*args))
+    return check_value(str(*args, **kwargs))
 
 
 def _safe_repr(value: Any) -> str:
@@ -257,17 +280,38 @@ def _safe_repr(value: Any) -> str:
     return check_value(repr(value))
 
 
-def _safe_int(*args: Any) -> int:
+def _check_digits(args: tuple[Any, ...]) -> None:
     if args and isinstance(args[0], str) and len(args[0]) > 5000:
-        raise UnsafeXacroExpression("a number written with too many digits", hint="numbers are limited to 5,000 digits")
-    return check_value(int(*args))
+        raise UnsafeXacroExpression(M("a number written with too many digits"),
+                                    hint=M("numbers are limited to {count} digits", count=5000))
 
 
-def _safe_sum(values: Any, start: Any = 0) -> Any:
+def _safe_int(*args: Any, **kwargs: Any) -> int:
+    _check_digits(args)
+    return check_value(int(*args, **kwargs))
+
+
+def _safe_complex(*args: Any, **kwargs: Any) -> complex:
+    _check_digits(args)
+    return complex(*args, **kwargs)
+
+
+def _safe_hash(value: Any) -> int:
+    check_nested(value)
+    return hash(value)
+
+
+def _safe_type(*args: Any, **kwargs: Any) -> Any:
+    if len(args) != 1 or kwargs:
+        raise _refuse(M("type() with more than one argument (it makes a new class)"))
+    return type(args[0])
+
+
+def _safe_sum(values: Any, /, start: Any = 0) -> Any:
     total = start
     for count, value in enumerate(values):
         if count > MAX_ITEMS:
-            raise UnsafeXacroExpression("sum over too many items", hint=f"limited to {MAX_ITEMS:,} items")
+            raise UnsafeXacroExpression(M("sum over too many items"), hint=_ITEMS_LIMIT)
         total = _BINOPS[ast.Add](total, value)
     return total
 
@@ -277,14 +321,18 @@ BUILTINS: dict[str, Callable[..., Any]] = {
     "list": _bounded_collection(list), "dict": _bounded_collection(dict), "len": len, "str": _safe_str,
     "float": float, "int": _safe_int, "bool": bool, "min": min, "max": max, "round": round,
     "abs": abs, "all": all, "any": any, "divmod": divmod, "ord": ord, "chr": chr, "repr": _safe_repr,
-    "reversed": _bounded_collection(lambda *a: list(reversed(*a))), "set": _bounded_collection(set),
+    "reversed": reversed, "set": _bounded_collection(set),
     "frozenset": _bounded_collection(frozenset), "sum": _safe_sum, "tuple": _bounded_collection(tuple),
-    "zip": _bounded_collection(lambda *a: list(zip(*a))), "enumerate": _bounded_collection(lambda *a: list(enumerate(*a))),
-    "sorted": _bounded_collection(sorted), "range": _bounded_range, "pow": _bounded_pow,
-    "map": _bounded_collection(lambda f, *a: list(map(f, *a))), "filter": _bounded_collection(lambda f, a: list(filter(f, a))),
+    "zip": zip, "enumerate": enumerate, "sorted": _bounded_collection(sorted), "range": _bounded_range,
+    "pow": _bounded_pow, "map": map, "filter": filter, "complex": _safe_complex, "hash": _safe_hash,
+    "isinstance": isinstance, "issubclass": issubclass, "slice": slice, "type": _safe_type,
 }
-# ``map`` and ``filter`` return lazy iterators in Python; they are made lists here only when
-# the function given to them is itself allowed (see Evaluator._call).
+# ``map``, ``filter``, ``zip``, ``enumerate`` and ``reversed`` are Python's own lazy iterators,
+# as in xacro (a ``map`` read twice is empty the second time): what they iterate is already
+# bounded, and the functions given to them are swapped for their safe versions first
+# (:data:`CALLS_ITS_ARGUMENTS`).
+CALLS_ITS_ARGUMENTS = frozenset(id(BUILTINS[name]) for name in ("map", "filter", "sorted", "min", "max"))
+_ITERABLE_TYPES = (str, list, tuple, dict, set, frozenset, range, Iterator, KeysView, ValuesView, ItemsView)
 
 _MATH_OVERRIDES: dict[str, Callable[..., Any]] = {
     "factorial": _bounded_factorial, "comb": _bounded_comb, "perm": _bounded_perm, "pow": math.pow,
@@ -299,38 +347,65 @@ _STR_METHODS = frozenset({
     "find", "rfind", "index", "rindex", "count", "isdigit", "isalpha", "isalnum", "isspace", "islower",
     "isupper", "isnumeric", "isdecimal", "capitalize", "title", "swapcase", "casefold", "partition",
     "rpartition", "join", "replace", "zfill", "ljust", "rjust", "center", "removeprefix", "removesuffix",
+    "format",
 })
 _LIST_METHODS = frozenset({"index", "count"})
 _DICT_METHODS = frozenset({"keys", "values", "items", "get"})
 _WIDTH_METHODS = frozenset({"zfill", "ljust", "rjust", "center"})
+_FORMAT_WIDTHS = re.compile(r"\d+")
+_formatter = string.Formatter()
+
+
+def check_format(template: str, args: Sequence[Any], kwargs: Mapping[str, Any]) -> None:
+    """Refuse a ``str.format`` template that reaches a dunder (``{0.__class__}``) or pads past the bounds.
+
+    xacro lets ``'{0.__class__}'.format(x)`` through (its guard only reads the expression's names):
+    that is the door to Python's internals, so it is closed here, as is a nested width
+    (``{:{w}}``) and any width or precision past :data:`MAX_FORMAT_WIDTH`.
+    """
+    for value in (*args, *kwargs.values()):
+        check_nested(value)
+    try:
+        fields = list(_formatter.parse(template))
+    except ValueError:
+        return  # str.format raises the same error, with Python's words, as in xacro
+    for _, name, spec, _ in fields:
+        if name is None:
+            continue
+        if "_" in name and re.search(r"(^|[.\[])_", name):
+            raise _refuse(M("the field '{{{name}}}' in a format string", name=name))
+        if spec and "{" in spec:
+            raise _refuse(M("a nested field in the format '{spec}'", spec=spec))
+        for width in _FORMAT_WIDTHS.findall(spec or ""):
+            if int(width) > MAX_FORMAT_WIDTH:
+                raise _width_refused(width)
 
 
 def _call_method(method: Method, args: list[Any], kwargs: dict[str, Any]) -> Any:
     owner, name = method.owner, method.name
     if isinstance(owner, str):
         if name in _WIDTH_METHODS and args and isinstance(args[0], int) and args[0] > MAX_TEXT:
-            raise UnsafeXacroExpression(f"'{name}' to a width of {args[0]:,} is too large",
-                                        hint=f"texts are limited to {MAX_TEXT:,} characters")
+            raise UnsafeXacroExpression(M("'{name}' to a width of {width} is too large", name=name, width=args[0]),
+                                        hint=_TEXT_LIMIT)
         if name == "replace" and len(args) >= 2 and isinstance(args[1], str):
             grows = owner.count(args[0]) * max(len(args[1]) - len(args[0]), 0) if args[0] else len(owner) * len(args[1])
             if len(owner) + grows > MAX_TEXT:
-                raise UnsafeXacroExpression("this replace makes a text too long",
-                                            hint=f"texts are limited to {MAX_TEXT:,} characters")
+                raise UnsafeXacroExpression(M("this replace makes a text too long"), hint=_TEXT_LIMIT)
         if name == "join" and args:
             items = list(args[0]) if not isinstance(args[0], (list, tuple)) else args[0]
             check_value(items)
             if sum(_length(item) for item in items) + len(owner) * len(items) > MAX_TEXT:
-                raise UnsafeXacroExpression("this join makes a text too long",
-                                            hint=f"texts are limited to {MAX_TEXT:,} characters")
+                raise UnsafeXacroExpression(M("this join makes a text too long"), hint=_TEXT_LIMIT)
             args = [items, *args[1:]]
-    result = getattr(owner, name)(*args, **kwargs)
-    if isinstance(result, (list, tuple)) or not hasattr(result, "__iter__") or isinstance(result, (str, dict)):
-        return check_value(result)
-    return check_value(list(result))  # dict views: real lists are what templates iterate
+        if name == "format":
+            check_format(owner, args, kwargs)
+    return check_value(getattr(owner, name)(*args, **kwargs))  # dict views stay views, as in xacro
 
 
 def method_of(value: Any, name: str, key_lookup: Callable[[Any, str], Any] | None = None) -> Any:
     """``value.name`` when the allow-list has it."""
+    if name.startswith("__"):
+        raise _refuse(M("the attribute '.{name}'", name=name))
     if isinstance(value, str) and name in _STR_METHODS:
         return Method(value, name)
     if isinstance(value, (list, tuple)) and name in _LIST_METHODS:
@@ -341,9 +416,11 @@ def method_of(value: Any, name: str, key_lookup: Callable[[Any, str], Any] | Non
         return Method(value, name) if name == "is_integer" else getattr(value, name)
     if isinstance(value, int) and name in ("real", "imag", "numerator", "denominator"):
         return getattr(value, name)
+    if isinstance(value, complex) and name in ("real", "imag"):
+        return getattr(value, name)
     if key_lookup is not None:
         return key_lookup(value, name)
-    raise _refuse(f"the attribute '.{name}' of a {type(value).__name__}")
+    raise _refuse(M("the attribute '.{name}' of a {kind}", name=name, kind=type(value).__name__))
 
 
 # ---------------------------------------------------------------------------- the evaluator
@@ -357,12 +434,16 @@ class Evaluator:
     ``lookup(name)`` returns a value or raises ``KeyError``; ``attribute(value, name)`` is
     asked for ``value.name`` when ``value`` is not a str/list/dict/number (namespaces, YAML
     dictionaries); ``callables`` maps the identity of every function a value may hold to
-    the safe function to call instead.
+    the safe function to call instead. ``inner_lookup``, when given, is what names inside a
+    comprehension see instead of ``lookup`` (``$(eval ...)`` runs with its arguments as
+    Python *locals*, which a comprehension's own scope does not see).
     """
 
     def __init__(self, lookup: Callable[[str], Any], attribute: Callable[[Any, str], Any] | None,
-                 callables: Mapping[int, Callable[..., Any]], budget: Budget) -> None:
+                 callables: Mapping[int, Callable[..., Any]], budget: Budget,
+                 inner_lookup: Callable[[str], Any] | None = None) -> None:
         self.lookup, self.attribute, self.callables, self.budget = lookup, attribute, callables, budget
+        self.inner_lookup = inner_lookup
         self.scopes: list[dict[str, Any]] = []
 
     def run(self, expression: str) -> Any:
@@ -371,32 +452,34 @@ class Evaluator:
         except SyntaxError:
             raise  # xacro reports a SyntaxError itself, with its own words
         except (ValueError, MemoryError, RecursionError):
-            raise UnsafeXacroExpression("cannot read the expression", hint="check brackets and quotes") from None
+            raise UnsafeXacroExpression(M("cannot read the expression"), hint=M("check brackets and quotes")) from None
         return check_nested(self.eval(tree.body, 0))  # xacro turns the result into text
 
     def eval(self, node: ast.AST, depth: int) -> Any:
         self.budget.spend()
         if depth > MAX_NESTING:
-            raise UnsafeXacroExpression("the expression is nested too deeply", hint=f"limited to {MAX_NESTING} levels")
+            raise UnsafeXacroExpression(M("the expression is nested too deeply"),
+                                        hint=M("limited to {count} levels", count=MAX_NESTING))
         handler = getattr(self, "_" + type(node).__name__, None)
         if handler is None:
-            raise _refuse(f"a {type(node).__name__} expression")
+            raise _refuse(M("a {kind} expression", kind=type(node).__name__))
         return handler(node, depth + 1)
 
     # literals and names
     def _Constant(self, node: ast.Constant, depth: int) -> Any:
-        if not isinstance(node.value, (int, float, str, bool, type(None))):
-            raise _refuse(f"a {type(node.value).__name__} literal")
+        if not isinstance(node.value, (int, float, complex, str, bool, type(None))):
+            raise _refuse(M("a {kind} literal", kind=type(node.value).__name__))
         return check_value(node.value)
 
     def _Name(self, node: ast.Name, depth: int) -> Any:
         if node.id.startswith("__"):
-            raise _refuse(f"the name '{node.id}'")
+            raise _refuse(M("the name '{name}'", name=node.id))
         for scope in reversed(self.scopes):
             if node.id in scope:
                 return scope[node.id]
+        lookup = self.inner_lookup if self.scopes and self.inner_lookup is not None else self.lookup
         try:
-            return self.lookup(node.id)
+            return lookup(node.id)
         except KeyError:
             raise NameError(f"name '{node.id}' is not defined") from None
 
@@ -416,7 +499,7 @@ class Evaluator:
                 out.extend(check_value(list(self.eval(element.value, depth))))
             else:
                 out.append(self.eval(element, depth))
-        return out
+        return check_value(out)
 
     def _Dict(self, node: ast.Dict, depth: int) -> Any:
         out: dict[Any, Any] = {}
@@ -431,7 +514,7 @@ class Evaluator:
     def _BinOp(self, node: ast.BinOp, depth: int) -> Any:
         op = _BINOPS.get(type(node.op))
         if op is None:
-            raise _refuse(f"the operator {type(node.op).__name__}")
+            raise _refuse(M("the operator {kind}", kind=type(node.op).__name__))
         return op(self.eval(node.left, depth), self.eval(node.right, depth))
 
     def _UnaryOp(self, node: ast.UnaryOp, depth: int) -> Any:
@@ -466,7 +549,7 @@ class Evaluator:
         if not isinstance(value, (str, list, tuple, dict, range)):
             if self.attribute is not None and isinstance(index, str):
                 return self.attribute(value, index)
-            raise _refuse(f"indexing a {type(value).__name__}")
+            raise _refuse(M("indexing a {kind}", kind=type(value).__name__))
         if isinstance(index, (slice, int, bool)) or isinstance(value, dict):
             return check_value(value[index])
         raise TypeError(f"{type(value).__name__} indices must be integers or slices, not {type(index).__name__}")
@@ -476,8 +559,8 @@ class Evaluator:
         return slice(*parts)
 
     def _Attribute(self, node: ast.Attribute, depth: int) -> Any:
-        if node.attr.startswith("_"):
-            raise _refuse(f"the attribute '.{node.attr}'")
+        if node.attr.startswith("__"):  # xacro refuses these names too; one underscore is a YAML key
+            raise _refuse(M("the attribute '.{name}'", name=node.attr))
         value = self.eval(node.value, depth)
         return method_of(value, node.attr, self.attribute)
 
@@ -487,27 +570,36 @@ class Evaluator:
         kwargs: dict[str, Any] = {}
         for keyword in node.keywords:
             if keyword.arg is None:
-                kwargs.update(self.eval(keyword.value, depth))
+                extra = self.eval(keyword.value, depth)
+                if not isinstance(extra, Mapping):
+                    raise TypeError(f"argument after ** must be a mapping, not {type(extra).__name__}")
+                kwargs.update(extra)
             else:
                 kwargs[keyword.arg] = self.eval(keyword.value, depth)
         if isinstance(function, Method):
-            return _call_method(function, args, kwargs)
+            return function(*args, **kwargs)
         safe = self.callables.get(id(function))
         if safe is None:
-            name = getattr(function, "__name__", type(function).__name__)
-            raise _refuse(f"the function '{name}', which is not allowed")
-        for arg in args:  # map(f, ...) and filter(f, ...) may only be given allowed functions
-            if callable(arg) and not isinstance(arg, Method) and id(arg) not in self.callables:
-                raise _refuse("a function that is not allowed, as an argument")
-        args = [self.callables.get(id(a), a) if callable(a) else a for a in args]
+            raise _refuse(M("the function '{name}', which is not allowed", name=_name_of(function)))
+        if id(safe) in CALLS_ITS_ARGUMENTS:  # map(f, ...), sorted(key=f): f is called by Python itself
+            args = [self._function_argument(a) for a in args]
+            kwargs = {k: self._function_argument(v) for k, v in kwargs.items()}
         return check_value(safe(*args, **kwargs))
+
+    def _function_argument(self, value: Any) -> Any:
+        if not callable(value) or isinstance(value, Method):
+            return value
+        safe = self.callables.get(id(value))
+        if safe is None:
+            raise _refuse(M("the function '{name}', which is not allowed, as an argument", name=_name_of(value)))
+        return safe
 
     # comprehensions
     def _ListComp(self, node: ast.ListComp, depth: int) -> Any:
-        return check_value(list(self._generate(node, depth)))
+        return check_value(self._generate(node, depth))
 
     def _GeneratorExp(self, node: ast.GeneratorExp, depth: int) -> Any:
-        return check_value(list(self._generate(node, depth)))
+        return iter(check_value(self._generate(node, depth)))  # read once, like Python's generator
 
     def _SetComp(self, node: ast.SetComp, depth: int) -> Any:
         return check_value(set(self._generate(node, depth)))
@@ -518,31 +610,37 @@ class Evaluator:
 
     def _generate(self, node: Any, depth: int, pair: bool = False) -> list[Any]:
         results: list[Any] = []
+        first = self._iterable(node.generators[0], depth)  # Python evaluates it in the enclosing scope
         scope: dict[str, Any] = {}
         self.scopes.append(scope)
         try:
-            self._loop(node, node.generators, 0, scope, results, depth, pair)
+            self._loop(node, node.generators, 0, scope, results, depth, pair, first)
         finally:
             self.scopes.pop()
         return results
 
+    def _iterable(self, generator: ast.comprehension, depth: int) -> Any:
+        if generator.is_async:
+            raise _refuse(M("async comprehensions"))
+        iterable = self.eval(generator.iter, depth)
+        if not isinstance(iterable, _ITERABLE_TYPES):
+            raise _refuse(M("iterating over a {kind}", kind=type(iterable).__name__))
+        return iterable
+
     def _loop(self, node: Any, generators: list[ast.comprehension], index: int, scope: dict[str, Any],
-              results: list[Any], depth: int, pair: bool) -> None:
+              results: list[Any], depth: int, pair: bool, iterable: Any = None) -> None:
         if index == len(generators):
             results.append((self.eval(node.key, depth), self.eval(node.value, depth)) if pair
                            else self.eval(node.elt, depth))
             if len(results) > MAX_ITEMS:
-                raise UnsafeXacroExpression("a comprehension makes too many items", hint=f"limited to {MAX_ITEMS:,}")
+                raise UnsafeXacroExpression(M("a comprehension makes too many items"), hint=_ITEMS_LIMIT)
             return
         generator = generators[index]
-        if generator.is_async:
-            raise _refuse("async comprehensions")
-        iterable = self.eval(generator.iter, depth)
-        if not isinstance(iterable, (str, list, tuple, dict, set, frozenset, range)):
-            raise _refuse(f"iterating over a {type(iterable).__name__}")
+        if iterable is None:
+            iterable = self._iterable(generator, depth)
         for count, item in enumerate(iterable):
             if count > MAX_ITEMS:
-                raise UnsafeXacroExpression("a comprehension loops too many times", hint=f"limited to {MAX_ITEMS:,}")
+                raise UnsafeXacroExpression(M("a comprehension loops too many times"), hint=_ITEMS_LIMIT)
             self.budget.spend()
             self._bind(generator.target, item, scope)
             if all(self.eval(test, depth) for test in generator.ifs):
@@ -558,7 +656,12 @@ class Evaluator:
             for sub, item in zip(target.elts, items):
                 self._bind(sub, item, scope)
         else:
-            raise _refuse("this loop target")
+            raise _refuse(M("this loop target"))
+
+
+def _name_of(function: Any) -> str:
+    name = getattr(function, "__name__", None)
+    return name if isinstance(name, str) else type(function).__name__
 
 
 # ---------------------------------------------------------------------------- vetting alone
@@ -580,16 +683,16 @@ def vet(expression: str) -> None:
     names = False
     for node in ast.walk(tree):
         if isinstance(node, ast.expr) and not hasattr(Evaluator, "_" + type(node).__name__):
-            raise _refuse(f"a {type(node).__name__} expression")
-        if isinstance(node, ast.Attribute) and node.attr.startswith("_"):
-            raise _refuse(f"the attribute '.{node.attr}'")
+            raise _refuse(M("a {kind} expression", kind=type(node).__name__))
+        if isinstance(node, ast.Attribute) and node.attr.startswith("__"):
+            raise _refuse(M("the attribute '.{name}'", name=node.attr))
         if isinstance(node, ast.Name):
             names = True
-            if node.id.startswith("_"):
-                raise _refuse(f"the name '{node.id}'")
+            if node.id.startswith("__"):
+                raise _refuse(M("the name '{name}'", name=node.id))
         if isinstance(node, ast.Call):
             called = node.func.attr if isinstance(node.func, ast.Attribute) else getattr(node.func, "id", None)
             if called is not None and called not in _ALLOWED_CALL_NAMES:
-                raise _refuse(f"the function '{called}', which is not allowed")
+                raise _refuse(M("the function '{name}', which is not allowed", name=called))
     if not names:
         Evaluator(lambda name: (_ for _ in ()).throw(KeyError(name)), None, {}, Budget()).run(expression)

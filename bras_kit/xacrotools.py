@@ -19,6 +19,7 @@ xacro itself is kept (its parser, macros, properties, includes, output), with wa
 
 from __future__ import annotations
 
+import builtins
 import contextlib
 import io
 import os
@@ -30,6 +31,8 @@ from collections.abc import Callable, Iterable, Mapping
 from typing import Any
 
 from .errors import BrasKitError, XacroError
+from .message import M, Message
+from .xacro_eval import BUILTINS
 from .xmlio import check_xml_safe
 
 PACKAGE_PATH_ENV = "BRAS_KIT_PACKAGE_PATH"
@@ -44,6 +47,7 @@ SANDBOX_WALL_SECONDS = 30.0
 SANDBOX_MEMORY_BYTES = 1536 << 20
 
 _lock = threading.Lock()
+_SELF_EXPANDING = M("a macro probably expands itself too many times")
 
 
 def check_expression(expression: str) -> None:
@@ -57,11 +61,14 @@ def check_expression(expression: str) -> None:
     try:
         vet(expression)
     except SyntaxError as exc:
-        raise XacroError(f"cannot read the expression '{expression}': {exc.msg}",
-                         hint="check brackets and operators inside ${...}") from None
+        raise XacroError(M("cannot read the expression '{expression}': {reason}", expression=expression,
+                           reason=exc.msg), hint=M("check brackets and operators inside ${{...}}")) from None
     except UnsafeXacroExpression as exc:
-        raise XacroError(f"refused the expression '{expression.strip()}': {exc.message}",
-                         hint=exc.hint) from None
+        raise XacroError(_refused(expression, exc.message), hint=exc.hint) from None
+
+
+def _refused(expression: str, reason: Message | str) -> Message:
+    return M("refused the expression '{expression}': {reason}", expression=expression.strip(), reason=reason)
 
 
 def package_roots(extra: Iterable[str] = ()) -> list[str]:
@@ -98,9 +105,11 @@ def find_package(name: str, roots: Iterable[str]) -> str:
     if fallback is not None:
         return _remember(name, fallback)
     raise XacroError(
-        f"$(find {name}): package '{name}' not found",
-        hint=f"pass --package-path DIR (a folder holding {name}/ or an install share/ tree) "
-        f"or set {PACKAGE_PATH_ENV}" + (f"; searched: {', '.join(searched)}" if searched else ""),
+        M("$(find {name}): package '{name}' not found", name=name),
+        hint=M("pass --package-path DIR (a folder holding {name}/ or an install share/ tree) or set {variable}; "
+               "searched: {folders}", name=name, variable=PACKAGE_PATH_ENV, folders=searched) if searched else
+        M("pass --package-path DIR (a folder holding {name}/ or an install share/ tree) or set {variable}",
+          name=name, variable=PACKAGE_PATH_ENV),
     )
 
 
@@ -122,13 +131,11 @@ def packages_used() -> dict[str, str]:
     return dict(sorted(_FOUND.items()))
 
 
-def describe_package_folder(name: str, folder: str) -> str:
+def describe_package_folder(name: str, folder: str) -> Message:
     """``name -> folder``, saying when the folder was taken by its name alone (no package.xml)."""
-    from .i18n import _
-
     if os.path.isfile(os.path.join(folder, "package.xml")) or os.path.basename(os.path.dirname(folder)) == "share":
-        return _("package '{name}': {folder}").format(name=name, folder=folder)
-    return _("package '{name}': {folder} (no package.xml: found by its folder name)").format(name=name, folder=folder)
+        return M("package '{name}': {folder}", name=name, folder=folder)
+    return M("package '{name}': {folder} (no package.xml: found by its folder name)", name=name, folder=folder)
 
 
 def _locate(path: str, message: str, extra: Iterable[str] = ()) -> int | None:
@@ -182,7 +189,7 @@ def expand_xacro(
     """
     path = os.fspath(path)
     if not os.path.exists(path):
-        raise BrasKitError(f"no such file: {path}", hint="check the path and spelling")
+        raise BrasKitError(M("no such file: {path}", path=path), hint=M("check the path and spelling"))
     check_readable_file(path)
     if sandbox is None:
         sandbox = not _is_builtin_template(path)
@@ -218,20 +225,20 @@ def check_readable_file(path: str) -> None:
     """Raise unless ``path`` is a regular file of at most :data:`MAX_FILE_BYTES` outside /proc, /sys, /dev."""
     real = os.path.realpath(path)
     if any(real == tree or real.startswith(tree + os.sep) for tree in _FORBIDDEN_TREES):
-        raise XacroError(f"refused to read {path}: it is a system file, not a robot description",
-                         hint="include only files of your robot's packages")
+        raise XacroError(M("refused to read {path}: it is a system file, not a robot description", path=path),
+                         hint=M("include only files of your robot's packages"))
     try:
         info = os.stat(path)
     except OSError as exc:
-        raise BrasKitError(f"cannot read {path}: {exc.strerror}") from None
+        raise BrasKitError(M("cannot read {path}: {reason}", path=path, reason=exc.strerror)) from None
     if stat.S_ISDIR(info.st_mode):
-        raise BrasKitError(f"{path} is a folder, not a file")
+        raise BrasKitError(M("{path} is a folder, not a file", path=path))
     if not stat.S_ISREG(info.st_mode):
-        raise XacroError(f"refused to read {path}: it is not a regular file (a device, pipe or socket)",
-                         hint="give the path of a .xacro, .urdf or .yaml file")
+        raise XacroError(M("refused to read {path}: it is not a regular file (a device, pipe or socket)", path=path),
+                         hint=M("give the path of a .xacro, .urdf or .yaml file"))
     if info.st_size > MAX_FILE_BYTES:
-        raise XacroError(f"refused to read {path}: {info.st_size:,} bytes is more than the "
-                         f"{MAX_FILE_BYTES >> 20} MiB a robot description file may have")
+        raise XacroError(M("refused to read {path}: {size} bytes is more than the {limit} MiB a robot "
+                           "description file may have", path=path, size=info.st_size, limit=MAX_FILE_BYTES >> 20))
 
 
 def _read_limited(path: str) -> bytes:
@@ -240,14 +247,14 @@ def _read_limited(path: str) -> bytes:
     fd = os.open(path, os.O_RDONLY | getattr(os, "O_NONBLOCK", 0))
     try:
         if not stat.S_ISREG(os.fstat(fd).st_mode):
-            raise XacroError(f"refused to read {path}: it is not a regular file")
+            raise XacroError(M("refused to read {path}: it is not a regular file", path=path))
         data = b""
         while len(data) <= MAX_FILE_BYTES:
             chunk = os.read(fd, 1 << 20)
             if not chunk:
                 return data
             data += chunk
-        raise XacroError(f"refused to read {path}: more than {MAX_FILE_BYTES >> 20} MiB")
+        raise XacroError(M("refused to read {path}: more than {limit} MiB", path=path, limit=MAX_FILE_BYTES >> 20))
     finally:
         os.close(fd)
 
@@ -266,6 +273,7 @@ class _Hooks:
         self.xacro, self.subst, self.roots = xacro, subst, roots
         self.budget = Budget()
         self.elements = 0
+        self.files: list[str] = []  # every file read, for finding where an expression is written
         self.yaml_folders = [os.path.realpath(os.path.dirname(os.path.abspath(path)))]
         self.yaml_folders += [os.path.realpath(r) for r in roots if os.path.isdir(r)]
         self.original = (xacro.parse, xacro.safe_eval, xacro.eval_all, subst._eval, subst._eval_find,
@@ -313,8 +321,8 @@ class _Hooks:
     def parse(self, inp: Any, filename: str | None = None) -> Any:
         xacro = self.xacro
         if len(xacro.filestack or []) > MAX_INCLUDE_DEPTH:
-            raise XacroError(f"includes are nested more than {MAX_INCLUDE_DEPTH} deep",
-                             hint="a file probably includes itself")
+            raise XacroError(M("includes are nested more than {count} deep", count=MAX_INCLUDE_DEPTH),
+                             hint=M("a file probably includes itself"))
         if inp is None and filename is not None:
             full = os.path.normpath(os.path.join(xacro.root_dir, filename))
             if not os.path.exists(full):
@@ -324,8 +332,9 @@ class _Hooks:
             try:
                 text = data.decode("utf-8")
             except UnicodeDecodeError as exc:
-                raise XacroError(f"{full} is not UTF-8 text (byte {exc.start})",
-                                 hint="save the file as UTF-8") from None
+                raise XacroError(M("{path} is not UTF-8 text (byte {byte})", path=full, byte=exc.start),
+                                 hint=M("save the file as UTF-8")) from None
+            self.files.append(full)
             return self.original[0](text, filename)
         if isinstance(inp, (str, bytes)):
             check_xml_safe(inp, filename)
@@ -334,9 +343,9 @@ class _Hooks:
     def load_yaml(self, filename: str) -> Any:
         full = self.xacro.abs_filename_spec(filename)
         if not _inside(full, self.yaml_folders):
-            raise XacroError(f"refused to load {filename}: only YAML files next to the robot description "
-                             "or inside the given package folders may be read",
-                             hint="move the file next to your xacro file, or pass its package with --package-path")
+            raise XacroError(M("refused to load {path}: only YAML files next to the robot description "
+                               "or inside the given package folders may be read", path=filename),
+                             hint=M("move the file next to your xacro file, or pass its package with --package-path"))
         check_readable_file(full)
         return self.original_load_yaml(filename)
 
@@ -348,13 +357,14 @@ class _Hooks:
         return find_package(name, self.roots)
 
     # expressions
-    def _evaluate(self, expression: str, lookup: Callable[[str], Any]) -> Any:
+    def _evaluate(self, expression: str, lookup: Callable[[str], Any],
+                  inner_lookup: Callable[[str], Any] | None = None) -> Any:
         from .xacro_eval import Evaluator, UnsafeXacroExpression
 
         try:
-            return Evaluator(lookup, self._attribute, self.callables, self.budget).run(expression)
+            return Evaluator(lookup, self._attribute, self.callables, self.budget, inner_lookup).run(expression)
         except UnsafeXacroExpression as exc:
-            error = XacroError(f"refused the expression '{expression.strip()}': {exc.message}", hint=exc.hint)
+            error = XacroError(_refused(expression, exc.message), hint=exc.hint)
             error.expression = expression.strip()  # type: ignore[attr-defined]
             raise error from None
 
@@ -368,8 +378,9 @@ class _Hooks:
                 raise NameError(f"name '{name}' is not defined") from None
         if isinstance(value, self.xacro.YamlDictWrapper):
             return value.__getattr__(name)
-        raise UnsafeXacroExpression(f"it uses the attribute '.{name}' of a {type(value).__name__}",
-                                    hint="only namespaces (math., python., xacro.) and YAML data have attributes")
+        raise UnsafeXacroExpression(M("it uses the attribute '.{name}' of a {kind}", name=name,
+                                      kind=type(value).__name__),
+                                    hint=M("only namespaces (math., python., xacro.) and YAML data have attributes"))
 
     def safe_eval(self, expr: str, globals_: Any, locals_: Any = None) -> Any:
         table = locals_ if locals_ is not None else globals_
@@ -393,29 +404,32 @@ class _Hooks:
         functions.update(arg=arg, dirname=dirname, find=self.resolve)
         self.callables[id(arg)] = arg
         self.callables[id(dirname)] = dirname
-        from .xacro_eval import BUILTINS
 
-        def lookup(name: str) -> Any:
+        def builtin(name: str) -> Any:  # Python's own (the safe twin is called in its place)
+            if name in BUILTINS and hasattr(builtins, name):
+                return getattr(builtins, name)
+            return BUILTINS[name]
+
+        def lookup(name: str) -> Any:  # xacro: eval(s, {}, functions-then-args), then the builtins
             if name in functions:
                 return functions[name]
             if name in args:
                 return subst.convert_value(args[name], "auto")
-            return BUILTINS[name]
+            return builtin(name)
 
-        return str(self._evaluate(s, lookup))
+        return str(self._evaluate(s, lookup, inner_lookup=builtin))
 
     def eval_all(self, node: Any, macros: Any, symbols: Any) -> Any:
         self.elements += 1
         if self.elements > MAX_ELEMENTS:
-            raise XacroError(f"the expansion makes more than {MAX_ELEMENTS:,} elements",
-                             hint="a macro probably expands itself too many times")
+            raise XacroError(M("the expansion makes more than {count} elements", count=MAX_ELEMENTS),
+                             hint=_SELF_EXPANDING)
         if len(self.xacro.macrostack or []) > MAX_MACRO_DEPTH:
-            raise XacroError(f"macros are nested more than {MAX_MACRO_DEPTH} deep",
-                             hint="a macro probably calls itself without end")
+            raise XacroError(M("macros are nested more than {count} deep", count=MAX_MACRO_DEPTH),
+                             hint=M("a macro probably calls itself without end"))
         self.budget.spend()
         if self.elements % 64 == 0 and time.monotonic() > self.budget.deadline:
-            raise XacroError("the expansion takes too long and was stopped",
-                             hint="a macro probably expands itself too many times")
+            raise XacroError(M("the expansion takes too long and was stopped"), hint=_SELF_EXPANDING)
         return self.original[2](node, macros, symbols)
 
     def replace_node(self, node: Any, by: Any, content_only: bool = False) -> Any:
@@ -426,11 +440,10 @@ class _Hooks:
             else:
                 incoming = len(by.childNodes) if content_only else 1
             if len(parent.childNodes) + incoming > MAX_CHILDREN:
-                raise XacroError(f"an element gets more than {MAX_CHILDREN:,} children",
-                                 hint="a macro probably expands itself too many times")
+                raise XacroError(M("an element gets more than {count} children", count=MAX_CHILDREN),
+                                 hint=_SELF_EXPANDING)
         if time.monotonic() > self.budget.deadline:
-            raise XacroError("the expansion takes too long and was stopped",
-                             hint="a macro probably expands itself too many times")
+            raise XacroError(M("the expansion takes too long and was stopped"), hint=_SELF_EXPANDING)
         return self.original[6](node, by, content_only)
 
     def install(self) -> None:
@@ -461,37 +474,100 @@ def _expand(path: str, mappings: Mapping[str, str], package_paths: tuple[str, ..
                 doc = xacro.process_file(path, mappings=dict(mappings), verbosity=0)
                 text = doc.toprettyxml(indent="  ")
             if len(text) > MAX_OUTPUT_CHARS:
-                raise XacroError(f"the expanded URDF has {len(text):,} characters, more than "
-                                 f"{MAX_OUTPUT_CHARS >> 20} Mi allowed", path=path)
+                raise XacroError(M("the expanded URDF has {count} characters, more than {limit} Mi allowed",
+                                   count=len(text), limit=MAX_OUTPUT_CHARS >> 20), path=path)
             return str(text)
         except Exception as exc:  # xacro raises many kinds; all become one clean error
-            raise _clean_error(xacro, path, exc) from None
+            raise _clean_error(xacro, path, exc, hooks.files) from None
         finally:
             hooks.uninstall()
             xacro.init_stacks(None)
 
 
-def _clean_error(xacro: Any, path: str, exc: BaseException) -> BrasKitError:
+_EVALUATING = re.compile(r"when evaluating expression '(.*)'\s*$", re.S)
+_ESCAPES = (("&", "&amp;"), ("<", "&lt;"), (">", "&gt;"), ('"', "&quot;"), ("'", "&apos;"))
+
+
+def _chain(xacro: Any, exc: BaseException) -> tuple[BaseException, list[str]]:
+    """The root cause of a chain of xacro exceptions and the expressions it went through, innermost first."""
+    expressions: list[str] = []
+    current: BaseException = exc
+    seen: set[int] = set()
+    while id(current) not in seen:
+        seen.add(id(current))
+        suffix = getattr(current, "suffix", None)
+        if isinstance(suffix, str):
+            found = _EVALUATING.search(suffix.strip())
+            if found:
+                expressions.append(found.group(1))
+        inner = getattr(current, "exc", None)
+        if not isinstance(inner, BaseException):
+            break
+        current = inner
+    return current, expressions[::-1]
+
+
+def _escaped(text: str) -> list[str]:
+    forms = [text]
+    for plain, escape in _ESCAPES:
+        forms += [form.replace(plain, escape) for form in forms if plain in form]
+    return forms
+
+
+def find_expression(expression: str, files: Iterable[str]) -> tuple[str, int] | None:
+    """The first file and line (in ``files`` order) where ``${expression}`` or ``$(eval expression)`` is written."""
+    expression = expression.strip()
+    tokens = [wrap.format(form) for form in _escaped(expression) for wrap in ("${{{}}}", "$(eval {})")]
+    for path in dict.fromkeys(files):
+        try:
+            text = _read_limited(path).decode("utf-8", errors="replace")
+        except (OSError, BrasKitError):
+            continue
+        for token in tokens:
+            at = text.find(token)
+            if at >= 0:
+                return path, text.count("\n", 0, at) + 1
+    return None
+
+
+def _clean_error(xacro: Any, path: str, exc: BaseException, files: Iterable[str] = ()) -> BrasKitError:
     where = _current_file(xacro, path)
+    files = [where, *files, path]
     inner = _inner_error(exc)
     if inner is not None:  # one of our walls, possibly wrapped by xacro: report it alone
+        expression = getattr(inner, "expression", "")
         if inner.path is None:
-            inner.path = where
-            expression = getattr(inner, "expression", "")
-            inner.line = inner.line or _locate(where, str(inner.message), [
-                "${" + expression + "}", "$(eval " + expression, expression] if expression else [])
+            found = find_expression(expression, files) if expression else None
+            inner.path, inner.line = found or (where, inner.line or _locate(where, str(inner.message)))
         return inner
-    if isinstance(exc, RecursionError) or isinstance(getattr(exc, "exc", None), RecursionError):
-        return XacroError("the file nests too deeply (macros, properties or elements)", path=where,
-                          hint="a macro or property probably refers to itself")
-    if isinstance(exc, MemoryError):
-        return XacroError("the expansion ran out of memory", path=where, hint="simplify the file")
-    message = " ".join((str(exc) or type(exc).__name__).split())[:1000]
-    missing = _MISSING_FILE.search(message)
+    root, expressions = _chain(xacro, exc)
+    if isinstance(root, RecursionError):
+        return XacroError(M("the file nests too deeply (macros, properties or elements)"), path=where,
+                          hint=M("a macro or property probably refers to itself"))
+    if isinstance(root, MemoryError):
+        return XacroError(M("the expansion ran out of memory"), path=where, hint=M("simplify the file"))
+    if expressions:  # root cause first, where its expression is written; then what used it
+        cause = _one_line(str(root) or type(root).__name__)
+        if not isinstance(root, xacro.XacroException) and type(root).__name__ not in cause:
+            cause = f"{type(root).__name__}: {cause}"
+        found = find_expression(expressions[0], files)
+        message = M("{cause} in the expression '{expression}'", cause=cause, expression=expressions[0])
+        if len(expressions) > 1:
+            message = M("{message} (used by {expressions})", message=message, expressions=expressions[1:])
+        at, line = found or (where, None)
+        return XacroError(message, path=at, line=line, hint=_hint_for(cause))
+    text = _one_line(str(exc) or type(exc).__name__)
+    missing = _MISSING_FILE.search(text)
     if missing:
-        message = f"cannot include {missing.group(1).rstrip(':')}: no such file"
-    line = getattr(exc, "lineno", None) or _locate(where, message)
-    return XacroError(f"xacro failed: {message}", path=where, line=line, hint=_hint_for(message))
+        return XacroError(M("cannot include {path}: no such file", path=missing.group(1).rstrip(":")), path=where,
+                          line=_locate(where, text), hint=_hint_for("no such file"))
+    line = getattr(exc, "lineno", None) or _locate(where, text)
+    return XacroError(M("xacro failed: {error}", error=text), path=where, line=line, hint=_hint_for(text))
+
+
+def _one_line(text: str) -> str:
+    text = " ".join(text.split())
+    return text if len(text) <= 500 else text[:500] + "..."
 
 
 def _current_file(xacro_module, default: str) -> str:  # type: ignore[no-untyped-def]
@@ -499,13 +575,13 @@ def _current_file(xacro_module, default: str) -> str:  # type: ignore[no-untyped
     return os.path.normpath(stack[-1]) if stack else default
 
 
-def _hint_for(message: str) -> str:
+def _hint_for(message: str) -> Message:
     if "Undefined substitution argument" in message or "arg" in message.lower() and "undefined" in message.lower():
-        return "pass the argument as name:=value, or give it a default with <xacro:arg name=... default=...>"
+        return M("pass the argument as name:=value, or give it a default with <xacro:arg name=... default=...>")
     if "Undefined property" in message or "name '" in message and "is not defined" in message:
-        return "define the property with <xacro:property name=... value=...> before using it"
+        return M("define the property with <xacro:property name=... value=...> before using it")
     if "no such file" in message.lower():
-        return "check the path of the included file (relative paths start from the including file)"
+        return M("check the path of the included file (relative paths start from the including file)")
     if "not well-formed" in message or "mismatched tag" in message:
-        return "check the XML on this line is closed and quoted properly"
-    return "check the xacro syntax on this line"
+        return M("check the XML on this line is closed and quoted properly")
+    return M("check the xacro syntax on this line")

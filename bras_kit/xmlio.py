@@ -92,7 +92,12 @@ def parse_xml(data: bytes | str, path: str | None = None) -> Node:
     parser.StartElementHandler = start
     parser.EndElementHandler = end
     parser.CharacterDataHandler = chars
-    parser.StartDoctypeDeclHandler = lambda *a: refuse("a DTD (<!DOCTYPE>)")
+    def doctype(name: str, system_id: str | None, public_id: str | None, internal_subset: int) -> None:
+        if system_id or public_id:  # <!DOCTYPE robot> alone names the root and is harmless
+            refuse("a DTD (<!DOCTYPE>)")
+
+    parser.StartDoctypeDeclHandler = doctype
+    parser.AttlistDeclHandler = lambda *a: refuse("an attribute list declaration (<!ATTLIST>)")
     parser.EntityDeclHandler = lambda *a: refuse("an entity declaration (<!ENTITY>)")
     def refuse_external(*args: object) -> int:
         refuse("an external entity")

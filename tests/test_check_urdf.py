@@ -4,10 +4,12 @@ from __future__ import annotations
 
 import shutil
 import subprocess
+from pathlib import Path
 
 import pytest
 
 from bras_kit.authoring import arm_urdf
+from bras_kit.validate import validate_path
 
 INSTALL_HINT = ("check_urdf (urdfdom) is missing: install it with "
                 "'sudo apt-get install liburdfdom-tools' (CI does this in .ci/run)")
@@ -79,3 +81,22 @@ def test_scaffolded_package_urdf_passes_check_urdf(tmp_path, wrist):
     result = check_urdf(path)
     assert result.returncode == 0, result.stdout + result.stderr
     assert ("child(1):  poignet" in result.stdout) == wrist
+
+
+REFUSED_BY_URDFDOM = {
+    "safety-controller-none": ('<limit lower="-1.57"', '<safety_controller soft_upper_limit="None" k_velocity="1"/>'
+                                                        '<limit lower="-1.57"', "BK230"),
+    "arabic-indic-digit": ('upper="1.57"', 'upper="\u0661"', "BK123"),
+    "full-width-digit": ('upper="1.57"', 'upper="\uff11"', "BK123"),
+    "underscore-in-number": ('upper="1.57"', 'upper="1_0"', "BK123"),
+}
+
+
+@pytest.mark.parametrize("old,new,code", REFUSED_BY_URDFDOM.values(), ids=REFUSED_BY_URDFDOM.keys())
+def test_validator_errors_where_urdfdom_refuses_the_file(tmp_path, old, new, code):
+    text = (Path(__file__).parent / "data" / "urdf" / "good" / "bras.urdf").read_text(encoding="utf-8")
+    assert old in text
+    path = tmp_path / "robot.urdf"
+    path.write_text(text.replace(old, new, 1), encoding="utf-8")
+    assert check_urdf(path).returncode != 0
+    assert code in [f.code for f in validate_path(str(path)) if f.severity == "error"]

@@ -116,7 +116,7 @@ def test_wrist_follows_its_own_pace(wrist_robot):
     assert motion.names == ["epaule", "coude", "poignet"]
     t = np.array([0.0, 0.5, 1.0])
     assert motion.positions(t)[:, 2] == pytest.approx(1.0 * np.sin(1.3 * t), abs=1e-15)
-    assert motion.sources()["poignet"] == "1.0*sin(1.3*t)"
+    assert motion.sources()["poignet"] == "1*sin(1.3*t)"
 
 
 def test_wrist_amplitude_shrinks_to_fit_narrow_limits():
@@ -157,8 +157,8 @@ def test_formula_joints_not_given_keep_their_base_value(tutorial_robot):
 def test_formula_on_an_unknown_joint_lists_the_movable_ones(tutorial_robot):
     with pytest.raises(ParameterError) as caught:
         formula_motion(tutorial_robot, ["genou=sin(t)"])
-    assert "unknown joint 'genou'" in caught.value.message
-    assert caught.value.hint == "movable joints: epaule, coude"
+    assert "unknown joint 'genou'" in str(caught.value.message)
+    assert str(caught.value.hint) == "movable joints: epaule, coude"
 
 
 def test_formula_on_fixed_and_mimic_joints_is_refused(extra_robot):
@@ -171,7 +171,7 @@ def test_formula_on_fixed_and_mimic_joints_is_refused(extra_robot):
 def test_unsafe_formula_caret_includes_the_joint_name(tutorial_robot):
     with pytest.raises(UnsafeExpressionError) as caught:
         formula_motion(tutorial_robot, ["coude=t.real"])
-    assert caught.value.message.splitlines()[1:] == ["    coude=t.real", "           ^"]
+    assert str(caught.value.message).splitlines()[1:] == ["    coude=t.real", "           ^"]
 
 
 def test_two_formulas_for_one_joint_are_refused(tutorial_robot):
@@ -263,7 +263,7 @@ def test_bad_duration_or_rate(tutorial_robot, duration, rate, words):
 def test_a_formula_undefined_at_a_sample_names_the_joint_and_time(tutorial_robot):
     with pytest.raises(ParameterError) as caught:
         sample(formula_motion(tutorial_robot, ["coude=log(t - 1)"]))
-    assert caught.value.message == "the motion of coude (log(t - 1)) is not a number at t=0 s"
+    assert str(caught.value.message) == "the motion of coude (log(t - 1)) is not a number at t=0 s"
 
 
 def test_an_infinite_slope_falls_back_on_finite_differences(tutorial_robot):
@@ -293,7 +293,7 @@ def test_violation_fields_exact_when_the_peak_falls_on_a_sample(tutorial_robot):
     upper = next(v for v in violations if v.side == "upper")
     assert (upper.joint, upper.kind, upper.time, upper.value, upper.bound) == ("coude", "position", 0.6, 2.5, 2.0)
     assert (upper.excess, upper.peak_time, upper.samples) == (0.5, 1.0, 51)
-    assert describe_violation(upper) == (
+    assert str(describe_violation(upper)) == (
         "coude goes past its upper limit 2 by 0.5 rad at t=1 s (first at t=0.6 s, 51 samples)")
     lower = next(v for v in violations if v.side == "lower")
     assert (lower.time, lower.value, lower.bound, lower.excess, lower.peak_time) == (2.6, -2.5, -2.0, 0.5, 3.0)
@@ -305,7 +305,7 @@ def test_velocity_violation_names_joint_speed_and_time(tutorial_robot):
     assert speed.joint == "coude" and speed.bound == 1.0 and speed.time == 0.0
     assert speed.value == pytest.approx(2.5 * math.pi / 2)
     assert speed.excess == pytest.approx(2.5 * math.pi / 2 - 1.0)
-    assert describe_violation(speed).startswith("coude moves at 3.927 rad/s at t=0 s, 2.93 rad/s over its "
+    assert str(describe_violation(speed)).startswith("coude moves at 3.927 rad/s at t=0 s, 2.93 rad/s over its "
                                                 "velocity limit 1 rad/s")
 
 
@@ -418,7 +418,7 @@ def test_too_fast_linear_segment_is_reported(tutorial_robot):
     assert len(segments) == 1
     s = segments[0]
     assert (s.joint, s.start, s.end, s.speed, s.limit, s.lines) == ("epaule", 0.0, 0.5, 2.0, 1.0, (3, 4))
-    assert describe_segment(s) == (
+    assert str(describe_segment(s)) == (
         "fast.csv lines 3-4: epaule needs 2 rad/s between t=0 s and t=0.5 s (linear), above its velocity "
         "limit 1 rad/s; space these waypoints about 1 s apart")
 
@@ -451,14 +451,14 @@ def test_bad_fixture_file_names_file_line_and_problem(tutorial_robot, name, line
         waypoint_motion(tutorial_robot, data(name))
     error = caught.value
     assert error.path == data(name) and error.line == line
-    assert words in error.message
-    assert error.hint
+    assert words in str(error.message)
+    assert str(error.hint)
 
 
 def test_unknown_joint_in_a_file_lists_the_movable_ones(tutorial_robot):
     with pytest.raises(ParameterError) as caught:
         read_waypoints(data("bad_joint.csv"), tutorial_robot)
-    assert caught.value.hint == "movable joints: epaule, coude"
+    assert str(caught.value.hint) == "movable joints: epaule, coude"
 
 
 @pytest.mark.parametrize("name, text, line, words", [
@@ -491,7 +491,7 @@ def test_bad_waypoint_file(tutorial_robot, tmp_path, name, text, line, words):
     path = write(tmp_path, name, text)
     with pytest.raises(ParameterError) as caught:
         read_waypoints(path, tutorial_robot)
-    assert words in caught.value.message
+    assert words in str(caught.value.message)
     assert caught.value.path == path and caught.value.line == line
 
 

@@ -182,7 +182,7 @@ def test_every_variant_builds_with_one_body_per_link_and_one_motor_per_joint(opt
 def test_arm_without_inertials_is_refused_with_a_hint():
     with pytest.raises(ModelError) as info:
         build_mjcf(arm())
-    assert "bras" in info.value.message and "--inertials" in info.value.hint
+    assert "bras" in str(info.value.message) and "--inertials" in str(info.value.hint)
 
 
 def test_collision_only_link_weighs_as_water():
@@ -229,9 +229,11 @@ def test_urdf_with_collisions_passes_check_urdf(tmp_path, options):
 
 
 def test_missing_inertials_are_explained_in_french():
+    from bras_kit.i18n import say_error
     from bras_kit.physics.diagnostics import check_physics_ready
 
     with pytest.raises(ModelError) as info:
-        check_physics_ready(arm(), "fr")
-    assert "n'a pas d'<inertial>" in info.value.message and "--inertials" in info.value.hint
+        check_physics_ready(arm())
+    assert "links bougent mais n'ont pas d'<inertial> : 'bras', 'avant_bras'" in say_error(info.value, "fr")
+    assert "--inertials" in str(info.value.hint)
     check_physics_ready(arm(inertials=True), "fr")  # nothing to say

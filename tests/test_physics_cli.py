@@ -2,6 +2,7 @@
 
 from __future__ import annotations
 
+import site
 import subprocess
 import sys
 import xml.etree.ElementTree as ET
@@ -14,8 +15,10 @@ from bras_kit.authoring import load
 from bras_kit.motion import read_states
 from bras_kit.physics import build_mjcf, simulate
 
-ROBOTS = Path(sys.prefix) / "lib" / f"python{sys.version_info.major}.{sys.version_info.minor}" / "site-packages" \
-    / "cmeel.prefix" / "share" / "example-robot-data" / "robots"
+ROBOTS = next((Path(folder) / "cmeel.prefix" / "share" / "example-robot-data" / "robots"
+               for folder in site.getsitepackages()
+               if (Path(folder) / "cmeel.prefix" / "share" / "example-robot-data" / "robots").is_dir()),
+              Path(sys.prefix) / "missing")
 if not ROBOTS.is_dir():  # a non-standard layout: ask the package where it lives
     import example_robot_data  # type: ignore[import-not-found]
 
@@ -145,8 +148,8 @@ def test_simulate_gif_is_drawn_by_the_bras_kit_renderer_from_the_simulated_state
 def test_mjcf_of_a_real_robot_reports_package_names_and_converted_meshes_in_french(run_cli):
     code, _, err = run_cli("mjcf", str(REAL["panda"]), "--package-path", PACKAGES, "--lang", "fr")
     assert code == 0, err
-    assert "package://" in err and "trouvé(s) par bras-kit" in err
-    assert "converti(s) en STL avec trimesh" in err and "link0.dae" in err
+    assert "maillages nommés package://… trouvés par bras-kit" in err
+    assert "convertis en STL avec trimesh" in err and "link0.dae" in err
     assert "panda_link8" not in err  # a frame-only link (mass 0, fixed) is not a physics problem
 
 

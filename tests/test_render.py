@@ -313,19 +313,19 @@ def test_osmesa_cannot_start_once_opengl_runs_on_egl(tutorial_robot):
     with pytest.raises(BackendError) as info:
         render_pose(tutorial_robot, None, backend="osmesa", size=(32, 32))
     assert "already set up for egl in this process, so osmesa cannot start" in str(info.value)
-    assert "PYOPENGL_PLATFORM=osmesa" in info.value.hint
+    assert "PYOPENGL_PLATFORM=osmesa" in str(info.value.hint)
 
 
 def test_osmesa_needs_a_newer_pyopengl_than_pyrender_pins(monkeypatch):
     from bras_kit.render import _pyrender
 
-    monkeypatch.setattr(_pyrender, "_loaded_platform", lambda: None)
+    monkeypatch.setattr(_pyrender, "loaded_platform", lambda: None)
     monkeypatch.setenv("PYOPENGL_PLATFORM", "egl")
-    monkeypatch.setattr(_pyrender, "_pyopengl_version", lambda: (3, 1, 0))
+    monkeypatch.setattr(_pyrender, "pyopengl_version", lambda: (3, 1, 0))
     with pytest.raises(BackendError, match="PyOpenGL 3.1.5 or later"):
         _pyrender.choose_platform("osmesa")
     assert os.environ["PYOPENGL_PLATFORM"] == "egl"  # untouched: EGL still works in this process
-    monkeypatch.setattr(_pyrender, "_pyopengl_version", lambda: (3, 1, 7))
+    monkeypatch.setattr(_pyrender, "pyopengl_version", lambda: (3, 1, 7))
     assert _pyrender.choose_platform("osmesa") == "osmesa"
     assert os.environ["PYOPENGL_PLATFORM"] == "osmesa"
 
@@ -333,9 +333,9 @@ def test_osmesa_needs_a_newer_pyopengl_than_pyrender_pins(monkeypatch):
 def test_auto_prefers_egl_then_osmesa(monkeypatch):
     from bras_kit.render import _pyrender
 
-    monkeypatch.setattr(_pyrender, "_loaded_platform", lambda: None)
+    monkeypatch.setattr(_pyrender, "loaded_platform", lambda: None)
     monkeypatch.delenv("PYOPENGL_PLATFORM", raising=False)
-    monkeypatch.setattr(_pyrender, "_pyopengl_version", lambda: (3, 1, 7))
+    monkeypatch.setattr(_pyrender, "pyopengl_version", lambda: (3, 1, 7))
     found = {"EGL": "libEGL.so.1", "OSMesa": "libOSMesa.so.8"}
     monkeypatch.setattr(_pyrender.ctypes.util, "find_library", lambda name: found.get(name))
     assert _pyrender.choose_platform("auto") == "egl"
@@ -430,7 +430,7 @@ def test_unknown_package_says_how_to_find_it(tmp_path):
     with pytest.raises(ModelError) as info:
         resolve_mesh_path("package://elsewhere/meshes/cube.stl", robot)
     assert "package 'elsewhere' not found" in str(info.value)
-    assert "--package-path" in info.value.hint
+    assert "--package-path" in str(info.value.hint)
 
 
 def test_tf_axes_are_drawn_over_the_segments_with_their_names(tutorial_robot):

@@ -174,7 +174,9 @@ def test_mesh_files_are_read_once_and_mirroring_keeps_them_outward(tmp_path, tut
     assert signed_volume(plain.vertices, plain.faces) == pytest.approx(0.006)
     assert signed_volume(mirrored.vertices, mirrored.faces) == pytest.approx(0.012)  # still outward
     assert np.allclose(mirrored.vertices[:, 0].min(), 0.9)
-    key = next(k for k in scene._MESH_CACHE if k[0] == str(path.resolve()))
+    from bras_kit import meshes
+
+    key = next(k for k in meshes._memory if k[0] == str(path.resolve()))
     path.write_text(_ascii_stl(box_mesh([0.5, 0.5, 0.5])))  # a changed file is read again
     import os
 

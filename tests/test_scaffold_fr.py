@@ -68,7 +68,7 @@ def test_french_readme_gives_the_same_facts_as_the_english(both):
                 for block in re.findall(r"```.*?```", readme, flags=re.S)]
 
     assert commands(fr) == commands(en)
-    assert len(commands(fr)) == 5
+    assert len(commands(fr)) == 6
     joint_rows = re.compile(r"^\| `(\w+)` \| (.+?) \| (.+?) \|$", re.M)
     assert joint_rows.findall(fr) == joint_rows.findall(en)
     assert [row[0] for row in joint_rows.findall(fr)] == ["epaule", "coude", "poignet"]

@@ -23,8 +23,9 @@ def test_docs_rules_md_is_current():
 
 
 def test_codes_are_well_formed_and_names_unique():
-    assert len([code for code in RULES if code < "BK6"]) == 64  # URDF and xacro rules
-    assert len([code for code in RULES if code >= "BK6"]) == 15  # package rules
+    assert len([code for code in RULES if code < "BK6"]) == 65  # URDF and xacro rules
+    assert len([code for code in RULES if "BK6" <= code < "BK64"]) == 15  # package rules
+    assert len([code for code in RULES if code >= "BK64"]) == 12  # rules over a run of the node (bras-kit run)
     for code, rule in RULES.items():
         assert re.fullmatch(r"BK[1-6]\d\d", code) and rule.code == code
         assert rule.severity in SEVERITIES

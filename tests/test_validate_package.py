@@ -342,7 +342,8 @@ def test_every_package_rule_is_triggered_by_a_defect():
     expected = {item["code"] for path in DEFECTS.glob("*.yaml")
                 for item in yaml.safe_load(path.read_text(encoding="utf-8"))["expect"]}
     expected |= {"BK605", "BK613"}  # also by the tutorial's own package
-    assert {code for code in RULES if code.startswith("BK6")} == expected
+    # BK640-BK659 read a run of the node: tests/test_run.py triggers each one
+    assert {code for code in RULES if code.startswith("BK6") and code < "BK64"} == expected
 
 
 # ---------------------------------------------------------------- command line

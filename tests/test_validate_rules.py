@@ -99,11 +99,16 @@ def test_truncated_file_is_not_well_formed(check):
     assert f.message.startswith("not well-formed XML: no element found")
 
 
-def test_doctype_is_refused(check):
-    text = BRAS.replace('<?xml version="1.0"?>\n', '<?xml version="1.0"?>\n<!DOCTYPE robot>\n', 1)
+def test_doctype_with_an_external_dtd_is_refused(check):
+    text = BRAS.replace('<?xml version="1.0"?>\n', '<?xml version="1.0"?>\n<!DOCTYPE robot SYSTEM "robot.dtd">\n', 1)
     f = only(check(text), "BK101")
     assert (f.line, f.message) == (2, "refused: the file declares a DTD (<!DOCTYPE ...>)")
     assert f.hint == "delete the <!DOCTYPE ...> block: URDF files never need one"
+
+
+def test_plain_doctype_naming_the_root_is_accepted_like_urdfdom_and_xacro(check):
+    text = BRAS.replace('<?xml version="1.0"?>\n', '<?xml version="1.0"?>\n<!DOCTYPE robot>\n', 1)
+    assert "BK101" not in codes(check(text))
 
 
 def test_comment_mentioning_doctype_is_not_refused(check):
@@ -118,7 +123,7 @@ def test_entity_reference_is_refused(check):
 def test_xacro_failure_is_reported_with_its_kind(check):
     text = '<robot name="b" xmlns:xacro="http://www.ros.org/wiki/xacro"><link name="${longueur}"/></robot>'
     f = only(check(text, "bras.urdf.xacro"), "BK102")
-    assert f.message == "xacro failed: name 'longueur' is not defined when evaluating expression 'longueur'"
+    assert f.message == "xacro failed: NameError: name 'longueur' is not defined in the expression 'longueur'"
     assert f.hint == "define the property with <xacro:property name=... value=...> before it is used"
 
 
@@ -362,6 +367,13 @@ def test_single_number_unreadable(check):
     f = only(check(edited(('upper="2.0" effort', 'upper="2,0" effort'))), "BK123")
     assert (f.message, f.line) == ('<limit> upper="2,0" is not a number', LINE_COUDE_LIMIT)
     assert f.hint == "write one number with a decimal point, e.g. 0.6 (not 0,6 and no unit)"
+
+
+@pytest.mark.parametrize("digits", ["\u0661", "\uff11", "1_0"], ids=["arabic-indic", "full-width", "underscore"])
+def test_number_python_reads_but_urdfdom_does_not_is_unreadable(check, digits):
+    """float() accepts these; urdfdom (a C++ stream) reads only ASCII digits, sign, point, exponent."""
+    f = only(check(edited(('upper="2.0" effort', f'upper="{digits}" effort'))), "BK123")
+    assert (f.message, f.line) == (f'<limit> upper="{digits}" is not a number', LINE_COUDE_LIMIT)
 
 
 # ====================================================================== BK2xx joints
@@ -1042,3 +1054,19 @@ def test_package_urdf_beside_its_xacro_is_checked_once_and_compared(run_cli, tmp
     assert run_cli("validate", str(package), "--ignore", "BK505", "--strict")[0] == 1
     # named explicitly, the URDF is checked as itself
     assert "BK126" not in run_cli("validate", str(urdf))[1]
+
+
+SAFETY = '<safety_controller soft_lower_limit="-1.9" soft_upper_limit="1.9" k_position="100" k_velocity="10"/>'
+
+
+def test_safety_controller_number_that_is_not_a_number(check):
+    text = edited((COUDE_LIMIT, COUDE_LIMIT + "\n    " + SAFETY.replace('upper_limit="1.9"', 'upper_limit="None"')))
+    f = only(check(text), "BK230")
+    assert (f.severity, f.element, f.name, f.line) == ("error", "joint", "coude", LINE_COUDE_LIMIT + 1)
+    assert f.message == "joint 'coude': <safety_controller soft_upper_limit=\"None\"> is not a number"
+    assert "BK230" not in codes(check(edited((COUDE_LIMIT, COUDE_LIMIT + "\n    " + SAFETY))))
+
+
+def test_safety_controller_without_k_velocity(check):
+    f = only(check(edited((COUDE_LIMIT, COUDE_LIMIT + "\n    " + SAFETY.replace(' k_velocity="10"', "")))), "BK230")
+    assert f.message == "joint 'coude': <safety_controller> has no k_velocity attribute"

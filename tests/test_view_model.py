@@ -43,13 +43,21 @@ class _ServerAsClient:
 
     def __init__(self, server) -> None:
         self.scene, self.gui, self.atomic, self.client_id = server.scene, server.gui, server.atomic, 0
+        self.camera = _NoCamera()
+
+
+class _NoCamera:
+    """No browser, no canvas: the camera never reports, so it is never framed."""
+
+    def on_update(self, callback) -> None:
+        pass
 
 
 def _session(viewer):
     """A session, registered as a connected browser's would be (reloads reach it)."""
     from bras_kit.view.session import Session
 
-    session = Session(_ServerAsClient(viewer.server), viewer, viewer.t)
+    session = Session(_ServerAsClient(viewer.server), viewer, viewer.lang)
     viewer.sessions[0] = session
     return session
 
@@ -125,12 +133,12 @@ def test_zero_random_and_fixed_frame(tmp_path):
         session = _session(viewer)
         random_values = []
         for _ in range(20):
-            session._button(viewer.t("Random pose"))
+            session._button("Random pose")
             random_values.append(dict(session.values))
         for values in random_values:
             assert -2.0 <= values["coude"] <= 2.0 and -math.pi <= values["epaule"] <= math.pi
         assert len({v["coude"] for v in random_values}) == 20
-        session._button(viewer.t("Zero"))
+        session._button("Zero")
         assert session.values == {"epaule": 0.0, "coude": 0.0}
         # Fixed Frame = avant_bras: the forearm's frame is sent at the origin, the base is not
         session.fixed.value = "avant_bras"

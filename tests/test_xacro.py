@@ -142,7 +142,7 @@ def test_broken_xacro_gives_located_error(run_cli, name, error, line, words):
         expand_xacro(path)
     assert Path(info.value.path).resolve() == path.resolve()
     assert info.value.line == line
-    assert words in info.value.message
+    assert words in str(info.value.message)
     assert info.value.hint
 
     code, out, err = run_cli("xacro", str(path))
@@ -154,7 +154,7 @@ def test_broken_xacro_gives_located_error(run_cli, name, error, line, words):
 def test_missing_include_names_the_missing_file():
     with pytest.raises(XacroError) as info:
         expand_xacro(DATA / "broken" / "missing_include.xacro")
-    assert str(DATA / "broken" / "parts" / "not_there.xacro") in info.value.message
+    assert str(DATA / "broken" / "parts" / "not_there.xacro") in str(info.value.message)
 
 
 def test_broken_xacro_in_a_real_process_prints_no_traceback():
@@ -173,17 +173,23 @@ def test_missing_file_is_a_clean_error(run_cli, tmp_path):
 
 # --- DTDs and entities: refused before xacro sees them --------------------------------------------
 
-def test_dtd_with_entity_is_refused():
+def test_dtd_with_entity_is_refused_on_the_entity_line():
     with pytest.raises(XMLSafetyError) as info:
         expand_xacro(DATA / "broken" / "dtd_entity.xacro")
-    assert info.value.line == 2
-    assert "DTD" in info.value.message
+    assert info.value.line == 3
+    assert "entity" in str(info.value.message)
+
+
+def test_plain_doctype_without_entities_is_accepted_like_xacro():
+    text = expand_xacro(DATA / "doctype_plain.xacro")
+    assert "<!DOCTYPE robot>" in text
+    assert robot_of(text).link_names == ["base"]
 
 
 def test_dtd_in_an_included_file_is_refused_and_names_that_file(run_cli):
     code, out, err = run_cli("xacro", str(DATA / "broken" / "includes_entity.xacro"))
     assert code == 2 and out == ""
-    assert f"{DATA / 'broken' / 'parts' / 'entity_part.xacro'}:2: refused" in err
+    assert f"{DATA / 'broken' / 'parts' / 'entity_part.xacro'}:3: refused" in err
     assert "hidden" not in err
 
 
@@ -199,7 +205,7 @@ def test_unsafe_expression_is_refused_and_does_not_run(run_cli, monkeypatch, tmp
     path = DATA / "unsafe" / name
     with pytest.raises(XacroError) as info:
         expand_xacro(path)
-    assert f"it uses {reason}" in info.value.message
+    assert f"it uses {reason}" in str(info.value.message)
     assert Path(info.value.path).resolve() == path.resolve()
     code, _, err = run_cli("xacro", str(path))
     assert code == 2 and "refused the expression" in err
@@ -261,3 +267,35 @@ def test_repeating_text_or_lists_is_refused_before_it_fills_memory(tmp_path, run
     assert code == 2
     assert "repeating this text or list makes it too large" in err
     assert f"{path}:2:" in err
+
+
+# --- where an error is: the file and line the expression is written on, root cause first ----------
+
+@pytest.mark.parametrize("name,line,words", [
+    ("chain.xacro", 5, "ZeroDivisionError: division by zero in the expression '1 / zero'"),
+    ("keyword_error.xacro", 6, "'reversed' is an invalid keyword argument"),
+    ("less_than.xacro", 5, "name 'missing_name' is not defined"),
+], ids=["chain-of-properties", "keyword-argument", "escaped-less-than"])
+def test_expression_error_names_the_line_it_is_written_on(name, line, words):
+    path = DATA / "broken" / name
+    with pytest.raises(XacroError) as info:
+        expand_xacro(path)
+    assert (Path(info.value.path).resolve(), info.value.line) == (path.resolve(), line)
+    assert str(info.value.message).startswith(words) or words in str(info.value.message)
+
+
+def test_chain_of_failing_properties_puts_the_root_cause_first_then_who_used_it():
+    with pytest.raises(XacroError) as info:
+        expand_xacro(DATA / "broken" / "chain.xacro")
+    text = str(info.value.message)
+    assert text.startswith("ZeroDivisionError: division by zero")
+    assert text.endswith("(used by 'p3 + 1', 'p2 * 2', 'p1')")
+    assert "when evaluating" not in text
+
+
+def test_refusal_inside_a_macro_of_an_included_file_names_that_file_and_line():
+    with pytest.raises(XacroError) as info:
+        expand_xacro(DATA / "broken" / "includes_refused.xacro")
+    part = DATA / "broken" / "parts" / "refused_part.xacro"
+    assert (Path(info.value.path).resolve(), info.value.line) == (part.resolve(), 5)
+    assert "__class__" in str(info.value.message)

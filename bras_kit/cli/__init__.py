@@ -12,6 +12,7 @@ import gc
 import importlib
 import os
 import sys
+import warnings
 from collections.abc import Sequence
 
 from .. import __version__
@@ -37,6 +38,7 @@ COMMANDS: dict[str, str] = {
     "simulate": "physics with MuJoCo: gravity, motors limited by effort, collisions",
     "mjcf": "write the MuJoCo model (MJCF) bras-kit builds from the URDF",
     "view": "the arm live in the browser: sliders, TF frames, motion playback, reload on save",
+    "run": "run your own ROS 2 node without ROS (like ros2 run), record and check what it publishes",
     "grade": "for teachers: check, draw and score a class's submissions (process pool or Dask)",
     "doctor": "what this install can do (OpenGL, MuJoCo, viewer, browser, cache) and how to fix the rest",
 }
@@ -130,6 +132,10 @@ def _language_in(argv: Sequence[str]) -> str | None:
 
 def main(argv: Sequence[str] | None = None) -> int:
     argv = list(sys.argv[1:] if argv is None else argv)
+    if not os.environ.get("BRAS_KIT_DEBUG"):
+        # numpy's "overflow encountered in ..." with a source path is no message for a user: the
+        # commands check the numbers they print (non-finite origins, diverging simulations)
+        warnings.simplefilter("ignore", RuntimeWarning)
     try:
         lang = set_language(_language_in(argv))
     except BrasKitError as exc:  # BRAS_KIT_LANG holds an unknown language
@@ -146,6 +152,11 @@ def main(argv: Sequence[str] | None = None) -> int:
         return 0
     args.lang = lang
     command = args.command
+    if getattr(args, "no_cache", False):
+        from ..meshes import set_disk_cache
+
+        set_disk_cache(False)
+        os.environ["BRAS_KIT_NO_CACHE"] = "1"  # worker processes (grade) inherit it
     try:
         return int(_command_module(command).run(args) or 0)
     except UnknownJointError as exc:

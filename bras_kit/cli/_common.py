@@ -3,11 +3,13 @@
 from __future__ import annotations
 
 import argparse
+import os
 import sys
 from collections.abc import Callable, Iterable, Mapping
 from typing import Any
 
-from ..errors import BrasKitError, ParameterError
+from ..errors import BrasKitError, ParameterError, TimeInJointValueError
+from ..message import M, Message
 
 
 def add_model_arguments(parser: argparse.ArgumentParser, *, variants: bool = True) -> None:
@@ -18,6 +20,7 @@ def add_model_arguments(parser: argparse.ArgumentParser, *, variants: bool = Tru
                         help="folder holding ROS packages, for $(find pkg) and package:// (repeatable)")
     parser.add_argument("--xacro-arg", action="append", default=[], metavar="NAME:=VALUE",
                         help="xacro argument when FILE is a .xacro (repeatable)")
+    add_cache_argument(parser)
     if variants:
         parser.add_argument("--wrist", action="store_true",
                             help="built-in arm: add the wrist joint 'poignet' (the tutorial's exercise)")
@@ -29,12 +32,19 @@ def add_model_arguments(parser: argparse.ArgumentParser, *, variants: bool = Tru
                             help="built-in arm: change a template parameter (e.g. bras_length=0.8)")
 
 
+def add_cache_argument(parser: argparse.ArgumentParser) -> None:
+    """``--no-cache``: decode every mesh file again, neither reading nor writing the cache."""
+    parser.add_argument("--no-cache", action="store_true",
+                        help="decode mesh files again, without the cache of decoded meshes")
+
+
 def xacro_mappings(items: Iterable[str]) -> dict[str, str]:
     out = {}
     for item in items:
         name, sep, value = item.partition(":=")
         if not sep or not name:
-            raise ParameterError(f"'{item}' is not NAME:=VALUE", hint="write xacro arguments as name:=value")
+            raise ParameterError(M("'{item}' is not NAME:=VALUE", item=item),
+                                 hint=M("write xacro arguments as name:=value"))
         out[name] = value
     return out
 
@@ -49,8 +59,8 @@ def load_model(args: argparse.Namespace):  # type: ignore[no-untyped-def]
                    collisions=getattr(args, "collisions", False))
     if getattr(args, "wrist", False) or getattr(args, "inertials", False) or getattr(args, "param", []) \
             or getattr(args, "collisions", False):
-        raise ParameterError("--wrist, --inertials, --collisions and --param apply to the built-in arm only",
-                             hint="drop FILE to use the built-in arm, or edit your file")
+        raise ParameterError(M("--wrist, --inertials, --collisions and --param apply to the built-in arm only"),
+                             hint=M("drop FILE to use the built-in arm, or edit your file"))
     return load(args.file, mappings=xacro_mappings(args.xacro_arg), package_paths=args.package_path)
 
 
@@ -61,16 +71,29 @@ def joint_values(items: Iterable[str]) -> dict[str, float]:
     from ..expr import parse_joint_value
 
     values = {}
-    for name, text in parse_assignments(items, "joint value").items():
+    for name, text in parse_assignments(items, M("joint value")).items():
         try:
             values[name] = parse_joint_value(text)
         except BrasKitError as exc:
-            detail = str(exc.message).split("\n")[0]
-            why = detail if "time t" in detail else f"the joint value is not a number ({detail})"
-            raise ParameterError(f"{name}={text!r}: {why}",
-                                 hint="give radians for revolute joints and metres for prismatic ones: "
-                                      "0.5, 1,5, pi/2, -0.5*pi, or degrees said explicitly: 90deg") from None
+            detail = getattr(exc, "reason", exc.message)  # the formula's error without its caret lines
+            why = detail if isinstance(exc, TimeInJointValueError) else \
+                M("the joint value is not a number ({detail})", detail=detail)
+            raise ParameterError(M("{name}={text!r}: {why}", name=name, text=text, why=why),
+                                 hint=M("give radians for revolute joints and metres for prismatic ones: "
+                                        "0.5, 1,5, pi/2, -0.5*pi, or degrees said explicitly: 90deg")) from None
     return values
+
+
+def add_topic_argument(parser: argparse.ArgumentParser) -> None:
+    """``--topic``: which JointState topic a ROS 2 bag given to --motion is read from."""
+    parser.add_argument("--topic", metavar="NAME", default=None,
+                        help="with a ROS 2 bag as --motion: the JointState topic to replay (default: /joint_states)")
+
+
+def warn_motion_notes(motion: Any) -> None:
+    """What was odd in the motion's input (a recording's gaps, unknown joints...), one warning each."""
+    for note in getattr(motion, "notes", ()):
+        warn(note)
 
 
 def add_force_argument(parser: argparse.ArgumentParser) -> None:
@@ -98,66 +121,125 @@ def save_with(path: str, force: bool, writer: Callable[[str], Any], **options: A
     return write_to(path, force, writer, **options)
 
 
-def warn(message: Any) -> None:
-    """``warning: ...`` on stderr, worded in the command's language (a Message or, until every
-    caller builds one, an English sentence)."""
+def warn(message: Message | BrasKitError, lang: str | None = None) -> None:
+    """``warning: ...`` on stderr, worded in the command's language."""
     from ..i18n import say
-    from ..message import M
 
-    print(f"{say(M('warning'))}: {say(message)}", file=sys.stderr)
+    print(f"{say(M('warning'), lang)}: {say(message, lang)}", file=sys.stderr)
 
 
-def warn_out_of_limits(tree: Any, config: Mapping[str, float], consequence: str = "") -> None:
+def warn_out_of_limits(tree: Any, config: Mapping[str, float], consequence: Message | None = None,
+                       lang: str | None = None) -> None:
     """One warning per value past its joint's limits; a value that reads as degrees says so."""
-    from ..i18n import _
     from ..motion import value_in_degrees
 
     for name, value, lower, upper in tree.out_of_limits(config):
         if value > upper:
-            text = _("{name}={value:g} is above its upper limit {limit:g} by {excess:.4g}").format(
-                name=name, value=value, limit=upper, excess=value - upper)
+            text = M("{name}={value:g} is above its upper limit {limit:g} by {excess:.4g}",
+                     name=name, value=value, limit=upper, excess=value - upper)
         else:
-            text = _("{name}={value:g} is below its lower limit {limit:g} by {excess:.4g}").format(
-                name=name, value=value, limit=lower, excess=lower - value)
+            text = M("{name}={value:g} is below its lower limit {limit:g} by {excess:.4g}",
+                     name=name, value=value, limit=lower, excess=lower - value)
         if value_in_degrees(tree.robot.joint(name), value):
-            text += "; " + _("it looks like degrees: write {name}={value:g}deg").format(name=name, value=value)
-        warn(text + (f" ({consequence})" if consequence else ""))
+            text = M("{text}; it looks like degrees: write {name}={value:g}deg", text=text, name=name, value=value)
+        if consequence is not None:
+            text = M("{text} ({consequence})", text=text, consequence=consequence)
+        warn(text, lang)
 
 
 def template_values(args: argparse.Namespace) -> list[str]:
     """``--param`` items, plus the old ``--set`` spelling of ``urdf`` and ``new`` with a note;
     a joint name given there is pointed to ``--set`` of the other commands."""
     from ..authoring import template_parameters
-    from ..i18n import _
 
     old = list(getattr(args, "old_params", []) or [])
     if old:
-        warn(_("--set is deprecated for template parameters: use --param (--set gives joint values in the other commands)"))
+        warn(M("--set is deprecated for template parameters: use --param (--set gives joint values in the other commands)"),
+             getattr(args, "lang", None))
     items = list(args.params) + old
     known = template_parameters()
     for item in items:
         name = item.partition("=")[0].strip()
         if name and name not in known and name in ("epaule", "coude", "poignet"):
-            raise ParameterError(_("'{name}' is a joint, not a template parameter").format(name=name),
-                                 hint=_("joint values go to --set in render, fk, tree, plot and validate; "
+            raise ParameterError(M("'{name}' is a joint, not a template parameter", name=name),
+                                 hint=M("joint values go to --set in render, fk, tree, plot and validate; "
                                         "template parameters are listed by bras-kit urdf --list-params"))
     return items
 
 
-def joint_name_hint(name: str, hint: str | None) -> str | None:
+def joint_name_hint(name: str, hint: Message | str | None) -> Message | str | None:
     """What a name given as a joint is instead: a template parameter, the wrist of the exercise."""
     from ..authoring import template_parameters
-    from ..i18n import _
 
     if name in template_parameters():
-        return _("'{name}' is a template parameter of the built-in arm, not a joint: use --param {name}=VALUE"
-                 ).format(name=name)
+        return M("'{name}' is a template parameter of the built-in arm, not a joint: use --param {name}=VALUE",
+                 name=name)
     if name == "poignet":
-        return _("'poignet' is the wrist of the tutorial's exercise: add --wrist to use the arm that has it")
+        return M("'poignet' is the wrist of the tutorial's exercise: add --wrist to use the arm that has it")
     return hint
 
 
-def format_config(config: Mapping[str, float]) -> str:
-    from ..i18n import _
+def format_config(config: Mapping[str, float]) -> Message | str:
+    """``epaule=0.5, coude=1.2`` (names and numbers: the same in every language), or "zero pose"."""
+    if not config:
+        return M("zero pose")
+    return ", ".join(f"{k}={v:g}" for k, v in config.items())
 
-    return ", ".join(f"{k}={v:g}" for k, v in config.items()) or _("zero pose")
+
+def add_node_argument(parser: argparse.ArgumentParser) -> None:
+    parser.add_argument("--node", metavar="PKG_DIR[:EXE]",
+                        help="the motion is what your node publishes on /joint_states (run with bras-kit run's "
+                             "stand-in for rclpy, simulated time); the robot is the package's URDF unless FILE is given")
+
+
+def apply_node(args: argparse.Namespace, duration: float | None) -> None:
+    """``--node PKG_DIR[:EXE]``: run the node (as ``bras-kit run`` does), write what it published on
+    /joint_states as a joint-state file in a temporary folder, and make that file the motion;
+    FILE defaults to the package's robot description."""
+    import atexit
+    import shutil
+    import tempfile
+
+    from ..message import M
+    from ..motion.states_io import states_to_csv
+
+    spec = getattr(args, "node", None)
+    if not spec:
+        return
+    if args.motion:
+        raise ParameterError(M("--node and --motion both say how the arm moves"), hint=M("give one of them"))
+    where, executable = _node_spec(spec)
+    if args.file is None and os.path.isdir(where):
+        from ..validate.package.sources import Package
+
+        source = Package(where).description_source()
+        if source is not None:
+            args.file = os.path.join(where, source)
+            args.package_path = [*args.package_path, os.path.dirname(os.path.abspath(where))]
+    from ..run import run_node
+    from ..run.recording import states_for
+
+    recording = run_node(where, executable, duration=duration or 10.0)
+    robot = load_model(args)
+    from ..kinematics import tf_tree
+
+    states = states_for(recording, tf_tree(robot).dof)
+    if not len(states):
+        raise ParameterError(M("the node published nothing on /joint_states in {time} s", time=recording.end),
+                             hint=M("run it with 'bras-kit run {spec}' to see what it did", spec=spec))
+    folder = tempfile.mkdtemp(prefix="bras-kit-node-")
+    atexit.register(shutil.rmtree, folder, True)
+    path = os.path.join(folder, f"{os.path.splitext(os.path.basename(recording.source))[0]}.csv")
+    with open(path, "w", encoding="utf-8") as handle:
+        handle.write(states_to_csv(states))
+    args.motion = [path]
+
+
+def _node_spec(spec: str) -> tuple[str, str | None]:
+    """``PKG_DIR``, ``PKG_DIR:EXE`` or ``node.py``."""
+    if os.path.exists(spec):
+        return spec, None
+    where, sep, executable = spec.rpartition(":")
+    if sep and where and os.path.isdir(where):
+        return where, executable or None
+    return spec, None

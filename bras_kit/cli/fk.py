@@ -6,6 +6,8 @@ import argparse
 import json
 import math
 
+from ..i18n import say
+from ..message import M, Message
 from ._common import add_model_arguments, joint_values, warn, warn_out_of_limits
 
 
@@ -19,16 +21,20 @@ def configure(parser: argparse.ArgumentParser) -> None:
     parser.add_argument("--format", choices=("text", "json"), default="text")
 
 
-def _text_block(title: str, pose: dict[str, list[float]]) -> str:
+def _text_block(title: Message, pose: dict[str, list[float]], lang: str | None) -> str:
+    """tf2_echo's block, its headings worded in ``lang`` (the numbers as tf2_echo prints them)."""
     x, y, z = pose["xyz"]
     qx, qy, qz, qw = pose["quat_xyzw"]
     r, p, yaw = pose["rpy"]
+    rotation = say(M("Rotation:"), lang)
+    indent = " " * (len(rotation) + 3)
     return (
-        f"{title}\n"
-        f"- Translation: [{x:.6f}, {y:.6f}, {z:.6f}]\n"
-        f"- Rotation: in Quaternion (xyzw) [{qx:.6f}, {qy:.6f}, {qz:.6f}, {qw:.6f}]\n"
-        f"            in RPY (radian) [{r:.6f}, {p:.6f}, {yaw:.6f}]\n"
-        f"            in RPY (degree) [{math.degrees(r):.6f}, {math.degrees(p):.6f}, {math.degrees(yaw):.6f}]"
+        f"{say(title, lang)}\n"
+        f"- {say(M('Translation:'), lang)} [{x:.6f}, {y:.6f}, {z:.6f}]\n"
+        f"- {rotation} {say(M('in Quaternion (xyzw)'), lang)} [{qx:.6f}, {qy:.6f}, {qz:.6f}, {qw:.6f}]\n"
+        f"{indent}{say(M('in RPY (radian)'), lang)} [{r:.6f}, {p:.6f}, {yaw:.6f}]\n"
+        f"{indent}{say(M('in RPY (degree)'), lang)} "
+        f"[{math.degrees(r):.6f}, {math.degrees(p):.6f}, {math.degrees(yaw):.6f}]"
     )
 
 
@@ -38,21 +44,22 @@ def run(args: argparse.Namespace) -> int:
     from ._common import load_model
 
     if (args.source is None) != (args.target is None):
-        raise ParameterError("--from and --to go together", hint="e.g. --from base --to avant_bras")
+        raise ParameterError(M("--from and --to go together"), hint=M("e.g. --from base --to avant_bras"))
     robot = load_model(args)
     tree = tf_tree(robot)
     config = joint_values(args.values)
     tree.config_vector(config)  # unknown joint names fail here, before any output
-    warn_out_of_limits(tree, config)
+    warn_out_of_limits(tree, config, lang=args.lang)
     for name in tree.unsupported_joints:
-        warn(f"joint '{name}' is floating or planar: its child is shown at the joint origin, not moved")
+        warn(M("joint '{name}' is floating or planar: its child is shown at the joint origin, not moved", name=name),
+             args.lang)
     full = {name: float(config.get(name, 0.0)) for name in tree.dof}
     if args.source is not None:
         pose = describe_transform(relative_transform(tree, config, args.source, args.target))
         if args.format == "json":
             print(_json({"from": args.source, "to": args.target, "config": full, **pose}))
             return 0
-        print(_text_block(f"At {args.source} -> {args.target}", pose))
+        print(_text_block(M("At {parent} -> {child}", parent=args.source, child=args.target), pose, args.lang))
         return 0
     transforms = fk(tree, config)
     names = [tree.links[tree.index(args.link)]] if args.link else list(tree.links)
@@ -61,7 +68,7 @@ def run(args: argparse.Namespace) -> int:
         print(_json({"root": tree.root, "config": full, "links": poses}))
         return 0
     for name, pose in poses.items():
-        print(_text_block(f"At {tree.root} -> {name}", pose))
+        print(_text_block(M("At {parent} -> {child}", parent=tree.root, child=name), pose, args.lang))
     return 0
 
 
@@ -72,5 +79,5 @@ def _json(document: dict) -> str:  # type: ignore[type-arg]
     try:
         return json.dumps(document, indent=2, allow_nan=False)
     except ValueError:
-        raise ModelError("a pose is not a finite number: the model holds nan or inf in an <origin> or <axis>",
-                         hint="run bras-kit validate on the file to see where") from None
+        raise ModelError(M("a pose is not a finite number: the model holds nan or inf in an <origin> or <axis>"),
+                         hint=M("run bras-kit validate on the file to see where")) from None

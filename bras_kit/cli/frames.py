@@ -5,7 +5,8 @@ from __future__ import annotations
 import argparse
 import sys
 
-from ..i18n import _
+from ..i18n import say
+from ..message import M
 from ._common import add_force_argument, add_model_arguments, joint_values, warn_out_of_limits
 
 DEFAULT_OUTPUT = "frames.pdf"
@@ -33,13 +34,15 @@ def run(args: argparse.Namespace) -> int:
     config = joint_values(args.values) or None
     tree = tf_tree(robot)
     tree.config_vector(config)  # unknown joint names fail here, before anything is written
-    warn_out_of_limits(tree, config or {}, _("marked in red"))
+    warn_out_of_limits(tree, config or {}, M("marked in red"), args.lang)
     if suffix is None or suffix == ".dot":
         write_text(None if suffix is None else output, frames_dot(robot, config), args.force)
         return 0
     check_writable(output, args.force)
     save_with(output, args.force, lambda temporary: frame_diagram(robot, config, path=temporary), announce=False)
-    note = "" if args.output else " " + _("(-o FILE.svg|png|dot for another format, -o - prints DOT)")
-    print(_("wrote {path}: {frames} frames, {joints} joints").format(
-        path=output, frames=len(tree.links), joints=len(tree.links) - 1) + note, file=sys.stderr)
+    written = M("wrote {path}: {frames} frames, {joints} joints", path=output, frames=len(tree.links),
+                joints=len(tree.links) - 1)
+    if not args.output:
+        written = M("{text} (-o FILE.svg|png|dot for another format, -o - prints DOT)", text=written)
+    print(say(written, args.lang), file=sys.stderr)
     return 0

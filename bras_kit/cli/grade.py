@@ -8,7 +8,7 @@ import sys
 import time
 
 from ..i18n import _
-from ._common import add_force_argument
+from ._common import add_cache_argument, add_force_argument
 
 EPILOG = """\
 examples:
@@ -37,8 +37,14 @@ def configure(parser: argparse.ArgumentParser) -> None:
     parser.add_argument("--gradescope", action="store_true",
                         help="also write one results.json per learner in Gradescope's shape (gradescope/)")
     parser.add_argument("--no-pictures", action="store_true", help="skip the pictures (faster)")
+    add_cache_argument(parser)
     parser.add_argument("--gif", action="store_true",
                         help="also draw each arm moving (the tutorial's motion) as pictures/LEARNER.gif")
+    parser.add_argument("--run-nodes", action="store_true",
+                        help="also run each package's nodes with bras-kit run's stand-in for rclpy and check what "
+                        "they publish (BK640-BK659). This EXECUTES the learners' code: each node runs in a "
+                        "child process limited in CPU time, memory and wall-clock time, in a temporary folder; "
+                        "off by default")
     add_force_argument(parser)
 
 
@@ -72,7 +78,8 @@ def run(args: argparse.Namespace) -> int:
         os.makedirs(pictures, exist_ok=True)
     previous = previous_results(output) if args.resume else None
     start = time.monotonic()
-    results, finished = grade_all(submissions, rubric, Options(lang=args.lang, pictures=pictures, gif=args.gif),
+    results, finished = grade_all(submissions, rubric, Options(lang=args.lang, pictures=pictures, gif=args.gif,
+                                                                   run_nodes=args.run_nodes),
                                   jobs=args.jobs, scheduler=args.scheduler, previous=previous)
     write_reports(output, results, rubric, args.lang, gradescope=args.gradescope, finished=finished)
     elapsed = time.monotonic() - start

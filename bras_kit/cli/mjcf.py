@@ -11,7 +11,8 @@ import os
 import sys
 
 from ..errors import BrasKitError
-from ..i18n import _
+from ..i18n import say
+from ..message import M, Mn
 from ._common import add_force_argument, add_model_arguments, check_writable, write_text
 
 _EPILOG = """\
@@ -37,7 +38,7 @@ def configure(parser: argparse.ArgumentParser) -> None:
 def run(args: argparse.Namespace) -> int:
     from ..physics import mjcf
     from ..physics.controllers import gain_vector
-    from ..physics.diagnostics import check_physics_ready, physics_notes
+    from ..physics.diagnostics import LEVELS, check_physics_ready, physics_notes
     from ..validate.i18n import default_language
 
     lang = args.lang or default_language()
@@ -49,10 +50,11 @@ def run(args: argparse.Namespace) -> int:
     kd = mjcf.DEFAULT_KD if args.kd is None else float(gain_vector(args.kd, ["all"], mjcf.DEFAULT_KD, "kd")[0])
     built = mjcf.build_mjcf(robot, package_paths=args.package_path, kp=kp, kd=kd, control=args.control)
     for note in physics_notes(robot, built, lang, args.package_path):
-        print(f"{_(note.level)}: {note.text}", file=sys.stderr)
+        print(f"{say(LEVELS[note.level], lang)}: {note.worded(lang)}", file=sys.stderr)
     if not args.output or args.output == "-":
         if built.assets:
-            print(_("note: the meshes are not printed; write with -o FILE to get them in FILE_meshes/"), file=sys.stderr)
+            print(say(M("note: the meshes are not printed; write with -o FILE to get them in FILE_meshes/"), lang),
+                  file=sys.stderr)
         write_text(None, built.xml, args.force)
         return 0
     stem = os.path.splitext(os.path.basename(args.output))[0]
@@ -66,15 +68,17 @@ def run(args: argparse.Namespace) -> int:
         from ..outputs import write_bytes
 
         if os.path.islink(target):
-            raise BrasKitError(f"{target} is a symbolic link: refused", hint="remove the link, or choose another -o")
+            raise BrasKitError(M("{path} is a symbolic link: refused", path=target),
+                               hint=M("remove the link, or choose another -o"))
         try:
             os.makedirs(target, exist_ok=True)
         except OSError as exc:
-            raise BrasKitError(f"cannot create {target}: {exc.strerror or exc}",
-                               hint="check the folder is writable and has space") from None
+            raise BrasKitError(M("cannot create {path}: {reason}", path=target, reason=exc.strerror or str(exc)),
+                               hint=M("check the folder is writable and has space")) from None
         for asset in built.assets.values():  # each through the one safe write: no link followed
             write_bytes(os.path.join(target, asset.name), asset.data, args.force, announce=False)
-        print(_("wrote {count} meshes in {folder}/").format(count=len(built.assets), folder=target), file=sys.stderr)
+        print(say(Mn("wrote {n} mesh in {folder}/", "wrote {n} meshes in {folder}/", len(built.assets), folder=target),
+                  lang), file=sys.stderr)
     return 0
 
 

@@ -10,19 +10,21 @@ Samples are taken at k / rate for k = 0 .. floor(duration * rate): 10 s at 20 Hz
 from __future__ import annotations
 
 import argparse
-import os
 import sys
 
 from ..errors import ParameterError
-from ..i18n import _, translate_message
+from ..i18n import say
+from ..message import M, Mn
 from ._common import (
     add_force_argument,
     add_model_arguments,
-    check_writable,
+    add_node_argument,
+    add_topic_argument,
+    apply_node,
     joint_values,
     load_model,
     warn,
-    write_text,
+    warn_motion_notes,
 )
 
 _EPILOG = """\
@@ -33,6 +35,8 @@ motion SPEC (repeatable):
                            sqrt exp log abs min max clip floor ceil deg)
   FILE.csv|.json|.yaml     waypoints: time,JOINT,... (CSV) or {"waypoints": [{"time": 0,
                            "positions": {"epaule": 0}}, ...]}
+  BAG                      a ROS 2 bag (folder with metadata.yaml, .mcap or .db3): its
+                           /joint_states (or --topic NAME), linear between samples
 Joints no spec drives stay at 0 (or their --set value; 'tutorial' drives all the others).
 
 examples:
@@ -41,6 +45,8 @@ examples:
   bras-kit motion --motion coude=2.5*sin(t)        warns: coude goes past its upper limit
   bras-kit motion --wrist --motion tutorial --set poignet=0.5 -o states.json
   bras-kit motion --motion path.yaml --interpolation cubic --clamp -o states.csv
+  bras-kit motion -o run.mcap                      a ROS 2 bag: run/run.mcap + run/metadata.yaml
+  bras-kit motion --motion ~/bags/rosbag2_2024_05_01/   limits checked on a real recording
 """
 
 
@@ -50,6 +56,7 @@ def configure(parser: argparse.ArgumentParser) -> None:
     add_model_arguments(parser)
     parser.add_argument("-m", "--motion", action="append", default=[], metavar="SPEC",
                         help="tutorial, JOINT=FORMULA or a waypoint file (repeatable; default: tutorial)")
+    add_node_argument(parser)
     parser.add_argument("--set", dest="set_values", action="append", default=[], metavar="JOINT=VALUE",
                         help="hold a joint at a value in radians (metres if prismatic) (repeatable)")
     parser.add_argument("--duration", type=float, metavar="S",
@@ -63,10 +70,12 @@ def configure(parser: argparse.ArgumentParser) -> None:
                         help="keep positions inside the joint limits (default: warn only)")
     parser.add_argument("--strict", action="store_true",
                         help="exit with status 1 when a limit is still exceeded")
+    add_topic_argument(parser)
     parser.add_argument("-o", "--output", metavar="FILE",
-                        help="write the joint states to FILE (.csv or .json; '-' for stdout) "
+                        help="write the joint states to FILE (.csv or .json; '-' for stdout; .mcap, .db3 or "
+                             "FOLDER/ for a ROS 2 bag with /robot_description, /tf and /joint_states) "
                              "instead of printing a summary")
-    parser.add_argument("--format", choices=("csv", "json"),
+    parser.add_argument("--format", choices=("csv", "json", "bag"),
                         help="output format (default: from the -o extension; csv for '-')")
     add_force_argument(parser)
 
@@ -74,17 +83,17 @@ def configure(parser: argparse.ArgumentParser) -> None:
 def _output_format(args: argparse.Namespace) -> str | None:
     if args.output is None:
         if args.format:
-            raise ParameterError("--format needs -o FILE (or -o - for stdout)")
+            raise ParameterError(M("--format needs -o FILE (or -o - for stdout)"))
         return None
     if args.format:
         return str(args.format)
-    if args.output == "-":
-        return "csv"
-    suffix = os.path.splitext(args.output)[1].lower()
-    if suffix in (".csv", ".json"):
-        return suffix[1:]
-    raise ParameterError(f"cannot tell the format of '{args.output}'",
-                         hint="end the file name in .csv or .json, or pass --format csv|json")
+    from ..motion.states_io import states_format
+
+    fmt = states_format(args.output)
+    if fmt is None:
+        raise ParameterError(M("cannot tell the format of '{path}'", path=args.output),
+                             hint=M("end the file name in .csv, .json or .mcap (a ROS 2 bag), or pass --format csv|json"))
+    return fmt
 
 
 def run(args: argparse.Namespace) -> int:
@@ -97,21 +106,25 @@ def run(args: argparse.Namespace) -> int:
         describe_violation,
         motion_from_specs,
         sample,
-        states_to_csv,
-        states_to_json,
         waypoint_speeds,
     )
+    from ..motion.states_io import check_states_output, write_states
 
     if args.file and args.file.lower().endswith(WAYPOINT_SUFFIXES):
-        raise ParameterError(f"'{args.file}' looks like a waypoint file, not a robot",
-                             hint=f"pass it as --motion {args.file} (FILE is the robot: .urdf or .xacro)")
+        raise ParameterError(M("'{path}' looks like a waypoint file, not a robot", path=args.file),
+                             hint=M("pass it as --motion {path} (FILE is the robot: .urdf or .xacro)", path=args.file))
     fmt = _output_format(args)
+    if fmt == "bag" and args.output == "-":
+        raise ParameterError(M("a ROS 2 bag is a folder: it cannot go to standard output"),
+                             hint=M("give -o run.mcap (the bag is the folder run/)"))
     if fmt is not None and args.output != "-":
-        check_writable(args.output, args.force)
+        check_states_output(args.output, args.force, fmt)
+    apply_node(args, args.duration)
     robot = load_model(args)
-    motion = motion_from_specs(robot, args.motion, joint_values(args.set_values), args.interpolation)
+    motion = motion_from_specs(robot, args.motion, joint_values(args.set_values), args.interpolation, args.topic)
+    warn_motion_notes(motion)
     if args.interpolation and not any(t.waypoints is not None for t in motion.tracks):
-        warn("--interpolation only applies to waypoint files")
+        warn(M("--interpolation only applies to waypoint files"), args.lang)
     rate = DEFAULT_RATE if args.rate is None else args.rate
     states = sample(motion, args.duration, rate)
     segments = waypoint_speeds(robot, motion)
@@ -121,47 +134,54 @@ def run(args: argparse.Namespace) -> int:
         clamped = [v for v in violations if v.kind == "position"]
         states = clamp(robot, states)
         violations = check_limits(robot, states)
+    lang = args.lang
     for segment in segments[:10]:
-        warn(describe_segment(segment))
+        warn(describe_segment(segment), lang)
     if len(segments) > 10:
-        warn(_("... and {count} more waypoint segments too fast").format(count=len(segments) - 10))
+        warn(M("... and {count} more waypoint segments too fast", count=len(segments) - 10), lang)
     reported = {s.joint for s in segments}
     for v in clamped:
-        print(f"{_('warning')}: {_('clamped')}: {translate_message(describe_violation(v))}", file=sys.stderr)
+        warn(M("clamped: {what}", what=describe_violation(v)), lang)
     for v in violations:
         if v.kind == "velocity" and v.joint in reported:
             continue  # already named segment by segment
-        warn(describe_violation(v))
+        warn(describe_violation(v), lang)
     if any(v.kind == "position" for v in violations):
-        print("  " + _("hint") + ": " + _("pass --clamp to keep positions inside the limits, or lower the amplitude"),
+        print(f"  {say(M('hint'), lang)}: "
+              + say(M("pass --clamp to keep positions inside the limits, or lower the amplitude"), lang),
               file=sys.stderr)
     if fmt is None:
-        print(_summary(robot, motion, states, violations, clamped, rate))
+        print(_summary(robot, motion, states, violations, clamped, rate, lang))
     else:
-        text = states_to_json(states) if fmt == "json" else states_to_csv(states)
-        write_text(args.output, text, args.force)
+        written = write_states(robot, states, args.output, args.force, fmt)
+        if written is not None:
+            print(say(written), file=sys.stderr)
     return 1 if args.strict and (violations or segments) else 0
 
 
-def _summary(robot, motion, states, violations, clamped, rate: float) -> str:  # type: ignore[no-untyped-def]
+def _summary(robot, motion, states, violations, clamped, rate: float, lang: str) -> str:  # type: ignore[no-untyped-def]
     from ..motion import joint_unit
+    from ..motion.sources import motion_title
 
     duration = float(states.times[-1]) if len(states) else 0.0
-    lines = [_("motion: {label}; {duration:g} s at {rate:g} Hz, {samples} samples x {joints} joints").format(
-        label=motion.label or _("fixed pose"), duration=duration, rate=rate, samples=len(states),
-        joints=len(states.names))]
+    lines = [say(M("motion: {label}; {duration:g} s at {rate:g} Hz, {samples} samples x {joints} joints",
+                   label=motion_title(motion.label) if motion.label else M("fixed pose"), duration=duration,
+                   rate=rate, samples=len(states), joints=len(states.names)), lang)]
     if not states.names:
-        lines.append(_("the robot has no movable joint"))
+        lines.append(say(M("the robot has no movable joint"), lang))
         return "\n".join(lines)
-    header = (_("joint"), "min", "max", _("lower"), _("upper"), "max|vel|", _("vel.limit"), _("limits"), _("source"))
+    header = tuple(say(word, lang) for word in (M("joint"), "min", "max", M("lower"), M("upper"), "max|vel|",
+                                                 M("vel.limit"), M("limits"), M("source")))
     rows = [header]
     sources = motion.sources()
     for k, name in enumerate(states.names):
         joint = robot.joint(name)
         lower, upper = joint.bounds() if joint else (float("-inf"), float("inf"))
         speed = joint.limit.velocity if joint is not None and joint.limit is not None else None
-        status = [_("clamped ({side})").format(side=_(v.side)) for v in clamped if v.joint == name]
-        status += [(_("too fast") if v.kind == "velocity" else _("past {side}").format(side=_(v.side)))
+        status = [say(M("clamped (upper)") if v.side == "upper" else M("clamped (lower)"), lang)
+                  for v in clamped if v.joint == name]
+        status += [say(M("too fast") if v.kind == "velocity" else M("past upper") if v.side == "upper"
+                       else M("past lower"), lang)
                    for v in violations if v.joint == name]
         unit = joint_unit(joint)
         rows.append((
@@ -171,8 +191,8 @@ def _summary(robot, motion, states, violations, clamped, rate: float) -> str:  #
             f"{lower:g}", f"{upper:g}",
             f"{abs(states.velocities[:, k]).max():.3f}",
             f"{speed:g} {unit}/s" if speed else "-",
-            ", ".join(status) or _("ok"),
-            sources.get(name, ""),
+            ", ".join(status) or say(M("ok"), lang),
+            say(sources.get(name, ""), lang),
         ))
     widths = [max(len(row[i]) for row in rows) for i in range(len(header))]
     for row in rows:
@@ -180,6 +200,7 @@ def _summary(robot, motion, states, violations, clamped, rate: float) -> str:  #
                  for i, (cell, width) in enumerate(zip(row, widths))]
         lines.append("  ".join(cells).rstrip())
     problems = len(violations)
-    lines.append(_("all within limits") if not problems else
-                 _("{count} limit violations (see the warnings above)").format(count=problems))
+    lines.append(say(M("all within limits") if not problems else
+                     Mn("{n} limit violation (see the warnings above)", "{n} limit violations (see the warnings above)",
+                        problems), lang))
     return "\n".join(lines)

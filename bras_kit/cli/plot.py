@@ -6,7 +6,14 @@ import argparse
 import sys
 
 from ..i18n import _
-from ._common import add_force_argument, add_model_arguments, joint_values, warn
+from ._common import (
+    add_force_argument,
+    add_model_arguments,
+    add_topic_argument,
+    joint_values,
+    warn,
+    warn_motion_notes,
+)
 
 DEFAULT_OUTPUT = "plot.png"
 
@@ -14,8 +21,10 @@ DEFAULT_OUTPUT = "plot.png"
 def configure(parser: argparse.ArgumentParser) -> None:
     add_model_arguments(parser)
     parser.add_argument("--motion", action="append", default=[], metavar="SPEC",
-                        help="'tutorial', JOINT=FORMULA (e.g. 'coude=1.2*sin(0.7*t)') or a waypoint "
-                        "file (.csv, .json, .yaml); repeatable; default: the tutorial's animation")
+                        help="'tutorial', JOINT=FORMULA (e.g. 'coude=1.2*sin(0.7*t)'), a waypoint "
+                        "file (.csv, .json, .yaml) or a ROS 2 bag (folder, .mcap, .db3); repeatable; "
+                        "default: the tutorial's animation")
+    add_topic_argument(parser)
     parser.add_argument("--set", dest="values", action="append", default=[], metavar="JOINT=VALUE",
                         help="hold a joint at this value (rad or m); repeatable")
     parser.add_argument("--interpolation", choices=("linear", "cubic"),
@@ -36,7 +45,8 @@ def run(args: argparse.Namespace) -> int:
     output_suffix(output, FIGURE_FORMATS)
     check_writable(output, args.force)
     robot = load_model(args)
-    motion = motion_from_specs(robot, args.motion, joint_values(args.values) or None, args.interpolation)
+    motion = motion_from_specs(robot, args.motion, joint_values(args.values) or None, args.interpolation, args.topic)
+    warn_motion_notes(motion)
     states = sample(motion, args.duration, args.rate if args.rate is not None else DEFAULT_RATE)
     save_with(output, args.force, lambda temporary: plot_motion(robot, states, path=temporary), announce=False)
     link, offset = tip_point(robot)

@@ -12,7 +12,8 @@ import re
 import sys
 import textwrap
 
-from ..i18n import _, translate_message
+from ..i18n import say
+from ..message import M, Mn
 from ._common import add_force_argument, add_model_arguments, check_writable, joint_values, warn
 
 # argparse takes "-0.3" for a positional only in its plain forms; widen that to "-1e-3",
@@ -20,6 +21,8 @@ from ._common import add_force_argument, add_model_arguments, check_writable, jo
 _NEGATIVE_NUMBER = re.compile(r"^-(\d+\.?\d*|\.\d+)([eE][-+]?\d+)?$|^-(inf|infinity|nan)$", re.IGNORECASE)
 
 GIF_RATE = 20.0
+# The solvers' and elbows' names, as they are shown
+_WORDS = {"analytic": M("analytic"), "numeric": M("numeric"), "up": M("up"), "down": M("down")}
 GIF_HOLD = 0.5  # s of still frames at the end, to see the reached pose
 
 
@@ -27,9 +30,10 @@ def _coordinate(text: str) -> float:
     try:
         value = float(text)
     except ValueError:
-        raise argparse.ArgumentTypeError(translate_message(f"{text!r} is not a number (give metres, e.g. 0.4 or -0.25)")) from None
+        raise argparse.ArgumentTypeError(say(M("{text!r} is not a number (give metres, e.g. 0.4 or -0.25)",
+                                               text=text))) from None
     if not math.isfinite(value):
-        raise argparse.ArgumentTypeError(translate_message(f"{text!r} is not a finite number (give metres, e.g. 0.4)"))
+        raise argparse.ArgumentTypeError(say(M("{text!r} is not a finite number (give metres, e.g. 0.4)", text=text)))
     return value
 
 
@@ -88,7 +92,8 @@ def _write_gif(robot, motion, path: str, force: bool, target=None) -> None:  # t
     try:
         from ..render import render_motion, save_gif
     except ImportError as exc:
-        raise BackendError(f"cannot render the GIF: {exc}", hint="check the bras-kit install (pip install -e .)") from None
+        raise BackendError(M("cannot render the GIF: {reason}", reason=str(exc)),
+                           hint=M("check the bras-kit install (pip install -e .)")) from None
     frames = render_motion(robot, _states(motion), view=_view(robot, motion),
                            targets=[tuple(target)] if target is not None else ())
     from ._common import save_with
@@ -114,6 +119,7 @@ def run(args: argparse.Namespace) -> int:
     from ..kinematics import rpy_to_matrix, tf_tree
     from ._common import format_config, load_model
 
+    lang = args.lang
     if args.gif:
         check_writable(args.gif, args.force, option="--gif")
     robot = load_model(args)
@@ -121,8 +127,8 @@ def run(args: argparse.Namespace) -> int:
     start = joint_values(args.start)
     tree.config_vector(start)  # unknown joint names fail here
     for name, value, lower, upper in tree.out_of_limits(start):
-        warn(_("the start pose has {name}={value:g}, outside its limits {lower:g}..{upper:g}").format(
-            name=name, value=value, lower=lower, upper=upper))
+        warn(M("the start pose has {name}={value:g}, outside its limits {lower:g}..{upper:g}", name=name, value=value,
+               lower=lower, upper=upper), lang)
     chain = serial_chain(tree, args.link, args.tip_offset)
     rotation = rpy_to_matrix(args.rpy) if args.rpy else None
     result = solve_ik(tree, (args.x, args.y, args.z), rotation=rotation, tip_link=chain.tip_link,
@@ -133,7 +139,7 @@ def run(args: argparse.Namespace) -> int:
         motion = reach_motion(tree, start, result.joints, args.duration)
         violations = motion_violations(tree, motion)
     elif args.duration is not None or args.gif:
-        warn(_("no move: the target is not reached"))
+        warn(M("no move: the target is not reached"), lang)
     if motion is not None and args.gif:
         _write_gif(robot, motion, args.gif, args.force, result.target)
     code = 0 if result.reachable and not result.singular and not violations else 1
@@ -150,7 +156,7 @@ def run(args: argparse.Namespace) -> int:
                 "from": {n: float(v) for n, v in zip(tree.dof, motion.start)},
                 "duration": motion.duration,
                 "peak_velocity": {n: float(v) for n, v in zip(tree.dof, motion.peak_velocities())},
-                "violations": [v.describe() for v in violations],
+                "violations": [str(v.describe()) for v in violations],
             }
             if args.gif:
                 move["gif"] = args.gif
@@ -158,45 +164,48 @@ def run(args: argparse.Namespace) -> int:
         print(json.dumps(data, indent=2))
         return code
 
-    print(f"{_('target'):10s} {_point_text(result.target)}  ({_('tip')}: {tip_text})")
-    how = _(result.method) + (", " + _("elbow {side}").format(side=_(result.elbow)) if result.elbow else "")
+    print(f"{say(M('target'), lang):10s} {_point_text(result.target)}  ({say(M('tip'), lang)}: {tip_text})")
+    how = say(_WORDS[result.method], lang) + (", " + say(M("elbow {side}", side=_WORDS[result.elbow]), lang)
+                                              if result.elbow else "")
     if result.method == "numeric":
-        how += ", " + _("{count} iterations").format(count=result.iterations)
-    print(f"{_('reached') if result.reachable else _('NOT reached'):10s} ({how})")
+        how += ", " + say(Mn("{n} iteration", "{n} iterations", result.iterations), lang)
+    print(f"{say(M('reached'), lang) if result.reachable else say(M('NOT reached'), lang):10s} ({how})")
     if result.reason != "ok":
-        print(textwrap.fill(translate_message(result.message), 100, initial_indent=" " * 11, subsequent_indent=" " * 13))
-    print(_("joints") if result.reachable else _("closest pose within the limits"))
+        print(textwrap.fill(say(result.message, lang), 100, initial_indent=" " * 11, subsequent_indent=" " * 13))
+    print(say(M("joints"), lang) if result.reachable else say(M("closest pose within the limits"), lang))
     for name in tree.dof:
         joint = robot.joint(name)
         low, high = joint.bounds() if joint is not None else (-math.inf, math.inf)
-        print(f"  {name:12s} {_angle(result.joints[name], units[name])}   {_('limits')} {low:g} .. {high:g}")
-    print(f"{_('tip'):10s} {_point_text(result.tip)}, " + _("{distance:.3g} m from the target").format(distance=result.residual)
-          + (", " + _("orientation off by {angle:.3g} rad").format(angle=result.rotation_residual)
+        print(f"  {name:12s} {_angle(result.joints[name], units[name])}   {say(M('limits'), lang)} {low:g} .. {high:g}")
+    print(f"{say(M('tip'), lang):10s} {_point_text(result.tip)}, "
+          + say(M("{distance:.3g} m from the target", distance=result.residual), lang)
+          + (", " + say(M("orientation off by {angle:.3g} rad", angle=result.rotation_residual), lang)
              if result.rotation_residual is not None else ""))
     for solution in result.solutions:
         if result.reachable and solution.elbow == result.elbow:
             continue
-        state = _("within the limits") if solution.within_limits else \
-            _("past the limits") + ": " + "; ".join(v.describe() for v in solution.violations)
+        state = say(M("within the limits"), lang) if solution.within_limits else \
+            say(M("past the limits"), lang) + ": " + "; ".join(say(v.describe(), lang) for v in solution.violations)
         values = ", ".join(f"{n}={solution.joints[n]:+.4f}" for n in tree.dof)
-        print(_("elbow {side}").format(side=f"{_(solution.elbow):4s}") + f" {values} ({state})")
+        print(say(M("elbow {side}", side=f"{say(_WORDS[solution.elbow], lang):4s}"), lang) + f" {values} ({state})")
     if motion is not None:
         peaks = []
         for name, peak in zip(tree.dof, motion.peak_velocities()):
             joint = robot.joint(name)
             limit = joint.limit.velocity if joint is not None and joint.limit is not None else None
-            peaks.append(f"{name} {peak:.3g}" + (" " + _("of {limit:g}").format(limit=limit) if limit else "")
+            peaks.append(f"{name} {peak:.3g}" + (" " + say(M("of {limit:g}", limit=limit), lang) if limit else "")
                          + f" {units[name]}/s")
-        print(f"{_('move'):10s} " + _("{duration:.3f} s from {start} (quintic); peak speed {peaks}").format(
-            duration=motion.duration, start=format_config(start), peaks=", ".join(peaks)))
+        print(f"{say(M('move'), lang):10s} " + say(M("{duration:.3f} s from {start} (quintic); peak speed {peaks}",
+                                                      duration=motion.duration, start=format_config(start),
+                                                      peaks=", ".join(peaks)), lang))
         if violations:
-            print(" " * 11 + _("leaves the limits") + ": " + "; ".join(v.describe() for v in violations))
+            print(" " * 11 + say(M("leaves the limits"), lang) + ": " + "; ".join(say(v.describe(), lang) for v in violations))
         else:
-            print(" " * 11 + _("within the position and velocity limits"))
+            print(" " * 11 + say(M("within the position and velocity limits"), lang))
         if args.gif:
-            print(_("wrote {path}").format(path=args.gif))
+            print(say(M("wrote {path}", path=args.gif), lang))
     if code and result.reachable:  # reached, yet exit 1: say why, so a script's failure is explained
-        why = _("the target is reached at a singular pose (a small move of the target needs a large joint move)") \
-            if result.singular else _("the move there leaves the joint limits")
-        print(_("exit code 1: {why}").format(why=why), file=sys.stderr)
+        why = M("the target is reached at a singular pose (a small move of the target needs a large joint move)") \
+            if result.singular else M("the move there leaves the joint limits")
+        print(say(M("exit code 1: {why}", why=why), lang), file=sys.stderr)
     return code

@@ -14,15 +14,20 @@ import sys
 from collections.abc import Iterable, Iterator
 from typing import TYPE_CHECKING
 
-from ..i18n import _
+from ..i18n import say
+from ..message import M, Message, Mn
 from ._common import (
     add_force_argument,
     add_model_arguments,
+    add_node_argument,
+    add_topic_argument,
+    apply_node,
     check_writable,
     format_config,
     joint_values,
     load_model,
     warn,
+    warn_motion_notes,
     warn_out_of_limits,
 )
 
@@ -37,7 +42,8 @@ outputs (any together; with none, writes ROBOT.png of the pose):
   --gif [anim.gif]          the motion as a looping GIF (default name: ROBOT.gif)
   --mp4 [anim.mp4]          the motion as an H.264 video (default name: ROBOT.mp4)
   --frames-dir DIR          the motion as DIR/frame_0000.png, frame_0001.png ...
-The motion is --motion SPEC (tutorial, JOINT=FORMULA or a waypoint file, as in 'bras-kit motion');
+  --record run.mcap         the joint states drawn, as a ROS 2 bag (or .csv, .json)
+The motion is --motion SPEC (tutorial, JOINT=FORMULA, a waypoint file or a ROS 2 bag, as in 'bras-kit motion');
 without it, the tutorial's animation node. It lasts --duration seconds at --fps: duration x fps frames.
 
 examples:
@@ -57,10 +63,15 @@ def configure(parser: argparse.ArgumentParser) -> None:
                         help="a joint value in rad (m if prismatic); repeatable; others are 0")
     parser.add_argument("-m", "--motion", action="append", default=[], metavar="SPEC",
                         help="tutorial, JOINT=FORMULA or a waypoint file (repeatable; default: tutorial)")
+    add_node_argument(parser)
     parser.add_argument("-o", "--output", metavar="PNG", help="write the picture of the pose here")
     parser.add_argument("--gif", nargs="?", const="", metavar="FILE", help="write the motion as a GIF")
     parser.add_argument("--mp4", nargs="?", const="", metavar="FILE", help="write the motion as an MP4")
     parser.add_argument("--frames-dir", metavar="DIR", help="write each frame as DIR/frame_NNNN.png")
+    parser.add_argument("--record", metavar="FILE",
+                        help="also write the joint states drawn: .mcap/.db3 (a ROS 2 bag for Foxglove and "
+                             "ros2 bag play), .csv or .json")
+    add_topic_argument(parser)
     parser.add_argument("--size", default="640x480", metavar="WxH", help="picture size in pixels (default 640x480)")
     parser.add_argument("--fps", type=float, default=20.0, metavar="N",
                         help="frames per second of the animation (default 20, like the tutorial's node)")
@@ -92,21 +103,27 @@ def _check_frames_dir(folder: str, force: bool) -> None:
     from ..errors import OutputExistsError
 
     if os.path.isdir(folder) and not force and any(re.fullmatch(r"frame_\d+\.png", n) for n in os.listdir(folder)):
-        raise OutputExistsError(f"{folder} already holds frame_*.png files",
-                                hint="pass --force to overwrite them, or choose another --frames-dir")
+        raise OutputExistsError(M("{folder} already holds frame_*.png files", folder=folder),
+                                hint=M("pass --force to overwrite them, or choose another --frames-dir"))
     if os.path.islink(folder):
-        raise OutputExistsError(f"{folder} is a symbolic link: refused", hint="choose another --frames-dir")
+        raise OutputExistsError(M("{folder} is a symbolic link: refused", folder=folder),
+                                hint=M("choose another --frames-dir"))
     if os.path.exists(folder) and not os.path.isdir(folder):
-        raise OutputExistsError(f"{folder} exists and is not a folder", hint="choose another --frames-dir")
+        raise OutputExistsError(M("{folder} exists and is not a folder", folder=folder),
+                                hint=M("choose another --frames-dir"))
 
 
-def _warn_limits(robot, states) -> None:  # type: ignore[no-untyped-def]
+def _warn_limits(robot, states, lang: str | None) -> None:  # type: ignore[no-untyped-def]
     from ..motion import check_limits
 
     for v in check_limits(robot, states):
-        what = "speed" if v.kind == "velocity" else "position"
-        warn(f"{v.joint}: {what} {v.value:.4g} passes its limit {v.bound:g} at t={v.time:.2f} s "
-             "(drawn anyway, as RViz would)")
+        if v.kind == "velocity":
+            text = M("{joint}: speed {value:.4g} passes its limit {bound:g} at t={time:.2f} s "
+                     "(drawn anyway, as RViz would)", joint=v.joint, value=v.value, bound=v.bound, time=v.time)
+        else:
+            text = M("{joint}: position {value:.4g} passes its limit {bound:g} at t={time:.2f} s "
+                     "(drawn anyway, as RViz would)", joint=v.joint, value=v.value, bound=v.bound, time=v.time)
+        warn(text, lang)
 
 
 def run(args: argparse.Namespace) -> int:
@@ -129,25 +146,30 @@ def run(args: argparse.Namespace) -> int:
                 backend=args.backend, azimuth=args.azimuth, elevation=args.elevation, distance=args.distance,
                 antialias=args.antialias, package_paths=tuple(args.package_path))
     options = render_options(**opts)  # bad values fail before the model is even loaded
+    apply_node(args, args.duration)
     robot = load_model(args)
     if not (math.isfinite(args.fps) and 1 <= args.fps <= 120):
-        raise ParameterError(f"--fps {args.fps:g} is out of range", hint="give frames per second between 1 and 120, e.g. 20")
+        raise ParameterError(M("--fps {fps:g} is out of range", fps=args.fps),
+                             hint=M("give frames per second between 1 and 120, e.g. 20"))
     for option, path, suffix in (("--gif", args.gif, ".gif"), ("--mp4", args.mp4, ".mp4")):
         if path and path != "-" and not path.lower().endswith(suffix):
-            raise ParameterError(f"{option} {path}: the file name does not end in {suffix}",
-                                 hint=f"name the file like {option} arm{suffix} (the format follows the option)")
+            raise ParameterError(M("{option} {path}: the file name does not end in {suffix}", option=option,
+                                   path=path, suffix=suffix),
+                                 hint=M("name the file like {option} arm{suffix} (the format follows the option)",
+                                        option=option, suffix=suffix))
     if args.duration is not None and not (math.isfinite(args.duration) and args.duration > 0):
-        raise ParameterError(f"--duration {args.duration:g} is not a positive time", hint="give seconds, e.g. 10")
+        raise ParameterError(M("--duration {duration:g} is not a positive time", duration=args.duration),
+                             hint=M("give seconds, e.g. 10"))
     tree = tf_tree(robot)
     set_values = joint_values(args.set_values)
     tree.config_vector(set_values)  # unknown joints fail before anything is drawn
-    warn_out_of_limits(tree, set_values, _("drawn anyway"))
+    warn_out_of_limits(tree, set_values, M("drawn anyway"), args.lang)
 
     stem = _file_name(robot.name)
     animated = args.gif is not None or args.mp4 is not None or args.frames_dir is not None
     defaulted = []
     if not animated and args.output is None:
-        if args.motion:  # a motion asks for an animation
+        if args.motion or args.record:  # a motion (or its recording) asks for an animation
             args.gif = ""
             animated = True
         else:
@@ -165,13 +187,17 @@ def run(args: argparse.Namespace) -> int:
         sys.stdout.flush()
         return 0
     if args.output is not None and not args.output.lower().endswith(PICTURE_SUFFIXES):
-        raise ParameterError(f"-o {args.output}: cannot tell the picture format from the name",
-                             hint="end the name with " + ", ".join(PICTURE_SUFFIXES))
+        raise ParameterError(M("-o {path}: cannot tell the picture format from the name", path=args.output),
+                             hint=M("end the name with {suffixes}", suffixes=", ".join(PICTURE_SUFFIXES)))
     for path, option in ((args.output, "-o"), (args.gif, "--gif"), (args.mp4, "--mp4")):
         if path is not None:
             check_writable(path, args.force, option=option)
     if args.frames_dir is not None:
         _check_frames_dir(args.frames_dir, args.force)
+    if args.record is not None:
+        from ..motion.states_io import check_states_output
+
+        check_states_output(args.record, args.force, option="--record")
     size = f"{options.width}x{options.height}"
 
     if not animated:
@@ -179,16 +205,19 @@ def run(args: argparse.Namespace) -> int:
                 staged(args.output, args.force) as temporary:
             save_png(renderer.render(set_values), temporary)
             backend = renderer.backend
-        _report(args.output, f"{format_config(set_values)}, {size}, {backend}", args.output in defaulted)
+        _report(args.output, M("{pose}, {size}, {backend}", pose=format_config(set_values), size=size,
+                               backend=backend), args.output in defaulted, args.lang)
         return 0
 
     from ..motion import motion_from_specs, sample_loop
+    from ..motion.sources import motion_title
 
-    motion = motion_from_specs(robot, args.motion, set_values or None)
+    motion = motion_from_specs(robot, args.motion, set_values or None, topic=args.topic)
+    warn_motion_notes(motion)
     states = sample_loop(motion, args.duration, args.fps)
-    _warn_limits(robot, states)
+    _warn_limits(robot, states, args.lang)
     if args.gif and gif_delay(args.fps) * args.fps > 100.5:
-        warn(f"a GIF plays at most 50 frames per second; {args.fps:g} fps will play slower")
+        warn(M("a GIF plays at most 50 frames per second; {fps:g} fps will play slower", fps=args.fps), args.lang)
     frames = render_motion(robot, states, label="rendering", **opts)
     with frames, _writing(), contextlib.ExitStack() as outputs:
         def target(path: str, option: str) -> str:
@@ -207,30 +236,42 @@ def run(args: argparse.Namespace) -> int:
             save_png(frames[0], target(args.output, "-o"))
         backend = frames.renderer.backend
         written = write_frames(stream, writers)
-    what = motion.label or "motion"
-    details = f"{written} frames at {args.fps:g} fps ({written / args.fps:g} s), {size}, {what}, {backend}"
+    if args.record is not None:  # the states drawn, once the pictures are safely written
+        from ..motion.states_io import write_states
+
+        print(say(write_states(robot, states, args.record, args.force, option="--record"), args.lang), file=sys.stderr)
+    details = Mn("{n} frame at {fps:g} fps ({seconds:g} s), {size}, {what}, {backend}",
+                 "{n} frames at {fps:g} fps ({seconds:g} s), {size}, {what}, {backend}", written,
+                 fps=args.fps, seconds=written / args.fps, size=size, what=motion_title(motion.label), backend=backend)
     for path in (args.gif, args.mp4):
         if path:
-            _report(path, details, path in defaulted)
+            _report(path, details, path in defaulted, args.lang)
     if args.frames_dir is not None:
-        _report(os.path.join(args.frames_dir, "frame_*.png"), details, False)
+        _report(os.path.join(args.frames_dir, "frame_*.png"), details, False, args.lang)
     if args.output:
-        _report(args.output, f"first frame, {size}, {backend}", False)
+        _report(args.output, M("first frame, {size}, {backend}", size=size, backend=backend), False, args.lang)
     return 0
 
 
 @contextlib.contextmanager
 def _writing() -> Iterator[None]:
     """A file that cannot be written (permissions, full disk) is a user error, not a traceback."""
-    from ..errors import BrasKitError
+    from ..errors import BrasKitError, os_reason
 
     try:
         yield
     except OSError as exc:
-        raise BrasKitError(f"cannot write {exc.filename or 'the output'}: {exc.strerror or exc}",
-                           hint="check the folder exists, is writable and has space") from None
+        raise BrasKitError(M("cannot write {path}: {reason}", path=exc.filename or M("the output"),
+                             reason=os_reason(exc)),
+                           hint=M("check the folder exists, is writable and has space")) from None
 
 
-def _report(path: str, details: str, defaulted: bool) -> None:
-    where = " " + _("in the current folder (choose the name with the output option)") if defaulted else ""
-    print(_("wrote {path}").format(path=path) + f"{where}: {details}", file=sys.stderr)
+def _report(path: str, details: Message, defaulted: bool, lang: str | None) -> None:
+    from ..i18n import say
+
+    if defaulted:
+        text = M("wrote {path} in the current folder (choose the name with the output option): {details}",
+                 path=path, details=details)
+    else:
+        text = M("wrote {path}: {details}", path=path, details=details)
+    print(say(text, lang), file=sys.stderr)

@@ -8,25 +8,26 @@ and, in plain words, which motor is too weak. Writes the measured joint states (
 from __future__ import annotations
 
 import argparse
-import os
 import sys
 
 from ..errors import BrasKitError, ParameterError
-from ..i18n import _
+from ..i18n import say
+from ..message import M
 from ._common import (
     add_force_argument,
     add_model_arguments,
+    add_topic_argument,
     check_writable,
     joint_values,
     load_model,
-    write_text,
+    warn_motion_notes,
 )
 
 NUDGE = 0.05  # rad: the upright arm is balanced at 0; motors off, it needs a push to fall
 
 _EPILOG = """\
 control:
-  none         motors off: the arm falls from --start and comes to rest on its limits (or the floor)
+  none         motors off: the arm falls from --set and comes to rest on its limits (or the floor)
   pd           motors follow the motion: torque = kp (target - q) + kd (target speed - speed),
                clipped to each joint's <limit effort>
   pd+gravity   the same plus gravity compensation (inside the same effort clip)
@@ -45,15 +46,16 @@ def configure(parser: argparse.ArgumentParser) -> None:
     add_model_arguments(parser)
     parser.add_argument("-m", "--motion", action="append", default=[], metavar="SPEC",
                         help="tutorial, JOINT=FORMULA or a waypoint file (repeatable; default: tutorial)")
+    add_topic_argument(parser)
     parser.add_argument("--control", choices=("none", "pd", "pd+gravity"), default="pd",
                         help="how the motors behave (default: pd)")
     parser.add_argument("--kp", type=float, default=None, metavar="GAIN",
                         help="stiffness of every motor, N·m/rad (default: 100)")
     parser.add_argument("--kd", type=float, default=None, metavar="GAIN",
                         help="damping of every motor, N·m·s/rad (default: 10)")
-    parser.add_argument("--start", action="append", default=[], metavar="JOINT=VALUE",
+    parser.add_argument("--set", "--start", dest="start", action="append", default=[], metavar="JOINT=VALUE",
                         help="pose at t=0, at rest (default: the motion's first pose; "
-                             f"with --control none, {NUDGE:g} rad on every joint)")
+                             f"with --control none, {NUDGE:g} rad on every joint); --start is the old name")
     parser.add_argument("--duration", type=float, metavar="S",
                         help="seconds to simulate (default: the last waypoint's time, else 10)")
     parser.add_argument("--rate", type=float, default=20.0, metavar="HZ",
@@ -62,28 +64,38 @@ def configure(parser: argparse.ArgumentParser) -> None:
     parser.add_argument("--integrator", choices=("implicitfast", "implicit", "RK4", "Euler"), default=None,
                         help="MuJoCo integrator (default: implicitfast)")
     parser.add_argument("--damping", type=float, default=None, metavar="B",
-                        help="joint friction, N·m·s/rad (default: 0.05; 0 for none)")
+                        help="joint damping on every joint, N·m·s/rad (default: each joint's <dynamics damping>, "
+                             "none when absent, as in Gazebo)")
     parser.add_argument("--gif", metavar="FILE", help="draw the simulated motion as a GIF (bras-kit's renderer)")
     parser.add_argument("-o", "--output", metavar="FILE",
-                        help="write the measured joint states: .csv (time,name,position,velocity,effort) or .json")
+                        help="write the measured joint states: .csv (time,name,position,velocity,effort), .json, "
+                             "or .mcap/.db3 for a ROS 2 bag (/robot_description, /tf, /joint_states with effort)")
     parser.add_argument("--plot", metavar="FILE", help="plot positions and torques with the effort limits (.png/.svg/.pdf)")
     parser.add_argument("--strict", action="store_true", help="exit with status 1 when a motor is too weak")
     add_force_argument(parser)
 
 
 def _output_format(path: str) -> str:
-    suffix = os.path.splitext(path)[1].lower()
-    if path == "-" or suffix == ".csv":
-        return "csv"
-    if suffix == ".json":
-        return "json"
-    raise ParameterError(f"cannot tell the format of '{path}'", hint="end the file name in .csv or .json")
+    from ..motion.states_io import states_format
+
+    fmt = states_format(path)
+    if fmt is None:
+        raise ParameterError(M("cannot tell the format of '{path}'", path=path),
+                             hint=M("end the file name in .csv, .json or .mcap (a ROS 2 bag)"))
+    return fmt
 
 
 def run(args: argparse.Namespace) -> int:
-    from ..motion import motion_from_specs, states_to_csv, states_to_json
+    from ..motion import motion_from_specs
     from ..physics import mjcf
-    from ..physics.diagnostics import check_physics_ready, physics_notes, report_text
+    from ..physics.diagnostics import (
+        DIVERGENCE_HINT,
+        LEVELS,
+        check_physics_ready,
+        divergence_message,
+        physics_notes,
+        report_text,
+    )
     from ..physics.run import simulate
     from ..validate.i18n import default_language
 
@@ -94,13 +106,18 @@ def run(args: argparse.Namespace) -> int:
 
         output_suffix(args.plot, FIGURE_FORMATS)
     if args.gif and not args.gif.lower().endswith(".gif"):
-        raise ParameterError(f"cannot write '{args.gif}' as a GIF", hint="end the file name in .gif")
-    for path in (args.output, args.plot, args.gif):
+        raise ParameterError(M("cannot write '{path}' as a GIF", path=args.gif), hint=M("end the file name in .gif"))
+    if args.output and args.output != "-":
+        from ..motion.states_io import check_states_output
+
+        check_states_output(args.output, args.force, fmt)
+    for path in (args.plot, args.gif):
         if path and path != "-":
             check_writable(path, args.force)
     robot = load_model(args)
     check_physics_ready(robot, lang)
-    motion = motion_from_specs(robot, args.motion)
+    motion = motion_from_specs(robot, args.motion, topic=args.topic)
+    warn_motion_notes(motion)
     start = joint_values(args.start)
     if args.control == "none" and not start:
         from ..kinematics import tf_tree
@@ -112,27 +129,35 @@ def run(args: argparse.Namespace) -> int:
                       duration=args.duration, rate=args.rate, start=start or None,
                       timestep=mjcf.DEFAULT_TIMESTEP if args.timestep is None else args.timestep,
                       integrator=args.integrator or mjcf.DEFAULT_INTEGRATOR,
-                      damping=mjcf.DEFAULT_DAMPING if args.damping is None else args.damping,
-                      package_paths=args.package_path)
+                      damping=args.damping, package_paths=args.package_path)
     for note in physics_notes(robot, states.model, lang, args.package_path):  # type: ignore[arg-type]
-        print(f"{_(note.level)}: {note.text}", file=sys.stderr)
+        print(f"{say(LEVELS[note.level], lang)}: {note.worded(lang)}", file=sys.stderr)
     print(report_text(robot, states, lang))
+    diverged = divergence_message(states)
+    if diverged is not None:  # a failure: no file is written from numbers that stopped being numbers
+        print(f"bras-kit simulate: {say(M('error'), lang)}: {say(diverged, lang)}\n"
+              f"  {say(M('hint'), lang)}: {say(DIVERGENCE_HINT, lang)}", file=sys.stderr)
+        return 1
     try:
         if fmt is not None:
-            write_text(args.output, states_to_json(states) if fmt == "json" else states_to_csv(states), args.force)
+            from ..motion.states_io import write_states
+
+            written = write_states(robot, states, args.output, args.force, fmt)
+            if written is not None:
+                print(say(written), file=sys.stderr)
         if args.plot:
             from ..physics.plot import save_torque_plot
 
             save_torque_plot(robot, states, args.plot, lang)
-            print(_("wrote {path}").format(path=args.plot), file=sys.stderr)
+            print(say(M("wrote {path}", path=args.plot), lang), file=sys.stderr)
         if args.gif:
             from ..render import render_motion, save_gif
 
             with render_motion(robot, states, package_paths=tuple(args.package_path)) as frames:
                 count = save_gif(frames, args.gif, fps=args.rate)
-            print(_("wrote {path}: {count} frames at {fps:g} fps").format(path=args.gif, count=count, fps=args.rate),
-                  file=sys.stderr)
+            print(say(M("wrote {path}: {count} frames at {fps} fps", path=args.gif, count=count, fps=args.rate),
+                      lang), file=sys.stderr)
     except OSError as exc:
-        raise BrasKitError(f"cannot write {exc.filename or 'the output'}: {exc.strerror or exc}",
-                           hint="check the folder exists, is writable and has space") from None
+        raise BrasKitError(M("cannot write {path}: {reason}", path=exc.filename or "-", reason=exc.strerror or str(exc)),
+                           hint=M("check the folder exists, is writable and has space")) from None
     return 1 if args.strict and states.weak_joints else 0

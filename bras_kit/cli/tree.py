@@ -5,6 +5,7 @@ from __future__ import annotations
 import argparse
 import sys
 
+from ..message import M
 from ._common import add_model_arguments, joint_values, warn, warn_out_of_limits
 
 
@@ -40,7 +41,8 @@ def run(args: argparse.Namespace) -> int:
         text = text.encode(encoding, errors="replace").decode(encoding)
     sys.stdout.write(text)
     tree = tf_tree(robot)
-    warn_out_of_limits(tree, config)
+    warn_out_of_limits(tree, config, lang=args.lang)
     for name in tree.unsupported_joints:
-        warn(f"joint '{name}' is floating or planar: bras-kit keeps its child at the joint origin")
+        warn(M("joint '{name}' is floating or planar: bras-kit keeps its child at the joint origin", name=name),
+             args.lang)
     return 0

@@ -47,6 +47,10 @@ def configure(parser: argparse.ArgumentParser) -> None:
                         help="folder holding ROS packages, for $(find pkg) and package:// meshes (repeatable)")
     parser.add_argument("--xacro-arg", action="append", default=[], metavar="NAME:=VALUE",
                         help="xacro argument for .xacro files (repeatable)")
+    parser.add_argument("--run", action="store_true",
+                        help="ROS 2 packages: also run each node of console_scripts (bras-kit run's stand-in for "
+                        "rclpy, simulated time, --duration seconds, default 10) and check what it published; "
+                        "this executes the package's code, in a child process with CPU, memory and time limits")
     parser.add_argument("-v", "--verbose", action="store_true",
                         help="also say which folder each ROS package ($(find), package://) was taken from")
     parser.add_argument("--wrist", action="store_true", help="built-in arm: with the wrist joint 'poignet'")
@@ -56,10 +60,11 @@ def configure(parser: argparse.ArgumentParser) -> None:
 
 
 def _print_packages() -> None:
+    from ..i18n import say
     from ..xacrotools import describe_package_folder, packages_used
 
     for name, folder in packages_used().items():
-        print(describe_package_folder(name, folder), file=sys.stderr)
+        print(say(describe_package_folder(name, folder)), file=sys.stderr)
 
 
 def _assignments(items: list[str]) -> list[str]:
@@ -77,6 +82,28 @@ def _codes(items: list[str]) -> list[str]:
 
 def _use_colour() -> bool:
     return sys.stdout.isatty() and "NO_COLOR" not in os.environ and os.environ.get("TERM") != "dumb"
+
+
+def _run_results(packages: list[str], lang: str, select: list[str], ignore: list[str],
+                 duration: float | None) -> list:  # type: ignore[type-arg]
+    from ..run.findings import package_run_results
+
+    return [result for package in packages for result in
+            package_run_results(package, lang=lang, select=select, ignore=ignore, duration=duration or 10.0)]
+
+
+def _merge(results: list, extra: list) -> list:  # type: ignore[type-arg]
+    """The run's findings join the static ones of the same file."""
+    from ..validate.findings import FileResult, sort_key
+
+    by_path = {result.path: result for result in results}
+    for result in extra:
+        if result.path in by_path:
+            merged = by_path[result.path].findings + result.findings
+            by_path[result.path] = FileResult(result.path, sorted(merged, key=sort_key))
+        else:
+            by_path[result.path] = result
+    return list(by_path.values())
 
 
 def run(args: argparse.Namespace) -> int:
@@ -119,6 +146,8 @@ def run(args: argparse.Namespace) -> int:
                                  hint="give a file, or a folder holding .urdf or .xacro files")
         results = [result for package in packages
                    for result in validate_package(package, lang=lang, select=select, ignore=ignore)]
+        if args.run:
+            results = _merge(results, _run_results(packages, lang, select, ignore, args.duration))
         generated = generated_pairs(paths, args.files)  # bras.urdf beside bras.urdf.xacro: check the xacro once
         results += [FileResult(path, compare_generated(path, generated[path], mappings=mappings,
                                                        package_paths=args.package_path, lang=lang,

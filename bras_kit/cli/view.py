@@ -8,7 +8,7 @@ import os
 import sys
 
 from ..i18n import _
-from ._common import add_force_argument, add_model_arguments
+from ._common import add_force_argument, add_model_arguments, add_node_argument, apply_node
 
 EPILOG = """\
 examples:
@@ -24,6 +24,7 @@ def configure(parser: argparse.ArgumentParser) -> None:
     add_model_arguments(parser)
     parser.add_argument("-m", "--motion", action="append", default=[], metavar="SPEC",
                         help="a motion to play: 'tutorial', JOINT=FORMULA or a waypoint/joint-state file (repeatable)")
+    add_node_argument(parser)
     parser.add_argument("--port", type=int, default=8080, help="port of the page (default 8080; the next free one if taken)")
     parser.add_argument("--host", default="127.0.0.1",
                         help="address to listen on (default 127.0.0.1: this computer only)")
@@ -43,6 +44,7 @@ def run(args: argparse.Namespace) -> int:
 
     if not 0 <= args.port <= 65535:
         raise ParameterError(f"--port {args.port} is out of range", hint="give a port between 1024 and 65535, e.g. 8080")
+    apply_node(args, args.duration)
     if args.file is not None and (args.wrist or args.inertials or args.param or args.collisions):
         raise ParameterError("--wrist, --inertials, --collisions and --param apply to the built-in arm only",
                              hint="drop FILE to use the built-in arm, or edit your file")
@@ -64,13 +66,14 @@ def _export(args: argparse.Namespace, source: object) -> int:
     from ..motion import motion_from_specs, sample
     from ..outputs import write_text
     from ..view import export_html
-    from ._common import check_writable
+    from ._common import check_writable, warn_motion_notes
 
     if not 1 <= args.fps <= 120:
         raise ParameterError(f"--fps {args.fps:g} is out of range", hint="give frames per second between 1 and 120, e.g. 20")
     check_writable(args.export, args.force, option="--export")
     robot = source.load()  # type: ignore[attr-defined]
     motion = motion_from_specs(robot, args.motion)
+    warn_motion_notes(motion)
     states = sample(motion, args.duration if args.duration is not None else (motion.duration or 10.0), args.fps)
     page = export_html(robot, states, package_paths=source.package_paths)  # type: ignore[attr-defined]
     write_text(args.export, page, args.force, announce=False)

@@ -28,8 +28,9 @@ def run(args: argparse.Namespace) -> int:
     if args.verbose:
         import sys
 
+        from ..i18n import say
         from ..xacrotools import describe_package_folder, packages_used
 
         for name, folder in packages_used().items():
-            print(describe_package_folder(name, folder), file=sys.stderr)
+            print(say(describe_package_folder(name, folder), args.lang), file=sys.stderr)
     return 0

@@ -27,6 +27,9 @@ from .submissions import MAX_SUBMISSION_BYTES, Submission, SubmissionError, cont
 CHECK_CPU_SECONDS = 20
 CHECK_WALL_SECONDS = 40.0
 CHECK_MEMORY_BYTES = 1536 << 20
+RUN_SECONDS = 10.0  # simulated seconds each node runs with --run-nodes
+RUN_CPU_SECONDS = 10
+RUN_WALL_SECONDS = 30.0
 PICTURE_SIZE = (480, 360)
 MAX_DRAWN_LINKS = 500
 ANIMATION_SIZE = (320, 240)
@@ -40,6 +43,7 @@ class Options:
     lang: str = "en"
     pictures: str | None = None  # folder for the PNGs, None: no pictures
     gif: bool = False
+    run_nodes: bool = False  # also run each package's nodes (bras-kit run): executes the learner's code
 
 
 def grade(submission: Submission, rubric: Rubric, options: Options) -> dict[str, Any]:
@@ -54,6 +58,8 @@ def grade(submission: Submission, rubric: Rubric, options: Options) -> dict[str,
         root = _materialise(submission, workdir)
         inspected = _inspect_limited(root, options.lang)
         result.update(findings=inspected["findings"], main_file=inspected["main"], package=inspected["package"])
+        if options.run_nodes and inspected["package"]:
+            result["findings"] = result["findings"] + _run_nodes(root, options.lang)
         robot = inspected["robot"]
         if robot is None:
             result["status"] = "unreadable"
@@ -104,6 +110,20 @@ def _size(path: str) -> int:
         if total > MAX_SUBMISSION_BYTES:
             break
     return total
+
+
+def _run_nodes(root: str, lang: str) -> list[dict[str, Any]]:
+    """What the package's nodes did when run (rules BK640-BK659). Each node runs in its own
+    child process under the sandbox's CPU, memory and wall-clock limits (bras_kit.run)."""
+    from ..run.findings import package_run_results
+    from ..validate.package import find_packages
+
+    findings: list[dict[str, Any]] = []
+    for package in find_packages([root]):
+        for result in package_run_results(package, lang=lang, duration=RUN_SECONDS, cpu_seconds=RUN_CPU_SECONDS,
+                                          wall_seconds=RUN_WALL_SECONDS):
+            findings += [_as_dict(f, _relative(result.path, root)) for f in result.findings]
+    return findings
 
 
 def _inspect_limited(root: str, lang: str) -> dict[str, Any]:

@@ -8,6 +8,7 @@ import numpy as np
 
 from ..errors import ParameterError
 from ..kinematics import TFTree, tf_tree
+from ..message import M, Message
 from ..model import Robot
 from ..motion import joint_unit
 
@@ -18,16 +19,18 @@ def _as_tree(model: TFTree | Robot) -> TFTree:
     return model if isinstance(model, TFTree) else tf_tree(model)
 
 
-def _point(values: Vector, what: str) -> np.ndarray:
+def _point(values: Vector, what: Message) -> np.ndarray:
     try:
         point = np.asarray(values, dtype=float).reshape(-1)
     except (TypeError, ValueError):
-        raise ParameterError(f"{what} {values!r} is not three numbers", hint="give X Y Z in metres") from None
+        raise ParameterError(M("{what} {values} is not three numbers", what=what, values=repr(values)),
+                             hint=M("give X Y Z in metres")) from None
     if point.shape != (3,):
-        raise ParameterError(f"{what} needs three numbers (x y z), got {point.size}", hint="give X Y Z in metres")
+        raise ParameterError(M("{what} needs three numbers (x y z), got {count}", what=what, count=point.size),
+                             hint=M("give X Y Z in metres"))
     if not np.all(np.isfinite(point)):
-        raise ParameterError(f"{what} ({', '.join(f'{v:g}' for v in point)}) is not finite",
-                             hint="give finite numbers in metres (no nan or inf)")
+        raise ParameterError(M("{what} ({values}) is not finite", what=what, values=", ".join(f"{v:g}" for v in point)),
+                             hint=M("give finite numbers in metres (no nan or inf)"))
     return point
 
 
@@ -39,9 +42,11 @@ def _start_vector(tree: TFTree, start: Mapping[str, float] | np.ndarray | None) 
     else:
         q = np.asarray(start, dtype=float).reshape(-1)
         if q.shape != (len(tree.dof),):
-            raise ParameterError(f"the start pose needs {len(tree.dof)} values ({', '.join(tree.dof)})")
+            raise ParameterError(M("the start pose needs {count} values ({names})", count=len(tree.dof),
+                                   names=", ".join(tree.dof)))
     if not np.all(np.isfinite(q)):
-        raise ParameterError("the start pose holds a value that is not finite", hint="give numbers (no nan or inf)")
+        raise ParameterError(M("the start pose holds a value that is not finite"),
+                             hint=M("give numbers (no nan or inf)"))
     return q
 
 

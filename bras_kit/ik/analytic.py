@@ -10,7 +10,9 @@ import numpy as np
 
 from ..errors import ParameterError
 from ..kinematics import TFTree
+from ..message import M, Message
 from ..model import Robot
+from ..wording import joined
 from ._inputs import Vector, _as_tree, _joints_dict, _point, _start_vector
 from ._kernel import _forward
 from ._limits import TWO_PI, _bounds, _fit_angle, _violations
@@ -166,14 +168,23 @@ def ik_2r_batch(arm: PlanarTwoLink, targets: np.ndarray, elbow: str = "up") -> t
     return (solve.q_up if elbow == "up" else solve.q_down), ok
 
 
-def _plane_description(arm: PlanarTwoLink) -> str:
+def _plane_description(arm: PlanarTwoLink) -> Message | str:
     normal = arm.normal
     axis = int(np.argmax(np.abs(normal)))
     level = float(arm.origin @ normal + arm.height)  # points p of the plane: normal . p = level
     if abs(abs(normal[axis]) - 1.0) < 1e-9:
         value = level * normal[axis]
         return f"{'xyz'[axis]} = {value + 0.0:.4g}"
-    return f"the plane through ({', '.join(f'{v:.3g}' for v in arm.origin)}) normal to ({', '.join(f'{v:.3g}' for v in normal)})"
+    return M("the plane through ({point}) normal to ({normal})", point=", ".join(f"{v:.3g}" for v in arm.origin),
+             normal=", ".join(f"{v:.3g}" for v in normal))
+
+
+def _elbow_needs(solution: ElbowSolution) -> Message:
+    """"elbow up: coude would need ..., ..." (the joints an elbow choice takes past their limits)."""
+    needs = joined([v.describe() for v in solution.violations])
+    if solution.elbow == "up":
+        return M("elbow up: {needs}", needs=needs)
+    return M("elbow down: {needs}", needs=needs)
 
 
 def ik_2r(model: TFTree | Robot, target: Vector, *, elbow: str | None = None,
@@ -187,43 +198,46 @@ def ik_2r(model: TFTree | Robot, target: Vector, *, elbow: str | None = None,
     """
     tree = _as_tree(model)
     if elbow not in (None, "up", "down"):
-        raise ParameterError(f"elbow must be 'up' or 'down', not {elbow!r}")
-    goal = _point(target, "the target")
+        raise ParameterError(M("elbow must be 'up' or 'down', not {elbow!r}", elbow=str(elbow)))
+    goal = _point(target, M("the target"))
     q_start = _start_vector(tree, start)
     chain = serial_chain(tree, tip_link, tip_offset)
     arm = _two_link_of(chain)
     if arm is None:
         raise ParameterError(
-            f"the chain to '{chain.tip_link}' is not two revolute joints with parallel axes "
-            f"(joints: {', '.join(chain.joints) or 'none'})", hint="use the numeric solver (solve_ik)")
+            M("the chain to '{tip}' is not two revolute joints with parallel axes (joints: {joints})",
+              tip=chain.tip_link, joints=", ".join(chain.joints) or M("none")),
+            hint=M("use the numeric solver (solve_ik)"))
     lower, upper = _bounds(tree)
     solve = _two_link_angles(arm, goal[None, :])
     distance, off = float(solve.distance[0]), float(solve.off_plane[0])
     inner, outer = arm.reach
     c1, c2 = arm.columns
 
-    def failure(reason: str, message: str, violations=(), solutions=()) -> IKResult:  # type: ignore[no-untyped-def]
+    def failure(reason: str, message: Message, violations=(), solutions=()) -> IKResult:  # type: ignore[no-untyped-def]
         closest = solve_chain(chain, goal, start=q_start, explain=False)
         return IKResult(False, closest.joints, closest.tip, goal, closest.residual, message, "analytic",
                         reason=reason, iterations=closest.iterations, violations=list(violations),
                         solutions=list(solutions))
 
     if abs(off) > PLANE_TOLERANCE:
-        return failure("off_plane", f"out of reach: the arm moves in a plane ({_plane_description(arm)}) "
-                       f"and the target is {abs(off):.4g} m off it")
+        return failure("off_plane", M("out of reach: the arm moves in a plane ({plane}) and the target is "
+                                      "{off:.4g} m off it", plane=_plane_description(arm), off=abs(off)))
     if distance > outer + SINGULAR_TOLERANCE:
-        return failure("too_far", f"out of reach: the target is {distance - outer:.4g} m too far "
-                       f"({distance:.4g} m from the shoulder axis, the arm reaches {outer:.4g} m)")
+        return failure("too_far", M("out of reach: the target is {excess:.4g} m too far ({distance:.4g} m from the "
+                                    "shoulder axis, the arm reaches {outer:.4g} m)", excess=distance - outer,
+                                    distance=distance, outer=outer))
     if distance < inner - SINGULAR_TOLERANCE:
-        return failure("too_close", f"out of reach: the target is {inner - distance:.4g} m too close to "
-                       f"the shoulder axis ({distance:.4g} m; the arm cannot fold closer than {inner:.4g} m)")
-    singular = ""
+        return failure("too_close", M("out of reach: the target is {excess:.4g} m too close to the shoulder axis "
+                                      "({distance:.4g} m; the arm cannot fold closer than {inner:.4g} m)",
+                                      excess=inner - distance, distance=distance, inner=inner))
+    singular: Message | None = None
     if distance < SINGULAR_TOLERANCE:
-        singular = "the target is on the shoulder axis: any shoulder angle works (singular pose)"
+        singular = M("the target is on the shoulder axis: any shoulder angle works (singular pose)")
     elif abs(distance - outer) <= SINGULAR_TOLERANCE:
-        singular = "the arm is fully stretched (singular pose: the tip cannot move towards or away from the shoulder)"
+        singular = M("the arm is fully stretched (singular pose: the tip cannot move towards or away from the shoulder)")
     elif abs(distance - inner) <= SINGULAR_TOLERANCE:
-        singular = "the arm is fully folded (singular pose: the tip cannot move towards or away from the shoulder)"
+        singular = M("the arm is fully folded (singular pose: the tip cannot move towards or away from the shoulder)")
 
     solutions = []
     for name, q in (("up", solve.q_up[0]), ("down", solve.q_down[0])):
@@ -241,16 +255,19 @@ def ik_2r(model: TFTree | Robot, target: Vector, *, elbow: str | None = None,
                                                    for n in (tree.dof[c1], tree.dof[c2])))
     if not pick.within_limits:
         other = next(s for s in solutions if s is not pick)
-        details = [f"elbow {pick.elbow}: " + ", ".join(v.describe() for v in pick.violations)]
+        details = [_elbow_needs(pick)]
         if other.within_limits:
-            details.append(f"elbow {other.elbow} is within the limits")
+            details.append(M("elbow up is within the limits") if other.elbow == "up" else
+                           M("elbow down is within the limits"))
         elif elbow is None:
-            details.append(f"elbow {other.elbow}: " + ", ".join(v.describe() for v in other.violations))
-        message = "reachable only past the limits (" + "; ".join(details) + ")"
+            details.append(_elbow_needs(other))
+        message = M("reachable only past the limits ({details})", details=joined(details, "; "))
         return failure("limits", message, pick.violations, solutions)
     q = np.array([pick.joints[n] for n in tree.dof])
     tip = np.array(_forward(chain.kernel, q[chain.variables].tolist())[0])
     residual = float(np.linalg.norm(tip - goal))
-    message = f"reached with elbow {pick.elbow}" + (f"; {singular}" if singular else "")
+    message = M("reached with elbow up") if pick.elbow == "up" else M("reached with elbow down")
+    if singular is not None:
+        message = M("{reached}; {singular}", reached=message, singular=singular)
     return IKResult(True, pick.joints, tip, goal, residual, message, "analytic", reason="singular" if singular else "ok",
                     elbow=pick.elbow, singular=bool(singular), solutions=solutions)

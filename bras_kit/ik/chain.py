@@ -9,6 +9,7 @@ import numpy as np
 
 from ..errors import ParameterError
 from ..kinematics import TFTree, _skew, fk_batch
+from ..message import M
 from ..model import Robot
 from ..tip import end_link, tool_tip
 from ._inputs import Vector, _as_tree, _point
@@ -21,7 +22,7 @@ def resolve_tip(tree: TFTree, tip_link: str | None = None,
     """(link, point in the link's frame): defaults are those of :func:`bras_kit.tip.tool_tip`."""
     if tip_offset is None:
         return tool_tip(tree, tip_link)
-    return tree.links[tree.index(tip_link)] if tip_link else end_link(tree), _point(tip_offset, "the tip offset")
+    return tree.links[tree.index(tip_link)] if tip_link else end_link(tree), _point(tip_offset, M("the tip offset"))
 
 
 @dataclass(frozen=True)
@@ -77,7 +78,7 @@ def serial_chain(model: TFTree | Robot, tip_link: str | None = None,
     """
     tree = _as_tree(model)
     cache = tree.__dict__.setdefault("_serial_chains", {})
-    key = (tip_link, None if tip_offset is None else tuple(_point(tip_offset, "the tip offset").tolist()))
+    key = (tip_link, None if tip_offset is None else tuple(_point(tip_offset, M("the tip offset")).tolist()))
     if key not in cache:
         cache[key] = _compile_chain(tree, tip_link, tip_offset)
     return cache[key]
@@ -150,7 +151,8 @@ def jacobian(model: TFTree | Robot, q: Mapping[str, float] | np.ndarray | Sequen
     single = q.ndim == 1
     batch = q[None, :] if single else q
     if batch.shape[-1] != len(tree.dof):
-        raise ParameterError(f"expected {len(tree.dof)} joint values ({', '.join(tree.dof)}), got {batch.shape[-1]}")
+        raise ParameterError(M("expected {count} joint values ({names}), got {got}", count=len(tree.dof),
+                               names=", ".join(tree.dof), got=batch.shape[-1]))
     out = np.zeros((batch.shape[0], 6 if orientation else 3, len(tree.dof)))
     for n, config in enumerate(batch):
         x = config[chain.variables].tolist()

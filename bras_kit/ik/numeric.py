@@ -10,6 +10,8 @@ from operator import mul
 import numpy as np
 
 from ..errors import ParameterError
+from ..message import M, Message, Mn
+from ..wording import joined
 from ._inputs import Vector, _joints_dict, _point, _start_vector, _unit_of
 from ._kernel import _flat, _forward, _jacobian_rows, _Kernel, _product
 from ._limits import _bounds, _fit_angle, _violations
@@ -160,12 +162,12 @@ def solve_chain(chain: SerialChain, target: Vector, *, rotation: np.ndarray | Se
     ``explain`` re-solves without limits after a failure, to name the joints in the way.
     """
     tree = chain.tree
-    goal = _point(target, "the target")
+    goal = _point(target, M("the target"))
     goal_rot = None if rotation is None else _flat(np.asarray(rotation, dtype=float).reshape(3, 3))
     q_start = _start_vector(tree, start)
     if chain.kernel.size == 0:
-        raise ParameterError(f"no movable joint moves '{chain.tip_link}'",
-                             hint="choose a link further down the arm (--link)")
+        raise ParameterError(M("no movable joint moves '{tip}'", tip=chain.tip_link),
+                             hint=M("choose a link further down the arm (--link)"))
     lower = chain.lower if limits else np.full(chain.kernel.size, -np.inf)
     upper = chain.upper if limits else np.full(chain.kernel.size, np.inf)
     low, high = lower.tolist(), upper.tolist()
@@ -199,9 +201,11 @@ def solve_chain(chain: SerialChain, target: Vector, *, rotation: np.ndarray | Se
     joints = _joints_dict(tree, q)
     tip_point = np.array(best.tip)
     if best.converged or _close_enough(best.error):
-        return IKResult(True, joints, tip_point, goal, residual, f"reached in {iterations} iterations",
+        return IKResult(True, joints, tip_point, goal, residual,
+                        Mn("reached in {n} iteration", "reached in {n} iterations", iterations),
                         "numeric", iterations=iterations, rotation_residual=rotation_residual)
-    reason, message, violations = "out_of_reach", "", []
+    reason, violations = "out_of_reach", []
+    message: Message | None = None
     if explain and limits:
         free = solve_chain(chain, goal, rotation=goal_rot, start=q_start, seeds=seeds,
                            max_iterations=max_iterations, tolerance=tolerance,
@@ -218,14 +222,19 @@ def solve_chain(chain: SerialChain, target: Vector, *, rotation: np.ndarray | Se
             violations = _violations(tree, values, *_bounds(tree))
             if violations:
                 reason = "limits"
-                message = "reachable only past the limits: " + "; ".join(v.describe() for v in violations)
-    what = "pose" if goal_rot is not None else "point"
-    if not message:
-        message = (f"out of reach: the tip gets no closer than {residual:.4g} m to the target "
-                   f"(closest {what} at {', '.join(f'{v:.4f}' for v in tip_point)})")
+                message = M("reachable only past the limits: {needs}",
+                            needs=joined([v.describe() for v in violations], "; "))
+    if message is None:
+        where = ", ".join(f"{v:.4f}" for v in tip_point)
         if goal_rot is not None:
-            message += f", orientation off by {rotation_residual:.4g} rad"
+            message = M("out of reach: the tip gets no closer than {residual:.4g} m to the target "
+                        "(closest pose at {where}), orientation off by {angle:.4g} rad",
+                        residual=residual, where=where, angle=rotation_residual)
+        else:
+            message = M("out of reach: the tip gets no closer than {residual:.4g} m to the target "
+                        "(closest point at {where})", residual=residual, where=where)
     else:
-        message += f"; within the limits the tip gets no closer than {residual:.4g} m"
+        message = M("{message}; within the limits the tip gets no closer than {residual:.4g} m",
+                    message=message, residual=residual)
     return IKResult(False, joints, tip_point, goal, residual, message, "numeric", reason=reason,
                     iterations=iterations, rotation_residual=rotation_residual, violations=violations)

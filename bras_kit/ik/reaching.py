@@ -10,6 +10,7 @@ import numpy as np
 
 from ..errors import ParameterError
 from ..kinematics import TFTree
+from ..message import M
 from ..model import Robot
 from ._inputs import _as_tree, _joints_dict, _start_vector, _unit_of
 from ._limits import _bounds, _violations
@@ -97,15 +98,17 @@ def reach_motion(model: TFTree | Robot, start: Mapping[str, float] | np.ndarray 
     if duration is None:
         duration = shortest
     elif not math.isfinite(duration) or duration < 0:
-        raise ParameterError(f"the duration {duration:g} s is not a positive number")
+        raise ParameterError(M("the duration {duration:g} s is not a positive number", duration=duration))
     elif duration < shortest * (1.0 - 1e-12):
         limits = _velocity_limits(tree)
         speeds = QUINTIC_PEAK * np.abs(q1 - q0) / max(duration, 1e-300)
         i = int(np.argmax(np.where(np.isfinite(limits), speeds / np.where(np.isfinite(limits), limits, 1), 0)))
         raise ParameterError(
-            f"a {duration:g} s move is too fast: {tree.dof[i]} would turn at {speeds[i]:.3g} "
-            f"{_unit_of(tree, tree.dof[i])}/s, above its velocity limit {limits[i]:g}",
-            hint=f"give a duration of at least {math.ceil(shortest * 1000) / 1000:g} s, or leave it out")
+            M("a {duration:g} s move is too fast: {joint} would turn at {speed:.3g} {unit}/s, above its velocity "
+              "limit {limit:g}", duration=duration, joint=tree.dof[i], speed=speeds[i], unit=_unit_of(tree, tree.dof[i]),
+              limit=limits[i]),
+            hint=M("give a duration of at least {shortest:g} s, or leave it out",
+                   shortest=math.ceil(shortest * 1000) / 1000))
     return ReachMotion(tuple(tree.dof), q0, q1, float(duration))
 
 

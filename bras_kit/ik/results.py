@@ -6,6 +6,8 @@ from dataclasses import dataclass, field
 
 import numpy as np
 
+from ..message import M, Message
+
 
 @dataclass(frozen=True)
 class LimitExcess:
@@ -21,9 +23,12 @@ class LimitExcess:
     def excess(self) -> float:
         return abs(self.value - self.bound)
 
-    def describe(self) -> str:
-        return (f"{self.joint} would need {self.value:.4f} {self.unit}, {self.excess:.4f} {self.unit} "
-                f"past its {self.side} limit {self.bound:g}")
+    def describe(self) -> Message:
+        if self.side == "upper":
+            return M("{joint} would need {value:.4f} {unit}, {excess:.4f} {unit} past its upper limit {bound:g}",
+                     joint=self.joint, value=self.value, unit=self.unit, excess=self.excess, bound=self.bound)
+        return M("{joint} would need {value:.4f} {unit}, {excess:.4f} {unit} past its lower limit {bound:g}",
+                 joint=self.joint, value=self.value, unit=self.unit, excess=self.excess, bound=self.bound)
 
 
 @dataclass
@@ -55,7 +60,7 @@ class IKResult:
     tip: np.ndarray
     target: np.ndarray
     residual: float  # m, distance from tip to target
-    message: str
+    message: Message  # worded where it is shown (str(message) is the English)
     method: str  # "analytic" or "numeric"
     reason: str = "ok"
     iterations: int = 0
@@ -72,7 +77,7 @@ class IKResult:
             "tip": [float(v) for v in self.tip],
             "target": [float(v) for v in self.target],
             "residual": float(self.residual),
-            "message": self.message,
+            "message": str(self.message),
             "method": self.method,
             "reason": self.reason,
             "singular": bool(self.singular),

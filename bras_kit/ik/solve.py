@@ -8,6 +8,7 @@ import numpy as np
 
 from ..errors import ParameterError
 from ..kinematics import TFTree
+from ..message import M
 from ..model import Robot
 from ._inputs import Vector, _as_tree, _joints_dict, _start_vector
 from .analytic import _two_link_of, ik_2r
@@ -36,21 +37,22 @@ def solve_ik(model: TFTree | Robot, target: Vector, *, rotation: np.ndarray | No
     tree = _as_tree(model)
     chain = serial_chain(tree, tip_link, tip_offset)
     if method not in ("auto", "analytic", "numeric"):
-        raise ParameterError(f"unknown method {method!r}", hint="use auto, analytic or numeric")
+        raise ParameterError(M("unknown method {method!r}", method=str(method)), hint=M("use auto, analytic or numeric"))
     analytic = method == "analytic" or (method == "auto" and rotation is None and _two_link_of(chain) is not None)
     if analytic:
         if rotation is not None:
-            raise ParameterError("the closed-form solver places the tip only (no orientation)",
-                                 hint="use method='numeric' for an orientation target")
+            raise ParameterError(M("the closed-form solver places the tip only (no orientation)"),
+                                 hint=M("use method='numeric' for an orientation target"))
         return ik_2r(tree, target, elbow=elbow, start=start if isinstance(start, Mapping) else
                      (None if start is None else _joints_dict(tree, _start_vector(tree, start))),
                      tip_link=chain.tip_link, tip_offset=chain.tip_offset)
     if elbow is not None and _two_link_of(chain) is not None:
-        raise ParameterError("elbow up/down comes from the closed-form solver, which places the tip only",
-                             hint="leave out the orientation, or the elbow choice")
+        raise ParameterError(M("elbow up/down comes from the closed-form solver, which places the tip only"),
+                             hint=M("leave out the orientation, or the elbow choice"))
     if elbow is not None:
-        raise ParameterError(f"elbow up/down applies to two-joint planar arms; the chain to '{chain.tip_link}' "
-                             f"has {len(chain.joints)} joints ({', '.join(chain.joints)})",
-                             hint="leave out the elbow choice: the numeric solver starts from the start pose")
+        raise ParameterError(M("elbow up/down applies to two-joint planar arms; the chain to '{tip}' "
+                               "has {count} joints ({names})", tip=chain.tip_link, count=len(chain.joints),
+                               names=", ".join(chain.joints)),
+                             hint=M("leave out the elbow choice: the numeric solver starts from the start pose"))
     return solve_chain(chain, target, rotation=rotation, start=start, seeds=seeds,
                        max_iterations=max_iterations, tolerance=tolerance, random_seed=random_seed)

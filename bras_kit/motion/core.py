@@ -8,12 +8,14 @@ from __future__ import annotations
 
 import math
 from collections.abc import Callable
-from dataclasses import dataclass
+from dataclasses import dataclass, field
+from typing import Any
 
 import numpy as np
 
 from ..errors import ParameterError, UnknownJointError
-from ..kinematics import TFTree
+from ..kinematics import TFTree, movable_joints_hint
+from ..message import M, Message
 
 DEFAULT_RATE = 20.0  # Hz, like the tutorial's animation node (a 0.05 s timer)
 DEFAULT_DURATION = 10.0  # seconds, for motions without a natural end
@@ -42,7 +44,8 @@ class JointStates:
         try:
             return self.names.index(joint)
         except ValueError:
-            raise UnknownJointError(f"unknown joint '{joint}'", joint, hint="joints: " + ", ".join(self.names)) from None
+            raise UnknownJointError(M("unknown joint '{name}'", name=joint), joint,
+                                    hint=M("joints: {names}", names=", ".join(self.names))) from None
 
     def config(self, index: int) -> dict[str, float]:
         """The joint values of sample ``index`` by name."""
@@ -71,7 +74,7 @@ class Track:
 
     joint: str
     evaluate: Evaluate
-    source: str  # what drives it, for people: "0.8*sin(t)", "held at 0", "waypoints.csv (cubic)"
+    source: str | Message  # what drives it, for people: "0.8*sin(t)", "held at 0", "waypoints.csv (cubic)"
     waypoints: Waypoints | None = None
 
 
@@ -80,12 +83,15 @@ class Motion:
     """Every movable joint's position as a function of time.
 
     ``duration`` is the natural length (the last waypoint's time) or None for endless motions.
+    ``notes`` are messages about the input the motion came from (a recording's gaps, unknown
+    joints...), for the command to show as warnings.
     """
 
     names: list[str]
     tracks: list[Track]
     duration: float | None = None
     label: str = ""
+    notes: list[Any] = field(default_factory=list)
 
     def evaluate(self, t: np.ndarray | float) -> tuple[np.ndarray, np.ndarray]:
         """Positions and velocities, each of shape (len(t), len(names))."""
@@ -102,7 +108,7 @@ class Motion:
     def velocities(self, t: np.ndarray | float) -> np.ndarray:
         return self.evaluate(t)[1]
 
-    def sources(self) -> dict[str, str]:
+    def sources(self) -> dict[str, str | Message]:
         return {track.joint: track.source for track in self.tracks}
 
 
@@ -112,12 +118,13 @@ def check_joint(tree: TFTree, name: str, path: str | None = None, line: int | No
         return
     joint = tree.robot.joint(name)
     if joint is None:
-        why = f"unknown joint '{name}'"
+        why = M("unknown joint '{name}'", name=name)
     elif joint.mimic is not None:
-        why = f"joint '{name}' mimics '{joint.mimic.joint}' and follows it: it cannot be driven"
+        why = M("joint '{name}' mimics '{leader}' and follows it: it cannot be driven", name=name,
+                leader=joint.mimic.joint)
     else:
-        why = f"joint '{name}' is {joint.type} and cannot move"
-    raise UnknownJointError(why, name, path=path, line=line, hint="movable joints: " + (", ".join(tree.dof) or "none"))
+        why = M("joint '{name}' is {type} and cannot move", name=name, type=joint.type)
+    raise UnknownJointError(why, name, path=path, line=line, hint=movable_joints_hint(tree.dof))
 
 
 def sample_count(duration: float, rate: float) -> int:
@@ -135,13 +142,14 @@ def sample(motion: Motion, duration: float | None = None, rate: float = DEFAULT_
         duration = motion.duration if motion.duration is not None else DEFAULT_DURATION
     duration, rate = float(duration), float(rate)
     if not math.isfinite(duration) or duration < 0:
-        raise ParameterError(f"duration {duration:g} s is not a time", hint="give a duration of 0 s or more")
+        raise ParameterError(M("duration {duration:g} s is not a time", duration=duration),
+                             hint=M("give a duration of 0 s or more"))
     if not math.isfinite(rate) or rate <= 0:
-        raise ParameterError(f"rate {rate:g} Hz is not a rate", hint="give samples per second above 0, e.g. 20")
+        raise ParameterError(M("rate {rate:g} Hz is not a rate", rate=rate), hint=M("give samples per second above 0, e.g. 20"))
     count = sample_count(duration, rate)
     if count * max(len(motion.names), 1) > MAX_VALUES:
-        raise ParameterError(f"{count} samples of {len(motion.names)} joints is too many",
-                             hint="lower --duration or --rate")
+        raise ParameterError(M("{count} samples of {joints} joints is too many", count=count, joints=len(motion.names)),
+                             hint=M("lower --duration or --rate"))
     times = np.arange(count) / rate
     with np.errstate(all="ignore"):
         positions, velocities = motion.evaluate(times)
@@ -149,9 +157,10 @@ def sample(motion: Motion, duration: float | None = None, rate: float = DEFAULT_
     if bad.any():
         k, j = np.argwhere(bad)[0]
         track = motion.tracks[j]
-        raise ParameterError(f"the motion of {track.joint} ({track.source}) is not a number at t={times[k]:g} s",
-                             hint="log, sqrt, asin, acos and division are undefined for some values; "
-                                  "keep their arguments in range (e.g. sqrt(abs(...)), log(1 + t))")
+        raise ParameterError(M("the motion of {joint} ({source}) is not a number at t={time:g} s", joint=track.joint,
+                               source=track.source, time=times[k]),
+                             hint=M("log, sqrt, asin, acos and division are undefined for some values; "
+                                    "keep their arguments in range (e.g. sqrt(abs(...)), log(1 + t))"))
     steep = ~np.isfinite(velocities)
     if steep.any():  # e.g. sqrt(t) at 0: fall back on the slope between neighbouring samples
         slope = np.gradient(positions, times, axis=0) if count > 1 else np.zeros_like(positions)
@@ -168,6 +177,6 @@ def sample_loop(motion: Motion, duration: float | None = None, fps: float = DEFA
         duration = motion.duration if motion.duration is not None else DEFAULT_DURATION
     count = round(float(duration) * float(fps)) if math.isfinite(duration) and math.isfinite(fps) else 0
     if count < 1:
-        raise ParameterError(f"{duration:g} s at {fps:g} fps is less than one frame",
-                             hint="raise --duration or --fps")
+        raise ParameterError(M("{duration:g} s at {fps:g} fps is less than one frame", duration=duration, fps=fps),
+                             hint=M("raise --duration or --fps"))
     return sample(motion, (count - 1) / fps, fps)

@@ -10,6 +10,7 @@ from dataclasses import dataclass, replace
 
 import numpy as np
 
+from ..message import M, Message, Mn
 from ..model import Joint, Robot
 from .core import JointStates
 
@@ -99,15 +100,20 @@ def _violation(times: np.ndarray, past: np.ndarray, values: np.ndarray, joint: s
                           float(past[worst]), float(times[worst]), side, int(mask.sum()), unit)
 
 
-def describe_violation(violation: LimitViolation) -> str:
+def describe_violation(violation: LimitViolation) -> Message:
     """One line for people, e.g. "coude goes past its upper limit 2 by 0.5 rad at t=1.55 s (...)"."""
     v = violation
-    span = f"first at t={v.time:.4g} s, {v.samples} sample{'s' if v.samples != 1 else ''}"
+    span = Mn("first at t={time:.4g} s, {n} sample", "first at t={time:.4g} s, {n} samples", v.samples, time=v.time)
     if v.kind == "velocity":
-        return (f"{v.joint} moves at {abs(v.value):.4g} {v.unit}/s at t={v.peak_time:.4g} s, "
-                f"{v.excess:.3g} {v.unit}/s over its velocity limit {v.bound:g} {v.unit}/s ({span})")
-    return (f"{v.joint} goes past its {v.side} limit {v.bound:g} by {v.excess:.3g} {v.unit} "
-            f"at t={v.peak_time:.4g} s ({span})")
+        return M("{joint} moves at {speed:.4g} {unit}/s at t={peak:.4g} s, "
+                 "{excess:.3g} {unit}/s over its velocity limit {bound:g} {unit}/s ({span})",
+                 joint=v.joint, speed=abs(v.value), unit=v.unit, peak=v.peak_time, excess=v.excess, bound=v.bound,
+                 span=span)
+    if v.side == "upper":
+        return M("{joint} goes past its upper limit {bound:g} by {excess:.3g} {unit} at t={peak:.4g} s ({span})",
+                 joint=v.joint, bound=v.bound, excess=v.excess, unit=v.unit, peak=v.peak_time, span=span)
+    return M("{joint} goes past its lower limit {bound:g} by {excess:.3g} {unit} at t={peak:.4g} s ({span})",
+             joint=v.joint, bound=v.bound, excess=v.excess, unit=v.unit, peak=v.peak_time, span=span)
 
 
 def clamp(robot: Robot, states: JointStates) -> JointStates:

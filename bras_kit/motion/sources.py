@@ -16,6 +16,7 @@ import numpy as np
 from ..errors import ParameterError
 from ..expr import compile_expression
 from ..kinematics import TFTree, tf_tree
+from ..message import M, Message, number
 from ..model import Joint, Robot
 from .core import Motion, Track, check_joint
 from .interpolation import interpolator
@@ -28,6 +29,7 @@ class _Layer:
     tracks: dict[str, Track] = field(default_factory=dict)
     duration: float | None = None
     label: str = ""
+    notes: list = field(default_factory=list)  # Messages about the input (a recording's gaps...)
 
 
 def _formula_track(joint: str, formula: str, prefix: str = "") -> Track:
@@ -39,7 +41,7 @@ def _constant_track(joint: str, value: float) -> Track:
     def evaluate(t: np.ndarray) -> tuple[np.ndarray, np.ndarray]:
         return np.full(t.shape, value), np.zeros(t.shape)
 
-    return Track(joint, evaluate, f"held at {value:g}")
+    return Track(joint, evaluate, M("held at {value:g}", value=value))
 
 
 def _round_down(value: float, step: float = 0.01) -> float:
@@ -59,11 +61,11 @@ def _fitted_sine(joint: Joint, amplitude: float, omega: float, phase: str = "") 
     if speed is not None:
         amplitude = min(amplitude, 0.9 * speed / omega)
     amplitude = _round_down(max(amplitude, 0.0))
-    wave = f"sin({omega!r}*t{phase})" if omega != 1.0 else f"sin(t{phase})"
+    wave = f"sin({number(omega)}*t{phase})" if omega != 1.0 else f"sin(t{phase})"
     if amplitude <= 0:
-        return repr(centre)
-    text = f"{amplitude!r}*{wave}"
-    return f"{centre!r} + {text}" if centre else text
+        return number(centre)
+    text = f"{number(amplitude)}*{wave}"  # 0.69, never 0.6900000000000001
+    return f"{number(centre)} + {text}" if centre else text
 
 
 # The tutorial's node: epaule = 0.8 sin t, coude = 1.2 sin 0.7t, kept as written (even past
@@ -107,7 +109,7 @@ def _tutorial_layer(tree: TFTree) -> _Layer:
             formula = TUTORIAL_FORMULAS[name]
         elif name in TUTORIAL_WAVES:
             amplitude, omega, phase = TUTORIAL_WAVES[name]
-            formula = _fitted_sine(joint, amplitude, omega, f" + {phase!r}" if phase else "")
+            formula = _fitted_sine(joint, amplitude, omega, f" + {number(phase)}" if phase else "")
         else:
             cap = 0.1 if joint_unit(joint) == "m" else 0.8
             formula = _fitted_sine(joint, cap, 0.5 + 0.25 * others)
@@ -120,8 +122,8 @@ def _split_formula(spec: str) -> tuple[str, str, str]:
     """``"epaule = 0.8*sin(t)"`` -> (joint, formula, the text before the formula)."""
     name, sep, formula = spec.partition("=")
     if not sep or not name.strip():
-        raise ParameterError(f"'{spec}' is not JOINT=FORMULA",
-                             hint="write e.g. epaule=0.8*sin(t) (the time is t, in seconds)")
+        raise ParameterError(M("'{spec}' is not JOINT=FORMULA", spec=spec),
+                             hint=M("write e.g. epaule=0.8*sin(t) (the time is t, in seconds)"))
     return name.strip(), formula, spec[: len(name) + 1]
 
 
@@ -131,7 +133,7 @@ def _formula_layer(tree: TFTree, specs: Sequence[str]) -> _Layer:
         name, formula, prefix = _split_formula(spec)
         check_joint(tree, name)
         if name in tracks:
-            raise ParameterError(f"two formulas for joint '{name}'", hint="give each joint one formula")
+            raise ParameterError(M("two formulas for joint '{name}'", name=name), hint=M("give each joint one formula"))
         tracks[name] = _formula_track(name, formula, prefix)
     return _Layer(tracks, None, "formulas")
 
@@ -142,7 +144,7 @@ def _pose_layer(tree: TFTree, config: Mapping[str, float]) -> _Layer:
     for name, value in config.items():
         number = float(value)
         if not math.isfinite(number):
-            raise ParameterError(f"{name}={value}: the joint value is not a finite number")
+            raise ParameterError(M("{name}={value}: the joint value is not a finite number", name=name, value=str(value)))
         tracks[name] = _constant_track(name, number)
     return _Layer(tracks, None, "pose")
 
@@ -156,8 +158,9 @@ def _build(tree: TFTree, layers: Sequence[_Layer], base: _Layer | None = None, l
             track = base.tracks.get(name)
         tracks.append(track or _constant_track(name, 0.0))
     durations = [layer.duration for layer in layers if layer.duration is not None]
+    notes = [note for layer in layers for note in layer.notes]
     return Motion(list(tree.dof), tracks, max(durations) if durations else None,
-                  label or " + ".join(layer.label for layer in layers if layer.label))
+                  label or " + ".join(layer.label for layer in layers if layer.label), notes)
 
 
 def _base_layer(tree: TFTree, base: Mapping[str, float] | Motion | None) -> _Layer | None:
@@ -205,23 +208,37 @@ def _waypoint_layer(tree: TFTree, path: str, interpolation: str | None) -> _Laye
     return _Layer(tracks, points.duration, os.path.basename(path))
 
 
+def _bag_layer(tree: TFTree, path: str, topic: str | None) -> _Layer:
+    """A recorded JointState topic of a ROS 2 bag, linear between samples (see :mod:`bras_kit.bags`)."""
+    from ..bags import recorded_tracks  # a feature above motion: only loaded for a bag
+
+    tracks, duration, notes, label = recorded_tracks(tree.dof, lambda name: check_joint(tree, name), path, topic)
+    return _Layer(tracks, duration, label, notes)
+
+
 def spec_kind(spec: str) -> str:
-    """"tutorial", "file" (a waypoint file) or "formula"; anything else is a ParameterError."""
+    """"tutorial", "file" (a waypoint file), "bag" (a ROS 2 bag) or "formula"; else a ParameterError."""
     text = spec.strip()
     if text.lower() == "tutorial":
         return "tutorial"
+    if text.lower().rstrip("/").endswith((".mcap", ".db3", "metadata.yaml")) or (
+            "=" not in text and os.path.isfile(os.path.join(text, "metadata.yaml"))):
+        return "bag"
     if text.lower().endswith(WAYPOINT_SUFFIXES):
         return "file"
     if "=" in text:
         return "formula"
-    raise ParameterError(f"'{spec}' is not a motion",
-                         hint="give 'tutorial', JOINT=FORMULA (e.g. epaule=0.8*sin(t)) "
-                              "or a waypoint file (.csv, .json, .yaml)")
+    raise ParameterError(M("'{spec}' is not a motion", spec=spec),
+                         hint=M("give 'tutorial', JOINT=FORMULA (e.g. epaule=0.8*sin(t)), "
+                                "a waypoint file (.csv, .json, .yaml) or a ROS 2 bag (folder, .mcap, .db3)"))
 
 
 def motion_from_specs(robot: Robot, specs: Sequence[str], set_values: Mapping[str, float] | None = None,
-                      interpolation: str | None = None) -> Motion:
-    """Combine motion specs: "tutorial", "JOINT=FORMULA" and waypoint files, plus fixed values.
+                      interpolation: str | None = None, topic: str | None = None) -> Motion:
+    """Combine motion specs: "tutorial", "JOINT=FORMULA", waypoint files and bags, plus fixed values.
+
+    A ROS 2 bag (a folder with metadata.yaml, or its .mcap/.db3 file) drives the joints its
+    ``topic`` (default /joint_states) records; what was odd in it is in ``motion.notes``.
 
     Formulas and files drive the joints they name (two specs for one joint are an error);
     ``set_values`` hold joints still; "tutorial" drives every joint left over. With no specs and
@@ -241,6 +258,8 @@ def motion_from_specs(robot: Robot, specs: Sequence[str], set_values: Mapping[st
             background = _tutorial_layer(tree)
         elif kind == "file":
             layers.append(_waypoint_layer(tree, spec.strip(), interpolation))
+        elif kind == "bag":
+            layers.append(_bag_layer(tree, spec.strip(), topic))
         else:
             formulas.append(spec)
     if formulas:
@@ -251,9 +270,24 @@ def motion_from_specs(robot: Robot, specs: Sequence[str], set_values: Mapping[st
     for layer in layers:
         for name in layer.tracks:
             if name in owner:
-                raise ParameterError(f"joint '{name}' is driven twice: by {owner[name]} and by {layer.label}",
-                                     hint="give each joint one source (formula, waypoint file or --set)")
+                raise ParameterError(M("joint '{name}' is driven twice: by {first} and by {second}", name=name,
+                                       first=motion_title(owner[name]), second=motion_title(layer.label)),
+                                     hint=M("give each joint one source (formula, waypoint file or --set)"))
             owner[name] = layer.label
     labels = [layer.label for layer in layers] + (["tutorial"] if background else [])
     return _build(tree, layers, background, " + ".join(labels))
 
+
+# The words a motion's label is made of ("tutorial + formulas"); file names stay as they are.
+_LABEL_WORDS = {"tutorial": M("tutorial"), "formulas": M("formulas"), "pose": M("pose"), "motion": M("motion")}
+
+
+def motion_title(label: str | None) -> Message | str:
+    """A motion's label (``Motion.label``, English words joined by " + ") as a message, worded
+    where it is shown; an empty label is "motion"."""
+    parts = [part for part in (label or "motion").split(" + ") if part]
+    words: list[Message | str] = [_LABEL_WORDS.get(part, part) for part in parts]
+    title = words[0]
+    for word in words[1:]:
+        title = M("{left} + {right}", left=title, right=word)
+    return title

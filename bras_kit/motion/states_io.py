@@ -1,4 +1,8 @@
-"""Joint states to and from files: /joint_states-like CSV (long form), JSON messages."""
+"""Joint states to and from files: /joint_states-like CSV (long form), JSON messages, ROS 2 bags.
+
+:func:`write_states` is the one writer every command uses (``motion``, ``simulate``,
+``render --record``, ``run``): the format follows the file name.
+"""
 
 from __future__ import annotations
 
@@ -6,7 +10,9 @@ import os
 
 import numpy as np
 
-from ..errors import ParameterError
+from ..errors import ParameterError, os_reason
+from ..message import M, Message
+from ..model import Robot
 from .core import JointStates
 
 
@@ -57,6 +63,62 @@ def states_to_csv(states: JointStates) -> str:
     return "\n".join(rows) + "\n"
 
 
+STATES_SUFFIXES = (".csv", ".json", ".mcap", ".db3")
+
+
+def states_format(path: str) -> str | None:
+    """"csv", "json" or "bag" (``.mcap``, ``.db3`` or a folder name ending in /) from a file name; None if unknown.
+
+    ``-`` (standard output) is CSV.
+    """
+    if path == "-":
+        return "csv"
+    suffix = os.path.splitext(path)[1].lower()
+    if suffix in (".csv", ".json"):
+        return suffix[1:]
+    if suffix in (".mcap", ".db3") or (path.endswith(("/", os.sep)) and path.strip("/" + os.sep)):
+        return "bag"
+    return None
+
+
+def check_states_output(path: str, force: bool, fmt: str | None = None, option: str = "-o") -> str:
+    """Raise unless joint states may be written to ``path`` (before any work is done); returns the format."""
+    fmt = fmt or states_format(path)
+    if fmt is None:
+        raise ParameterError(M("cannot tell the format of '{path}'", path=path),
+                             hint=M("end the file name in .csv, .json or .mcap (a ROS 2 bag)"))
+    if fmt == "bag":
+        from ..bags.writer import check_bag_output  # a feature above motion: loaded for bags only
+
+        check_bag_output(path, force, option)
+    elif path != "-":
+        from ..outputs import check_output
+
+        check_output(path, force, option=option)
+    return fmt
+
+
+def write_states(robot: Robot, states: JointStates, path: str, force: bool = False, fmt: str | None = None,
+                 option: str = "-o") -> Message | None:
+    """Write joint states to ``path`` in the format its name says (or ``fmt``): CSV, JSON or a ROS 2 bag.
+
+    Returns what was written, for the command to show (the bag folder and its topics, or the
+    file); None for standard output (``-``).
+    """
+    fmt = check_states_output(path, force, fmt, option)
+    if fmt == "bag":
+        from ..bags import write_bag
+
+        summary = write_bag(robot, states, path, force=force, option=option)
+        return M("wrote the ROS 2 bag {folder} ({storage}: {messages} messages on /robot_description, /tf_static, "
+                 "/tf, /joint_states; {duration} s): ros2 bag play {folder}", folder=summary.folder,
+                 storage=summary.storage_file, messages=summary.messages, duration=summary.duration)
+    from ..outputs import write_text
+
+    write_text(path, states_to_json(states) if fmt == "json" else states_to_csv(states), force, announce=False)
+    return None if path == "-" else M("wrote {path}", path=path)
+
+
 def read_states(path: str) -> JointStates:
     """Read back a joint-state file written by ``bras-kit motion`` (CSV long form or JSON)."""
     suffix = os.path.splitext(path)[1].lower()
@@ -64,14 +126,15 @@ def read_states(path: str) -> JointStates:
         with open(path, encoding="utf-8-sig") as handle:
             text = handle.read()
     except (OSError, UnicodeDecodeError) as exc:
-        raise ParameterError(f"cannot read the joint states: {exc}", path=path,
-                             hint="give a .csv or .json file written by bras-kit motion") from None
+        reason = os_reason(exc) if isinstance(exc, OSError) else str(exc)
+        raise ParameterError(M("cannot read the joint states: {reason}", reason=reason), path=path,
+                             hint=M("give a .csv or .json file written by bras-kit motion")) from None
     if suffix == ".json":
         return _states_from_json(text, path)
     if suffix == ".csv":
         return _states_from_csv(text, path)
-    raise ParameterError("joint states are read from .csv or .json files", path=path,
-                         hint="write them with bras-kit motion -o states.csv")
+    raise ParameterError(M("joint states are read from .csv or .json files"), path=path,
+                         hint=M("write them with bras-kit motion -o states.csv"))
 
 
 def _states_from_json(text: str, path: str) -> JointStates:
@@ -80,10 +143,10 @@ def _states_from_json(text: str, path: str) -> JointStates:
     try:
         data = json.loads(text)
     except json.JSONDecodeError as exc:
-        raise ParameterError(f"not valid JSON: {exc.msg}", path=path, line=exc.lineno) from None
-    hint = 'a list of {"time": t, "name": [...], "position": [...], "velocity": [...]}'
+        raise ParameterError(M("not valid JSON: {problem}", problem=exc.msg), path=path, line=exc.lineno) from None
+    hint = M("a list of {example}", example='{"time": t, "name": [...], "position": [...], "velocity": [...]}')
     if not isinstance(data, list) or not data:
-        raise ParameterError("expected a non-empty list of joint-state messages", path=path, hint=hint)
+        raise ParameterError(M("expected a non-empty list of joint-state messages"), path=path, hint=hint)
     names = None
     times, positions, velocities = [], [], []
     for index, message in enumerate(data):
@@ -91,14 +154,16 @@ def _states_from_json(text: str, path: str) -> JointStates:
             if names is None:
                 names = [str(n) for n in message["name"]]
             if list(message["name"]) != names:
-                raise ParameterError(f"message {index + 1} names other joints than the first", path=path, hint=hint)
+                raise ParameterError(M("message {number} names other joints than the first", number=index + 1),
+                                     path=path, hint=hint)
             position = [float(v) for v in message["position"]]
             velocity = [float(v) for v in message.get("velocity") or [0.0] * len(names)]
             if len(position) != len(names) or len(velocity) != len(names):
                 raise ValueError
             times.append(float(message["time"]))
         except (KeyError, TypeError, ValueError):
-            raise ParameterError(f"message {index + 1} is not a joint state", path=path, hint=hint) from None
+            raise ParameterError(M("message {number} is not a joint state", number=index + 1), path=path,
+                                 hint=hint) from None
         positions.append(position)
         velocities.append(velocity)
     return JointStates(np.array(times), names or [], np.array(positions), np.array(velocities))
@@ -108,8 +173,8 @@ def _states_from_csv(text: str, path: str) -> JointStates:
     lines = text.splitlines()
     header = [c.strip() for c in lines[0].split(",")] if lines else []
     if header not in (["time", "name", "position", "velocity"], ["time", "name", "position", "velocity", "effort"]):
-        raise ParameterError("the header is not time,name,position,velocity", path=path, line=1,
-                             hint="write the file with bras-kit motion -o states.csv")
+        raise ParameterError(M("the header is not time,name,position,velocity"), path=path, line=1,
+                             hint=M("write the file with bras-kit motion -o states.csv"))
     names: list[str] = []
     times: list[float] = []
     positions: list[list[float]] = []
@@ -121,10 +186,10 @@ def _states_from_csv(text: str, path: str) -> JointStates:
         try:
             time, name, position, velocity = float(cells[0]), cells[1].strip(), float(cells[2]), float(cells[3])
         except (IndexError, ValueError):
-            raise ParameterError("expected time,name,position,velocity", path=path, line=number) from None
+            raise ParameterError(M("expected time,name,position,velocity"), path=path, line=number) from None
         if not times or time != times[-1]:
             if times and len(positions[-1]) != len(names):
-                raise ParameterError(f"the sample at t={times[-1]:g} s does not list every joint",
+                raise ParameterError(M("the sample at t={time:g} s does not list every joint", time=times[-1]),
                                      path=path, line=number)
             times.append(time)
             positions.append([])
@@ -133,10 +198,11 @@ def _states_from_csv(text: str, path: str) -> JointStates:
             names.append(name)
         k = len(positions[-1])
         if k >= len(names) or names[k] != name:
-            raise ParameterError(f"joint '{name}' is out of order (expected the order {', '.join(names)})",
+            raise ParameterError(M("joint '{name}' is out of order (expected the order {names})", name=name,
+                                   names=", ".join(names)),
                                  path=path, line=number)
         positions[-1].append(position)
         velocities[-1].append(velocity)
     if not times or len(positions[-1]) != len(names):
-        raise ParameterError("no complete joint state in the file", path=path)
+        raise ParameterError(M("no complete joint state in the file"), path=path)
     return JointStates(np.array(times), names, np.array(positions), np.array(velocities))

@@ -8,8 +8,9 @@ from dataclasses import dataclass
 
 import numpy as np
 
-from ..errors import ParameterError
-from ..kinematics import TFTree, tf_tree
+from ..errors import ParameterError, os_reason
+from ..kinematics import TFTree, movable_joints_hint, tf_tree
+from ..message import M, Message
 from ..model import Robot
 from .core import Motion, Waypoints, check_joint
 from .interpolation import INTERPOLATIONS, segment_peaks
@@ -30,20 +31,23 @@ def read_waypoints(path: str, tree: TFTree | Robot, interpolation: str | None = 
     if isinstance(tree, Robot):
         tree = tf_tree(tree)
     if interpolation is not None and interpolation not in INTERPOLATIONS:
-        raise ParameterError(f"unknown interpolation '{interpolation}'", hint="use linear or cubic")
+        raise ParameterError(M("unknown interpolation '{name}'", name=interpolation), hint=M("use linear or cubic"))
     suffix = os.path.splitext(path)[1].lower()
     if suffix not in WAYPOINT_SUFFIXES:
-        raise ParameterError(f"{path}: not a waypoint file", path=None,
-                             hint="waypoint files end in .csv, .json, .yaml or .yml")
+        raise ParameterError(M("{path}: not a waypoint file", path=path), path=None,
+                             hint=M("waypoint files end in .csv, .json, .yaml or .yml"))
     try:
         with open(path, encoding="utf-8-sig") as handle:
             text = handle.read()
     except FileNotFoundError:
-        raise ParameterError("no such waypoint file", path=path,
-                             hint="check the path (relative paths start from the current folder)") from None
-    except (OSError, UnicodeDecodeError) as exc:
-        raise ParameterError(f"cannot read the waypoint file: {exc}", path=path,
-                             hint="waypoint files are UTF-8 text") from None
+        raise ParameterError(M("no such waypoint file"), path=path,
+                             hint=M("check the path (relative paths start from the current folder)")) from None
+    except OSError as exc:
+        raise ParameterError(M("cannot read the waypoint file: {reason}", reason=os_reason(exc)), path=path,
+                             hint=M("waypoint files are UTF-8 text")) from None
+    except UnicodeDecodeError as exc:
+        raise ParameterError(M("cannot read the waypoint file: {reason}", reason=str(exc)), path=path,
+                             hint=M("waypoint files are UTF-8 text")) from None
     states = _joint_states_in(text, path, suffix)
     if states is not None:  # a file written by bras-kit motion/simulate, or a recorded /joint_states
         for name in states.names:
@@ -121,44 +125,45 @@ def _parse_csv(text: str, path: str, tree: TFTree):  # type: ignore[no-untyped-d
             continue
         cells = [cell.strip() for cell in next(csv.reader([line], delimiter=delimiter))]
         if len(cells) != len(header):
-            raise ParameterError(f"row has {len(cells)} values, the header has {len(header)} "
-                                 f"({', '.join(header)})", path=path, line=number,
-                                 hint="give a time and one value per joint on every row")
+            raise ParameterError(M("row has {count} values, the header has {wanted} ({names})", count=len(cells),
+                                   wanted=len(header), names=", ".join(header)), path=path, line=number,
+                                 hint=M("give a time and one value per joint on every row"))
         values = []
         for column, cell in zip(header, cells):
             value = _number(cell, decimal_comma)
             if value is None:
-                raise ParameterError(f"{column}: '{cell}' is not a number", path=path, line=number,
-                                     hint="write times in seconds and joint values in radians (metres "
-                                          "for prismatic joints), e.g. 0.5")
+                raise ParameterError(M("{column}: '{cell}' is not a number", column=column, cell=cell),
+                                     path=path, line=number,
+                                     hint=M("write times in seconds and joint values in radians (metres "
+                                            "for prismatic joints), e.g. 0.5"))
             values.append(value)
         times.append(values[0])
         rows.append(values[1:])
         lines.append(number)
     if header is None:
-        raise ParameterError("the waypoint file is empty", path=path,
-                             hint="start with a header such as time,epaule,coude")
+        raise ParameterError(M("the waypoint file is empty"), path=path,
+                             hint=M("start with a header such as time,epaule,coude"))
     if not rows:
-        raise ParameterError("no waypoints after the header", path=path,
-                             hint="add rows such as 0,0,0 then 2,0.5,1.0 (time, then one value per joint)")
+        raise ParameterError(M("no waypoints after the header"), path=path,
+                             hint=M("add rows such as 0,0,0 then 2,0.5,1.0 (time, then one value per joint)"))
     return times, header[1:], rows, lines, None
 
 
 def _check_header(header: list[str], path: str, line: int, tree: TFTree) -> None:
     if header[0].lower() not in TIME_COLUMNS:
-        raise ParameterError(f"the first column is '{header[0]}', not 'time'", path=path, line=line,
-                             hint="start the file with a header such as time," + ",".join(tree.dof))
+        raise ParameterError(M("the first column is '{name}', not 'time'", name=header[0]), path=path, line=line,
+                             hint=M("start the file with a header such as time,{names}", names=",".join(tree.dof)))
     if len(header) < 2:
-        raise ParameterError("the header names no joint", path=path, line=line,
-                             hint="name the joint columns after time, e.g. time," + ",".join(tree.dof))
+        raise ParameterError(M("the header names no joint"), path=path, line=line,
+                             hint=M("name the joint columns after time, e.g. time,{names}", names=",".join(tree.dof)))
     seen = set()
     for name in header[1:]:
         if not name:
-            raise ParameterError("a column of the header has no name", path=path, line=line,
-                                 hint="movable joints: " + ", ".join(tree.dof))
+            raise ParameterError(M("a column of the header has no name"), path=path, line=line,
+                                 hint=movable_joints_hint(tree.dof))
         if name in seen:
-            raise ParameterError(f"the column '{name}' appears twice", path=path, line=line,
-                                 hint="give each joint one column")
+            raise ParameterError(M("the column '{name}' appears twice", name=name), path=path, line=line,
+                                 hint=M("give each joint one column"))
         seen.add(name)
         check_joint(tree, name, path, line)
 
@@ -168,15 +173,15 @@ _POINT_KEYS = ("time", "positions")
 
 
 def _parse_structured(text: str, path: str, tree: TFTree, is_json: bool):  # type: ignore[no-untyped-def]
-    kind = "JSON" if is_json else "YAML"
     if is_json:
         import json
 
         try:
             data = json.loads(text)
         except json.JSONDecodeError as exc:
-            raise ParameterError(f"not valid JSON: {exc.msg} (column {exc.colno})", path=path, line=exc.lineno,
-                                 hint="check commas, quotes and brackets near that line") from None
+            raise ParameterError(M("not valid JSON: {problem} (column {column})", problem=exc.msg, column=exc.colno),
+                                 path=path, line=exc.lineno,
+                                 hint=M("check commas, quotes and brackets near that line")) from None
     else:
         import yaml
 
@@ -184,75 +189,80 @@ def _parse_structured(text: str, path: str, tree: TFTree, is_json: bool):  # typ
             data = yaml.safe_load(text)
         except yaml.YAMLError as exc:
             mark = getattr(exc, "problem_mark", None)
-            problem = getattr(exc, "problem", None) or "cannot be read"
-            raise ParameterError(f"not valid YAML: {problem}", path=path,
+            problem = getattr(exc, "problem", None)  # PyYAML's own words, quoted in French
+            raise ParameterError(M("not valid YAML: {problem}", problem=problem) if problem else
+                                 M("not valid YAML: cannot be read"), path=path,
                                  line=mark.line + 1 if mark is not None else None,
-                                 hint="check the indentation and the ':' after each key near that line") from None
+                                 hint=M("check the indentation and the ':' after each key near that line")) from None
     lines = _waypoint_lines(text)
     written = None
     names: list[str] | None = None
     if isinstance(data, dict):
         unknown = [k for k in data if k not in _TOP_KEYS]
         if unknown:
-            raise ParameterError(f"unknown key '{unknown[0]}'", path=path,
-                                 hint="the keys are " + ", ".join(_TOP_KEYS))
+            raise ParameterError(M("unknown key '{key}'", key=unknown[0]), path=path,
+                                 hint=M("the keys are {keys}", keys=", ".join(_TOP_KEYS)))
         if "waypoints" not in data:
-            raise ParameterError(f"no 'waypoints' in the {kind} file", path=path,
-                                 hint='write {"interpolation": "linear", "waypoints": [{"time": 0, '
-                                      '"positions": {"epaule": 0}}, ...]}')
+            raise ParameterError(M("no 'waypoints' in the {kind} file", kind="JSON" if is_json else "YAML"),
+                                 path=path, hint=M("write {example}", example='{"interpolation": "linear", '
+                                                   '"waypoints": [{"time": 0, "positions": {"epaule": 0}}, ...]}'))
         written = data.get("interpolation")
         if written is not None and written not in INTERPOLATIONS:
-            raise ParameterError(f"unknown interpolation {written!r}", path=path, hint="use linear or cubic")
+            raise ParameterError(M("unknown interpolation {name!r}", name=written), path=path,
+                                 hint=M("use linear or cubic"))
         if "joints" in data:
             names = data["joints"]
             if not isinstance(names, list) or not all(isinstance(n, str) for n in names):
-                raise ParameterError("'joints' must be a list of joint names", path=path,
-                                     hint="movable joints: " + ", ".join(tree.dof))
+                raise ParameterError(M("'joints' must be a list of joint names"), path=path,
+                                     hint=movable_joints_hint(tree.dof))
             for name in names:
                 check_joint(tree, name, path)
         data = data["waypoints"]
     if not isinstance(data, list) or not data:
-        raise ParameterError("the waypoints must be a non-empty list", path=path,
-                             hint='each waypoint is {"time": 0.0, "positions": {"epaule": 0.0, "coude": 0.0}}')
+        raise ParameterError(M("the waypoints must be a non-empty list"), path=path,
+                             hint=M("each waypoint is {example}",
+                                    example='{"time": 0.0, "positions": {"epaule": 0.0, "coude": 0.0}}'))
     times: list[float] = []
     rows: list[dict[str, float]] = []
     for index, point in enumerate(data):
         line = lines[index] if index < len(lines) else None
-        where = f"waypoint {index + 1}"
+        where = M("waypoint {number}", number=index + 1)
         if not isinstance(point, dict):
-            raise ParameterError(f"{where} is not a mapping with 'time' and 'positions'", path=path, line=line,
-                                 hint='write {"time": 0.5, "positions": {"epaule": 0.3}}')
+            raise ParameterError(M("{where} is not a mapping with 'time' and 'positions'", where=where), path=path,
+                                 line=line, hint=M("write {example}", example='{"time": 0.5, "positions": {"epaule": 0.3}}'))
         unknown = [k for k in point if k not in _POINT_KEYS]
         missing = [k for k in _POINT_KEYS if k not in point]
         if unknown or missing:
-            what = f"unknown key '{unknown[0]}'" if unknown else f"no '{missing[0]}'"
-            raise ParameterError(f"{where}: {what}", path=path, line=line,
-                                 hint="each waypoint has exactly 'time' (seconds) and 'positions'")
+            what = M("unknown key '{key}'", key=unknown[0]) if unknown else M("no '{key}'", key=missing[0])
+            raise ParameterError(M("{where}: {what}", where=where, what=what), path=path, line=line,
+                                 hint=M("each waypoint has exactly 'time' (seconds) and 'positions'"))
         time = _structured_number(point["time"])
         if time is None:
-            raise ParameterError(f"{where}: time {point['time']!r} is not a number", path=path, line=line,
-                                 hint="give the time in seconds, e.g. 1.5")
+            raise ParameterError(M("{where}: time {value} is not a number", where=where, value=repr(point["time"])),
+                                 path=path, line=line, hint=M("give the time in seconds, e.g. 1.5"))
         positions = point["positions"]
         if isinstance(positions, list):
             if names is None:
-                raise ParameterError(f"{where}: positions is a list but the file has no 'joints'", path=path,
-                                     line=line, hint='add "joints": [...] naming the columns, or give '
-                                                     'positions by name: {"epaule": 0.3}')
+                raise ParameterError(M("{where}: positions is a list but the file has no 'joints'", where=where),
+                                     path=path, line=line,
+                                     hint=M("add \"joints\": [...] naming the columns, or give positions by name: "
+                                            "{example}", example='{"epaule": 0.3}'))
             if len(positions) != len(names):
-                raise ParameterError(f"{where}: {len(positions)} positions for {len(names)} joints "
-                                     f"({', '.join(names)})", path=path, line=line,
-                                     hint="give one value per joint named in 'joints'")
+                raise ParameterError(M("{where}: {count} positions for {joints} joints ({names})", where=where,
+                                       count=len(positions), joints=len(names), names=", ".join(names)),
+                                     path=path, line=line, hint=M("give one value per joint named in 'joints'"))
             positions = dict(zip(names, positions))
         if not isinstance(positions, dict) or not positions:
-            raise ParameterError(f"{where}: positions must map joint names to values", path=path, line=line,
-                                 hint='write "positions": {"epaule": 0.3, "coude": -0.2}')
+            raise ParameterError(M("{where}: positions must map joint names to values", where=where), path=path,
+                                 line=line, hint=M("write {example}", example='"positions": {"epaule": 0.3, "coude": -0.2}'))
         row = {}
         for name, raw in positions.items():
             check_joint(tree, str(name), path, line)
             value = _structured_number(raw)
             if value is None:
-                raise ParameterError(f"{where}: {name} = {raw!r} is not a number", path=path, line=line,
-                                     hint="joint values are radians (metres for prismatic joints)")
+                raise ParameterError(M("{where}: {name} = {value} is not a number", where=where, name=str(name),
+                                       value=repr(raw)), path=path, line=line,
+                                     hint=M("joint values are radians (metres for prismatic joints)"))
             row[str(name)] = value
         times.append(time)
         rows.append(row)
@@ -261,8 +271,9 @@ def _parse_structured(text: str, path: str, tree: TFTree, is_json: bool):  # typ
         absent = [name for name in joints if name not in row]
         if absent:
             line = lines[index] if index < len(lines) else None
-            raise ParameterError(f"waypoint {index + 1} has no value for {', '.join(absent)}", path=path,
-                                 line=line, hint="give every joint of the file a value in every waypoint")
+            raise ParameterError(M("waypoint {number} has no value for {names}", number=index + 1,
+                                   names=", ".join(absent)), path=path,
+                                 line=line, hint=M("give every joint of the file a value in every waypoint"))
     values = [[row[name] for name in joints] for row in rows]
     return times, joints, values, [lines[i] if i < len(lines) else None for i in range(len(rows))], written
 
@@ -300,12 +311,12 @@ def _check_times(times: list[float], lines: list[int | None], path: str) -> None
     for index, time in enumerate(times):
         line = lines[index] if index < len(lines) else None
         if time < 0:
-            raise ParameterError(f"waypoint time {time:g} is negative", path=path, line=line,
-                                 hint="times are seconds from the start of the motion, from 0")
+            raise ParameterError(M("waypoint time {time:g} is negative", time=time), path=path, line=line,
+                                 hint=M("times are seconds from the start of the motion, from 0"))
         if index and time <= times[index - 1]:
-            raise ParameterError(f"waypoint time {time:g} does not come after the previous one "
-                                 f"({times[index - 1]:g})", path=path, line=line,
-                                 hint="list waypoints in increasing time order, each at a later time")
+            raise ParameterError(M("waypoint time {time:g} does not come after the previous one ({previous:g})",
+                                   time=time, previous=times[index - 1]), path=path, line=line,
+                                 hint=M("list waypoints in increasing time order, each at a later time"))
 
 
 @dataclass(frozen=True)
@@ -347,17 +358,18 @@ def waypoint_speeds(robot: Robot, motion: Motion, tolerance: float = TOLERANCE) 
     return out
 
 
-def describe_segment(segment: SegmentSpeed) -> str:
+def describe_segment(segment: SegmentSpeed) -> Message:
     """One line for people naming the segment, the joint, the speed it needs and the fix."""
     s = segment
-    where = ""
-    if s.path:
-        where = os.path.basename(s.path)
-        if s.lines[0] is not None and s.lines[1] is not None:
-            where += f" lines {s.lines[0]}-{s.lines[1]}"
-        where += ": "
     spread = (s.end - s.start) * s.speed / s.limit
-    return (f"{where}{s.joint} needs {s.speed:.4g} {s.unit}/s between t={s.start:g} s and t={s.end:g} s "
-            f"({s.interpolation}), above its velocity limit {s.limit:g} {s.unit}/s; "
-            f"space these waypoints about {spread:.3g} s apart")
+    text = M("{joint} needs {speed:.4g} {unit}/s between t={start:g} s and t={end:g} s ({interpolation}), "
+             "above its velocity limit {limit:g} {unit}/s; space these waypoints about {spread:.3g} s apart",
+             joint=s.joint, speed=s.speed, unit=s.unit, start=s.start, end=s.end, interpolation=s.interpolation,
+             limit=s.limit, spread=spread)
+    if not s.path:
+        return text
+    name = os.path.basename(s.path)
+    if s.lines[0] is not None and s.lines[1] is not None:
+        return M("{file} lines {first}-{last}: {text}", file=name, first=s.lines[0], last=s.lines[1], text=text)
+    return M("{file}: {text}", file=name, text=text)
 

@@ -18,14 +18,15 @@ from collections.abc import Mapping, Sequence
 import numpy as np
 
 from ..errors import ParameterError
+from ..message import M
 
 CONTROLS = ("none", "pd", "pd+gravity")
 
 
 def check_control(control: str) -> str:
     if control not in CONTROLS:
-        raise ParameterError(f"unknown control '{control}'",
-                             hint="use none (motors off), pd (track the motion) or pd+gravity (and cancel gravity)")
+        raise ParameterError(M("unknown control '{name}'", name=control),
+                             hint=M("use none (motors off), pd (track the motion) or pd+gravity (and cancel gravity)"))
     return control
 
 
@@ -34,13 +35,14 @@ def gain_vector(value: float | Mapping[str, float], joints: Sequence[str], defau
     if isinstance(value, Mapping):
         unknown = sorted(set(value) - set(joints))
         if unknown:
-            raise ParameterError(f"{what} for unknown joint '{unknown[0]}'", hint="joints: " + ", ".join(joints))
+            raise ParameterError(M("{what} for unknown joint '{joint}'", what=what, joint=unknown[0]),
+                                 hint=M("the joints are {names}", names=list(joints)))
         gains = np.array([float(value.get(j, default)) for j in joints])
     else:
         gains = np.full(len(joints), float(value))
     if not np.all(np.isfinite(gains)) or np.any(gains <= 0):
-        raise ParameterError(f"{what} must be positive numbers, got {', '.join(f'{g:g}' for g in gains)}",
-                             hint=f"e.g. --{what} {default:g}")
+        raise ParameterError(M("{what} must be positive numbers, got {values}", what=what, values=list(gains)),
+                             hint=M("e.g. --{what} {value}", what=what, value=default))
     return gains
 
 

@@ -7,14 +7,17 @@ Visual shapes are drawn but never touch anything (``contype=0``); ``<collision>`
 with each other and with a floor put under the lowest point of the fixed base.
 
 Meshes are resolved by bras-kit (``package://``, relative paths) and handed to MuJoCo as assets;
-formats MuJoCo cannot read (DAE) are converted to STL through trimesh.
+formats MuJoCo cannot read (DAE) are converted to STL from the decoded mesh (:mod:`bras_kit.meshes`).
+A visual mesh whose file gives its own materials becomes one geom per material piece, each with
+that colour (RViz's rule: the mesh's materials win, the URDF ``<material>`` colours the rest).
 """
 
 from __future__ import annotations
 
+import contextlib
 import math
 import os
-from collections.abc import Mapping, Sequence
+from collections.abc import Iterator, Mapping, Sequence
 from dataclasses import dataclass, field
 from xml.sax.saxutils import quoteattr
 
@@ -23,12 +26,13 @@ import numpy as np
 from .. import backends
 from ..errors import ModelError
 from ..kinematics import matrix_to_quat_xyzw, rpy_to_matrix
+from ..message import M, Mn
 from ..model import Geometry, Joint, Origin, Robot
 
 MUJOCO_MESH_SUFFIXES = (".stl", ".obj", ".msh")
 DEFAULT_KP = 100.0  # N.m/rad (N/m for sliders)
 DEFAULT_KD = 10.0  # N.m.s/rad
-DEFAULT_DAMPING = 0.05  # N.m.s/rad: a little joint friction, so a falling arm comes to rest
+MAX_NESTED_BODIES = 496  # MuJoCo's XML reader (tinyxml2) stops at 500 nested elements
 DEFAULT_TIMESTEP = 0.002  # s, MuJoCo's own default
 DEFAULT_INTEGRATOR = "implicitfast"  # stable with stiff motor damping; RK4 for energy studies
 WATER_DENSITY = 1000.0  # kg/m^3, what MuJoCo gives a body known only by its shapes
@@ -71,6 +75,8 @@ class MjcfModel:
     density_links: list[str] = field(default_factory=list)  # massed from <collision> at 1000 kg/m^3
     massless_links: list[str] = field(default_factory=list)  # moving, no inertial, no collision
     converted: list[str] = field(default_factory=list)  # DAE (or other) meshes turned into STL
+    dynamics: dict[str, tuple[float, float]] = field(default_factory=dict)  # joint -> (damping, friction) written
+    damping_given: bool = False  # True: one damping for every joint was asked for, not the URDF's <dynamics>
 
     def compile(self):  # type: ignore[no-untyped-def]
         """The ``mujoco.MjModel`` (a :class:`ModelError` with MuJoCo's reason when it refuses)."""
@@ -80,19 +86,40 @@ class MjcfModel:
         return self.xml.replace('<compiler angle="radian"', f'<compiler meshdir={quoteattr(meshdir)} angle="radian"', 1)
 
 
+@contextlib.contextmanager
+def quiet_mujoco() -> Iterator[list[str]]:
+    """MuJoCo's warnings collected in a list instead of printed and appended to ./MUJOCO_LOG.TXT.
+
+    Without a handler, MuJoCo writes every warning to stderr and to a log file in the working
+    folder; bras-kit writes nothing but the outputs asked for, and reports instability itself
+    (the simulation's time and joint, from ``MjData.warning``).
+    """
+    import mujoco
+
+    collected: list[str] = []
+    previous = mujoco.get_mju_user_warning()
+    mujoco.set_mju_user_warning(collected.append)
+    try:
+        yield collected
+    finally:
+        mujoco.set_mju_user_warning(previous)
+
+
 def compile_xml(xml: str, assets: Mapping[str, bytes], name: str = "robot"):  # type: ignore[no-untyped-def]
     mujoco = backends.mujoco()
 
     try:
-        return mujoco.MjModel.from_xml_string(xml, dict(assets))
+        with quiet_mujoco():
+            return mujoco.MjModel.from_xml_string(xml, dict(assets))
     except ValueError as exc:
         reason = " ".join(str(exc).split())
-        hint = "check the file with bras-kit validate; bras-kit mjcf -o model.xml shows what MuJoCo was given"
+        hint = M("check the file with bras-kit validate; bras-kit mjcf -o model.xml shows what MuJoCo was given")
         if "inertia" in reason:
-            hint = "check the <inertial> of that link (bras-kit validate)"
+            hint = M("check the <inertial> of that link (bras-kit validate)")
         if "mass and inertia" in reason:
-            hint = "give every moving link an <inertial> (built-in arm: --inertials)"
-        raise ModelError(f"MuJoCo refuses the model of '{name}': {reason}", element="mujoco", hint=hint) from None
+            hint = M("give every moving link an <inertial> (built-in arm: --inertials)")
+        raise ModelError(M("MuJoCo refuses the model of '{name}': {reason}", name=name, reason=reason),
+                         element="mujoco", hint=hint) from None
 
 
 def _f(value: float) -> str:
@@ -131,6 +158,7 @@ class _Meshes:
         self.robot, self.package_paths = robot, package_paths
         self.assets: dict[str, MeshAsset] = {}
         self._keys: dict[tuple[str, tuple[float, ...]], str] = {}
+        self._piece_names: dict[tuple[str, str], list[tuple[str, tuple[float, float, float, float] | None]]] = {}
         self.converted: list[str] = []
 
     def asset(self, geometry: Geometry) -> tuple[str, str]:
@@ -141,39 +169,67 @@ class _Meshes:
         scale = tuple(geometry.scale or (1.0, 1.0, 1.0))
         key = (path, scale)
         if key not in self._keys:
-            stem = os.path.splitext(os.path.basename(path))[0]
-            name = f"m{len(self._keys)}_{stem}"
+            name = self._name(path)
             suffix = os.path.splitext(path)[1].lower()
             if suffix in MUJOCO_MESH_SUFFIXES:
                 with open(path, "rb") as handle:
                     data = handle.read()
                 self.assets[name] = MeshAsset(name + suffix, data, path)
             else:
-                self.assets[name] = MeshAsset(name + ".stl", _to_stl(path, self.robot, geometry.line), path, True)
+                data = self._decoded(path, geometry)
+                self.assets[name] = MeshAsset(name + ".stl", binary_stl(data.vertices, data.faces), path, True)
                 self.converted.append(path)
             self._keys[key] = name
-        name = self._keys[key]
-        scale_attr = f' scale="{_vec(scale)}"' if scale != (1.0, 1.0, 1.0) else ""
-        return name, scale_attr
+        return self._keys[key], _scale_attr(scale)
+
+    def pieces(self, geometry: Geometry) -> list[tuple[str, tuple[float, float, float, float] | None]] | None:
+        """(mesh name, own colour) of each material piece of a mesh whose file gives colours of
+        its own; None for a mesh with one piece and no material (the URDF's colour applies)."""
+        from ..render.scene import resolve_mesh_path
+
+        path = resolve_mesh_path(geometry.filename or "", self.robot, self.package_paths, geometry.line)
+        data = self._decoded(path, geometry)
+        if len(data) == 1 and all(p.color is None for p in data.pieces()):
+            return None
+        key = (path, "pieces")
+        if key not in self._piece_names:
+            names = []
+            for piece in data.pieces():
+                name = self._name(path)
+                self.assets[name] = MeshAsset(name + ".stl", binary_stl(piece.vertices, piece.faces), path, True)
+                names.append((name, piece.color))
+            self._piece_names[key] = names
+            if path not in self.converted:
+                self.converted.append(path)
+        return self._piece_names[key]
+
+    def _name(self, path: str) -> str:
+        stem = os.path.splitext(os.path.basename(path))[0]
+        name = f"m{len(self.assets)}_{stem}"
+        return name
+
+    def _decoded(self, path: str, geometry: Geometry):  # type: ignore[no-untyped-def]
+        from ..render.scene import mesh_file_data
+
+        return mesh_file_data(path, self.robot, geometry.line)
 
     def xml(self) -> list[str]:
         return [f'    <mesh name="{name}" file="{asset.name}" inertia="shell"/>' for name, asset in self.assets.items()]
 
 
-def _to_stl(path: str, robot: Robot, line: int | None) -> bytes:
-    """A mesh MuJoCo cannot read (DAE, PLY...) as binary STL, through trimesh."""
-    import trimesh
+def _scale_attr(scale: tuple[float, ...]) -> str:
+    return f' scale="{_vec(scale)}"' if scale != (1.0, 1.0, 1.0) else ""
 
-    try:
-        mesh = trimesh.load(path, force="mesh")
-    except Exception as exc:  # trimesh raises many kinds for bad files
-        raise ModelError(f"cannot convert mesh {path} for MuJoCo: {exc}", path=robot.path, line=line,
-                         element="mesh", hint="export it as STL or OBJ, which MuJoCo reads directly") from None
-    if not isinstance(mesh, trimesh.Trimesh) or len(mesh.faces) == 0:
-        raise ModelError(f"mesh {path} holds no triangles", path=robot.path, line=line, element="mesh",
-                         hint="export the mesh as triangles (STL or OBJ)")
-    data = mesh.export(file_type="stl")
-    return data if isinstance(data, bytes) else str(data).encode()
+
+def binary_stl(vertices: np.ndarray, faces: np.ndarray) -> bytes:
+    """Triangles as a binary STL file (facet normals from the winding)."""
+    corners = np.asarray(vertices, dtype=np.float32)[np.asarray(faces)]  # (F, 3, 3)
+    normals = np.cross(corners[:, 1] - corners[:, 0], corners[:, 2] - corners[:, 0])
+    lengths = np.linalg.norm(normals, axis=1, keepdims=True)
+    normals = (normals / np.where(lengths > 0, lengths, 1.0)).astype(np.float32)
+    records = np.zeros(len(faces), dtype=[("normal", "<f4", 3), ("corners", "<f4", (3, 3)), ("attribute", "<u2")])
+    records["normal"], records["corners"] = normals, corners
+    return b"bras-kit".ljust(80, b" ") + np.uint32(len(faces)).tobytes() + records.tobytes()
 
 
 def _geom_shape(geometry: Geometry | None, meshes: _Meshes) -> str | None:
@@ -218,7 +274,20 @@ def _inertial_xml(link) -> str:  # type: ignore[no-untyped-def]
     return f'<inertial{pose} mass="{_f(inertial.mass or 0.0)}" fullinertia="{full}"/>'
 
 
-def _joint_xml(joint: Joint, kp_effort: float, gravity_compensation: bool, damping: float) -> str:
+def joint_dynamics(joint: Joint, damping: float | None = None) -> tuple[float, float]:
+    """(damping, friction) of ``joint``: its ``<dynamics>`` (0 when not written, as Gazebo does);
+    ``damping``, when given, replaces the URDF's damping on every joint."""
+    dynamics = joint.dynamics
+
+    def usable(value: float | None) -> float:
+        return float(value) if value is not None and math.isfinite(value) and value > 0 else 0.0
+
+    written = usable(dynamics.damping) if dynamics is not None else 0.0
+    friction = usable(dynamics.friction) if dynamics is not None else 0.0
+    return (usable(damping) if damping is not None else written), friction
+
+
+def _joint_xml(joint: Joint, kp_effort: float, gravity_compensation: bool, damping: float, friction: float) -> str:
     kind = "slide" if joint.type == "prismatic" else "hinge"
     attrs = f'name={_name(joint.name)} type="{kind}" axis="{_vec(_unit(joint.axis_or_default))}"'
     if joint.type != "continuous" and joint.limit is not None:
@@ -231,6 +300,8 @@ def _joint_xml(joint: Joint, kp_effort: float, gravity_compensation: bool, dampi
         attrs += ' actuatorgravcomp="true"'
     if damping:
         attrs += f' damping="{_f(damping)}"'
+    if friction:
+        attrs += f' frictionloss="{_f(friction)}"'
     return f"<joint {attrs}/>"
 
 
@@ -260,14 +331,16 @@ def _tree(robot: Robot) -> tuple[str, dict[str, list[Joint]]]:
 
 def build_mjcf(robot: Robot, *, package_paths: Sequence[str] = (), kp: float | Mapping[str, float] = DEFAULT_KP,
                kd: float | Mapping[str, float] = DEFAULT_KD, timestep: float = DEFAULT_TIMESTEP,
-               integrator: str = DEFAULT_INTEGRATOR, control: str = "pd", damping: float = DEFAULT_DAMPING) -> MjcfModel:
+               integrator: str = DEFAULT_INTEGRATOR, control: str = "pd", damping: float | None = None) -> MjcfModel:
     """The MJCF of ``robot``: bodies, joints with ranges, motors at +-effort, collisions, a floor.
 
     ``control``: ``none`` (no motor: the arm only falls), ``pd`` (motors are PD servos,
     ``force = kp (ctrl - q) - kd qdot`` clipped to the effort) or ``pd+gravity`` (MuJoCo also
-    adds each joint's gravity torque to its motor, inside the same effort clip). ``damping``
-    (N.m.s/rad or N.s/m) is written on every movable joint. A moving link without ``<inertial>`` and without ``<collision>`` is a
-    :class:`ModelError` (MuJoCo cannot move a body with no mass).
+    adds each joint's gravity torque to its motor, inside the same effort clip). Each joint's
+    damping and friction come from its ``<dynamics>`` (none when absent, as in Gazebo);
+    ``damping`` (N.m.s/rad or N.s/m), when given, replaces the damping of every movable joint.
+    A moving link without ``<inertial>`` and without ``<collision>`` is a :class:`ModelError`
+    (MuJoCo cannot move a body with no mass).
     """
     from .controllers import check_control
 
@@ -279,11 +352,13 @@ def build_mjcf(robot: Robot, *, package_paths: Sequence[str] = (), kp: float | M
     density_links: list[str] = []
     massless: list[str] = []
     body_lines: list[str] = []
+    dynamics: dict[str, tuple[float, float]] = {}
 
     def gain(value: float | Mapping[str, float], joint: str, default: float) -> float:
         return float(value.get(joint, default)) if isinstance(value, Mapping) else float(value)
 
-    def emit(link_name: str, joint: Joint | None, depth: int) -> None:
+    def emit(link_name: str, joint: Joint | None, depth: int) -> str | None:
+        """Write one body's opening and contents; return its closing line (None for the world)."""
         link = robot.link(link_name)
         pad = "  " * depth
         attrs = f"name={_name(link_name)}"
@@ -298,7 +373,9 @@ def build_mjcf(robot: Robot, *, package_paths: Sequence[str] = (), kp: float | M
         moving = joint is not None and joint.type in ("revolute", "continuous", "prismatic")
         if moving and joint is not None:
             effort = joint_effort(joint) if joint.mimic is None else math.inf
-            body_lines.append(f"{pad}  {_joint_xml(joint, effort, gravity_compensation, damping)}")
+            joint_damping, friction = joint_dynamics(joint, damping)
+            dynamics[joint.name or ""] = (joint_damping, friction)
+            body_lines.append(f"{pad}  {_joint_xml(joint, effort, gravity_compensation, joint_damping, friction)}")
             if joint.mimic is not None:
                 mimics.append((joint.name or "", joint.mimic.joint or "", joint.mimic.multiplier, joint.mimic.offset))
             else:
@@ -312,6 +389,17 @@ def build_mjcf(robot: Robot, *, package_paths: Sequence[str] = (), kp: float | M
                 else:
                     massless.append(link_name)
             for n, visual in enumerate(link.visuals, 1):
+                pieces = meshes.pieces(visual.geometry) if visual.geometry is not None and \
+                    visual.geometry.kind == "mesh" and visual.geometry.filename else None
+                if pieces:
+                    scale = _scale_attr(tuple(visual.geometry.scale or (1.0, 1.0, 1.0)))  # type: ignore[union-attr]
+                    fallback = robot.material_rgba(visual) or (0.7, 0.7, 0.7, 1.0)
+                    for k, (mesh_name, own) in enumerate(pieces, 1):
+                        body_lines.append(
+                            f'{pad}  <geom name={_name(f"{link_name}/visual{n}.{k}")} type="mesh" mesh="{mesh_name}"'
+                            f'{scale}{_pose_attrs(visual.origin)} rgba="{_vec(own or fallback)}" contype="0" '
+                            f'conaffinity="0" group="{VISUAL_GROUP}" density="0"/>')
+                    continue
                 shape = _geom_shape(visual.geometry, meshes)
                 if shape:
                     body_lines.append(
@@ -326,19 +414,33 @@ def build_mjcf(robot: Robot, *, package_paths: Sequence[str] = (), kp: float | M
                         f'{pad}  <geom name={_name(f"{link_name}/collision{n}")} {shape}'
                         f'{_mesh_scale(collision.geometry, meshes)}{_pose_attrs(collision.origin)} '
                         f'rgba="{COLLISION_RGBA}" group="{COLLISION_GROUP}"{mass}/>')
-        for child in children.get(link_name, []):
-            emit(child.child or "", child, depth + 1)
-        if opened:
-            body_lines.append(f"{pad}</body>")
+        return f"{pad}</body>" if opened else None
 
-    emit(root, None, 2)
+    # depth first with a stack, not recursion: a chain of a thousand links is a valid URDF
+    stack: list[tuple[str, Joint | None, int] | str | None] = [(root, None, 2)]
+    while stack:
+        item = stack.pop()
+        if item is None or isinstance(item, str):
+            if item is not None:
+                body_lines.append(item)
+            continue
+        link_name, joint, depth = item
+        if depth - 1 > MAX_NESTED_BODIES:
+            raise ModelError(M("link '{link}' is {count} links down its chain; MuJoCo reads at most {limit} bodies "
+                               "nested in one another", link=link_name, count=depth - 1, limit=MAX_NESTED_BODIES),
+                             path=robot.path, line=(robot.link(link_name) or robot.links[0]).line, element="link",
+                             hint=M("simulate a shorter chain ('bras-kit tree' and 'bras-kit validate' read any size)"))
+        stack.append(emit(link_name, joint, depth))
+        stack.extend((child.child or "", child, depth + 1) for child in reversed(children.get(link_name, [])))
     if massless:
         raise ModelError(
-            f"link '{massless[0]}' moves but has no <inertial> (and no <collision> to weigh): "
-            "MuJoCo cannot simulate a body with no mass"
-            + (f" ({len(massless)} such links: {', '.join(massless)})" if len(massless) > 1 else ""),
+            Mn("link {links} moves but has no <inertial> (and no <collision> to weigh): MuJoCo cannot simulate "
+               "a body with no mass",
+               "{n} links move but have no <inertial> (and no <collision> to weigh): {links}; MuJoCo cannot simulate "
+               "a body with no mass", len(massless), links=massless),
             path=robot.path, line=(robot.link(massless[0]) or robot.links[0]).line, element="link",
-            hint="built-in arm: pass --inertials; your own file: add <inertial> with mass and inertia to each moving link")
+            hint=M("built-in arm: pass --inertials; your own file: add <inertial> with mass and inertia to each "
+                   "moving link"))
 
     actuators = []
     for a in actuated if control != "none" else []:
@@ -354,7 +456,7 @@ def build_mjcf(robot: Robot, *, package_paths: Sequence[str] = (), kp: float | M
     contact = [f'    <exclude body1={_name(p)} body2={_name(c)}/>' for p, c, _ in excluded]
     xml = _document(robot, body_lines, meshes, actuators, equality, contact, floor_z, timestep, integrator)
     return MjcfModel(robot.name or "robot", xml, dict(meshes.assets), actuated, mimics, floor_z, excluded,
-                     density_links, massless, meshes.converted)
+                     density_links, massless, meshes.converted, dynamics, damping is not None)
 
 
 def _document(robot: Robot, bodies: list[str], meshes: _Meshes, actuators: list[str], equality: list[str],

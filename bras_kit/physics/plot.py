@@ -12,6 +12,8 @@ import numpy as np
 
 from .. import backends
 from ..diagrams.output import FIGURE_FORMATS, output_suffix, save_figure
+from ..i18n import say
+from ..message import M
 from ..model import Robot
 
 if TYPE_CHECKING:  # pragma: no cover
@@ -19,20 +21,13 @@ if TYPE_CHECKING:  # pragma: no cover
 
 _BAND = "#f6cccc"
 _LIMIT_LINE = "#b03a2e"
-_WORDS = {
-    "en": {"position": "position", "reference": "reference", "torque": "torque", "limit": "effort limit",
-           "time": "time (s)", "title": "{robot}: {control} control"},
-    "fr": {"position": "position", "reference": "consigne", "torque": "couple", "limit": "limite d'effort",
-           "time": "temps (s)", "title": "{robot} : commande {control}"},
-}
 
-
-def torque_figure(robot: Robot, states: Any, lang: str = "en") -> Figure:
+def torque_figure(robot: Robot, states: Any, lang: str | None = None) -> Figure:
     """Two rows per run: positions (measured, reference) and torques with +-effort, one column per joint."""
     backends.matplotlib()
     from matplotlib.figure import Figure
 
-    words = _WORDS["fr" if lang == "fr" else "en"]
+    position, torque = say(M("position"), lang), say(M("torque"), lang)
     count = max(1, len(states.names))
     columns = min(count, 4)  # a 7-joint arm wraps onto two bands of rows
     bands = math.ceil(count / columns)
@@ -46,32 +41,32 @@ def torque_figure(robot: Robot, states: Any, lang: str = "en") -> Figure:
         joint = robot.joint(name)
         linear = joint is not None and joint.type == "prismatic"
         top, bottom = axes[2 * (k // columns)][k % columns], axes[2 * (k // columns) + 1][k % columns]
-        top.plot(times, states.targets[:, k], "--", color="#888888", label=words["reference"])
-        top.plot(times, states.positions[:, k], color="#1f77b4", label=words["position"])
+        top.plot(times, states.targets[:, k], "--", color="#888888", label=say(M("reference"), lang))
+        top.plot(times, states.positions[:, k], color="#1f77b4", label=position)
         lower, upper = joint.bounds() if joint is not None else (-math.inf, math.inf)
         for bound in (lower, upper):
             if math.isfinite(bound):
                 top.axhline(bound, color=_LIMIT_LINE, linewidth=0.8)
         top.set_title(name)
-        top.set_ylabel(f"{words['position']} ({'m' if linear else 'rad'})")
-        bottom.plot(times, states.efforts[:, k], color="#2ca02c", label=words["torque"])
+        top.set_ylabel(f"{position} ({'m' if linear else 'rad'})")
+        bottom.plot(times, states.efforts[:, k], color="#2ca02c", label=torque)
         effort = float(states.effort_limits[k])
         if math.isfinite(effort):
             peak = max(effort * 1.3, float(np.abs(states.efforts[:, k]).max()) * 1.1)
-            bottom.axhspan(effort, peak, color=_BAND, label=words["limit"])
+            bottom.axhspan(effort, peak, color=_BAND, label=say(M("effort limit"), lang))
             bottom.axhspan(-peak, -effort, color=_BAND)
             bottom.axhline(effort, color=_LIMIT_LINE, linewidth=0.8)
             bottom.axhline(-effort, color=_LIMIT_LINE, linewidth=0.8)
             bottom.set_ylim(-peak, peak)
-        bottom.set_ylabel(f"{words['torque']} ({'N' if linear else 'N·m'})")
-        bottom.set_xlabel(words["time"])
+        bottom.set_ylabel(f"{torque} ({'N' if linear else 'N·m'})")
+        bottom.set_xlabel(say(M("time (s)"), lang))
         if k == 0:
             top.legend(loc="upper right", fontsize="small")
             bottom.legend(loc="upper right", fontsize="small")
-    figure.suptitle(words["title"].format(robot=robot.name or "robot", control=states.control))
+    figure.suptitle(say(M("{robot}: {control} control", robot=robot.name or "robot", control=states.control), lang))
     return figure
 
 
-def save_torque_plot(robot: Robot, states: Any, path: str | os.PathLike[str], lang: str = "en") -> None:
+def save_torque_plot(robot: Robot, states: Any, path: str | os.PathLike[str], lang: str | None = None) -> None:
     output_suffix(path, FIGURE_FORMATS)
     save_figure(torque_figure(robot, states, lang), path)

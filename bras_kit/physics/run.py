@@ -18,6 +18,7 @@ import numpy as np
 from .. import backends
 from ..errors import ParameterError
 from ..kinematics import tf_tree
+from ..message import M, Message
 from ..model import Robot
 from ..motion import (
     DEFAULT_DURATION,
@@ -30,18 +31,18 @@ from ..motion import (
 )
 from .controllers import check_control, gain_vector, servo_setpoints
 from .mjcf import (
-    DEFAULT_DAMPING,
     DEFAULT_INTEGRATOR,
     DEFAULT_KD,
     DEFAULT_KP,
     DEFAULT_TIMESTEP,
     MjcfModel,
     build_mjcf,
+    quiet_mujoco,
 )
 
 DEFAULT_CONTROL_RATE = 100.0  # Hz, the update rate ros2_control setups commonly use
 AT_LIMIT = 1e-3  # a torque within 0.1 % of the effort counts as "at the limit"
-WEAK_SHARE, WEAK_ERROR = 0.05, 0.1  # 5 % of the time at the limit and 0.1 rad (m) behind: too weak
+SATURATED_SHARE, SATURATED_ERROR = 0.05, 0.1  # 5 % of the time at the limit and 0.1 rad (m) behind
 MAX_TICKS = 5_000_000
 
 
@@ -60,7 +61,16 @@ class JointReport:
     final_position: float
     lower: float
     upper: float
-    weak: bool
+    weak: bool  # the motion needs more torque than <limit effort> allows
+    saturated: bool = False  # at its limit and behind although the motion needs less: gains or time step
+
+
+@dataclass(frozen=True)
+class Divergence:
+    """Where a run stopped being a number: the simulated time and the joint MuJoCo named."""
+
+    time: float
+    joint: str
 
 
 @dataclass
@@ -77,6 +87,7 @@ class SimulatedStates(JointStates):
     report: list[JointReport] = field(default_factory=list)
     contacts: list[tuple[str, str]] = field(default_factory=list)  # geoms touching at the end
     model: MjcfModel | None = field(default=None, repr=False)
+    diverged: Divergence | None = None  # the run stopped there: NaN or a huge value (unstable)
 
     def joint_report(self, joint: str) -> JointReport:
         return self.report[self.column(joint)]
@@ -96,10 +107,10 @@ def _motion(robot: Robot, motion: Motion | Sequence[str] | None) -> Motion:
     return motion_from_specs(robot, list(motion))
 
 
-def _check_positive(value: float, what: str, hint: str) -> float:
+def _check_positive(value: float, what: Message, hint: Message) -> float:
     value = float(value)
     if not math.isfinite(value) or value <= 0:
-        raise ParameterError(f"{what} {value:g} is not above 0", hint=hint)
+        raise ParameterError(M("{what} {value} is not above 0", what=what, value=value), hint=hint)
     return value
 
 
@@ -107,7 +118,7 @@ def simulate(robot: Robot, motion: Motion | Sequence[str] | None = None, *, cont
              kp: float | Mapping[str, float] = DEFAULT_KP, kd: float | Mapping[str, float] = DEFAULT_KD,
              duration: float | None = None, rate: float = DEFAULT_RATE, start: Mapping[str, float] | None = None,
              timestep: float = DEFAULT_TIMESTEP, integrator: str = DEFAULT_INTEGRATOR,
-             control_rate: float = DEFAULT_CONTROL_RATE, damping: float = DEFAULT_DAMPING,
+             control_rate: float = DEFAULT_CONTROL_RATE, damping: float | None = None,
              package_paths: Sequence[str] = (), lang: str = "en") -> SimulatedStates:
     """Simulate ``robot`` under gravity with its motors following ``motion``; return the measured states.
 
@@ -115,8 +126,10 @@ def simulate(robot: Robot, motion: Motion | Sequence[str] | None = None, *, cont
     ``["coude=1.2*sin(0.7*t)"]``) or None for the tutorial's node. ``control``: ``none`` (motors
     off: the arm falls from ``start``), ``pd`` or ``pd+gravity``. ``start`` ({joint: value}) is the
     pose at t = 0 (default: the motion's first pose), at rest. Motor torques never exceed
-    ``<limit effort>``. ``damping`` (N.m.s/rad) is a little joint friction so a falling arm comes
-    to rest; 0 makes the joints frictionless. ``lang`` (``en``/``fr``): the words of a model error.
+    ``<limit effort>``. Joint damping and friction come from the URDF's ``<dynamics>`` (none
+    when absent, as in Gazebo); ``damping`` (N.m.s/rad), when given, replaces the damping of
+    every joint. A run that becomes unstable (NaN) stops there: ``diverged`` says when and where.
+    ``lang`` (``en``/``fr``): the words of a model error.
     """
     mujoco = backends.mujoco()
 
@@ -124,11 +137,15 @@ def simulate(robot: Robot, motion: Motion | Sequence[str] | None = None, *, cont
 
     check_control(control)
     check_physics_ready(robot, lang)
-    timestep = _check_positive(timestep, "time step", "give a time step in seconds, e.g. 0.002")
-    rate = _check_positive(rate, "rate", "give samples per second, e.g. 20")
-    control_rate = _check_positive(control_rate, "control rate", "give a control rate in Hz, e.g. 500")
+    timestep = _check_positive(timestep, M("time step"), M("give a time step in seconds, e.g. 0.002"))
+    rate = _check_positive(rate, M("rate"), M("give samples per second, e.g. 20"))
+    control_rate = _check_positive(control_rate, M("control rate"), M("give a control rate in Hz, e.g. 500"))
     if integrator not in ("Euler", "RK4", "implicit", "implicitfast"):
-        raise ParameterError(f"unknown integrator '{integrator}'", hint="use Euler, RK4, implicit or implicitfast")
+        raise ParameterError(M("unknown integrator '{name}'", name=integrator),
+                             hint=M("use Euler, RK4, implicit or implicitfast"))
+    if damping is not None and (not math.isfinite(damping) or damping < 0):
+        raise ParameterError(M("damping {value} is not a number of 0 or more", value=damping),
+                             hint=M("give a damping in N·m·s/rad, e.g. 0.05, or 0 for none"))
     tree = tf_tree(robot)
     names = list(tree.dof)
     program = _motion(robot, motion)
@@ -136,7 +153,8 @@ def simulate(robot: Robot, motion: Motion | Sequence[str] | None = None, *, cont
         duration = program.duration if program.duration is not None else DEFAULT_DURATION
     duration = float(duration)
     if not math.isfinite(duration) or duration < 0:
-        raise ParameterError(f"duration {duration:g} s is not a time", hint="give a duration of 0 s or more")
+        raise ParameterError(M("duration {value} s is not a time", value=duration),
+                             hint=M("give a duration of 0 s or more"))
     kp_v = gain_vector(kp, names, DEFAULT_KP, "kp")
     kd_v = gain_vector(kd, names, DEFAULT_KD, "kd")
     built = build_mjcf(robot, package_paths=package_paths, kp=dict(zip(names, kp_v)), kd=dict(zip(names, kd_v)),
@@ -154,14 +172,15 @@ def simulate(robot: Robot, motion: Motion | Sequence[str] | None = None, *, cont
     tick = steps * timestep
     ticks = math.ceil(duration / tick - 1e-9)
     if (ticks + 1) * max(1, len(names)) > MAX_TICKS:
-        raise ParameterError(f"{ticks} control ticks is too many", hint="lower --duration")
+        raise ParameterError(M("{count} control ticks is too many", count=ticks), hint=M("lower --duration"))
     times = np.arange(ticks + 1) * tick
     columns = [program.names.index(n) for n in names]
     with np.errstate(all="ignore"):
         q_ref, qd_ref = (a[:, columns] for a in program.evaluate(times))
         q_mid, qd_mid = (a[:, columns] for a in program.evaluate(times + tick / 2))
     if not (np.all(np.isfinite(q_ref)) and np.all(np.isfinite(qd_ref))):
-        raise ParameterError("the motion is not a number at some time", hint="check the formulas with bras-kit motion")
+        raise ParameterError(M("the motion is not a number at some time"),
+                             hint=M("check the formulas with bras-kit motion"))
     setpoints = servo_setpoints(q_mid, qd_mid, kp_v, kd_v)
 
     first = q_ref[0].copy()
@@ -176,22 +195,52 @@ def simulate(robot: Robot, motion: Motion | Sequence[str] | None = None, *, cont
     velocities = np.empty_like(positions)
     torques = np.empty_like(positions)
     positions[0], velocities[0], torques[0] = first, 0.0, data.qfrc_actuator[vadr]
-    for k in range(ticks):
-        if driven:
-            data.ctrl[act] = setpoints[k]
-        mujoco.mj_step(model, data, nstep=steps)
-        positions[k + 1] = data.qpos[qadr]
-        velocities[k + 1] = data.qvel[vadr]
-        torques[k + 1] = data.qfrc_actuator[vadr]
-
-    contacts = sorted({(_geom_name(model, c.geom1), _geom_name(model, c.geom2)) for c in data.contact[:data.ncon]})
-    needed = _needed_torques(model, qadr, vadr, times, q_ref, qd_ref) if driven else np.zeros((1, len(names)))
+    diverged = None
+    with quiet_mujoco():
+        for k in range(ticks):
+            if driven:
+                data.ctrl[act] = setpoints[k]
+            diverged = _steps(model, data, steps, float(times[k]), timestep)
+            if diverged is not None:
+                ticks = k  # keep what was a number; MuJoCo has reset the state
+                break
+            positions[k + 1] = data.qpos[qadr]
+            velocities[k + 1] = data.qvel[vadr]
+            torques[k + 1] = data.qfrc_actuator[vadr]
+        contacts = sorted({(_geom_name(model, c.geom1), _geom_name(model, c.geom2))
+                           for c in data.contact[:data.ncon]}) if diverged is None else []
+        needed = _needed_torques(model, qadr, vadr, times, q_ref, qd_ref) if driven else np.zeros((1, len(names)))
+    positions, velocities, torques = positions[:ticks + 1], velocities[:ticks + 1], torques[:ticks + 1]
+    times, q_ref = times[:ticks + 1], q_ref[:ticks + 1]
     report = _reports(robot, names, positions, torques, q_ref, needed, efforts, control)
-    picks = np.minimum(np.round(np.arange(sample_count(duration, rate)) / rate / tick).astype(int), ticks)
+    kept = float(times[-1]) if diverged is not None else duration
+    picks = np.unique(np.minimum(np.round(np.arange(sample_count(kept, rate)) / rate / tick).astype(int), ticks))
     return SimulatedStates(times[picks], names, positions[picks], velocities[picks], efforts=torques[picks],
                            targets=q_ref[picks], effort_limits=efforts, control=control, timestep=timestep,
                            integrator=integrator, control_rate=1.0 / tick, report=report, contacts=contacts,
-                           model=built)
+                           model=built, diverged=diverged)
+
+
+_UNSTABLE = ("mjWARN_BADQPOS", "mjWARN_BADQVEL", "mjWARN_BADQACC")
+
+
+def _steps(model, data, steps: int, start: float, timestep: float) -> Divergence | None:  # type: ignore[no-untyped-def]
+    """Step ``steps`` times; stop at the first step MuJoCo finds unstable (it then resets the state)."""
+    import mujoco
+
+    kinds = [int(getattr(mujoco.mjtWarning, name)) for name in _UNSTABLE]
+    before = [int(data.warning[kind].number) for kind in kinds]
+    for step in range(steps):
+        mujoco.mj_step(model, data)
+        for kind, count in zip(kinds, before):
+            if int(data.warning[kind].number) > count:
+                dof = int(data.warning[kind].lastinfo)
+                joint = int(model.dof_jntid[dof]) if 0 <= dof < model.nv else -1
+                name = mujoco.mj_id2name(model, mujoco.mjtObj.mjOBJ_JOINT, joint) if joint >= 0 else None
+                return Divergence(start + (step + 1) * timestep, name or "?")
+        if not np.all(np.isfinite(data.qpos)):
+            return Divergence(start + (step + 1) * timestep, "?")
+    return None
 
 
 def _geom_name(model, geom: int) -> str:  # type: ignore[no-untyped-def]
@@ -229,9 +278,14 @@ def _reports(robot: Robot, names: list[str], positions: np.ndarray, torques: np.
         share = float(at_limit.mean()) if len(at_limit) else 0.0
         past = np.maximum(lower - positions[:, j], positions[:, j] - upper)
         needed_peak = float(np.abs(needed[:, j]).max()) if len(needed) else 0.0
-        weak = control != "none" and math.isfinite(efforts[j]) and (
-            needed_peak > efforts[j] or (share > WEAK_SHARE and float(error.max()) > WEAK_ERROR))
+        driven = control != "none" and math.isfinite(efforts[j])
+        # too weak: a perfect motor would need more than <limit effort> (inverse dynamics along
+        # the reference). At its limit and behind while the motion needs less is not weakness:
+        # the gains or the time step make the motor overshoot and chatter (reported apart).
+        weak = driven and needed_peak > efforts[j]
+        saturated = driven and not weak and share > SATURATED_SHARE and float(error.max()) > SATURATED_ERROR
         out.append(JointReport(name, float(efforts[j]), float(error.mean()), float(error.max()),
                                float(np.abs(torques[:, j]).max()), share, needed_peak,
-                               float(max(0.0, past.max())), float(positions[-1, j]), lower, upper, bool(weak)))
+                               float(max(0.0, past.max())), float(positions[-1, j]), lower, upper, bool(weak),
+                               bool(saturated)))
     return out

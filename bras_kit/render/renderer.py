@@ -111,6 +111,27 @@ def used_software_fallback() -> bool:
 
 
 MAX_RENDER_LINKS = 5000  # real robots have a few hundred at most; each link costs a scene node
+MAX_DRAWN_METRES = 1e6  # a joint offset past this is a typo or a fuzzer: no camera frames it
+
+
+def check_drawable(robot: Robot) -> None:
+    """Refuse, naming the joint and its line, an origin a picture cannot hold (nan, inf, 1e308).
+
+    urdfdom and the validator accept such numbers; drawing them would divide by infinity
+    when the camera and the ground grid are fitted.
+    """
+    from ..errors import ModelError
+    from ..message import M
+
+    for joint in robot.joints:
+        xyz, rpy = joint.origin.xyz, joint.origin.rpy
+        if all(math.isfinite(v) for v in rpy) and all(math.isfinite(v) and abs(v) <= MAX_DRAWN_METRES for v in xyz):
+            continue
+        raise ModelError(M("joint '{joint}' has the origin xyz=\"{xyz}\" rpy=\"{rpy}\": bras-kit cannot draw "
+                           "a robot whose parts are not a number or more than {limit} m away",
+                           joint=joint.name, xyz=list(xyz), rpy=list(rpy), limit=MAX_DRAWN_METRES),
+                         path=robot.path, line=joint.origin.line or joint.line, element="origin",
+                         hint=M("write finite lengths in metres in <origin xyz> and angles in radians in rpy"))
 
 
 MAX_NAMED_FRAMES = 60  # past that, names would hide the robot
@@ -160,6 +181,7 @@ class Renderer:
 
             raise ModelError(f"the robot has {len(self.tree.links):,} links, more than the {MAX_RENDER_LINKS:,} "
                              "bras-kit draws", hint="'bras-kit tree' and 'bras-kit validate' work on models of any size")
+        check_drawable(robot)
         fit_q = workspace_samples(self.tree) if fit is None else configurations(self.tree, fit)
         self.scene, points = build_scene(self.tree, fk_batch(self.tree, fit_q), tf=self.options.tf,
                                          grid=self.options.grid, package_paths=self.options.package_paths,

@@ -18,6 +18,7 @@ import numpy as np
 
 from ..errors import ModelError, XacroError
 from ..kinematics import TFTree, origin_matrix
+from ..message import M
 from ..model import Robot, Visual
 
 DEFAULT_COLOR = (0.7, 0.7, 0.7, 1.0)  # a visual with no material, as RViz shows it
@@ -167,19 +168,51 @@ def rod_mesh(radius: float, end: np.ndarray, sections: int = 12) -> TriangleMesh
     return rod.transformed(matrix)
 
 
-def load_mesh_file(path: str, robot: Robot, line: int | None = None) -> TriangleMesh:
-    """The triangles of an STL, OBJ or DAE file (through trimesh, imported only here)."""
-    import trimesh
+def mesh_file_data(path: str, robot: Robot, line: int | None = None, scale: Sequence[float] | None = None):  # type: ignore[no-untyped-def]
+    """The decoded triangles and materials of a mesh file (:func:`bras_kit.meshes.load_mesh`:
+    decoded once, then from the cache), as a :class:`bras_kit.meshes.MeshData`."""
+    from ..meshes import DecodeError, load_mesh
 
     try:
-        mesh = trimesh.load(path, force="mesh")
-    except Exception as exc:
-        raise ModelError(f"cannot read mesh {path}: {exc}", path=robot.path, line=line,
-                         element="mesh", hint="give an STL, OBJ or DAE file") from None
-    if not isinstance(mesh, trimesh.Trimesh) or len(mesh.faces) == 0:
-        raise ModelError(f"mesh {path} holds no triangles", path=robot.path, line=line,
-                         element="mesh", hint="export the mesh as triangles (STL, OBJ or DAE)")
-    return TriangleMesh(np.asarray(mesh.vertices, dtype=float), np.asarray(mesh.faces, dtype=np.int64))
+        return load_mesh(path, scale)
+    except DecodeError as exc:
+        if exc.reason == "no triangles":
+            raise ModelError(M("mesh {path} holds no triangles", path=path), path=robot.path, line=line,
+                             element="mesh", hint=M("export the mesh as triangles (STL, OBJ or DAE)")) from None
+        raise ModelError(M("cannot read mesh {path}: {reason}", path=path, reason=exc.reason), path=robot.path,
+                         line=line, element="mesh", hint=M("give an STL, OBJ or DAE file")) from None
+
+
+def load_mesh_file(path: str, robot: Robot, line: int | None = None) -> TriangleMesh:
+    """The triangles of an STL, OBJ or DAE file, every material together."""
+    data = mesh_file_data(path, robot, line)
+    return TriangleMesh(np.asarray(data.vertices, dtype=float), np.asarray(data.faces, dtype=np.int64))
+
+
+def _primitive_mesh(g) -> TriangleMesh | None:  # type: ignore[no-untyped-def]
+    if g.kind == "box" and g.size is not None:
+        return box_mesh(g.size)
+    if g.kind == "cylinder" and g.radius and g.length:
+        return cylinder_mesh(abs(g.radius), abs(g.length))
+    if g.kind == "sphere" and g.radius:
+        return sphere_mesh(abs(g.radius))
+    return None
+
+
+def visual_pieces(robot: Robot, visual: Visual, package_paths: Sequence[str] = ()):  # type: ignore[no-untyped-def]
+    """The visual's shape in the link frame as (mesh, own colour or None) pieces, and the mesh
+    file's issues (what it names but could not be used); ``([], ())`` when it has no usable shape."""
+    g = visual.geometry
+    if g is None:
+        return [], ()
+    placed = origin_matrix(visual.origin.xyz, visual.origin.rpy)
+    if g.kind == "mesh" and g.filename:
+        path = resolve_mesh_path(g.filename, robot, package_paths, g.line)
+        data = mesh_file_data(path, robot, g.line, g.scale)
+        return [(TriangleMesh(np.asarray(p.vertices, dtype=float), np.asarray(p.faces, dtype=np.int64)).transformed(placed),
+                 p.color) for p in data.pieces()], data.issues
+    mesh = _primitive_mesh(g)
+    return ([] if mesh is None else [(mesh.transformed(placed), None)]), ()
 
 
 def visual_mesh(robot: Robot, visual: Visual, package_paths: Sequence[str] = ()) -> TriangleMesh | None:
@@ -187,44 +220,15 @@ def visual_mesh(robot: Robot, visual: Visual, package_paths: Sequence[str] = ())
     g = visual.geometry
     if g is None:
         return None
-    if g.kind == "box" and g.size is not None:
-        mesh = box_mesh(g.size)
-    elif g.kind == "cylinder" and g.radius and g.length:
-        mesh = cylinder_mesh(abs(g.radius), abs(g.length))
-    elif g.kind == "sphere" and g.radius:
-        mesh = sphere_mesh(abs(g.radius))
-    elif g.kind == "mesh" and g.filename:
+    if g.kind == "mesh" and g.filename:
         path = resolve_mesh_path(g.filename, robot, package_paths, g.line)
-        mesh = _mesh_file_cached(path, robot, g.line)
-        if g.scale is not None:
-            scale = np.asarray(g.scale, dtype=float)
-            # a mirroring scale turns the triangles inside out: wind them the other way
-            mesh = TriangleMesh(mesh.vertices * scale, mesh.faces[:, ::-1] if np.prod(scale) < 0 else mesh.faces)
+        data = mesh_file_data(path, robot, g.line, g.scale)
+        mesh = TriangleMesh(np.asarray(data.vertices, dtype=float), np.asarray(data.faces, dtype=np.int64))
     else:
-        return None
+        mesh = _primitive_mesh(g)  # type: ignore[assignment]
+        if mesh is None:
+            return None
     return mesh.transformed(origin_matrix(visual.origin.xyz, visual.origin.rpy))
-
-
-def _mesh_file_cached(path: str, robot: Robot, line: int | None) -> TriangleMesh:
-    """A mesh file read once per process while it stays unchanged (robots share meshes)."""
-    try:
-        stat = os.stat(path)
-    except OSError:
-        return load_mesh_file(path, robot, line)
-    key = (os.path.realpath(path), stat.st_mtime_ns, stat.st_size)
-    mesh = _MESH_CACHE.get(key)
-    if mesh is None:
-        mesh = load_mesh_file(path, robot, line)
-        mesh.vertices.flags.writeable = False
-        mesh.faces.flags.writeable = False
-        if sum(len(m.vertices) + len(m.faces) for m in _MESH_CACHE.values()) > MESH_CACHE_ENTRIES:
-            _MESH_CACHE.clear()
-        _MESH_CACHE[key] = mesh
-    return mesh
-
-
-MESH_CACHE_ENTRIES = 4_000_000  # vertices + faces kept from read mesh files (about 100 MB at most)
-_MESH_CACHE: dict[tuple[str, int, int], TriangleMesh] = {}
 
 
 PLACEHOLDER_COLOR = (0.9, 0.05, 0.05, 1.0)
@@ -244,11 +248,16 @@ def placeholder_mesh(robot: Robot, link, visual: Visual) -> TriangleMesh:  # typ
     return box_mesh([PLACEHOLDER_SIDE] * 3).transformed(origin_matrix(visual.origin.xyz, visual.origin.rpy))
 
 
-def robot_parts(tree: TFTree, package_paths: Sequence[str] = ()) -> list[Part]:
-    """A :class:`Part` per drawable visual of every link, with the material's colour."""
+def robot_parts(tree: TFTree, package_paths: Sequence[str] = (), lang: str | None = None) -> list[Part]:
+    """A :class:`Part` per drawable piece of every link's visuals. Colours follow RViz: a mesh's
+    own materials win; the URDF ``<material>`` colours primitives, meshes with no material (STL)
+    and the pieces of a mesh without one; grey when neither says. What a mesh file names but
+    cannot be used (a missing texture) is said once per file, and the rest drawn."""
+    from ..i18n import say
+
     robot = tree.robot
     parts = []
-    warned: set[str] = set()
+    warned: set[str | None] = set()
     for index, name in enumerate(tree.links):
         link = robot.link(name)
         if link is None:
@@ -256,16 +265,23 @@ def robot_parts(tree: TFTree, package_paths: Sequence[str] = ()) -> list[Part]:
         for number, visual in enumerate(link.visuals, 1):
             color = robot.material_rgba(visual) or DEFAULT_COLOR
             try:
-                mesh = visual_mesh(robot, visual, package_paths)
+                pieces, issues = visual_pieces(robot, visual, package_paths)
             except ModelError as exc:  # draw what can be drawn: a red stand-in, one warning per file
-                mesh, color = placeholder_mesh(robot, link, visual), PLACEHOLDER_COLOR
+                pieces, issues = [(placeholder_mesh(robot, link, visual), PLACEHOLDER_COLOR)], ()
                 if str(exc.message) not in warned:
                     warned.add(str(exc.message))
-                    print(f"warning: {exc.message}; drawn as a red stand-in (link '{name}')", file=sys.stderr)
-            if mesh is None:
-                continue
-            parts.append(Part(index, np.asarray(mesh.vertices, dtype=float), np.asarray(mesh.faces, dtype=np.int64),
-                              tuple(float(c) for c in color), label=f"{name} visual {number}"))  # type: ignore[arg-type]
+                    print(f"{say(M('warning'), lang)}: " + say(M("{problem}; drawn as a red stand-in (link '{link}')",
+                                                                 problem=exc.message, link=name), lang), file=sys.stderr)
+            filename = visual.geometry.filename if visual.geometry is not None else None
+            if issues and filename not in warned:
+                warned.add(str(filename))
+                print(f"{say(M('warning'), lang)}: " + say(M(
+                    "mesh {file} names what it does not hold ({details}); the rest of it is drawn",
+                    file=filename, details=sorted({i.detail for i in issues})), lang), file=sys.stderr)
+            for mesh, own in pieces:
+                rgba = own if own is not None else color
+                parts.append(Part(index, np.asarray(mesh.vertices, dtype=float), np.asarray(mesh.faces, dtype=np.int64),
+                                  tuple(float(c) for c in rgba), label=f"{name} visual {number}"))  # type: ignore[arg-type]
     return parts
 
 

@@ -176,3 +176,25 @@ def axis_default(ctx: Context) -> Iterator[Hit]:
         if joint.type in MOVABLE_TYPES and joint.axis_line is None:
             variant = "prismatic" if joint.type == "prismatic" else ""
             yield hit("joint", joint.name, joint.line, variant, joint=joint.name)
+
+
+SAFETY_ATTRIBUTES = ("soft_lower_limit", "soft_upper_limit", "k_position", "k_velocity")
+
+
+@rule("BK230", "safety-controller-unreadable", ERROR)
+def safety_controller_unreadable(ctx: Context) -> Iterator[Hit]:
+    """urdfdom refuses the whole file when a <safety_controller> number cannot be read or k_velocity is missing."""
+    from ..model import parse_number
+
+    for joint in ctx.robot.joints:
+        safety = joint.safety
+        if safety is None:
+            continue
+        if "k_velocity" not in safety.attributes:
+            yield hit("joint", joint.name, safety.line or joint.line, "missing", joint=joint.name,
+                      attribute="k_velocity", value="")
+        for attribute in SAFETY_ATTRIBUTES:
+            value = safety.attributes.get(attribute)
+            if value is not None and parse_number(value.strip()) is None:
+                yield hit("joint", joint.name, safety.line or joint.line, "", joint=joint.name,
+                          attribute=attribute, value=value)

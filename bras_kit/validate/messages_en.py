@@ -502,6 +502,21 @@ joint was copied from a moving one.""",
 Without `<axis>`, URDF uses `1 0 0`. That is valid, but a forgotten axis is a common reason
 for an arm bending sideways in RViz; writing the axis makes the intent visible.""",
     ),
+    "BK230": T(
+        title="a <safety_controller> cannot be read",
+        message={
+            "missing": "joint '{joint}': <safety_controller> has no {attribute} attribute",
+            "": "joint '{joint}': <safety_controller {attribute}=\"{value}\"> is not a number",
+        },
+        hint='write numbers, e.g. <safety_controller soft_lower_limit="-1.5" soft_upper_limit="1.5" '
+             'k_position="100" k_velocity="10"/>, or remove the element',
+        explanation="""\
+`<safety_controller>` tells a real drive where to start braking before the hard limits
+(`soft_lower_limit`, `soft_upper_limit`) and how hard (`k_position`, `k_velocity`, which is
+required). urdfdom, and so every ROS tool, refuses the whole file when one of these is not a
+number: a value such as `None`, left by a script that wrote a Python value, stops RViz from
+showing the robot at all.""",
+    ),
     # ------------------------------------------------------------------ BK3xx pitfalls
     "BK301": T(
         title="a joint is not at the end of its parent segment",

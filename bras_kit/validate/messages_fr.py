@@ -525,6 +525,21 @@ mobile.""",
 Sans `<axis>`, l'URDF prend `1 0 0`. C'est valide, mais un axe oublié explique souvent un bras
 qui se plie de côté dans RViz ; écrire l'axe rend l'intention visible.""",
     ),
+    "BK230": T(
+        title="un <safety_controller> est illisible",
+        message={
+            "missing": "articulation '{joint}' : <safety_controller> n'a pas d'attribut {attribute}",
+            "": "articulation '{joint}' : <safety_controller {attribute}=\"{value}\"> n'est pas un nombre",
+        },
+        hint='écrivez des nombres, par exemple <safety_controller soft_lower_limit="-1.5" soft_upper_limit="1.5" '
+             'k_position="100" k_velocity="10"/>, ou retirez l\'élément',
+        explanation="""\
+`<safety_controller>` indique à un vrai variateur où commencer à freiner avant les butées
+(`soft_lower_limit`, `soft_upper_limit`) et avec quelle force (`k_position`, et `k_velocity`,
+obligatoire). urdfdom, et donc tout outil ROS, refuse le fichier entier quand l'une de ces
+valeurs n'est pas un nombre : une valeur comme `None`, laissée par un script qui a écrit une
+valeur Python, empêche RViz d'afficher le robot.""",
+    ),
     # ------------------------------------------------------------------ BK3xx pièges
     "BK301": T(
         title="une articulation n'est pas au bout du segment parent",

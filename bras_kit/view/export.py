@@ -48,6 +48,7 @@ def export_html(robot: Robot, states: Any, *, package_paths: tuple[str, ...] = (
                 frame.wxyz = wxyz(pose[:3, :3])
 
         place(positions[0] if len(positions) else np.zeros(0))
+        _frame_camera(server, model, names_in_states, positions)
         serializer = server.get_scene_serializer()
         for k in range(1, len(times)):
             serializer.insert_sleep(float(times[k] - times[k - 1]))
@@ -58,6 +59,25 @@ def export_html(robot: Robot, states: Any, *, package_paths: tuple[str, ...] = (
     finally:
         with quiet():
             server.stop()
+
+
+PLAYER_PIXELS = 48  # the exported page's play bar along the bottom
+
+
+def _frame_camera(server: Any, model: Any, names: list[str], positions: np.ndarray) -> None:
+    """The page's camera on the box the robot sweeps over the whole motion, tight (the page has
+    no panel: only the play bar at the bottom)."""
+    from .framing import place_camera
+
+    rows = positions[:: max(1, len(positions) // 24)] if len(positions) else [np.zeros(0)]
+    points = np.vstack([model.box_points(dict(zip(names, row))) for row in rows])
+    placement = place_camera(points, panel=0, bottom=PLAYER_PIXELS, margin=1.05)
+    camera = server.initial_camera
+    camera.fov = placement.fov
+    camera.near = placement.near
+    camera.far = placement.far
+    camera.position = placement.position
+    camera.look_at = placement.look_at
 
 
 def _free_port() -> int:

@@ -64,9 +64,11 @@ class ViewModel:
     tip_offset: np.ndarray
     scale: float  # metres: the size of the robot, for triads, labels and the grid
     _zero: np.ndarray = field(init=False, repr=False)
+    _boxes: list[tuple[np.ndarray, np.ndarray, int]] = field(init=False, repr=False)
 
     def __post_init__(self) -> None:
         self._zero = np.zeros(len(self.tree.dof))
+        self._boxes = [(m.vertices.min(axis=0), m.vertices.max(axis=0), m.link) for m in self.visuals if len(m.vertices)]
 
     def config_vector(self, values: Mapping[str, float]) -> np.ndarray:
         q = self._zero.copy()
@@ -81,6 +83,17 @@ class ViewModel:
         if fixed_frame:
             world = np.linalg.inv(world[fixed_frame]) @ world
         return world
+
+    def box_points(self, values: Mapping[str, float] | None = None, fixed_frame: int = 0) -> np.ndarray:
+        """The corners of each visual's bounding box and every frame origin, in the fixed frame
+        (N x 3): what the camera must keep in view."""
+        poses = self.poses(values or {}, fixed_frame)
+        points = [poses[:, :3, 3]]
+        for low, high, link in self._boxes:
+            corners = np.array([[x, y, z] for x in (low[0], high[0]) for y in (low[1], high[1])
+                                for z in (low[2], high[2])])
+            points.append(corners @ poses[link][:3, :3].T + poses[link][:3, 3])
+        return np.vstack(points)
 
     def tip(self, poses: np.ndarray) -> np.ndarray:
         pose = poses[self.tip_link]
@@ -103,14 +116,28 @@ def _rgb(color: Sequence[float]) -> Color:
     return tuple(int(round(255 * min(max(float(c), 0.0), 1.0))) for c in color[:3])  # type: ignore[return-value]
 
 
+def _merged_by_colour(parts) -> list[Mesh]:  # type: ignore[no-untyped-def]
+    """One mesh per link and colour: a mesh file's material pieces (Panda's link0 has 12) and a
+    link's visuals of one colour reach the browser as one object."""
+    groups: dict[tuple[int, tuple[float, ...]], list] = {}  # type: ignore[type-arg]
+    for part in parts:
+        groups.setdefault((part.link, tuple(part.color)), []).append(part)
+    out = []
+    for (link, color), members in groups.items():
+        starts = np.cumsum([0] + [len(p.vertices) for p in members])
+        vertices = np.concatenate([p.vertices for p in members])
+        faces = np.concatenate([np.asarray(p.faces) + start for p, start in zip(members, starts)])
+        out.append(Mesh(link, vertices, faces, _rgb(color), float(color[3]) if len(color) > 3 else 1.0))
+    return out
+
+
 def view_model(robot: Robot, package_paths: Sequence[str] = ()) -> ViewModel:
     """The robot ready to show: visual and collision meshes per link, sliders, the tool tip."""
     from ..render.scene import placeholder_mesh, robot_parts, visual_mesh
     from ..tip import tool_tip
 
     tree = tf_tree(robot)
-    visuals = [Mesh(p.link, p.vertices, p.faces, _rgb(p.color), float(p.color[3]) if len(p.color) > 3 else 1.0)
-               for p in robot_parts(tree, package_paths)]
+    visuals = _merged_by_colour(robot_parts(tree, package_paths))
     collisions = []
     for index, name in enumerate(tree.links):
         link = robot.link(name)

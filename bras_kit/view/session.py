@@ -9,83 +9,154 @@ import math
 import random
 import threading
 import time
-from collections.abc import Callable
 from typing import Any
 
 import numpy as np
 
+from ..i18n import say
+from ..message import M, Message
 from .model import ViewModel, wxyz
+from .panel import (
+    ERROR_RED,
+    axes_legend,
+    banner,
+    echo_rows,
+    joint_box_text,
+    label_offsets,
+    read_joint_box,
+)
 
 ROOT = "/bras"
+GEOMETRIES = ("visual", "collision", "both")
+# a slider's own number box (Mantine's, in the browser) reads "0,5" as 5 and knows no pi/2 nor
+# 90deg: hidden; the joint's text box below its slider reads typed values with the CLI's parser
+_HIDE_SLIDER_BOXES = "<style>.mantine-Slider-root + .mantine-NumberInput-root{display:none}</style>"
 
 
 class Session:
     """The scene nodes and GUI of one client, rebuilt when the model changes."""
 
-    def __init__(self, client: Any, viewer: Any, translate: Callable[[str], str]) -> None:
+    def __init__(self, client: Any, viewer: Any, lang: str) -> None:
         self.client = client
         self.viewer = viewer
-        self.t = translate
+        self.lang = lang
         self.values: dict[str, float] = {}
         self.fixed_frame = 0
+        self.fixed_name: str | None = None  # the Fixed Frame chosen by name, kept across reloads
         self.playing = False
         self.play_time = 0.0
         self.speed = 1.0
+        self.selected: str | None = None  # the link clicked last, its pose read out like tf2_echo
         self.last_update_ms = 0.0
         self._lock = threading.RLock()
         self._frames: list[Any] = []
         self._labels: list[Any] = []
+        self._label_offsets: list[tuple[float, float, float]] = []
         self._visual_nodes: list[Any] = []
         self._collision_nodes: list[Any] = []
         self._sliders: dict[str, Any] = {}
+        self._boxes: dict[str, Any] = {}
+        self._box_notes: dict[str, str] = {}
         self._model_gui: list[Any] = []
         self._setting = False  # values being set from code: slider callbacks do nothing
+        self._framed = False  # the camera is placed for this browser's canvas once it says its size
         self._build_panel()
         self.show_model(viewer.model)
+        client.camera.on_update(self._camera_reported)
+
+    def w(self, message: Message) -> str:
+        """``message`` worded in this browser's language, escaped for the panel's HTML."""
+        return html.escape(say(message, self.lang))
+
+    def s(self, message: Message) -> str:
+        """``message`` worded for a GUI label (plain text)."""
+        return say(message, self.lang)
+
+    # -- the camera --------------------------------------------------------------------------
+    def _camera_reported(self, _camera: Any) -> None:
+        if not self._framed:
+            self._framed = True
+            self.frame_camera()
+
+    def frame_camera(self) -> None:
+        """Put this browser's camera on the robot, sized for its canvas, clear of the panel."""
+        from .framing import place_camera
+
+        camera = self.client.camera
+        try:
+            width, height = int(camera.image_width), int(camera.image_height)
+        except (AssertionError, AttributeError):  # the browser has not said its size yet
+            return
+        placement = place_camera(self.model.box_points(self.values, self.fixed_frame), width, height)
+        with self.client.atomic():
+            camera.fov = placement.fov
+            camera.near = placement.near
+            camera.far = placement.far
+            camera.position = placement.position
+            camera.look_at = placement.look_at
 
     # -- the panel that does not depend on the model ------------------------------------------
     def _build_panel(self) -> None:
-        gui, t = self.client.gui, self.t
-        self.status = gui.add_html("", order=0)
-        with gui.add_folder(t("Display"), order=1):
-            self.show_visual = gui.add_checkbox(t("Visual geometry"), True)
-            self.show_collision = gui.add_checkbox(t("Collision geometry"), False)
-            self.show_frames = gui.add_checkbox(t("TF frames (axes)"), True)
-            self.show_names = gui.add_checkbox(t("Frame names"), True)
-            self.show_grid = gui.add_checkbox(t("Grid"), True)
-            self.fixed = gui.add_dropdown(t("Fixed Frame"), ("-",), initial_value="-")
+        gui, s = self.client.gui, self.s
+        self.banner = gui.add_html("", order=0)
+        self.status = gui.add_html("", order=0.5)
+        with gui.add_folder(s(M("Display")), order=1):
+            geometry = self.viewer.geometry
+            self.show_visual = gui.add_checkbox(s(M("Visual geometry")), geometry in ("visual", "both"))
+            self.show_collision = gui.add_checkbox(s(M("Collision geometry")), geometry in ("collision", "both"))
+            self.show_frames = gui.add_checkbox(s(M("TF frames (axes)")), True)
+            self.legend = gui.add_html(axes_legend(self.lang))
+            self.show_names = gui.add_checkbox(s(M("Frame names")), True)
+            self.show_grid = gui.add_checkbox(s(M("Grid")), True)
+            self.fixed = gui.add_dropdown(s(M("Fixed Frame")), ("-",), initial_value="-")
         for handle in (self.show_visual, self.show_collision, self.show_frames, self.show_names, self.show_grid):
             handle.on_update(lambda _event: self._apply_visibility())
         self.fixed.on_update(lambda _event: self._choose_fixed_frame())
-        with gui.add_folder(t("Joints"), order=2):
-            self.joint_folder = gui.add_folder(t("Sliders"))
-            buttons = gui.add_button_group("", (t("Zero"), t("Random pose")))
+        with gui.add_folder(s(M("Joints")), order=2):
+            gui.add_html(_HIDE_SLIDER_BOXES)
+            self.joint_folder = gui.add_folder(s(M("Sliders")))
+            self.past_limits = gui.add_checkbox(s(M("Allow values past the limits")), False,
+                                                hint=s(M("typed values past a joint's limits are refused unless this is on")))
+            self.joint_note = gui.add_html("")
+            buttons = gui.add_button_group("", (s(M("Zero")), s(M("Random pose"))))
             buttons.on_click(lambda event: self._button(event.target.value))
-        with gui.add_folder(t("Motion"), order=3):
-            self.play = gui.add_checkbox(t("Play"), False, disabled=self.viewer.motion is None)
-            self.speed_slider = gui.add_slider(t("Speed"), 0.1, 3.0, 0.1, 1.0,
-                                               disabled=self.viewer.motion is None)
+        motion = self.viewer.motion
+        with gui.add_folder(s(M("Motion")), order=3):
+            self.play = gui.add_checkbox(s(M("Play")), False, disabled=motion is None)
+            self.speed_slider = gui.add_slider(s(M("Speed")), 0.1, 3.0, 0.1, 1.0, disabled=motion is None)
+            self.scrubber = gui.add_slider(s(M("Time (s)")), 0.0, self._period() or 1.0, 0.01, 0.0,
+                                           disabled=motion is None,
+                                           hint=s(M("drag to show the motion at that time (pauses it)")))
             self.motion_text = gui.add_html("")
         self.play.on_update(lambda _event: self._toggle_play())
         self.speed_slider.on_update(lambda _event: setattr(self, "speed", float(self.speed_slider.value)))
-        with gui.add_folder(t("Readouts"), order=4):
+        self.scrubber.on_update(lambda event: event.client is None or self._scrubbed())
+        with gui.add_folder(s(M("Readouts")), order=4):
             self.readout = gui.add_html("")
-        with gui.add_folder(t("Checks"), order=5):
+            self.echo = gui.add_html(f"<small><i>{self.w(M('click a link to read its pose in the fixed frame'))}</i></small>")
+        with gui.add_folder(s(M("Checks")), order=5):
             self.findings = gui.add_html("")
-        if self.viewer.motion is not None:
-            self.motion_text.content = f"<small>{html.escape(self.viewer.motion.label or '')}</small>"
+        if motion is not None:
+            self.motion_text.content = f"<small>{html.escape(motion.label or '')}</small>"
+
+    def _period(self) -> float:
+        motion = self.viewer.motion
+        if motion is None:
+            return 0.0
+        return float(motion.duration or self.viewer.loop_seconds)
 
     # -- the model ---------------------------------------------------------------------------
     def show_model(self, model: ViewModel) -> None:
-        """Draw ``model``; keep the joint values whose joints still exist."""
+        """Draw ``model``; keep the joint values whose joints still exist, and the Fixed Frame."""
         with self._lock, self.client.atomic():
             for handle in self._frames:  # its label and meshes are its children: they go with it
                 handle.remove()
             for handle in self._model_gui:
                 handle.remove()
             self._frames, self._labels, self._visual_nodes, self._collision_nodes = [], [], [], []
-            self._sliders, self._model_gui = {}, []
-            scene, t = self.client.scene, self.t
+            self._label_offsets = []
+            self._sliders, self._boxes, self._box_notes, self._model_gui = {}, {}, {}, []
+            scene = self.client.scene
             self.model = model
             names = [s.joint for s in model.sliders]
             self.values = {name: self.values.get(name, 0.0) for name in names}
@@ -99,52 +170,72 @@ class Session:
                 self._frames.append(frame)
                 self._labels.append(scene.add_label(f"{ROOT}/link{index}/name", link, font_screen_scale=0.8,
                                                     anchor="bottom-left"))
+                self._label_offsets.append((0.0, 0.0, 0.0))
             for k, mesh in enumerate(model.visuals):
-                self._visual_nodes.append(scene.add_mesh_simple(
+                node = scene.add_mesh_simple(
                     f"{ROOT}/link{mesh.link}/visual{k}", mesh.vertices.astype(np.float32),
                     mesh.faces.astype(np.uint32), color=mesh.color,
-                    opacity=None if mesh.opacity >= 1.0 else mesh.opacity))
+                    opacity=None if mesh.opacity >= 1.0 else mesh.opacity)
+                node.on_click(lambda _event, link=mesh.link: self.select(model.tree.links[link]))
+                self._visual_nodes.append(node)
             for k, mesh in enumerate(model.collisions):
-                self._collision_nodes.append(scene.add_mesh_simple(
+                node = scene.add_mesh_simple(
                     f"{ROOT}/link{mesh.link}/collision{k}", mesh.vertices.astype(np.float32),
-                    mesh.faces.astype(np.uint32), color=mesh.color, opacity=mesh.opacity, visible=False))
+                    mesh.faces.astype(np.uint32), color=mesh.color, opacity=mesh.opacity, visible=False)
+                node.on_click(lambda _event, link=mesh.link: self.select(model.tree.links[link]))
+                self._collision_nodes.append(node)
             choices = tuple(model.tree.links)
             self.fixed.options = choices
-            self.fixed_frame = min(self.fixed_frame, len(choices) - 1)
+            if self.fixed_name in choices:
+                self.fixed_frame = choices.index(self.fixed_name)
+            else:
+                self.fixed_frame = 0
             self.fixed.value = choices[self.fixed_frame]
+            if self.selected not in choices:
+                self.selected = None
             with self.joint_folder:
                 for slider in model.sliders:
-                    handle = self.client.gui.add_slider(
-                        slider.joint, slider.lower, slider.upper, _step(slider), _clip(self.values[slider.joint], slider),
-                        hint=f"{slider.lower:g} .. {slider.upper:g} {slider.unit}")
-                    handle.on_update(lambda _event, name=slider.joint, h=handle: self._slider_moved(name, h))
-                    self._sliders[slider.joint] = handle
-                    self._model_gui.append(handle)
+                    self._add_joint(slider)
                 if not model.sliders:
-                    self._model_gui.append(self.client.gui.add_markdown(t("This robot has no movable joint.")))
+                    self._model_gui.append(self.client.gui.add_markdown(self.s(M("This robot has no movable joint."))))
             self._apply_visibility()
             self.update()
         self.show_checks()
 
+    def _add_joint(self, slider: Any) -> None:
+        gui = self.client.gui
+        value = self.values[slider.joint]
+        handle = gui.add_slider(slider.joint, slider.lower, slider.upper, _step(slider), _clip(value, slider),
+                                hint=f"{slider.lower:g} .. {slider.upper:g} {slider.unit}")
+        handle.on_update(lambda _event, name=slider.joint, h=handle: self._slider_moved(name, h))
+        box = gui.add_text("", joint_box_text(value),
+                           hint=self.s(M("a value for {joint}: 0.5, 0,5, pi/4, 90deg", joint=slider.joint)))
+        box.on_update(lambda event, name=slider.joint, b=box: event.client is None or self._box_typed(name, b))
+        self._sliders[slider.joint] = handle
+        self._boxes[slider.joint] = box
+        self._model_gui += [handle, box]
+
     def show_checks(self) -> None:
-        """The validator's findings, and the error that keeps the last good model on screen."""
-        viewer, t = self.viewer, self.t
+        """The banner (a file that no longer reads, and the number of findings) at the top of the
+        panel, the findings in "Checks", and the status line."""
+        viewer = self.viewer
+        self.banner.content = banner(viewer.error, viewer.findings, self.lang)
         rows = []
-        if viewer.error:
-            rows.append(f"<p style='color:#c62828'><b>{html.escape(t('The file cannot be read'))}</b>: "
-                        f"{html.escape(viewer.error)}<br><i>{html.escape(t('the last good model stays on screen'))}</i></p>")
+        if viewer.error is not None:
+            rows.append(f"<p style='color:{ERROR_RED}'><b>{self.w(M('The file cannot be read'))}</b>: "
+                        f"{html.escape(say(viewer.error, self.lang))}</p>")
         for finding in viewer.findings:
-            colour = {"error": "#c62828", "warning": "#e65100"}.get(finding.severity, "#455a64")
+            colour = {"error": ERROR_RED, "warning": "#e65100"}.get(finding.severity, "#455a64")
             line = f":{finding.line}" if finding.line else ""
             rows.append(f"<p style='margin:2px 0'><b style='color:{colour}'>{finding.code}</b>{line} "
-                        f"{html.escape(finding.message)}</p>")
+                        f"{html.escape(say(finding.message, self.lang))}</p>")
         if not rows:
-            rows.append(f"<p style='color:#2e7d32'>{html.escape(t('No finding'))}</p>")
+            rows.append(f"<p style='color:#2e7d32'>{self.w(M('No finding'))}</p>")
         self.findings.content = "".join(rows)
-        source = viewer.source_label
         stamp = time.strftime("%H:%M:%S", time.localtime(viewer.loaded_at))
-        self.status.content = (f"<small><b>{html.escape(viewer.model.robot.name or 'robot')}</b> · "
-                               f"{html.escape(source)} · {html.escape(t('loaded at'))} {stamp}</small>")
+        self.status.content = (f"<small><b>{html.escape(self.model.robot.name or 'robot')}</b> · "
+                               f"{html.escape(say(viewer.source_label, self.lang))} · "
+                               f"{self.w(M('loaded at {time}', time=stamp))}</small>")
 
     # -- moving the arm ----------------------------------------------------------------------
     def update(self) -> None:
@@ -152,35 +243,54 @@ class Session:
         start = time.perf_counter()
         model = self.model
         poses = model.poses(self.values, self.fixed_frame)
+        offsets = label_offsets(poses, 0.045 * model.scale)
         with self.client.atomic():
             for frame, pose in zip(self._frames, poses):
                 frame.position = pose[:3, 3]
                 frame.wxyz = wxyz(pose[:3, :3])
+            for k, (label, offset) in enumerate(zip(self._labels, offsets)):
+                local = tuple(float(v) for v in poses[k][:3, :3].T @ offset)
+                if not np.allclose(local, self._label_offsets[k], atol=1e-9):
+                    label.position = local
+                    self._label_offsets[k] = local  # type: ignore[assignment]
         self.last_update_ms = 1000 * (time.perf_counter() - start)
         self._readouts(poses)
 
     def _readouts(self, poses: np.ndarray) -> None:
-        t, model = self.t, self.model
+        model = self.model
         outside = model.out_of_limits(self.values)
         tip = model.tip(poses)
-        rows = [f"<p style='margin:2px 0'><b>{html.escape(t('Tip'))}</b> ({html.escape(model.tree.links[model.tip_link])}): "
+        rows = [f"<p style='margin:2px 0'><b>{self.w(M('Tip'))}</b> ({html.escape(model.tree.links[model.tip_link])}): "
                 f"x={tip[0]:.3f} y={tip[1]:.3f} z={tip[2]:.3f} m</p>"]
         for slider in model.sliders:
             value = self.values.get(slider.joint, 0.0)
-            style = "margin:2px 0" + (";color:#c62828;font-weight:bold" if slider.joint in outside else "")
-            degrees = f" ({math.degrees(value):.1f}°)" if slider.unit == "rad" else ""
-            mark = f" — {html.escape(t('out of limits'))}" if slider.joint in outside else ""
-            rows.append(f"<p style='{style}' data-joint='{html.escape(slider.joint)}'>"
-                        f"{html.escape(slider.joint)} = {value:.3f} {slider.unit}{degrees}{mark}</p>")
+            rows.append(self._row(slider.joint, value, slider.unit, slider.joint in outside, ""))
         for follower, value in zip(model.followers, model.follower_values(self.values).values()):
-            style = "margin:2px 0" + (";color:#c62828;font-weight:bold" if follower.joint in outside else "")
-            degrees = f" ({math.degrees(value):.1f}°)" if follower.unit == "rad" else ""
-            mark = f" — {html.escape(t('out of limits'))}" if follower.joint in outside else ""
-            follows = html.escape(t("follows {joint}").format(joint=follower.leader))
-            rows.append(f"<p style='{style}' data-joint='{html.escape(follower.joint)}'>"
-                        f"{html.escape(follower.joint)} = {value:.3f} {follower.unit}{degrees} <i>({follows})</i>"
-                        f"{mark}</p>")
+            follows = f" <i>({self.w(M('follows {joint}', joint=follower.leader))})</i>"
+            rows.append(self._row(follower.joint, value, follower.unit, follower.joint in outside, follows))
         self.readout.content = "".join(rows)
+        if self.selected is not None:
+            self._echo(poses)
+
+    def _row(self, joint: str, value: float, unit: str, outside: bool, extra: str) -> str:
+        style = "margin:2px 0" + (f";color:{ERROR_RED};font-weight:bold" if outside else "")
+        degrees = f" ({math.degrees(value):.1f}°)" if unit == "rad" else ""
+        mark = f" — {self.w(M('out of limits'))}" if outside else ""
+        return (f"<p style='{style}' data-joint='{html.escape(joint)}'>"
+                f"{html.escape(joint)} = {value:.3f} {unit}{degrees}{extra}{mark}</p>")
+
+    def select(self, link: str) -> None:
+        """Read out ``link``'s pose in the fixed frame, as ``tf2_echo FIXED LINK`` prints it."""
+        with self._lock:
+            self.selected = link
+            self._echo(self.model.poses(self.values, self.fixed_frame))
+
+    def _echo(self, poses: np.ndarray) -> None:
+        links = list(self.model.tree.links)
+        if self.selected not in links:
+            return
+        pose = poses[links.index(self.selected)]
+        self.echo.content = echo_rows(links[self.fixed_frame], self.selected, pose, self.lang)
 
     def set_values(self, values: dict[str, float]) -> None:
         with self._lock:
@@ -190,6 +300,7 @@ class Session:
                 for name, handle in self._sliders.items():
                     slider = next(s for s in self.model.sliders if s.joint == name)
                     handle.value = _clip(self.values[name], slider)
+                    self._boxes[name].value = joint_box_text(self.values[name])
             finally:
                 self._setting = False
             self.update()
@@ -199,29 +310,82 @@ class Session:
             return
         with self._lock:
             self.values[name] = float(handle.value)
+            self._setting = True
+            try:
+                self._boxes[name].value = joint_box_text(self.values[name])
+            finally:
+                self._setting = False
+            self._box_notes.pop(name, None)
+            self._show_box_notes()
             self.update()
 
+    def _box_typed(self, name: str, box: Any) -> None:
+        """A value typed in a joint's box, read as the CLI reads ``--set``: decimal comma,
+        ``pi/2``, ``90deg``; past the limits it is refused (with the degrees hint when it fits)
+        unless "Allow values past the limits" is on."""
+        if self._setting:
+            return
+        slider = next((s for s in self.model.sliders if s.joint == name), None)
+        if slider is None:
+            return
+        with self._lock:
+            value, note, accepted = read_joint_box(str(box.value), slider, self.model.robot.joint(name),
+                                                   bool(self.past_limits.value))
+            if note is None:
+                self._box_notes.pop(name, None)
+            else:
+                self._box_notes[name] = html.escape(say(note, self.lang))
+            self._show_box_notes()
+            if accepted and value is not None:
+                self.values[name] = value
+                self._setting = True
+                try:
+                    self._sliders[name].value = _clip(value, slider)
+                finally:
+                    self._setting = False
+                self.update()
+
+    def _show_box_notes(self) -> None:
+        self.joint_note.content = "".join(f"<p style='margin:2px 0;color:{ERROR_RED}' data-note='{html.escape(k)}'>"
+                                          f"{v}</p>" for k, v in self._box_notes.items())
+
     def _button(self, label: str) -> None:
-        if label == self.t("Zero"):
+        if label == self.s(M("Zero")):
             self.set_values(dict.fromkeys(self.values, 0.0))
         else:
             self.set_values({s.joint: random.uniform(s.lower, s.upper) for s in self.model.sliders})
 
     def _toggle_play(self) -> None:
         self.playing = bool(self.play.value)
-        for handle in self._sliders.values():
+        for handle in [*self._sliders.values(), *self._boxes.values()]:
             handle.disabled = self.playing
+
+    def _scrubbed(self) -> None:
+        """The time slider moved by hand: pause, and show the motion at that time."""
+        if self.viewer.motion is None:
+            return
+        with self._lock:
+            if self.playing:
+                self.play.value = False  # its callback re-enables the sliders
+                self.playing = False
+            self.play_time = float(self.scrubber.value)
+            self._show_time(self.play_time)
 
     def advance(self, seconds: float) -> None:
         """Playback: move the motion on by ``seconds`` of wall time (times the speed)."""
+        with self._lock:
+            if self.viewer.motion is None or not self.playing:
+                return
+            self.play_time += seconds * self.speed
+            self._show_time(self.play_time)
+
+    def _show_time(self, moment: float) -> None:
         motion = self.viewer.motion
-        if motion is None or not self.playing:
-            return
-        self.play_time += seconds * self.speed
-        period = motion.duration or self.viewer.loop_seconds
-        when = self.play_time % period if period else self.play_time
+        period = self._period()
+        when = moment % period if period else moment
         positions = motion.positions(np.array([when]))[0]
         self.set_values(dict(zip(motion.names, (float(v) for v in positions))))
+        self.scrubber.value = min(when, float(self.scrubber.max))
         self.motion_text.content = f"<small>{html.escape(motion.label or '')} · t = {when:.2f} s</small>"
 
     # -- display toggles ---------------------------------------------------------------------
@@ -241,6 +405,7 @@ class Session:
         links = list(self.model.tree.links)
         if self.fixed.value in links:
             self.fixed_frame = links.index(self.fixed.value)
+            self.fixed_name = self.fixed.value
             self.update()
 
 

@@ -13,7 +13,7 @@ from typing import Any
 
 from .. import backends
 from ..errors import BrasKitError
-from ..i18n import say_error
+from ..message import M
 from ..model import Robot
 from .model import ViewModel, view_model
 from .session import Session
@@ -53,22 +53,28 @@ class Viewer:
     """Serve ``source`` at ``http://host:port``; :meth:`stop` ends it (also a context manager)."""
 
     def __init__(self, source: Source, *, host: str = LOCAL_HOST, port: int = 8080, lang: str = "en",
-                 motion_specs: Sequence[str] = (), loop_seconds: float = 10.0, watch: bool = True) -> None:
+                 motion_specs: Sequence[str] = (), loop_seconds: float = 10.0, watch: bool = True,
+                 geometry: str = "visual") -> None:
         viser = backends.viser()
 
-        from ..i18n import translator
+        from .session import GEOMETRIES
 
+        if geometry not in GEOMETRIES:
+            from ..errors import ParameterError
+
+            raise ParameterError(M("geometry '{value}' is not one of {choices}", value=geometry, choices=list(GEOMETRIES)),
+                                 hint=M("visual (the default), collision or both, as RViz's Visual/Collision Enabled"))
         self.source = source
         self.lang = lang
-        self.t = translator(lang, "view")
+        self.geometry = geometry
         self.motion_specs = list(motion_specs)
         self.loop_seconds = loop_seconds
-        self.error: str | None = None
+        self.error: BaseException | None = None  # why the saved file does not read, while it does not
         self.findings: list[Any] = []
         self.reloads = 0
         self.loaded_at = time.time()
         self.model: ViewModel = self._build(source.load())  # a first model that cannot load is an error
-        self.source_label = source.path or self.t("built-in tutorial arm")
+        self.source_label = source.path or M("built-in tutorial arm")
         self._check(self.model.robot)
         self.sessions: dict[int, Session] = {}
         self._lock = threading.RLock()
@@ -110,34 +116,43 @@ class Viewer:
             model = self._build(robot)
             self._check(robot)
         except Exception as exc:  # noqa: BLE001 - whatever the file does, the viewer keeps running
-            self.error = say_error(exc, self.lang) if isinstance(exc, BrasKitError) else f"{type(exc).__name__}: {exc}"
+            self.error = exc if isinstance(exc, BrasKitError) else BrasKitError(
+                M("{kind}: {detail}", kind=type(exc).__name__, detail=str(exc)), path=self.source.path)
             with self._lock:
                 for session in list(self.sessions.values()):
                     session.show_checks()
             return False
         self.error = None
-        self.model = model
+        resized = _size_changed(self.model, model)
+        if resized:
+            self._frame_camera(model)
         self.loaded_at = time.time()
-        with self._lock:
+        with self._lock:  # a browser connecting meanwhile waits, then gets the new model
             for session in list(self.sessions.values()):
                 session.show_model(model)
+                if resized:
+                    session.frame_camera()
+            self.model = model  # once every browser shows it
         self.reloads += 1  # counted once every browser has the new model
         return True
 
     def _frame_camera(self, model: ViewModel) -> None:
-        """Where a new browser's camera starts: looking at the arm from the front and a little above,
-        as the pictures' iso view does."""
-        poses = model.poses({})
-        centre = poses[:, :3, 3].mean(axis=0)
-        centre[2] = 0.4 * model.scale
-        self.server.initial_camera.look_at = tuple(centre)
-        self.server.initial_camera.position = (centre[0] + 1.6 * model.scale, centre[1] - 2.2 * model.scale,
-                                               centre[2] + 0.8 * model.scale)
+        """Where a new browser's camera starts (and "Reset View" returns): on the robot's bounding
+        box, left of the control panel, from the pictures' iso direction."""
+        from .framing import place_camera
+
+        placement = place_camera(model.box_points())
+        camera = self.server.initial_camera
+        camera.fov = placement.fov
+        camera.near = placement.near
+        camera.far = placement.far
+        camera.position = placement.position
+        camera.look_at = placement.look_at
 
     # -- browsers ------------------------------------------------------------------------------
     def _connect(self, client: Any) -> None:
         with self._lock:
-            self.sessions[client.client_id] = Session(client, self, self.t)
+            self.sessions[client.client_id] = Session(client, self, self.lang)
 
     def _disconnect(self, client: Any) -> None:
         with self._lock:
@@ -204,6 +219,16 @@ def quiet() -> Iterator[None]:
 def never_share(server: Any) -> None:
     """A browser may ask the server for a public share URL (a tunnel to the internet): refused."""
     server.request_share_url = lambda *args, **kwargs: None
+
+
+def _size_changed(old: ViewModel, new: ViewModel) -> bool:
+    """Whether the robot grew, shrank or moved enough that the camera must frame it again."""
+    import numpy as np
+
+    a, b = old.box_points(), new.box_points()
+    low_a, high_a, low_b, high_b = a.min(axis=0), a.max(axis=0), b.min(axis=0), b.max(axis=0)
+    size = max(float(np.max(high_a - low_a)), 1e-6)
+    return bool(np.max(np.abs(low_a - low_b)) > 0.2 * size or np.max(np.abs(high_a - high_b)) > 0.2 * size)
 
 
 def _stamps(paths: Sequence[str]) -> dict[str, tuple[int, int]]:

@@ -237,3 +237,151 @@ stops in RViz, and a real robot or a simulator would refuse it: the tutorial's f
 Formulas that are not literal (read from parameters, computed elsewhere) are not judged.""",
     ),
 }
+
+# BK640-BK651: what a run of the node showed (bras-kit run, validate --run)
+RULE_TEXTS.update({
+    "BK640": T(
+        title="the node raised an exception when run",
+        message="the node raised {kind} at t = {time} s of simulated time: {detail}",
+        hint="the traceback above shows your file and line; ros2 run would stop the node there too",
+        explanation="""\
+`bras-kit run` ran the node's `main()` against its stand-in for rclpy, and the node's own code
+raised. The stand-in checks what real rclpy checks: a message field given the wrong type (a
+list of integers for `position`, a float for `name`) fails as the generated message classes
+assert it; a Node made before `rclpy.init()`, or spun after `destroy_node()`, fails like
+rclpy. The traceback keeps your frames only, and the simulated time tells at which tick.""",
+    ),
+    "BK641": T(
+        title="the node uses a part of ROS 2 that bras-kit does not simulate",
+        message="the node uses {what} (at t = {time} s), which bras-kit run does not simulate",
+        hint="run it with ros2 run on a ROS 2 machine, the real thing; bras-kit run covers rclpy's basics "
+             "(nodes, publishers, subscriptions, timers, rates, parameters, logs) and common messages",
+        explanation="""\
+The stand-in covers what the tutorial's node and beginner nodes use: `rclpy.init/spin/
+spin_once/shutdown`, `Node` with publishers, subscriptions, timers, rates, parameters, clock
+and logger, QoS profiles, and the messages of sensor_msgs (JointState), std_msgs,
+builtin_interfaces and geometry_msgs. Services, actions, tf2, launch and other message
+packages are not simulated: the run stops there rather than pretend.""",
+    ),
+    "BK642": T(
+        title="the node publishes in a loop that lets no time pass",
+        message="the node published thousands of messages on {topics} without any time passing "
+                "(stopped at t = {time} s)",
+        hint="publish from a timer (create_timer) and spin, or sleep in the loop (time.sleep(0.05))",
+        explanation="""\
+A `while` loop that publishes and never sleeps, spins or waits sends messages as fast as the
+processor allows: hundreds of thousands per second on a real machine, a flood for
+robot_state_publisher and RViz, and one CPU core at 100 %. bras-kit's clock never moves in
+such a loop, so the run stops it after ten thousand messages at the same instant.""",
+    ),
+    "BK643": T(
+        title="rate.sleep() with no executor spinning: a real node would block",
+        message="the node called rate.sleep() {count} times with no executor spinning in another thread",
+        hint="use create_timer and rclpy.spin, or spin the node in a thread before the loop",
+        explanation="""\
+In rclpy, `Rate.sleep()` waits for a timer that an executor must be spinning, in another
+thread (rclpy/timer.py). A node that calls it in its main loop without spinning elsewhere
+blocks forever at its first sleep under `ros2 run`. bras-kit's simulated clock lets the loop go
+on so the rest can be checked, and reports it here.""",
+    ),
+    "BK644": T(
+        title="nothing was published on /joint_states",
+        message={
+            "other": "nothing was published on /joint_states; the JointState messages went to {topics} "
+                     "({count} messages): robot_state_publisher does not listen there",
+            "type": "/joint_states carried {types}, not sensor_msgs/msg/JointState",
+            "silent": "the node made a JointState publisher on {topic} but never published on it "
+                      "in {time} s",
+            "": "nothing was published on /joint_states in {time} s (topics published: {topics})",
+        },
+        hint={
+            "other": "create the publisher on 'joint_states' (or '/joint_states'), the topic "
+                     "robot_state_publisher subscribes to",
+            "type": "publish sensor_msgs.msg.JointState messages on /joint_states",
+            "silent": "call publish(msg) at each tick (in the timer's callback), and spin the node",
+            "": "create a JointState publisher on 'joint_states' and publish from a timer",
+        },
+        explanation="""\
+robot_state_publisher takes the joint angles from `/joint_states` and nowhere else. A node
+that publishes on `joint_state` or `/arm/joint_states` is valid ROS (any such name is a legal
+topic) but nobody reads it: the robot appears and does not move, the tutorial's second
+pitfall. Publishing nothing at all (no timer, no spin, `publish` forgotten) looks the same.""",
+    ),
+    "BK645": T(
+        title="JointState name and position lists of different lengths",
+        message="a JointState names {names} joints but gives {positions} positions (t = {time} s; "
+                "{count} such messages)",
+        hint="give one position per name, in the same order",
+        explanation="""\
+robot_state_publisher pairs `name[i]` with `position[i]`. When the two lists differ in length it
+drops the whole message with an error ("has 2 joint names but 3 positions"), so the arm does not
+move at all, even for the joints that were right.""",
+    ),
+    "BK646": T(
+        title="the node names joints the robot does not have",
+        message="the node's JointState names {names}, which are not movable joints of the robot ({joints})",
+        hint="use the joint names of the URDF: {joints}",
+        explanation="""\
+robot_state_publisher matches JointState entries to the URDF by name and ignores the others. A
+misspelt name (`Coude`, `elbow`, `coude_joint`) therefore leaves that joint without an angle,
+though the node runs without an error. The run shows the names actually sent.""",
+    ),
+    "BK647": T(
+        title="movable joints the node never names",
+        message="the node's JointState never names {names} (it names {published}): those joints do not move",
+        hint="add {names} to msg.name, with a position for each",
+        explanation="""\
+A movable joint that never appears on `/joint_states` has no transform: robot_state_publisher
+cannot place its child link, which RViz then shows at the origin or not at all. The usual cause
+is a joint added to the URDF (the tutorial's `poignet`) but not to the node's message.""",
+    ),
+    "BK648": T(
+        title="a position that is not a number",
+        message="joint '{joint}' was sent the position {value} at t = {time} s",
+        hint="check the computation (a division by zero, math.inf, a NaN read from a sensor)",
+        explanation="""\
+A JointState message accepts NaN and infinity (the generated classes only check the type), but
+no transform can be computed from them: robot_state_publisher publishes garbage frames and RViz
+draws nothing or warns. The run reports the first such value of each joint.""",
+    ),
+    "BK649": T(
+        title="positions published past the joint limits",
+        message={
+            "upper": "joint '{joint}' was sent {value} {unit} at t = {time} s, above its upper limit {bound} "
+                     "({count} messages past it, first at t = {first} s)",
+            "lower": "joint '{joint}' was sent {value} {unit} at t = {time} s, below its lower limit {bound} "
+                     "({count} messages past it, first at t = {first} s)",
+            "degrees": "joint '{joint}' was sent {value} at t = {time} s, past its limit {bound}: "
+                       "it looks like degrees ({count} messages, first at t = {first} s)",
+        },
+        hint={
+            "upper": "keep the positions between the URDF's lower and upper limits (in radians)",
+            "lower": "keep the positions between the URDF's lower and upper limits (in radians)",
+            "degrees": "JointState positions are radians: convert with math.radians()",
+        },
+        explanation="""\
+robot_state_publisher draws whatever it receives: past a `<limit>` the arm goes through its own
+stops in RViz, and a real robot or simulator would refuse the command. The tutorial's fifth
+pitfall, seen in the messages the node actually sent (degrees instead of radians are the most
+common cause).""",
+    ),
+    "BK650": T(
+        title="header.stamp left at zero",
+        message="{count} of {total} JointState messages have header.stamp at zero",
+        hint="set msg.header.stamp = self.get_clock().now().to_msg() before publishing",
+        explanation="""\
+robot_state_publisher stamps the frames it publishes with the JointState's time. A stamp of zero
+(1 January 1970) makes the transforms look more than fifty years old: RViz and tf2 refuse to use them
+("extrapolation into the past") or use them late. The tutorial's node stamps each message with
+the node's clock for this reason.""",
+    ),
+    "BK651": T(
+        title="publication rate far from the timer's",
+        message="/joint_states was published at {rate} Hz, but the timer of {period} s asks for {expected} Hz",
+        hint="publish once per timer callback (not in a loop inside it, not only sometimes)",
+        explanation="""\
+A node with one timer that publishes once per tick sends messages at the timer's rate (20 Hz
+for the tutorial's 0.05 s). A very different rate means the callback publishes several times,
+or only now and then, or that another loop publishes: the motion in RViz then jerks or races.""",
+    ),
+})

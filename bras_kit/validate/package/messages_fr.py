@@ -243,3 +243,159 @@ C'est le cinquième piège du tutoriel. Les formules non littérales (lues dans 
 calculées ailleurs) ne sont pas jugées.""",
     ),
 }
+
+# BK640-BK651 : ce qu'une exécution du nœud a montré (bras-kit run, validate --run)
+RULE_TEXTS.update({
+    "BK640": T(
+        title="le nœud a levé une exception à l'exécution",
+        message="le nœud a levé {kind} à t = {time} s de temps simulé : {detail}",
+        hint="la trace ci-dessus montre votre fichier et votre ligne ; ros2 run arrêterait le nœud au même endroit",
+        explanation="""\
+`bras-kit run` a exécuté le `main()` du nœud avec sa doublure de rclpy, et le code du nœud a
+levé une exception. La doublure vérifie ce que vérifie le vrai rclpy : un champ de message du
+mauvais type (une liste d'entiers pour `position`, un flottant pour `name`) échoue comme
+l'affirment les classes de messages générées ; un Node créé avant `rclpy.init()`, ou un spin
+après `destroy_node()`, échoue comme avec rclpy. La trace ne garde que vos fichiers, et le
+temps simulé indique à quel tic.""",
+    ),
+    "BK641": T(
+        title="le nœud utilise une partie de ROS 2 que bras-kit ne simule pas",
+        message="le nœud utilise {what} (à t = {time} s), que bras-kit run ne simule pas",
+        hint="lancez-le avec ros2 run sur une machine ROS 2, la vraie référence ; bras-kit run couvre les bases "
+             "de rclpy (nœuds, publishers, abonnements, timers, rates, paramètres, journaux) et les messages courants",
+        explanation="""\
+La doublure couvre ce qu'utilisent le nœud du tutoriel et les nœuds de débutant :
+`rclpy.init/spin/spin_once/shutdown`, `Node` avec publishers, abonnements, timers, rates,
+paramètres, horloge et journal, les profils QoS, et les messages de sensor_msgs (JointState),
+std_msgs, builtin_interfaces et geometry_msgs. Services, actions, tf2, launch et les autres
+paquets de messages ne sont pas simulés : l'exécution s'arrête là plutôt que de faire semblant.""",
+    ),
+    "BK642": T(
+        title="le nœud publie dans une boucle où le temps ne passe pas",
+        message="le nœud a publié des milliers de messages sur {topics} sans que le temps avance "
+                "(arrêté à t = {time} s)",
+        hint="publiez depuis un timer (create_timer) et faites tourner le nœud (spin), ou dormez dans la boucle "
+             "(time.sleep(0.05))",
+        explanation="""\
+Une boucle `while` qui publie sans jamais dormir, tourner (spin) ni attendre envoie des messages
+aussi vite que le processeur le permet : des centaines de milliers par seconde sur une vraie
+machine, un déluge pour robot_state_publisher et RViz, et un cœur du processeur à 100 %.
+L'horloge de bras-kit n'avance jamais dans une telle boucle : l'exécution l'arrête après dix
+mille messages au même instant.""",
+    ),
+    "BK643": T(
+        title="rate.sleep() sans exécuteur qui tourne : un vrai nœud resterait bloqué",
+        message="le nœud a appelé rate.sleep() {count} fois sans exécuteur qui tourne dans un autre fil",
+        hint="utilisez create_timer et rclpy.spin, ou faites tourner le nœud dans un fil avant la boucle",
+        explanation="""\
+Dans rclpy, `Rate.sleep()` attend un timer qu'un exécuteur doit faire tourner, dans un autre
+fil d'exécution (rclpy/timer.py). Un nœud qui l'appelle dans sa boucle principale sans spin
+ailleurs reste bloqué pour toujours à son premier sommeil sous `ros2 run`. L'horloge simulée de
+bras-kit laisse la boucle continuer pour vérifier le reste, et le signale ici.""",
+    ),
+    "BK644": T(
+        title="rien n'a été publié sur /joint_states",
+        message={
+            "other": "rien n'a été publié sur /joint_states ; les messages JointState sont allés sur {topics} "
+                     "({count} messages) : robot_state_publisher n'écoute pas ce sujet",
+            "type": "/joint_states a transporté {types}, pas sensor_msgs/msg/JointState",
+            "silent": "le nœud a créé un publisher JointState sur {topic} mais n'y a jamais publié "
+                      "en {time} s",
+            "": "rien n'a été publié sur /joint_states en {time} s (sujets publiés : {topics})",
+        },
+        hint={
+            "other": "créez le publisher sur 'joint_states' (ou '/joint_states'), le sujet auquel "
+                     "robot_state_publisher s'abonne",
+            "type": "publiez des messages sensor_msgs.msg.JointState sur /joint_states",
+            "silent": "appelez publish(msg) à chaque tic (dans le callback du timer), et faites tourner le nœud",
+            "": "créez un publisher JointState sur 'joint_states' et publiez depuis un timer",
+        },
+        explanation="""\
+robot_state_publisher prend les angles des articulations sur `/joint_states` et nulle part
+ailleurs. Un nœud qui publie sur `joint_state` ou `/bras/joint_states` reste du ROS valide (ces
+noms de sujet sont légaux) mais personne ne l'écoute : le robot apparaît et ne bouge pas, le
+deuxième piège du tutoriel. Ne rien publier du tout (pas de timer, pas de spin, `publish`
+oublié) donne le même symptôme.""",
+    ),
+    "BK645": T(
+        title="listes name et position JointState de longueurs différentes",
+        message="un JointState nomme {names} articulations mais donne {positions} positions (t = {time} s ; "
+                "{count} messages de ce genre)",
+        hint="donnez une position par nom, dans le même ordre",
+        explanation="""\
+robot_state_publisher associe `name[i]` à `position[i]`. Quand les deux listes n'ont pas la même
+longueur, il rejette le message entier avec une erreur (« has 2 joint names but 3 positions ») :
+le bras ne bouge plus du tout, même pour les articulations correctes.""",
+    ),
+    "BK646": T(
+        title="le nœud nomme des articulations que le robot n'a pas",
+        message="le JointState du nœud nomme {names}, qui ne sont pas des articulations mobiles du robot ({joints})",
+        hint="utilisez les noms d'articulations de l'URDF : {joints}",
+        explanation="""\
+robot_state_publisher associe les entrées du JointState à l'URDF par leur nom et ignore les
+autres. Un nom mal orthographié (`Coude`, `elbow`, `coude_joint`) laisse donc l'articulation sans
+angle, alors que le nœud tourne sans erreur. L'exécution montre les noms réellement envoyés.""",
+    ),
+    "BK647": T(
+        title="des articulations mobiles que le nœud ne nomme jamais",
+        message="le JointState du nœud ne nomme jamais {names} (il nomme {published}) : ces articulations "
+                "ne bougent pas",
+        hint="ajoutez {names} à msg.name, avec une position pour chacune",
+        explanation="""\
+Une articulation mobile qui n'apparaît jamais sur `/joint_states` n'a pas de transformation :
+robot_state_publisher ne peut pas placer son lien enfant, que RViz montre alors à l'origine ou
+pas du tout. La cause habituelle : une articulation ajoutée à l'URDF (le `poignet` du tutoriel)
+mais pas au message du nœud.""",
+    ),
+    "BK648": T(
+        title="une position qui n'est pas un nombre",
+        message="l'articulation '{joint}' a reçu la position {value} à t = {time} s",
+        hint="vérifiez le calcul (une division par zéro, math.inf, un NaN lu sur un capteur)",
+        explanation="""\
+Un message JointState accepte NaN et l'infini (les classes générées ne vérifient que le type),
+mais aucune transformation ne peut en être tirée : robot_state_publisher publie des repères
+absurdes et RViz n'affiche rien ou avertit. L'exécution signale la première valeur de ce genre
+pour chaque articulation.""",
+    ),
+    "BK649": T(
+        title="des positions publiées au-delà des butées",
+        message={
+            "upper": "l'articulation '{joint}' a reçu {value} {unit} à t = {time} s, au-dessus de sa butée haute "
+                     "{bound} ({count} messages au-delà, le premier à t = {first} s)",
+            "lower": "l'articulation '{joint}' a reçu {value} {unit} à t = {time} s, au-dessous de sa butée basse "
+                     "{bound} ({count} messages au-delà, le premier à t = {first} s)",
+            "degrees": "l'articulation '{joint}' a reçu {value} à t = {time} s, au-delà de sa butée {bound} : "
+                       "on dirait des degrés ({count} messages, le premier à t = {first} s)",
+        },
+        hint={
+            "upper": "gardez les positions entre les butées lower et upper de l'URDF (en radians)",
+            "lower": "gardez les positions entre les butées lower et upper de l'URDF (en radians)",
+            "degrees": "les positions JointState sont en radians : convertissez avec math.radians()",
+        },
+        explanation="""\
+robot_state_publisher dessine tout ce qu'il reçoit : au-delà d'un `<limit>`, le bras traverse
+ses propres butées dans RViz, et un vrai robot ou un simulateur refuserait la commande. C'est le
+cinquième piège du tutoriel, vu dans les messages que le nœud a réellement envoyés (des degrés
+au lieu de radians en sont la cause la plus fréquente).""",
+    ),
+    "BK650": T(
+        title="header.stamp laissé à zéro",
+        message="{count} messages JointState sur {total} ont un header.stamp à zéro",
+        hint="écrivez msg.header.stamp = self.get_clock().now().to_msg() avant de publier",
+        explanation="""\
+robot_state_publisher horodate les repères qu'il publie avec le temps du JointState. Un
+horodatage nul (1er janvier 1970) donne des transformations vieilles de plus de cinquante ans :
+RViz et tf2 refusent de les utiliser (« extrapolation into the past ») ou les utilisent en
+retard. Le nœud du tutoriel horodate chaque message avec l'horloge du nœud pour cette raison.""",
+    ),
+    "BK651": T(
+        title="fréquence de publication loin de celle du timer",
+        message="/joint_states a été publié à {rate} Hz, mais le timer de {period} s demande {expected} Hz",
+        hint="publiez une fois par appel du timer (pas dans une boucle à l'intérieur, pas seulement de temps en temps)",
+        explanation="""\
+Un nœud avec un seul timer qui publie une fois par tic envoie ses messages à la fréquence du
+timer (20 Hz pour les 0,05 s du tutoriel). Une fréquence très différente signifie que le
+callback publie plusieurs fois, ou seulement de temps en temps, ou qu'une autre boucle publie :
+le mouvement dans RViz saccade ou s'emballe.""",
+    ),
+})

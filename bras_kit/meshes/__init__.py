@@ -1,0 +1,77 @@
+"""Mesh files decoded once: triangles and the colours of their own materials, for the renderer,
+the viewer, grading pictures and the MuJoCo model alike.
+
+:func:`load_mesh` answers from memory (a file read earlier in this process), then from the
+disk cache (:mod:`bras_kit.meshes.cache`), and only then decodes the file (pycollada for
+COLLADA, trimesh for the rest). :func:`cache_info` and :func:`clear_cache` show and empty the
+disk cache; :func:`set_disk_cache` (the ``--no-cache`` flag) turns it off for the process.
+"""
+
+from __future__ import annotations
+
+import os
+from collections.abc import Sequence
+
+from . import cache
+from .cache import CacheInfo
+from .decode import DecodeError
+from .mesh import Color, Issue, MeshData, Piece
+
+__all__ = ["CacheInfo", "Color", "DecodeError", "Issue", "MeshData", "Piece", "cache_info", "clear_cache",
+           "load_mesh", "set_disk_cache"]
+
+MEMORY_BYTES = 256 << 20  # decoded meshes kept in this process (robots share meshes)
+_memory: dict[tuple[str, int, int, tuple[float, ...] | None], MeshData] = {}
+_disk = os.environ.get("BRAS_KIT_NO_CACHE", "") in ("", "0")
+
+
+def set_disk_cache(enabled: bool) -> None:
+    """Use the disk cache of decoded meshes (the default), or neither read nor write it."""
+    global _disk
+    _disk = enabled
+
+
+def disk_cache_enabled() -> bool:
+    return _disk
+
+
+def load_mesh(path: str, scale: Sequence[float] | None = None) -> MeshData:
+    """The decoded triangles of the mesh file ``path`` times ``scale``. Raises :class:`DecodeError`
+    for a file that holds no triangles or cannot be read; ``issues`` lists what the file names
+    but could not be used (a missing texture...), the rest being drawn."""
+    scale_key = None if scale is None or tuple(float(s) for s in scale) == (1.0, 1.0, 1.0) \
+        else tuple(float(s) for s in scale)
+    try:
+        status = os.stat(path)
+    except OSError as exc:
+        raise DecodeError(exc.strerror or str(exc)) from None
+    memo = (os.path.realpath(path), status.st_mtime_ns, status.st_size, scale_key)
+    mesh = _memory.get(memo)
+    if mesh is not None:
+        return mesh
+    with open(path, "rb") as handle:
+        data = handle.read()
+    key = cache.content_key(data, scale_key)
+    mesh = cache.read(key) if _disk else None
+    if mesh is None:
+        from .decode import decode
+
+        mesh = decode(path, scale_key)
+        if _disk:
+            cache.write(key, mesh)
+    mesh.freeze()
+    if sum(m.nbytes for m in _memory.values()) + mesh.nbytes > MEMORY_BYTES:
+        _memory.clear()
+    _memory[memo] = mesh
+    return mesh
+
+
+def cache_info() -> CacheInfo:
+    """The disk cache's folder, number of decoded meshes and size in bytes."""
+    return cache.info()
+
+
+def clear_cache() -> CacheInfo:
+    """Empty the disk cache of decoded meshes (and this process's memory of them); returns what went."""
+    _memory.clear()
+    return cache.clear()

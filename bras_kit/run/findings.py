@@ -1,0 +1,91 @@
+"""The pitfalls a run showed, as validator findings (rules BK640-BK659 of the validator).
+
+::
+
+    recording = run_node("bras_description")
+    for finding in run_findings(recording, robot_of("bras_description")):
+        print(finding.code, finding.message)
+"""
+
+from __future__ import annotations
+
+import os
+from collections.abc import Iterable
+from typing import Any
+
+from .recording import Recording
+
+
+def robot_of(where: str, urdf: str | None = None) -> Any:
+    """The robot the node drives: ``urdf`` when given, else the package's robot description
+    (the one its launch file reads, else ``urdf/*.urdf``), else None (a lone .py file)."""
+    from ..authoring import load
+
+    if urdf is not None:
+        return load(urdf)
+    folder = where if os.path.isdir(where) else None
+    if folder is None:  # a .py file: its package folder, when it sits in one
+        parent = os.path.dirname(os.path.dirname(os.path.abspath(where)))
+        folder = parent if os.path.isfile(os.path.join(parent, "setup.py")) else None
+    if folder is None:
+        return None
+    from ..validate.package.sources import Package
+
+    return Package(folder).robot
+
+
+def run_findings(recording: Recording, robot: Any, *, lang: str | None = None, select: Iterable[str] = (),
+                 ignore: Iterable[str] = ()) -> list[Any]:
+    """The findings of the run rules (BK640-BK659) for ``recording``, worded in ``lang``.
+
+    ``data["file"]`` of each finding is the learner's file it points at (relative to the
+    package folder), its ``line`` the line there when known.
+    """
+    from ..i18n import current_language
+    from ..validate.findings import sort_key
+    from ..validate.i18n import word
+    from ..validate.package.run_rules import RUN_CHECKS, run_hits
+    from ..validate.registry import select_rules
+
+    lang = lang or current_language()
+    chosen = {rule.code: rule for rule in select_rules(select, ignore) if rule.code in RUN_CHECKS}
+    findings = [word(chosen[code], found, lang) for code, found in run_hits(recording, robot, sorted(chosen))]
+    return sorted(findings, key=sort_key)
+
+
+def package_run_results(path: str, *, lang: str | None = None, select: Iterable[str] = (),
+                        ignore: Iterable[str] = (), duration: float = 10.0, **limits: Any) -> list[Any]:
+    """Run every executable of the package's console_scripts and return the run rules'
+    findings as :class:`~bras_kit.validate.findings.FileResult` objects, one per file with a
+    finding (paths shown under ``path``, like :func:`~bras_kit.validate.package.validate_package`).
+
+    A node stopped by a limit of the sandbox (CPU, memory, wall clock) is reported as BK640.
+    """
+    from ..errors import BrasKitError
+    from ..validate.findings import FileResult
+    from ..validate.package.sources import Package
+    from . import NodeRunError, locate, run_node
+    from .recording import NodeFailure
+
+    package = Package(path)
+    scripts = package.setup.scripts if package.setup is not None else None
+    robot = package.robot
+    by_file: dict[str, list[Any]] = {}
+    for entry in scripts or []:
+        try:
+            recording = run_node(path, entry.name, duration=duration, **limits)
+        except NodeRunError as exc:
+            from ..i18n import say
+
+            target = locate(path, entry.name)
+            source = os.path.relpath(target.path, target.root).replace(os.sep, "/")
+            recording = Recording(target=target.shown, source=source, function=target.function, duration=duration,
+                                  end=exc.time, ended="error",
+                                  failure=NodeFailure("NodeRunError", say(exc.message, lang), [], exc.time))
+        except BrasKitError:  # an entry that cannot be started: BK622 reports it
+            continue
+        for finding in run_findings(recording, robot, lang=lang, select=select, ignore=ignore):
+            by_file.setdefault(str(finding.data.get("file") or recording.source), []).append(finding)
+    from ..validate.findings import sort_key
+
+    return [FileResult(package.path(file), sorted(findings, key=sort_key)) for file, findings in sorted(by_file.items())]

@@ -1,0 +1,243 @@
+"""BK640-BK659: pitfalls seen for real, in the recording of a run of the learner's node.
+
+``bras-kit run`` (and ``validate PKG --run``) runs the node against the stand-in for rclpy
+and records every message (:mod:`bras_kit.run`); these rules read that recording and the
+robot, the way robot_state_publisher and RViz would receive the messages. Each hit carries
+``file``: the learner's file it points at (the node's module), with the line when known.
+"""
+
+from __future__ import annotations
+
+import math
+from collections.abc import Callable, Iterable, Iterator
+from dataclasses import dataclass
+from typing import Any
+
+from ...run.recording import JOINT_STATE_TYPE, JOINT_STATES, Recording, stamp_seconds
+from ..registry import ERROR, WARNING, Hit, hit, rule
+
+RATE_TOLERANCE = 0.2  # a measured rate 20 % away from the timer's is "far"
+
+
+@dataclass(frozen=True)
+class RunContext:
+    recording: Recording
+    robot: Any  # bras_kit.model.Robot or None
+
+
+RunCheck = Callable[[RunContext], Iterable[Hit]]
+RUN_CHECKS: dict[str, RunCheck] = {}
+
+
+def run_rule(code: str, name: str, severity: str) -> Callable[[RunCheck], RunCheck]:
+    """Register a rule over a run's recording (never called on a robot file or a package)."""
+
+    def decorate(check: RunCheck) -> RunCheck:
+        def on_context(context: Any) -> Iterable[Hit]:
+            return check(context) if isinstance(context, RunContext) else ()
+
+        rule(code, name, severity)(on_context)
+        RUN_CHECKS[code] = check
+        return check
+
+    return decorate
+
+
+def _at(file: str, line: int | None, variant: str = "", **params: object) -> Hit:
+    return hit("file", None, line or None, variant, file=file, **params)
+
+
+def _publisher_line(run: RunContext, topic: str | None = None) -> tuple[str, int | None]:
+    """Where the node creates its JointState publisher (on ``topic`` when given)."""
+    r = run.recording
+    for endpoint in r.publishers:
+        if endpoint.type == JOINT_STATE_TYPE and (topic is None or endpoint.topic == topic) and endpoint.path:
+            return endpoint.path, endpoint.line
+    return r.source, None
+
+
+def _movable(run: RunContext) -> list[str]:
+    return [j.name for j in run.robot.movable_joints() if j.name] if run.robot is not None else []
+
+
+# ---------------------------------------------------------------- how the node ended
+
+
+@run_rule("BK640", "node-raised", ERROR)
+def node_raised(run: RunContext) -> Iterator[Hit]:
+    failure = run.recording.failure
+    if failure is None or run.recording.ended != "error":
+        return
+    frame = failure.frames[-1] if failure.frames else None
+    yield _at(frame.path if frame else run.recording.source, frame.line if frame else None,
+              kind=failure.kind, detail=_first_line(failure.detail),
+              time=round(failure.time, 3))
+
+
+def _first_line(text: str, limit: int = 160) -> str:
+    line = text.strip().splitlines()[0] if text.strip() else "-"
+    return line if len(line) <= limit else line[:limit] + "..."
+
+
+@run_rule("BK641", "node-uses-unsimulated-ros", WARNING)
+def node_uses_unsimulated(run: RunContext) -> Iterator[Hit]:
+    failure = run.recording.failure
+    if failure is None or run.recording.ended != "not_simulated":
+        return
+    frame = failure.frames[-1] if failure.frames else None
+    yield _at(frame.path if frame else run.recording.source, frame.line if frame else None,
+              what=failure.detail, time=round(failure.time, 3))
+
+
+@run_rule("BK642", "node-publishes-without-time-passing", ERROR)
+def node_storm(run: RunContext) -> Iterator[Hit]:
+    r = run.recording
+    if r.ended != "storm":
+        return
+    topics = list(dict.fromkeys(m.topic for m in r.messages if abs(m.time - r.end) < 1e-12))
+    path, line = _publisher_line(run)
+    yield _at(path, line, topics=topics or ["-"], time=round(r.end, 3))
+
+
+@run_rule("BK643", "rate-sleep-without-spinning", WARNING)
+def rate_sleep_without_spinning(run: RunContext) -> Iterator[Hit]:
+    if run.recording.rate_sleeps:
+        yield _at(run.recording.source, None, count=run.recording.rate_sleeps)
+
+
+# ---------------------------------------------------------------- what /joint_states carried
+
+
+@run_rule("BK644", "nothing-on-joint-states", ERROR)
+def nothing_on_joint_states(run: RunContext) -> Iterator[Hit]:
+    r = run.recording
+    if r.ended in ("error", "not_simulated") and r.end == 0:
+        return  # it never got going: BK640/BK641 say why
+    if r.joint_state_messages(JOINT_STATES):
+        return
+    elsewhere = list(dict.fromkeys(m.topic for m in r.messages if m.type == JOINT_STATE_TYPE))
+    if elsewhere:
+        path, line = _publisher_line(run, elsewhere[0])
+        yield _at(path, line, "other", topics=elsewhere, count=len(r.on(elsewhere[0])))
+        return
+    other_types = list(dict.fromkeys(m.type for m in r.messages if m.topic == JOINT_STATES))
+    if other_types:
+        yield _at(r.source, None, "type", types=other_types)
+        return
+    made = [p for p in r.publishers if p.type == JOINT_STATE_TYPE]
+    if made:
+        yield _at(made[0].path or r.source, made[0].line, "silent", topic=made[0].topic, time=round(r.end, 3))
+        return
+    yield _at(r.source, None, "", topics=list(r.topics()) or ["-"], time=round(r.end, 3))
+
+
+def _joint_state_messages(run: RunContext) -> list[Any]:
+    return run.recording.joint_state_messages(JOINT_STATES)
+
+
+@run_rule("BK645", "joint-state-lengths-differ", ERROR)
+def joint_state_lengths_differ(run: RunContext) -> Iterator[Hit]:
+    for message in _joint_state_messages(run):
+        names, position = message.fields.get("name") or [], message.fields.get("position") or []
+        if len(names) != len(position):
+            bad = sum(1 for m in _joint_state_messages(run)
+                      if len(m.fields.get("name") or []) != len(m.fields.get("position") or []))
+            path, line = _publisher_line(run, JOINT_STATES)
+            yield _at(path, line, names=len(names), positions=len(position), time=round(message.time, 3),
+                      count=bad)
+            return
+
+
+@run_rule("BK646", "joint-state-unknown-names", ERROR)
+def joint_state_unknown_names(run: RunContext) -> Iterator[Hit]:
+    movable = _movable(run)
+    if run.robot is None:
+        return
+    named = list(dict.fromkeys(n for m in _joint_state_messages(run) for n in m.fields.get("name") or []))
+    unknown = [n for n in named if n not in movable]
+    if unknown:
+        path, line = _publisher_line(run, JOINT_STATES)
+        yield _at(path, line, names=unknown, joints=movable or ["-"])
+
+
+@run_rule("BK647", "joint-state-joints-never-named", ERROR)
+def joint_state_joints_never_named(run: RunContext) -> Iterator[Hit]:
+    messages = _joint_state_messages(run)
+    if run.robot is None or not messages:
+        return
+    named = {n for m in messages for n in m.fields.get("name") or []}
+    missing = [n for n in _movable(run) if n not in named]
+    if missing:
+        path, line = _publisher_line(run, JOINT_STATES)
+        yield _at(path, line, names=missing, published=sorted(named) or ["-"])
+
+
+@run_rule("BK648", "joint-state-not-finite", ERROR)
+def joint_state_not_finite(run: RunContext) -> Iterator[Hit]:
+    seen: set[str] = set()
+    for message in _joint_state_messages(run):
+        for name, value in zip(message.fields.get("name") or [], message.fields.get("position") or []):
+            if name not in seen and not math.isfinite(float(value)):
+                seen.add(name)
+                path, line = _publisher_line(run, JOINT_STATES)
+                yield _at(path, line, joint=name, value=str(float(value)), time=round(message.time, 3))
+
+
+@run_rule("BK649", "joint-state-past-limits", ERROR)
+def joint_state_past_limits(run: RunContext) -> Iterator[Hit]:
+    from ...motion import check_limits, value_in_degrees
+    from ...run.recording import joint_states
+
+    robot = run.robot
+    if robot is None:
+        return
+    states = joint_states(run.recording)
+    if not len(states):
+        return
+    path, line = _publisher_line(run, JOINT_STATES)
+    for violation in check_limits(robot, states):
+        if violation.kind != "position":
+            continue
+        degrees = value_in_degrees(robot.joint(violation.joint), violation.value)
+        yield _at(path, line, "degrees" if degrees else violation.side, joint=violation.joint,
+                  value=round(violation.value, 4), time=round(violation.peak_time, 3), bound=violation.bound,
+                  first=round(violation.time, 3), count=violation.samples, unit=violation.unit)
+
+
+@run_rule("BK650", "joint-state-stamp-zero", WARNING)
+def joint_state_stamp_zero(run: RunContext) -> Iterator[Hit]:
+    messages = _joint_state_messages(run)
+    zero = [m for m in messages if (stamp_seconds(m.fields) or 0.0) == 0.0]
+    if zero:
+        path, line = _publisher_line(run, JOINT_STATES)
+        yield _at(path, line, count=len(zero), total=len(messages))
+
+
+@run_rule("BK651", "publish-rate-off-timer", WARNING)
+def publish_rate_off_timer(run: RunContext) -> Iterator[Hit]:
+    r = run.recording
+    messages = _joint_state_messages(run)
+    publishers = [p for p in r.publishers if p.topic == JOINT_STATES and p.type == JOINT_STATE_TYPE]
+    if len(messages) < 3 or not publishers:
+        return
+    timers = [t for t in r.timers if t.node == publishers[0].node and t.period > 0]
+    if len(timers) != 1:
+        return  # no timer, or several: which one publishes is not known
+    times = [m.time for m in messages]
+    span = times[-1] - times[0]
+    if span <= 0:
+        return
+    measured = (len(times) - 1) / span
+    declared = 1.0 / timers[0].period
+    if abs(measured - declared) > RATE_TOLERANCE * declared:
+        yield _at(timers[0].path or r.source, timers[0].line or None, rate=round(measured, 2),
+                  expected=round(declared, 2), period=timers[0].period, count=len(messages))
+
+
+def run_hits(recording: Recording, robot: Any, codes: Iterable[str]) -> Iterator[tuple[str, Hit]]:
+    context = RunContext(recording, robot)
+    for code in codes:
+        check = RUN_CHECKS.get(code)
+        if check is not None:
+            for found in check(context):
+                yield code, found

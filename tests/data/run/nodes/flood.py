@@ -1,0 +1,14 @@
+import rclpy
+from rclpy.node import Node
+from sensor_msgs.msg import JointState
+
+
+def main():
+    rclpy.init()
+    node = Node('arm')
+    pub = node.create_publisher(JointState, 'joint_states', 10)
+    msg = JointState()
+    msg.name = ['epaule', 'coude']
+    msg.position = [0.1, 0.2]
+    while rclpy.ok():
+        pub.publish(msg)

@@ -1,0 +1,25 @@
+import rclpy
+from rclpy.node import Node
+from sensor_msgs.msg import JointState
+
+
+class Arm(Node):
+    def __init__(self):
+        super().__init__('arm')
+        self.pub = self.create_publisher(JointState, 'joint_states', 10)
+        self.create_timer(0.05, self.tick)
+        self.ticks = 0
+        self.angles = [0.1, 0.2]
+
+    def tick(self):
+        self.ticks += 1
+        msg = JointState()
+        msg.header.stamp = self.get_clock().now().to_msg()
+        msg.name = ['epaule', 'coude']
+        msg.position = [self.angles[0], self.angles[self.ticks - 1]]  # tick 3: index 2, out of range
+        self.pub.publish(msg)
+
+
+def main():
+    rclpy.init()
+    rclpy.spin(Arm())

@@ -1,0 +1,175 @@
+"""bras-kit run: the learner's own node, with no ROS install, against the stand-in for rclpy.
+
+Oracles: the tutorial's formulas (0.8 sin t, 1.2 sin 0.7t at t = 0.05 k), the 20 Hz timer's
+stamps, the scaffolded package's own motion.py, and what real rclpy does with each beginner
+node of the table below (with the file of rclpy or rosidl that says so).
+"""
+
+from __future__ import annotations
+
+import importlib.util
+import math
+import sys
+from pathlib import Path
+
+import pytest
+
+from bras_kit.authoring import load
+from bras_kit.run import NodeRunError, joint_states, run_node
+from bras_kit.run.findings import robot_of, run_findings
+
+DATA = Path(__file__).parent / "data" / "run"
+TUTORIAL = DATA / "tutorial_node"
+NODES = DATA / "nodes"
+START = 1_767_225_600  # the simulated wall clock's start, in seconds
+
+
+@pytest.fixture(scope="module")
+def tutorial_run():
+    return run_node(str(TUTORIAL), "animation", duration=10.0)
+
+
+@pytest.fixture(scope="module")
+def robot():
+    return load(str(TUTORIAL / "urdf" / "bras.urdf"))
+
+
+def test_tutorial_node_positions_follow_its_two_sines_tick_by_tick(tutorial_run):
+    messages = tutorial_run.joint_state_messages()
+    assert len(messages) == 200  # 10 s at 20 Hz, the first tick at t = 0.05 s
+    for k, message in enumerate(messages, start=1):
+        t = 0.05 * k
+        assert message.time == pytest.approx(t, abs=1e-12)
+        assert message.fields["name"] == ["epaule", "coude"]
+        # the node adds 0.05 to t at each tick, so its t carries float rounding: 1e-12
+        assert message.fields["position"] == pytest.approx([0.8 * math.sin(t), 1.2 * math.sin(0.7 * t)], abs=1e-12)
+
+
+def test_tutorial_node_stamps_are_50_ms_apart_on_the_node_clock(tutorial_run):
+    stamps = [m.fields["header"]["stamp"] for m in tutorial_run.joint_state_messages()]
+    nanoseconds = [s["sec"] * 10**9 + s["nanosec"] for s in stamps]
+    assert nanoseconds[0] == START * 10**9 + 50_000_000
+    assert {b - a for a, b in zip(nanoseconds, nanoseconds[1:])} == {50_000_000}
+
+
+def test_tutorial_node_runs_ten_simulated_seconds_and_is_stopped_like_ctrl_c(tutorial_run):
+    assert tutorial_run.ended == "duration" and tutorial_run.end == 10.0
+    assert tutorial_run.nodes == ["animation_bras"]
+    assert [(p.topic, p.type, p.path, p.line) for p in tutorial_run.publishers] == [
+        ("/joint_states", "sensor_msgs/msg/JointState", "bras_description/animation.py", 9)]
+    assert [(t.period, t.line) for t in tutorial_run.timers] == [(0.05, 10)]
+
+
+def test_tutorial_node_has_no_finding(tutorial_run, robot):
+    assert run_findings(tutorial_run, robot, lang="en") == []
+
+
+def test_recorded_states_match_the_formulas(tutorial_run):
+    states = joint_states(tutorial_run)
+    assert states.names == ["epaule", "coude"]
+    t = states.times
+    assert states.positions[:, 0] == pytest.approx(0.8 * __import__("numpy").sin(t), abs=1e-12)
+
+
+def test_stand_in_never_reaches_the_parent_process(tutorial_run):
+    assert "rclpy" not in sys.modules and "sensor_msgs" not in sys.modules
+    assert importlib.util.find_spec("_bras_sim") is None  # the stand-in folder is not on sys.path
+
+
+# What real rclpy (and the generated messages) do with each beginner node; the run must agree.
+# (node, how it ends, failure class or None, run rule codes)
+BEGINNER_NODES = [
+    # rcl validates names only by syntax: 'joint_state' is a legal topic (rcl/validate_topic_name.c),
+    # robot_state_publisher simply never hears it
+    ("wrong_topic.py", "duration", None, ["BK644"]),
+    # nothing in rclpy converts units: 45 and 90 are published as radians
+    ("degrees.py", "duration", None, ["BK649", "BK649"]),
+    # spin with no timer waits forever (rclpy/executors.py wait_for_ready_callbacks)
+    ("no_timer.py", "duration", None, ["BK644"]),
+    ("publish_forgotten.py", "duration", None, ["BK644"]),
+    # an exception in a timer callback leaves rclpy.spin (rclpy/executors.py: handler() re-raises)
+    ("raises_at_tick_3.py", "error", "IndexError", ["BK640"]),
+    ("while_ok_sleep.py", "duration", None, []),
+    # KeyboardInterrupt is what ros2 run's Ctrl-C raises in the node's Python code
+    ("never_returns.py", "duration", None, ["BK644"]),
+    ("ignores_ctrl_c.py", "stopped", None, ["BK644"]),
+    # rosidl_generator_py resource/_msg.py.em: "The 'position' field must be a set or sequence
+    # and each value of type 'float' ..."
+    ("integer_positions.py", "error", "AssertionError", ["BK640"]),
+    # rclpy/node.py: raise NotInitializedException('cannot create node')
+    ("node_before_init.py", "error", "NotInitializedException", ["BK640"]),
+    # rclpy/src/rclpy/destroyable.cpp: InvalidHandle("cannot use Destroyable because destruction was requested")
+    ("spin_destroyed.py", "error", "InvalidHandle", ["BK640"]),
+    # rmw/src/validate_node_name.c: only alphanumerics and '_' (rclpy/validate_node_name.py raises)
+    ("bad_node_name.py", "error", "InvalidNodeNameException", ["BK640"]),
+    ("stamp_zero_wrong_names.py", "duration", None, ["BK646", "BK647", "BK650"]),
+    # rclpy/timer.py Rate.sleep(): waits for a timer an executor must spin in another thread
+    ("rate_loop.py", "duration", None, ["BK643"]),
+    ("flood.py", "storm", None, ["BK642", "BK650"]),
+    ("uses_action.py", "not_simulated", "NotSimulated", ["BK641"]),
+    ("twice_per_tick.py", "duration", None, ["BK651"]),
+    ("nan_and_lengths.py", "duration", None, ["BK645", "BK648"]),
+]
+
+
+@pytest.mark.parametrize("node, ended, failure, codes", BEGINNER_NODES, ids=[row[0] for row in BEGINNER_NODES])
+def test_beginner_node_behaves_as_with_real_rclpy(node, ended, failure, codes, robot):
+    recording = run_node(str(NODES / node), duration=2.0)
+    assert recording.ended == ended
+    assert (recording.failure.kind if recording.failure else None) == failure
+    assert sorted(f.code for f in run_findings(recording, robot, lang="en")) == codes
+
+
+def test_exception_at_tick_3_shows_the_learners_line_and_the_simulated_time():
+    recording = run_node(str(NODES / "raises_at_tick_3.py"), duration=2.0)
+    assert recording.end == pytest.approx(0.15)  # third tick of a 0.05 s timer
+    assert len(recording.messages) == 2
+    frames = recording.failure.frames
+    # main() -> rclpy.spin -> the timer callback: only the learner's two frames are kept
+    assert [(f.path, f.function) for f in frames] == [("raises_at_tick_3.py", "main"), ("raises_at_tick_3.py", "tick")]
+    source = (NODES / "raises_at_tick_3.py").read_text(encoding="utf-8").splitlines()
+    assert "self.angles[self.ticks - 1]" in source[frames[-1].line - 1]
+
+
+def test_while_ok_loop_with_sleep_publishes_at_20_hz():
+    recording = run_node(str(NODES / "while_ok_sleep.py"), duration=1.0)
+    times = [m.time for m in recording.messages]
+    assert times == pytest.approx([0.05 * k for k in range(21)], abs=1e-9)
+    assert [m.fields["position"][0] for m in recording.messages] == pytest.approx(
+        [0.5 * math.sin(0.05 * k) for k in range(21)], abs=1e-12)
+
+
+def test_degrees_are_reported_with_joint_value_and_time(robot):
+    recording = run_node(str(NODES / "degrees.py"), duration=2.0)
+    coude = next(f for f in run_findings(recording, robot, lang="en") if f.data["joint"] == "coude")
+    assert coude.data["value"] == 90.0 and coude.data["first"] == pytest.approx(0.05)
+    assert "degrees" in coude.message and "math.radians" in coude.hint
+
+
+def test_wrong_topic_says_where_the_messages_went(robot):
+    recording = run_node(str(NODES / "wrong_topic.py"), duration=1.0)
+    [finding] = run_findings(recording, robot, lang="fr")
+    assert "'/joint_state'" in finding.message and finding.line == 11
+    assert finding.data["count"] == 20
+
+
+def test_busy_loop_is_stopped_by_the_cpu_limit_with_a_clear_message():
+    with pytest.raises(NodeRunError) as caught:
+        run_node(str(NODES / "busy_loop.py"), duration=2.0, cpu_seconds=1)
+    assert caught.value.kind == "cpu" and caught.value.time == 0.0
+    assert "time.sleep()" in str(caught.value.hint)
+
+
+def test_ten_simulated_seconds_take_well_under_a_second(tutorial_run):
+    assert tutorial_run.wall_seconds < 1.0
+
+
+def test_robot_of_a_package_is_its_urdf():
+    robot = robot_of(str(TUTORIAL))
+    assert [j.name for j in robot.movable_joints()] == ["epaule", "coude"]
+
+
+def test_every_run_rule_is_triggered_by_a_beginner_node():
+    from bras_kit.validate.package.run_rules import RUN_CHECKS
+
+    assert {code for *_, codes in BEGINNER_NODES for code in codes} == set(RUN_CHECKS)
