@@ -67,6 +67,9 @@ _LAZY = {
     "build_mjcf": "bras_kit.physics",
     "view": "bras_kit.view",
     "set_language": "bras_kit.i18n",
+    "say": "bras_kit.i18n",
+    "run_node": "bras_kit.run",
+    "run_findings": "bras_kit.run",
 }
 
 

@@ -51,7 +51,10 @@ class XMLSafetyError(BrasKitError):
 
 
 class XMLSyntaxError(BrasKitError):
-    """The file is not well-formed XML."""
+    """The file is not well-formed XML. ``detail`` is what went wrong, as data (the element left
+    open and its line, where the reader stopped...), without the "not well-formed XML" words."""
+
+    detail: Message | None = None
 
 
 class ModelError(BrasKitError):

@@ -25,7 +25,10 @@ MARKERS = {"M": "message", "Mn": "plural", "Mc": "context"}
 # Registration calls whose keyword arguments are user-facing texts: function name ->
 # (index of the positional argument that is the msgctxt, or None; the text keywords).
 # A keyword's value may be a string or a dict of strings (variants).
-TEXT_CALLS: dict[str, tuple[int | None, tuple[str, ...]]] = {}
+TEXT_CALLS: dict[str, tuple[int | None, tuple[str, ...]]] = {
+    # bras_kit.validate.registry.describe("BK301", title=..., message=..., hint=..., explanation=...)
+    "describe": (0, ("title", "message", "hint", "explanation")),
+}
 
 
 @dataclass(frozen=True)

@@ -41,6 +41,7 @@ MAX_STEPS = 2_000_000  # nodes evaluated in one expansion
 MAX_SECONDS = 10.0  # wall time of one expansion's expressions
 MAX_FACTORIAL = 1000
 MAX_NESTING = 100  # depth of the expression tree
+MAX_CALLS = 50  # lambdas calling lambdas
 
 
 class UnsafeXacroExpression(XacroError):
@@ -84,6 +85,40 @@ class Method:
 
     def __call__(self, *args: Any, **kwargs: Any) -> Any:  # map('{:.2f}'.format, values)
         return _call_method(self, list(args), kwargs)
+
+
+class Lambda:
+    """A ``lambda`` written in an expression: its body is interpreted by the same evaluator.
+
+    It sees the scopes around it when it was made (comprehension variables, like a Python
+    closure) and its own parameters; calls nest at most :data:`MAX_CALLS` deep.
+    """
+
+    __slots__ = ("evaluator", "node", "scopes", "depth")
+
+    def __init__(self, evaluator: Evaluator, node: ast.Lambda, scopes: list[dict[str, Any]], depth: int) -> None:
+        self.evaluator, self.node, self.scopes, self.depth = evaluator, node, scopes, depth
+
+    def __repr__(self) -> str:
+        return "<function <lambda>>"
+
+    def __call__(self, *args: Any, **kwargs: Any) -> Any:
+        names = [parameter.arg for parameter in self.node.args.args]
+        if kwargs or len(args) != len(names):
+            raise TypeError(f"<lambda>() takes {len(names)} positional arguments but {len(args) + len(kwargs)} "
+                            "were given")
+        evaluator = self.evaluator
+        if evaluator.calls >= MAX_CALLS:
+            raise UnsafeXacroExpression(M("lambdas call each other more than {count} deep", count=MAX_CALLS),
+                                        hint=M("a property probably calls itself without end"))
+        saved = evaluator.scopes
+        evaluator.scopes = [*self.scopes, dict(zip(names, args))]
+        evaluator.calls += 1
+        try:
+            return evaluator.eval(self.node.body, self.depth)
+        finally:
+            evaluator.scopes = saved
+            evaluator.calls -= 1
 
 
 def _refuse(what: Message) -> UnsafeXacroExpression:
@@ -445,6 +480,7 @@ class Evaluator:
         self.lookup, self.attribute, self.callables, self.budget = lookup, attribute, callables, budget
         self.inner_lookup = inner_lookup
         self.scopes: list[dict[str, Any]] = []
+        self.calls = 0
 
     def run(self, expression: str) -> Any:
         try:
@@ -576,8 +612,8 @@ class Evaluator:
                 kwargs.update(extra)
             else:
                 kwargs[keyword.arg] = self.eval(keyword.value, depth)
-        if isinstance(function, Method):
-            return function(*args, **kwargs)
+        if isinstance(function, (Method, Lambda)):
+            return check_value(function(*args, **kwargs))
         safe = self.callables.get(id(function))
         if safe is None:
             raise _refuse(M("the function '{name}', which is not allowed", name=_name_of(function)))
@@ -587,12 +623,41 @@ class Evaluator:
         return check_value(safe(*args, **kwargs))
 
     def _function_argument(self, value: Any) -> Any:
-        if not callable(value) or isinstance(value, Method):
+        if not callable(value) or isinstance(value, (Method, Lambda)):
             return value
         safe = self.callables.get(id(value))
         if safe is None:
             raise _refuse(M("the function '{name}', which is not allowed, as an argument", name=_name_of(value)))
         return safe
+
+    def _Lambda(self, node: ast.Lambda, depth: int) -> Any:
+        arguments = node.args
+        if arguments.vararg or arguments.kwarg or arguments.kwonlyargs or arguments.defaults \
+                or arguments.posonlyargs:
+            raise _refuse(M("a lambda with default, keyword-only, * or ** parameters"))
+        return Lambda(self, node, list(self.scopes), depth)
+
+    # f-strings
+    def _JoinedStr(self, node: ast.JoinedStr, depth: int) -> Any:
+        parts: list[str] = []
+        for value in node.values:
+            parts.append(self.eval(value, depth))
+            if sum(map(len, parts)) > MAX_TEXT:
+                raise UnsafeXacroExpression(M("a text of {count} characters is too long", count=sum(map(len, parts))),
+                                            hint=_TEXT_LIMIT)
+        return "".join(parts)
+
+    def _FormattedValue(self, node: ast.FormattedValue, depth: int) -> Any:
+        value = check_nested(self.eval(node.value, depth))
+        if node.conversion == ord("s"):
+            value = _safe_str(value)
+        elif node.conversion in (ord("r"), ord("a")):
+            value = (repr if node.conversion == ord("r") else ascii)(value)
+        spec = self.eval(node.format_spec, depth) if node.format_spec is not None else ""
+        for width in _FORMAT_WIDTHS.findall(spec):
+            if int(width) > MAX_FORMAT_WIDTH:
+                raise _width_refused(width)
+        return check_value(format(value, spec))
 
     # comprehensions
     def _ListComp(self, node: ast.ListComp, depth: int) -> Any:

@@ -15,6 +15,7 @@ from collections.abc import Iterator
 from dataclasses import dataclass, field
 
 from .errors import BrasKitError, XMLSafetyError, XMLSyntaxError
+from .message import M, Message
 
 _DTD_HINT = "remove the <!DOCTYPE ...> block: URDF files never need one"
 
@@ -123,16 +124,69 @@ def parse_xml(data: bytes | str, path: str | None = None) -> Node:
                 line=exc.lineno,
                 hint="write the character itself instead of an &entity; reference",
             ) from None
-        raise XMLSyntaxError(
-            f"not well-formed XML: {reason} (column {exc.offset + 1})",
-            path=path,
-            line=exc.lineno,
-            hint="check the tag on this line is closed and its quotes match",
-        ) from None
+        detail, line = _syntax_detail(exc, reason, stack, data)
+        error = XMLSyntaxError(M("not well-formed XML: {detail}", detail=detail), path=path, line=line,
+                               hint=M("check the tag on this line is closed and its quotes match"))
+        error.detail = detail
+        raise error from None
     if not root_holder:
         raise XMLSyntaxError("the file holds no XML element", path=path, line=1)
     root_holder[0].late_declaration = late_declaration
     return root_holder[0]
+
+
+def _opening(node: Node) -> str:
+    """``<link name="bras">``: an element as the learner wrote its opening tag (its name only)."""
+    name = node.attrib.get("name")
+    return f'<{node.tag} name="{name}">' if name is not None else f"<{node.tag}>"
+
+
+# expat's fixed messages (xmlparse.c), each worded as data so that it can be translated
+_EXPAT_WORDS = {
+    "not well-formed (invalid token)": M("a character that cannot start or continue a tag here "
+                                         "(an unquoted value, a stray '<' or '&'?)"),
+    "unclosed token": M("a tag or a quoted value is not finished"),
+    "junk after document element": M("text or a second element after the closing tag of the root element"),
+    "duplicate attribute": M("the same attribute is written twice in one tag"),
+    "syntax error": M("syntax error"),
+    "no element found": M("the file ends before its elements are closed"),
+    "unbound prefix": M("a prefix (name:) is used without its xmlns declaration"),
+    "XML or text declaration not at start of entity": M("the <?xml ...?> declaration is not at the very start of the file"),
+    "unclosed CDATA section": M("a <![CDATA[ section is never closed"),
+    "partial character": M("the file ends in the middle of a character"),
+    "reference to invalid character number": M("a &#...; reference names a character XML does not allow"),
+    "XML declaration not well-formed": M("the <?xml ...?> declaration is not well-formed"),
+    "mismatched tag": M("a closing tag does not match the element it closes"),
+}
+
+
+def _syntax_detail(exc: xml.parsers.expat.ExpatError, reason: str, stack: list[Node],
+                   data: bytes) -> tuple[Message, int]:
+    """What is wrong, as a message, and the line to show: the element left open (and its
+    opening line) when a closing tag does not match or the file ends, else expat's reason."""
+    column = exc.offset + 1
+    stopped = exc.lineno
+    if reason == "mismatched tag" and stack:
+        lines = data.split(b"\n")
+        text = lines[stopped - 1][exc.offset:].decode("utf-8", "replace") if stopped - 1 < len(lines) else ""
+        found = re.match(r"(?:</)?\s*([^\s>/]+)", text)  # expat's column points at the closing tag's name
+        closing = found.group(1) if found else "?"
+        innermost = stack[-1]
+        if any(node.tag == closing for node in stack[:-1]):
+            return (M("the tag {element} opened on line {opened} is never closed: the reader met </{closing}> "
+                      "on line {stopped} while {element} was still open",
+                      element=_opening(innermost), opened=innermost.line, closing=closing, stopped=stopped),
+                    innermost.line)
+        return (M("the closing tag </{closing}> on line {stopped} does not match {element} opened on line {opened}",
+                  closing=closing, stopped=stopped, element=_opening(innermost), opened=innermost.line), stopped)
+    if reason == "no element found" and stack:
+        innermost = stack[-1]
+        return (M("the tag {element} opened on line {opened} is never closed: the file ends on line {stopped}",
+                  element=_opening(innermost), opened=innermost.line, stopped=stopped), innermost.line)
+    words = _EXPAT_WORDS.get(reason)
+    if words is None:
+        words = M("the XML reader says \"{reason}\"", reason=reason)
+    return M("{what} (line {line}, column {column})", what=words, line=stopped, column=column), stopped
 
 
 _LATE_DECLARATION = re.compile(rb"\A(\xef\xbb\xbf)?(\s+)(<\?xml\b[^>]*\?>)")

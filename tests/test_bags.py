@@ -495,3 +495,63 @@ def test_decompression_bomb_is_refused_without_filling_memory(tmp_path, run_cli)
     assert "damaged" in str(caught.value) and "bomb.mcap" in str(caught.value)
     assert peak < 16 << 20
     _hostile(run_cli, bag, "bomb.mcap", "damaged")
+
+
+def test_a_name_ending_in_a_slash_is_the_bag_folder(tmp_path, run_cli):
+    code, _, err = run_cli("motion", "--duration", "0.5", "-o", str(tmp_path / "trial") + "/")
+    assert code == 0, err
+    assert sorted(os.listdir(tmp_path / "trial")) == ["metadata.yaml", "trial.mcap"]
+    assert len(_read_foxglove(str(tmp_path / "trial" / "trial.mcap"))["/joint_states"]) == 11
+
+
+def test_bag_errors_and_findings_speak_french(tmp_path, run_cli):
+    bag = _foxglove_bag(str(tmp_path / "pince.mcap"),
+                        [(t, ["epaule", "coude", "pince"], [0.1, 0.2, 0.3]) for t in (0.0, 0.05, 0.1)])
+    code, _, err = run_cli("--lang", "fr", "motion", "--motion", bag)
+    assert code == 0, err
+    assert "l'enregistrement nomme des articulations que ce robot ne peut pas bouger: 'pince'" in err
+    code, _, err = run_cli("--lang", "fr", "motion", "--motion", bag, "--topic", "/autre")
+    assert code == 2 and "le bag n'a pas de sujet /autre" in err and "choisissez-en un avec --topic" in err
+
+
+def test_simulate_records_measured_states_with_their_torques(tmp_path, run_cli):
+    code, _, err = run_cli("simulate", "--inertials", "--duration", "1", "-o", str(tmp_path / "sim.mcap"))
+    assert code == 0, err
+    topics = _read_foxglove(str(tmp_path / "sim" / "sim.mcap"))
+    states = [message for _, _, message in topics["/joint_states"]]
+    assert len(states) == 21 and len(topics["/tf"]) == 21
+    assert all(list(m.name) == ["epaule", "coude"] and len(m.effort) == 2 for m in states)
+    assert any(abs(e) > 0.01 for m in states for e in m.effort)  # the motors work against gravity
+
+
+def test_run_records_what_the_tutorial_node_published(tmp_path, run_cli):
+    """bras-kit run -o run.mcap: the node's /joint_states, with the package's URDF and its TF."""
+    node = os.path.join(os.path.dirname(__file__), "data", "run", "tutorial_node")
+    code, _, err = run_cli("run", node, "animation", "--duration", "1", "--quiet", "-o", str(tmp_path / "node.mcap"))
+    assert code == 0, err
+    topics = _read_foxglove(str(tmp_path / "node" / "node.mcap"))
+    states = topics["/joint_states"]
+    assert len(states) == 20 and len(topics["/tf"]) == 20
+    for _, log_time, message in states:
+        t = log_time * 1e-9
+        assert message.position == pytest.approx(list(_tutorial(np.array(t))), abs=1e-9)
+    (_, _, description), = topics["/robot_description"]
+    with open(os.path.join(node, "urdf", "bras.urdf"), encoding="utf-8") as handle:
+        assert description.data == handle.read()
+
+
+def test_validate_finds_a_recording_past_the_limits(tmp_path, run_cli):
+    samples = [(t, ["epaule", "coude"], [e, 2.5 * math.sin(t)]) for t, _, (e, _) in _tutorial_samples(3.0)]
+    bag = _foxglove_bag(str(tmp_path / "far.mcap"), samples)
+    code, out, err = run_cli("validate", "--motion", bag, "--lang", "en")
+    assert code == 1, out + err
+    assert "BK304" in out and "coude" in out
+
+
+def test_view_exports_a_page_replaying_a_recording_on_another_topic(tmp_path, run_cli):
+    bag = _foxglove_bag(str(tmp_path / "arm.mcap"), _tutorial_samples(), topic="/arm/joint_states")
+    code, _, err = run_cli("view", "--motion", bag, "--topic", "/arm/joint_states", "--export",
+                           str(tmp_path / "replay.html"))
+    assert code == 0, err
+    assert "41 frames" in err and "arm.mcap /arm/joint_states" in err
+    assert (tmp_path / "replay.html").stat().st_size > 0

@@ -142,8 +142,6 @@ LIBRARY_ENGLISH = [
     r"reachable only past the limits .*",
     r"it uses the name .*",  # bras_kit xacro sandbox
     r"xacro expressions may only .*",
-    r"(?m)^joint(?= +(position finale|err\.moy))",  # bras_kit.physics report: table header
-    r"aucun joint n'a demandé",  # bras_kit.physics report: verdict
 ]
 
 

@@ -27,6 +27,7 @@ FILE_COMMANDS = ["validate", "tree", "fk", "motion", "render", "frames", "plot",
 OUTPUTS = {
     "urdf": ["-o"], "xacro": ["-o"], "frames": ["-o"], "plot": ["-o"], "motion": ["-o"], "render": ["-o"],
     "workspace": ["-o"], "mjcf": ["--inertials", "-o"], "simulate": ["--inertials", "-o"], "view": ["--export"],
+    "run": ["-o"],
 }
 EXTRA = {"reach": ["0.3", "0", "0.5"], "xacro": []}
 
@@ -113,7 +114,8 @@ OUTPUT_CASES = [
 @pytest.mark.parametrize("command", sorted(OUTPUTS))
 @pytest.mark.parametrize("label,target,words", OUTPUT_CASES, ids=[c[0] for c in OUTPUT_CASES])
 def test_bad_output_path_is_a_clean_error(bad, command, label, target, words):
-    suffix = {"urdf": ".urdf", "xacro": ".urdf", "motion": ".csv", "mjcf": ".xml", "simulate": ".csv"}.get(command)
+    suffix = {"urdf": ".urdf", "xacro": ".urdf", "motion": ".csv", "mjcf": ".xml", "simulate": ".csv",
+              "run": ".csv"}.get(command)
     if suffix and target.endswith(".png"):
         target = target[:-4] + suffix
     if label == "a folder":
@@ -121,6 +123,8 @@ def test_bad_output_path_is_a_clean_error(bad, command, label, target, words):
     if suffix and label == "dangling link" and not os.path.lexists(bad / target):
         os.symlink(bad / "nowhere" / f"victim{suffix}", bad / target)
     args = [command] + ([str(HOSTILE.parent / "xacro" / "features.xacro")] if command == "xacro" else [])
+    if command == "run":  # a node that runs, so the output is the only thing wrong
+        args += [str(HOSTILE.parent / "run" / "tutorial_node"), "--duration", "0.5", "--quiet"]
     result = _run([*args, *OUTPUTS[command], target], bad)
     _clean(result, words)
     assert not (bad / "nowhere").exists(), "a dangling link was followed"

@@ -8,6 +8,7 @@ everything else with the defaults.
 from __future__ import annotations
 
 import math
+from pathlib import Path
 
 import numpy as np
 import pytest
@@ -32,7 +33,7 @@ PERIOD = 2 * math.pi * math.sqrt(I_PIVOT / (MASS * G * D))
 THETA0 = 0.05  # rad: small enough that the period grows by only theta0^2/16 = 0.016 %
 
 
-def _pendulum():
+def _pendulum(dynamics: str = ""):
     text = f"""<robot name="pendule">
   <link name="support"/>
   <link name="tige">
@@ -41,7 +42,7 @@ def _pendulum():
     <visual><origin xyz="0 0 {-D}"/><geometry><box size="{SIDE} {SIDE} {LENGTH}"/></geometry></visual>
   </link>
   <joint name="pivot" type="continuous"><parent link="support"/><child link="tige"/>
-    <origin xyz="0 0 1"/><axis xyz="0 1 0"/></joint>
+    <origin xyz="0 0 1"/><axis xyz="0 1 0"/>{dynamics}</joint>
 </robot>"""
     return robot_from_xml(parse_xml(text, "pendule.urdf"), "pendule.urdf", text)
 
@@ -71,6 +72,69 @@ def test_pendulum_energy_is_conserved_over_ten_periods():
     e0 = MASS * G * D * (1 - math.cos(THETA0))
     assert np.max(np.abs(energy - e0)) / e0 < 1e-3
     assert np.max(np.abs(theta)) == pytest.approx(THETA0, rel=1e-3)  # it swings back to where it started
+
+
+def _peaks(values: np.ndarray) -> np.ndarray:
+    """Indices of the local maxima of ``values``."""
+    return np.nonzero((values[1:-1] > values[:-2]) & (values[1:-1] >= values[2:]))[0] + 1
+
+
+def test_pendulum_without_dynamics_keeps_its_swing_with_the_defaults():
+    """No <dynamics>: no damping (as in Gazebo). Issue 19: 0.05 N.m.s/rad made it lose 70 % in 8 s."""
+    robot = _pendulum()
+    states = simulate(robot, pose_motion(robot), control="none", start={"pivot": THETA0}, duration=8.0, rate=500)
+    assert states.model is not None and states.model.dynamics == {"pivot": (0.0, 0.0)}
+    assert 'damping="' not in states.model.xml and "frictionloss" not in states.model.xml
+    theta = states.positions[:, 0]
+    last_period = states.times >= states.times[-1] - PERIOD
+    assert np.max(theta[last_period]) == pytest.approx(THETA0, rel=0.01)
+
+
+DAMPING = 0.02  # N.m.s/rad: light, so the swing is the textbook underdamped oscillator
+
+
+def test_declared_damping_decays_the_swing_like_the_damped_oscillator():
+    """I theta'' + b theta' + m g d theta = 0: the amplitude decays as exp(-b t / (2 I))."""
+    robot = _pendulum(f'<dynamics damping="{DAMPING}" friction="0"/>')
+    states = simulate(robot, pose_motion(robot), control="none", start={"pivot": THETA0}, duration=6 * PERIOD,
+                      rate=1000, integrator="RK4", timestep=0.001)
+    assert states.model is not None and states.model.dynamics == {"pivot": (DAMPING, 0.0)}
+    theta = states.positions[:, 0]
+    peaks = _peaks(theta)
+    assert len(peaks) >= 4
+    expected = THETA0 * np.exp(-DAMPING * states.times[peaks] / (2 * I_PIVOT))
+    np.testing.assert_allclose(theta[peaks], expected, rtol=0.01)
+
+
+def test_damping_argument_replaces_the_declared_damping_on_every_joint():
+    robot = _pendulum('<dynamics damping="0.5" friction="0.1"/>')
+    built = build_mjcf(robot, damping=0.0, control="none")
+    assert built.dynamics == {"pivot": (0.0, 0.1)} and built.damping_given
+    assert 'frictionloss="0.1"' in built.xml and 'damping="' not in built.xml
+
+
+TINY = (Path(__file__).parent / "data" / "urdf" / "physics" / "tiny_inertia.urdf")
+
+
+def test_a_diverging_run_stops_where_it_went_nan_and_names_the_joint(tmp_path, monkeypatch):
+    from bras_kit.authoring import load
+
+    monkeypatch.chdir(tmp_path)  # MuJoCo would write MUJOCO_LOG.TXT here
+    robot = load(str(TINY))
+    states = simulate(robot, integrator="Euler", timestep=0.01, duration=2.0)
+    assert states.diverged is not None
+    assert states.diverged.joint in {"j1", "j2", "j3"}
+    assert 0 < states.diverged.time <= 2.0
+    assert np.all(np.isfinite(states.positions))
+    assert list(tmp_path.iterdir()) == []
+
+
+def test_too_weak_only_when_the_motion_needs_more_than_the_effort():
+    """Stiff gains and Euler make the motors chatter at their limit: that is not weakness."""
+    states = simulate(arm(inertials=True), kd=1e6, integrator="Euler", duration=2.0)
+    for report in states.report:
+        assert report.weak == (report.needed_peak > report.effort), report
+    assert any(report.saturated for report in states.report)
 
 
 # --- the tutorial arm held by its motors ---------------------------------------------------------------------------

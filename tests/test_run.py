@@ -103,9 +103,18 @@ BEGINNER_NODES = [
     # rmw/src/validate_node_name.c: only alphanumerics and '_' (rclpy/validate_node_name.py raises)
     ("bad_node_name.py", "error", "InvalidNodeNameException", ["BK640"]),
     ("stamp_zero_wrong_names.py", "duration", None, ["BK646", "BK647", "BK650"]),
+    # rcl/validate_topic_name.c: alphanumerics, '_', '~', '{', '}' and '/' only (rclpy/validate_topic_name.py raises)
+    ("topic_with_space.py", "error", "InvalidTopicNameException", ["BK640"]),
+    # rclpy/context.py Context.init: RuntimeError('Context.init() must only be called once')
+    ("init_twice.py", "error", "RuntimeError", ["BK640"]),
+    # rclpy/publisher.py Publisher.publish: raise TypeError('Expected {}, got {}')
+    ("publishes_wrong_type.py", "error", "TypeError", ["BK640"]),
     # rclpy/timer.py Rate.sleep(): waits for a timer an executor must spin in another thread
     ("rate_loop.py", "duration", None, ["BK643"]),
     ("flood.py", "storm", None, ["BK642", "BK650"]),
+    # the usual cure: rclpy.spin in a thread, so the rate's timer is spun (rclpy/timer.py Rate)
+    ("spin_in_thread.py", "duration", None, []),
+    ("other_thread.py", "not_simulated", "NotSimulated", ["BK641"]),
     ("uses_action.py", "not_simulated", "NotSimulated", ["BK641"]),
     ("twice_per_tick.py", "duration", None, ["BK651"]),
     ("nan_and_lengths.py", "duration", None, ["BK645", "BK648"]),
@@ -131,6 +140,13 @@ def test_exception_at_tick_3_shows_the_learners_line_and_the_simulated_time():
     assert "self.angles[self.ticks - 1]" in source[frames[-1].line - 1]
 
 
+def test_topic_name_errors_read_as_rclpy_words_them():
+    recording = run_node(str(NODES / "topic_with_space.py"), duration=1.0)
+    assert recording.failure.detail.splitlines() == [
+        "Invalid topic name: topic name must not contain characters other than alphanumerics, '_', '~', '{', or '}':",
+        "  'joint states'", "        ^"]  # under the space (rclpy/exceptions.py NameValidationException)
+
+
 def test_while_ok_loop_with_sleep_publishes_at_20_hz():
     recording = run_node(str(NODES / "while_ok_sleep.py"), duration=1.0)
     times = [m.time for m in recording.messages]
@@ -143,13 +159,13 @@ def test_degrees_are_reported_with_joint_value_and_time(robot):
     recording = run_node(str(NODES / "degrees.py"), duration=2.0)
     coude = next(f for f in run_findings(recording, robot, lang="en") if f.data["joint"] == "coude")
     assert coude.data["value"] == 90.0 and coude.data["first"] == pytest.approx(0.05)
-    assert "degrees" in coude.message and "math.radians" in coude.hint
+    assert "degrees" in coude.text("en") and "math.radians" in coude.hint_text("en")
 
 
 def test_wrong_topic_says_where_the_messages_went(robot):
     recording = run_node(str(NODES / "wrong_topic.py"), duration=1.0)
     [finding] = run_findings(recording, robot, lang="fr")
-    assert "'/joint_state'" in finding.message and finding.line == 11
+    assert "'/joint_state'" in finding.text("en") and finding.line == 11
     assert finding.data["count"] == 20
 
 
@@ -173,3 +189,41 @@ def test_every_run_rule_is_triggered_by_a_beginner_node():
     from bras_kit.validate.package.run_rules import RUN_CHECKS
 
     assert {code for *_, codes in BEGINNER_NODES for code in codes} == set(RUN_CHECKS)
+
+
+def test_subscriptions_hear_what_is_published_and_logs_carry_the_simulated_time():
+    recording = run_node(str(NODES / "talker_listener.py"), duration=2.0)
+    assert recording.ended == "returned"  # it catches the end-of-run KeyboardInterrupt and shuts down
+    assert [m.fields["data"] for m in recording.on("/chatter")] == ["bonjour 1", "bonjour 2", "bonjour 3", "bonjour 4"]
+    assert [(t, level, node, text) for t, level, node, text in recording.logs] == [
+        (0.5 * k, "INFO", "talker_listener", f"heard: bonjour {k}") for k in range(1, 5)]
+    assert [(s.node, s.topic, s.type) for s in recording.subscriptions] == [
+        ("talker_listener", "/chatter", "std_msgs/msg/String")]
+
+
+def test_a_polling_spin_once_loop_still_sees_its_timer_on_time():
+    recording = run_node(str(NODES / "spin_once_poll.py"), duration=1.0)
+    assert [m.time for m in recording.on("/angle")] == pytest.approx([0.1 * k for k in range(1, 11)], abs=1e-3)
+    assert recording.ended == "duration"
+
+
+def test_parameters_given_as_ros_args_reach_declare_parameter():
+    from bras_kit.run import parse_parameters
+
+    assert parse_parameters(["greeting:=salut", "rate:=20", "gain:=0.5", "on:=true"]) == {
+        "greeting": "salut", "rate": 20, "gain": 0.5, "on": True}
+    recording = run_node(str(NODES / "talker_listener.py"), duration=1.0, parameters={"greeting": "salut"})
+    assert [m.fields["data"] for m in recording.on("/chatter")] == ["salut 1", "salut 2"]
+
+
+def test_spin_in_a_thread_lets_the_main_loop_rate_sleep_at_its_rate():
+    recording = run_node(str(NODES / "spin_in_thread.py"), duration=2.0)
+    assert [m.time for m in recording.messages] == pytest.approx([0.1 * k for k in range(21)], abs=1e-9)
+    assert recording.rate_sleeps == 0
+
+
+def test_spin_until_future_complete_returns_when_the_future_is_done():
+    recording = run_node(str(NODES / "future_and_time.py"), duration=5.0)
+    assert recording.ended == "returned" and recording.end == pytest.approx(0.6)  # third tick of 0.2 s
+    assert [m.fields["data"] for m in recording.on("/elapsed")] == pytest.approx([0.6, 500_000_000.0])
+    assert [text for *_, text in recording.logs] == ["three ticks"]

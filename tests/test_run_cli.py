@@ -44,7 +44,7 @@ def test_run_exits_1_with_the_finding_of_a_broken_node(run_cli, tmp_path):
     code, out, err = run_cli("run", str(node), "--urdf", str(TUTORIAL / "urdf" / "bras.urdf"), "--duration", "1",
                              "--quiet", "--lang", "fr")
     assert code == 1
-    assert "wrong_topic.py:11: BK644 error: rien n'a été publié sur /joint_states" in out
+    assert "wrong_topic.py:11: BK644 erreur rien n'a été publié sur /joint_states" in out
     assert "Traceback" not in err
 
 
@@ -188,3 +188,20 @@ def test_scaffold_readme_run_commands_work_as_written(run_cli, tmp_path, monkeyp
         code, _, err = run_cli(*shlex.split(command)[1:], "--duration", "1", "--quiet")
         assert code == 0, (command, err)
     assert (tmp_path / "states.csv").is_file() and (tmp_path / "arm.gif").is_file()
+
+
+def test_run_records_a_ros2_bag_that_foxglove_reads(run_cli, tmp_path):
+    from mcap.reader import make_reader
+    from mcap_ros2.decoder import DecoderFactory
+
+    code, _, err = run_cli("run", str(TUTORIAL), "--duration", "1", "--quiet", "-o", str(tmp_path / "node.mcap"),
+                           "--lang", "en")
+    assert code == 0, err
+    with open(tmp_path / "node" / "node.mcap", "rb") as handle:
+        reader = make_reader(handle, decoder_factories=[DecoderFactory()])
+        states = [decoded for _, channel, _, decoded in reader.iter_decoded_messages()
+                  if channel.topic == "/joint_states"]
+    assert len(states) == 20
+    for k, state in enumerate(states, start=1):
+        assert list(state.name) == ["epaule", "coude"]
+        assert list(state.position) == pytest.approx([0.8 * math.sin(0.05 * k), 1.2 * math.sin(0.035 * k)], abs=1e-12)

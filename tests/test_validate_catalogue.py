@@ -3,15 +3,13 @@
 from __future__ import annotations
 
 import re
-import string
 from pathlib import Path
 
 import pytest
 
-from bras_kit.validate import RULES
-from bras_kit.validate.catalogue import catalogue_markdown
-from bras_kit.validate.i18n import default_language, rule_text, ui
-from bras_kit.validate.registry import FAMILIES, SEVERITIES, select_rules
+from bras_kit.validate import RULES, default_language
+from bras_kit.validate.catalogue import catalogue_markdown, raw_text
+from bras_kit.validate.registry import FAMILIES, SEVERITIES, TEXTS, select_rules
 
 ROOT = Path(__file__).parent.parent
 RULE_TESTS = (Path(__file__).parent / "test_validate_rules.py").read_text(encoding="utf-8")
@@ -23,8 +21,8 @@ def test_docs_rules_md_is_current():
 
 
 def test_codes_are_well_formed_and_names_unique():
-    assert len([code for code in RULES if code < "BK6"]) == 65  # URDF and xacro rules
-    assert len([code for code in RULES if "BK6" <= code < "BK64"]) == 15  # package rules
+    assert len([code for code in RULES if code < "BK6"]) == 67  # URDF and xacro rules
+    assert len([code for code in RULES if "BK6" <= code < "BK64"]) == 20  # package rules
     assert len([code for code in RULES if code >= "BK64"]) == 12  # rules over a run of the node (bras-kit run)
     for code, rule in RULES.items():
         assert re.fullmatch(r"BK[1-6]\d\d", code) and rule.code == code
@@ -34,28 +32,23 @@ def test_codes_are_well_formed_and_names_unique():
     assert {code[:3] for code in RULES} == set(FAMILIES)
 
 
-def _fields(template: str) -> set[str]:
-    return {name for _, name, _, _ in string.Formatter().parse(template) if name}
-
-
 def _variants(template) -> dict[str, str]:
     return {"": template} if isinstance(template, str) else dict(template)
 
 
+def test_every_rule_has_its_words_and_no_words_lack_a_rule():
+    assert set(TEXTS) == set(RULES)
+
+
 @pytest.mark.parametrize("code", sorted(RULES))
-def test_both_languages_word_every_rule_alike(code):
-    en, fr = rule_text(code, "en"), rule_text(code, "fr")
-    for part in ("message", "hint"):
-        en_variants, fr_variants = _variants(getattr(en, part)), _variants(getattr(fr, part))
-        assert set(en_variants) == set(fr_variants), (code, part)
-        for variant in en_variants:
-            assert _fields(en_variants[variant]) == _fields(fr_variants[variant]), (code, part, variant)
-    assert en.title != fr.title and en.explanation != fr.explanation
-    assert len(en.explanation) > 120 and len(fr.explanation) > 120
-
-
-def test_report_words_exist_in_both_languages():
-    assert set(ui("en")) == set(ui("fr"))
+def test_every_rule_is_worded_in_french_from_the_catalog(code):
+    """The French comes from validate.po (msgctxt = code); fields are checked by test_i18n_catalogs."""
+    words = TEXTS[code]
+    assert words.message, code
+    hints = _variants(words.hint).values() if words.hint else ()
+    for english in (words.title, words.explanation, *_variants(words.message).values(), *hints):
+        assert raw_text(code, english, "fr") != english, (code, english)
+    assert len(words.explanation) > 120 and len(raw_text(code, words.explanation, "fr")) > 120
 
 
 # package rules (BK6xx): tests/test_validate_package.py::test_every_package_rule_is_triggered_by_a_defect

@@ -14,7 +14,7 @@ MARKER = "SECRET-MARKER-7f3a9"  # the content of broken/secret.txt, which xxe.ur
 
 
 def _texts(findings) -> str:
-    return " ".join(f"{f.message} {f.hint}" for f in findings)
+    return " ".join(f"{f.text('en')} {f.hint_text('en')}" for f in findings)
 
 
 def test_external_entity_is_refused_and_its_file_not_shown():
@@ -25,7 +25,7 @@ def test_external_entity_is_refused_and_its_file_not_shown():
 
 def test_billion_laughs_is_refused():
     findings = validate_path(str(DATA / "billion_laughs.urdf"))
-    assert [(f.code, f.line, f.message) for f in findings] == [
+    assert [(f.code, f.line, f.text("en")) for f in findings] == [
         ("BK101", 2, "refused: the file declares a DTD (<!DOCTYPE ...>)")]
 
 
@@ -64,7 +64,7 @@ def test_entity_in_a_xacro_include_is_refused(tmp_path):
                     '<xacro:include filename="piece.xacro"/></robot>', encoding="utf-8")
     findings = validate_path(str(main))
     assert [f.code for f in findings] == ["BK101"]
-    assert findings[0].message == f"refused: the file declares a DTD (<!DOCTYPE ...>) ({tmp_path / 'piece.xacro'}:2)"
+    assert findings[0].text("en") == f"refused: the file declares a DTD (<!DOCTYPE ...>) ({tmp_path / 'piece.xacro'}:2)"
     assert MARKER not in _texts(findings)
 
 
@@ -73,5 +73,5 @@ def test_xacro_expression_running_code_is_refused(tmp_path):
     main.write_text('<robot name="bras" xmlns:xacro="http://www.ros.org/wiki/xacro">'
                     '<link name="${().__class__.__base__.__subclasses__()}"/></robot>', encoding="utf-8")
     findings = validate_path(str(main))
-    assert [(f.code, f.hint) for f in findings] == [
+    assert [(f.code, f.hint_text("en")) for f in findings] == [
         ("BK102", "xacro expressions may only compute numbers and strings from properties")]

@@ -100,6 +100,13 @@ IDIOMS = st.one_of(
     st.builds(lambda a, b: idiom("", f"${{{a} &lt; {b}}} ${{{a} &gt;= {b}}}"), number, number),
     st.builds(lambda a, b: idiom("", f"${{{a} / {b}}}"), small_int, small_int),
     st.builds(lambda v: idiom("", f"${{sum(x * x for x in {v})}} ${{[x for x in {v} if x % 2]}}"), int_list),
+    st.builds(lambda v, k: idiom("", f"${{list(map(lambda x: x * {k}, {v}))}} ${{sorted({v}, key=lambda x: -x)}}"),
+              int_list, small_int),
+    st.builds(lambda v: idiom("", f"${{[(lambda: x)() for x in {v}]}} ${{[i * x for i, x in python.enumerate({v})]}}"),
+              int_list),
+    st.builds(lambda v: idiom(f'<xacro:property name="d" value="${{dict(b={v}, a=2)}}"/>',
+                              "${sorted(d.items())} ${len(d.keys())} ${'a' in d.keys()} ${[k for k in d]}"), number),
+    st.builds(lambda v: idiom("", f"${{(lambda a, b: a + b)({v})}}"), int_list),
 )
 
 

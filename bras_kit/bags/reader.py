@@ -121,7 +121,7 @@ def _check_folder(folder: str) -> None:
         raise _fail(metadata, M("metadata.yaml is over {limit} KiB", limit=MAX_METADATA_BYTES >> 10))
     try:
         with open(metadata, encoding="utf-8") as handle:
-            data = yaml.safe_load(handle)
+            data = yaml.load(handle, Loader=getattr(yaml, "CSafeLoader", yaml.SafeLoader))  # safe, in C when built
     except (OSError, UnicodeDecodeError, yaml.YAMLError) as exc:
         raise _fail(metadata, M("metadata.yaml cannot be read: {why}", why=str(exc).splitlines()[0])) from None
     info = data.get("rosbag2_bagfile_information") if isinstance(data, dict) else None
@@ -246,7 +246,7 @@ def read_recording(path: str, topic: str | None = None) -> Recording:
     for timestamp, data in stream:  # type: ignore[misc]
         count += 1
         try:
-            message = store.deserialize_cdr(data, JOINT_STATE_TYPE)
+            message: Any = store.deserialize_cdr(data, JOINT_STATE_TYPE)
             names = [str(n) for n in message.name]
             positions = np.asarray(message.position, dtype=float)
             stamp = int(message.header.stamp.sec) * 1_000_000_000 + int(message.header.stamp.nanosec)

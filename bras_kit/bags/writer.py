@@ -22,7 +22,7 @@ import shutil
 import tempfile
 from collections.abc import Iterator
 from dataclasses import dataclass
-from typing import Any
+from typing import Any, Literal
 
 import numpy as np
 
@@ -35,7 +35,7 @@ from ..outputs import OutputError
 
 BAG_SUFFIXES = (".mcap", ".db3")
 METADATA = "metadata.yaml"
-ROSBAG2_VERSION = 8  # numeric QoS enums: readable by Humble (rosbag2 0.15) up to Jazzy
+ROSBAG2_VERSION: Literal[8] = 8  # numeric QoS enums: readable by Humble (rosbag2 0.15) up to Jazzy
 TYPESTORE = "ROS2_HUMBLE"  # the message definitions of sensor_msgs, tf2_msgs, std_msgs (same in later distros)
 
 

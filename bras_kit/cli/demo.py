@@ -71,12 +71,12 @@ def run(args: argparse.Namespace) -> int:
         _done(start, package_dir + "/")
 
         start = _step(_("validating the URDF"))
-        findings = validate(robot, lang=args.lang)
+        findings = validate(robot)
         problems = [f for f in findings if f.severity in ("error", "warning")]
         print(" " + _("{count} errors or warnings ({seconds:.1f} s)").format(
             count=len(problems), seconds=time.perf_counter() - start))
         for finding in problems:
-            print(f"    {finding.code} {_(finding.severity)}: {finding.message}")
+            print(f"    {finding.code} {_(finding.severity)}: {finding.text(args.lang)}")
 
         start = _step(_("rendering the pose {pose} with TF axes").format(
             pose=", ".join(f"{k}={v}" for k, v in DEMO_POSE.items())))

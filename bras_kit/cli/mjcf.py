@@ -39,7 +39,7 @@ def run(args: argparse.Namespace) -> int:
     from ..physics import mjcf
     from ..physics.controllers import gain_vector
     from ..physics.diagnostics import LEVELS, check_physics_ready, physics_notes
-    from ..validate.i18n import default_language
+    from ..validate import default_language
 
     lang = args.lang or default_language()
     if args.output and args.output != "-":

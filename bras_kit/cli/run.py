@@ -6,7 +6,7 @@ import argparse
 import os
 import sys
 
-from ._common import add_force_argument, check_writable, warn, write_text
+from ._common import add_force_argument, check_writable, warn
 
 _EPILOG = """\
 The node's main() runs in a child process, against bras-kit's stand-in for rclpy, on a
@@ -33,102 +33,128 @@ def configure(parser: argparse.ArgumentParser) -> None:
     parser.add_argument("--duration", type=float, default=10.0, metavar="S",
                         help="seconds of simulated time to run the node for (default: 10)")
     parser.add_argument("-o", "--output", metavar="FILE",
-                        help="write what /joint_states carried (.csv or .json, like bras-kit motion)")
+                        help="write what /joint_states carried (.csv, .json or a ROS 2 bag .mcap, like bras-kit motion)")
     parser.add_argument("--gif", metavar="FILE", help="draw the arm moved by the node as a GIF")
     parser.add_argument("--urdf", metavar="FILE",
                         help="the robot the node drives (default: the package's urdf/ file)")
     parser.add_argument("--quiet", action="store_true", help="do not show the node's logs and prints")
+    parser.add_argument("-p", "--param", dest="params", action="append", default=[], metavar="NAME:=VALUE",
+                        help="a value for a parameter the node declares, as 'ros2 run ... --ros-args -p "
+                        "NAME:=VALUE' gives it (repeatable)")
     parser.add_argument("--json", action="store_true", help="print the findings as JSON")
     add_force_argument(parser)
 
 
 def run(args: argparse.Namespace) -> int:
-    from ..errors import ParameterError
-    from ..i18n import say
-    from ..run import run_node
+    from ..i18n import current_language, say
+    from ..motion.states_io import check_states_output
+    from ..run import parse_parameters, run_node
     from ..run.report import failure_lines, summary
+    from ..validate.report import exit_code, format_json, format_text
 
     lang = args.lang
-    if args.output is not None and os.path.splitext(args.output)[1].lower() not in (".csv", ".json"):
-        raise ParameterError(f"-o: cannot tell the format of '{args.output}'",
-                             hint="end the file name in .csv or .json")
-    for path, option in ((args.output, "-o"), (args.gif, "--gif")):
-        if path is not None:
-            check_writable(path, args.force, option=option)
-    recording = run_node(args.target, args.executable, duration=args.duration, echo=not args.quiet)
+    if args.output is not None:
+        check_states_output(args.output, args.force)
+    if args.gif is not None:
+        check_writable(args.gif, args.force, option="--gif")
+    parameters = parse_parameters(args.params)
+    robot = _robot(args)  # a wrong --urdf fails before the node runs
+    recording = run_node(args.target, args.executable, duration=args.duration, echo=not args.quiet,
+                         parameters=parameters)
     for message in summary(recording):
         print(say(message, lang), file=sys.stderr)
     for text in failure_lines(recording):
         print(text, file=sys.stderr)
-    robot = _robot(args)
-    findings = _findings(recording, robot, lang)
-    _print_findings(findings, recording, args)
+    results = _results(recording, robot, args)
+    if args.json:
+        sys.stdout.write(format_json(results, lang=lang))
+    else:
+        sys.stdout.write(format_text(results, lang or current_language()))
     if args.output is not None:
         _write_states(recording, robot, args)
     if args.gif is not None:
         _write_gif(recording, robot, args)
-    return 1 if any(f.severity == "error" for f in findings) else 0
+    return exit_code(results)
 
 
 def _robot(args: argparse.Namespace):  # type: ignore[no-untyped-def]
+    """The robot the findings and the GIF use: --urdf, else the package's, else the built-in
+    tutorial arm (a lone node file is written for it), said on stderr."""
+    from ..authoring import arm
+    from ..message import M
     from ..run.findings import robot_of
 
-    return robot_of(args.target, args.urdf)
+    robot = robot_of(args.target, args.urdf)
+    if robot is None:
+        warn(M("no robot description beside the node: checked against the built-in tutorial arm "
+               "(give yours with --urdf FILE)"))
+        robot = arm()
+    return robot
 
 
-def _findings(recording, robot, lang):  # type: ignore[no-untyped-def]
+def _results(recording, robot, args):  # type: ignore[no-untyped-def]
+    """The run rules' findings as the validator's per-file results, paths under the target."""
     from ..run.findings import run_findings
+    from ..validate.findings import FileResult
 
-    return run_findings(recording, robot, lang=lang)
-
-
-def _print_findings(findings, recording, args) -> None:  # type: ignore[no-untyped-def]
-    import json
-
-    if args.json:
-        print(json.dumps([f.as_dict() | {"path": f.data.get("file") or recording.source} for f in findings],
-                         ensure_ascii=False, indent=1))
-        return
-    for finding in findings:
-        where = str(finding.data.get("file") or recording.source) + (f":{finding.line}" if finding.line else "")
-        print(f"{where}: {finding.code} {finding.severity}: {finding.message}")
-        if finding.hint:
-            print(f"    {finding.hint}")
+    base = args.target if os.path.isdir(args.target) else os.path.dirname(args.target)
+    by_file: dict[str, list] = {}  # type: ignore[type-arg]
+    for finding in run_findings(recording, robot, lang=args.lang):
+        by_file.setdefault(str(finding.data.get("file") or recording.source), []).append(finding)
+    if not by_file:
+        by_file[recording.source] = []
+    return [FileResult(os.path.join(base, file), findings) for file, findings in sorted(by_file.items())]
 
 
 def _write_states(recording, robot, args) -> None:  # type: ignore[no-untyped-def]
+    """What /joint_states carried, through the one joint-state writer (CSV, JSON or a ROS 2 bag;
+    a bag holds the robot's joints in its order, as robot_state_publisher would have them)."""
     from ..errors import BrasKitError
+    from ..i18n import say
     from ..message import M
-    from ..motion.states_io import states_to_csv, states_to_json
+    from ..motion.states_io import states_format, write_states
     from ..run import joint_states
+    from ..run.recording import states_for
 
-    states = joint_states(recording)
+    if states_format(args.output) == "bag":
+        from ..kinematics import tf_tree
+
+        states = states_for(recording, tf_tree(robot).dof)
+    else:
+        states = joint_states(recording)
     if not len(states):
         raise BrasKitError(M("nothing was published on /joint_states: no joint states to write"))
-    text = states_to_json(states) if args.output.lower().endswith(".json") else states_to_csv(states)
-    write_text(args.output, text, args.force)
+    if states_format(args.output) == "bag" and robot is None:
+        raise BrasKitError(M("a ROS 2 bag holds the robot (/robot_description, /tf): the package has no urdf/ file"),
+                           hint=M("give one with --urdf FILE"))
+    written = write_states(robot, states, args.output, args.force)
+    if written is not None:
+        print(say(written, args.lang), file=sys.stderr)
 
 
 def _write_gif(recording, robot, args) -> None:  # type: ignore[no-untyped-def]
-    from ..errors import BrasKitError
+    import numpy as np
+
     from ..i18n import say
     from ..kinematics import tf_tree
-    from ..message import M
+    from ..message import M, Mn
+    from ..motion.core import JointStates
     from ..outputs import staged
     from ..render import render_motion
     from ..render.sequence import save_gif
     from ..run.recording import states_for
 
-    if robot is None:
-        raise BrasKitError(M("no robot to draw: the package has no urdf/ file"), hint=M("give one with --urdf FILE"))
     states = states_for(recording, tf_tree(robot).dof)
-    if not len(states):
+    if not len(states):  # one picture of the arm at rest, as RViz shows it with nothing on /joint_states
         warn(M("nothing was published on /joint_states: the GIF shows the arm at rest"))
+        states = JointStates(np.zeros(1), states.names, np.zeros((1, len(states.names))),
+                             np.zeros((1, len(states.names))))
     fps = _fps(states.times)
-    frames = render_motion(robot, states if len(states) else None, label="rendering")
+    frames = render_motion(robot, states, label="rendering")
     with frames, staged(args.gif, args.force, option="--gif") as temporary:
         count = save_gif(frames, temporary, fps)
-    print(say(M("wrote {path}: {n} frames at {fps} fps", path=args.gif, n=count, fps=fps)), file=sys.stderr)
+    print(say(Mn("wrote {path}: {n} frame at {fps} fps", "wrote {path}: {n} frames at {fps} fps", count,
+                 path=args.gif, fps=fps)), file=sys.stderr)
 
 
 def _fps(times) -> float:  # type: ignore[no-untyped-def]

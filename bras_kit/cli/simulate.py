@@ -97,7 +97,7 @@ def run(args: argparse.Namespace) -> int:
         report_text,
     )
     from ..physics.run import simulate
-    from ..validate.i18n import default_language
+    from ..validate import default_language
 
     lang = args.lang or default_language()
     fmt = _output_format(args.output) if args.output else None

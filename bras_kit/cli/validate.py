@@ -160,7 +160,7 @@ def run(args: argparse.Namespace) -> int:
         robot = arm(wrist=args.wrist, inertials=args.inertials, params=parse_assignments(args.param))
         results = [check_robot(robot, **options)]  # type: ignore[arg-type]
     if args.format == "json":
-        sys.stdout.write(format_json(results, strict=args.strict))
+        sys.stdout.write(format_json(results, strict=args.strict, lang=lang))
     else:
         sys.stdout.write(format_text(results, lang, colour=_use_colour()))
     if args.verbose:

@@ -8,7 +8,13 @@ import os
 import sys
 
 from ..i18n import _
-from ._common import add_force_argument, add_model_arguments, add_node_argument, apply_node
+from ._common import (
+    add_force_argument,
+    add_model_arguments,
+    add_node_argument,
+    add_topic_argument,
+    apply_node,
+)
 
 EPILOG = """\
 examples:
@@ -25,6 +31,7 @@ def configure(parser: argparse.ArgumentParser) -> None:
     parser.add_argument("-m", "--motion", action="append", default=[], metavar="SPEC",
                         help="a motion to play: 'tutorial', JOINT=FORMULA or a waypoint/joint-state file (repeatable)")
     add_node_argument(parser)
+    add_topic_argument(parser)
     parser.add_argument("--port", type=int, default=8080, help="port of the page (default 8080; the next free one if taken)")
     parser.add_argument("--host", default="127.0.0.1",
                         help="address to listen on (default 127.0.0.1: this computer only)")
@@ -72,7 +79,7 @@ def _export(args: argparse.Namespace, source: object) -> int:
         raise ParameterError(f"--fps {args.fps:g} is out of range", hint="give frames per second between 1 and 120, e.g. 20")
     check_writable(args.export, args.force, option="--export")
     robot = source.load()  # type: ignore[attr-defined]
-    motion = motion_from_specs(robot, args.motion)
+    motion = motion_from_specs(robot, args.motion, topic=args.topic)
     warn_motion_notes(motion)
     states = sample(motion, args.duration if args.duration is not None else (motion.duration or 10.0), args.fps)
     page = export_html(robot, states, package_paths=source.package_paths)  # type: ignore[attr-defined]
@@ -88,7 +95,8 @@ def _serve(args: argparse.Namespace, source: object) -> int:
     if args.host not in ("127.0.0.1", "localhost", "::1"):
         print(_("warning") + ": " + _("listening on {host}: anyone who can reach this computer can see and move "
                                      "the arm").format(host=args.host), file=sys.stderr)
-    viewer = Viewer(source, host=args.host, port=args.port, lang=args.lang, motion_specs=args.motion)  # type: ignore[arg-type]
+    viewer = Viewer(source, host=args.host, port=args.port, lang=args.lang, motion_specs=args.motion,  # type: ignore[arg-type]
+                    motion_topic=args.topic)
     try:
         print(_("bras-kit view: {url} (Ctrl-C to stop)").format(url=viewer.url), flush=True)
         if source.path:  # type: ignore[attr-defined]

@@ -37,8 +37,22 @@ def save_figure(figure: Figure, path: str | os.PathLike[str], dpi: float = 100.0
     width, height = figure.get_size_inches()
     if suffix == ".png":
         dpi = min(dpi, MAX_RASTER_SIDE / max(width, height), math.sqrt(MAX_RASTER_PIXELS / (width * height)))
+        _check_text_fits(figure, dpi)
     folder = os.path.dirname(os.fspath(path))
     if folder:
         os.makedirs(folder, exist_ok=True)
     with matplotlib.rc_context({"svg.fonttype": "none", "pdf.fonttype": 42}):
         figure.savefig(path, dpi=dpi, format=suffix[1:], facecolor="white")
+
+
+def _check_text_fits(figure: Figure, dpi: float) -> None:
+    """Refuse a PNG whose capped resolution leaves text under one pixel (FreeType cannot draw it)."""
+    from matplotlib.text import Text
+
+    from ..message import M
+
+    sizes = [float(text.get_fontsize()) for text in figure.findobj(Text) if text.get_text()]
+    if sizes and min(sizes) * dpi / 72.0 < 1.0:
+        raise ParameterError(M("at the {side} pixels a PNG may have on a side, this diagram's text would be smaller "
+                               "than a pixel", side=MAX_RASTER_SIDE),
+                             hint=M("write it as .svg or .pdf: vector pictures have no size limit"))

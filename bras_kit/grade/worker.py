@@ -122,7 +122,7 @@ def _run_nodes(root: str, lang: str) -> list[dict[str, Any]]:
     for package in find_packages([root]):
         for result in package_run_results(package, lang=lang, duration=RUN_SECONDS, cpu_seconds=RUN_CPU_SECONDS,
                                           wall_seconds=RUN_WALL_SECONDS):
-            findings += [_as_dict(f, _relative(result.path, root)) for f in result.findings]
+            findings += [_as_dict(f, _relative(result.path, root), lang) for f in result.findings]
     return findings
 
 
@@ -146,11 +146,11 @@ def _inspect(root: str, lang: str) -> dict[str, Any]:
     packages = find_packages([root]) if os.path.isdir(root) else []
     findings: list[dict[str, Any]] = []
     for package in packages:
-        for result in validate_package(package, lang=lang):
-            findings += [_as_dict(f, _relative(result.path, root)) for f in result.findings]
+        for result in validate_package(package):
+            findings += [_as_dict(f, _relative(result.path, root), lang) for f in result.findings]
     checked = [p for p in paths if p not in pairs]
     for path in checked:
-        findings += [_as_dict(f, _relative(path, root)) for f in validate_path(path, lang=lang)]
+        findings += [_as_dict(f, _relative(path, root), lang) for f in validate_path(path)]
     main = _main_file(checked, root)
     robot = None
     if main is not None and not any(f["code"] in UNREADABLE and f["file"] == _relative(main, root) for f in findings):
@@ -182,9 +182,9 @@ def _relative(path: str, root: str) -> str:
     return os.path.relpath(path, root).replace(os.sep, "/")
 
 
-def _as_dict(finding: Any, file: str) -> dict[str, Any]:
+def _as_dict(finding: Any, file: str, lang: str) -> dict[str, Any]:
     return {"file": file, "line": finding.line, "code": finding.code, "severity": finding.severity,
-            "message": finding.message, "hint": finding.hint}
+            "message": finding.text(lang), "hint": finding.hint_text(lang)}
 
 
 def _finding(code: str, severity: str, message: str, hint: str, file: str) -> dict[str, Any]:

@@ -15,7 +15,7 @@ from dataclasses import dataclass
 
 from .. import backends
 from ..errors import ModelError
-from ..i18n import current_language, say
+from ..i18n import say
 from ..message import M, Message, Mn
 from ..model import Robot
 from .mjcf import WATER_DENSITY, MjcfModel
@@ -67,8 +67,8 @@ def physics_notes(robot: Robot, built: MjcfModel, lang: str | None = None,
     from ..validate import validate
 
     frames = _frame_only_links(robot)
-    notes = [Note(f.severity, f.code, f"{f.code} {f.message}")
-             for f in validate(robot, lang=lang or current_language(), package_paths=package_paths,
+    notes = [Note(f.severity, f.code, f"{f.code} {f.text(lang)}")
+             for f in validate(robot, package_paths=package_paths,
                                select=VALIDATOR_CODES)
              if not (f.code in ("BK500", "BK501") and f.name in frames)]
     if built.density_links:
@@ -84,7 +84,7 @@ def physics_notes(robot: Robot, built: MjcfModel, lang: str | None = None,
     if not any(link.collisions for link in robot.links):
         notes.append(Note("info", "no-collision", M("no <collision> shapes: the arm passes through the floor and "
                                                     "itself (built-in arm: --collisions or --inertials)")))
-    for parent, child, joint in built.excluded:
+    for parent, child, joint in built.excluded[:MAX_VERDICTS]:
         if joint:
             words = M("'{parent}' and '{child}' touch or overlap at joint '{joint}': they would lock each other, "
                       "so bras-kit excludes contacts between them", parent=parent, child=child, joint=joint)
@@ -92,6 +92,11 @@ def physics_notes(robot: Robot, built: MjcfModel, lang: str | None = None,
             words = M("'{parent}' and '{child}' already overlap at the zero pose: they would push each other "
                       "apart for ever, so bras-kit excludes contacts between them", parent=parent, child=child)
         notes.append(Note("info", "overlap", words))
+    if len(built.excluded) > MAX_VERDICTS:
+        rest = [f"{parent} / {child}" for parent, child, _ in built.excluded[MAX_VERDICTS:]]
+        notes.append(Note("info", "overlap", Mn(
+            "{n} more pair touches or overlaps, contacts excluded: {pairs}",
+            "{n} more pairs touch or overlap, contacts excluded: {pairs}", len(rest), pairs=rest)))
     shapes = [g for link in robot.links for g in [*(v.geometry for v in link.visuals),
                                                   *(c.geometry for c in link.collisions)]]
     packaged = {g.filename for g in shapes if g is not None and (g.filename or "").startswith("package://")}

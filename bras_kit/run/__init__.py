@@ -8,9 +8,11 @@ only), on a simulated clock, and every message it publishes is recorded (:mod:`.
 
 ::
 
-    from bras_kit.run import run_node, joint_states
+    from bras_kit.run import joint_states, robot_of, run_findings, run_node
     recording = run_node("bras_description", "animation", duration=5)
     states = joint_states(recording)          # what /joint_states carried, as JointStates
+    for finding in run_findings(recording, robot_of("bras_description")):
+        print(finding.code, finding.text())
 """
 
 from __future__ import annotations
@@ -18,14 +20,16 @@ from __future__ import annotations
 import mmap
 import struct
 import tempfile
+from typing import Any
 
 from ..errors import BrasKitError
 from ..message import M
+from .findings import robot_of, run_findings
 from .locate import Target, locate
 from .recording import JOINT_STATES, NodeFailure, Published, Recording, joint_states, stamp_seconds
 
 __all__ = ["JOINT_STATES", "NodeFailure", "NodeRunError", "Published", "Recording", "Target",
-           "joint_states", "locate", "run_node", "stamp_seconds"]
+           "joint_states", "locate", "robot_of", "run_findings", "run_node", "stamp_seconds"]
 
 DEFAULT_DURATION = 10.0
 MAX_DURATION = 3600.0
@@ -44,23 +48,46 @@ class NodeRunError(BrasKitError):
         self.time = time
 
 
-def _child(target: Target, duration: float, echo: bool, workdir: str, shared: mmap.mmap):  # type: ignore[no-untyped-def]
+def _child(target: Target, duration: float, echo: bool, workdir: str, shared: mmap.mmap,  # type: ignore[no-untyped-def]
+           parameters: dict[str, Any]):
     from .child import run_node_here
 
     def watch(t_ns: int) -> None:
         shared[:8] = struct.pack("<q", t_ns)
 
-    return run_node_here(target, duration, echo, workdir, watch)
+    return run_node_here(target, duration, echo, workdir, watch, parameters)
+
+
+def parse_parameters(items: list[str]) -> dict[str, Any]:
+    """``NAME:=VALUE`` items, as ``ros2 run ... --ros-args -p NAME:=VALUE`` reads them: the value
+    is YAML (``0.5`` a float, ``3`` an integer, ``true`` a boolean, ``[1.0, 2.0]`` a list, else text)."""
+    import yaml
+
+    out: dict[str, Any] = {}
+    for item in items:
+        name, sep, text = item.partition(":=")
+        if not sep or not name.strip():
+            raise BrasKitError(M("'{item}' is not NAME:=VALUE", item=item),
+                               hint=M("write a parameter as -p amplitude:=0.5, as after ros2 run ... --ros-args"))
+        try:
+            value = yaml.safe_load(text) if text.strip() else ""
+        except yaml.YAMLError:
+            value = text
+        if not isinstance(value, (bool, int, float, str, list)):
+            value = text
+        out[name.strip()] = value
+    return out
 
 
 def run_node(where: str, executable: str | None = None, *, duration: float = DEFAULT_DURATION,
-             echo: bool = False, cpu_seconds: int = CPU_SECONDS, memory_bytes: int = MEMORY_BYTES,
-             wall_seconds: float = WALL_SECONDS) -> Recording:
+             echo: bool = False, parameters: dict[str, Any] | None = None, cpu_seconds: int = CPU_SECONDS,
+             memory_bytes: int = MEMORY_BYTES, wall_seconds: float = WALL_SECONDS) -> Recording:
     """Run the node ``where`` names (a package folder and an executable of its console_scripts,
     or a ``.py`` file) for ``duration`` simulated seconds and return its recording.
 
     ``echo`` shows the node's logs and prints live (as ``ros2 run`` does); otherwise they are
-    kept in the recording. The node runs in a child process with a CPU, memory and wall-clock
+    kept in the recording. ``parameters`` are the values ``--ros-args -p NAME:=VALUE`` would
+    give the node's declared parameters. The node runs in a child process with a CPU, memory and wall-clock
     limit, in a temporary working folder.
     """
     from ..sandbox import ResourceLimitError, run_limited
@@ -73,7 +100,8 @@ def run_node(where: str, executable: str | None = None, *, duration: float = DEF
     try:
         with tempfile.TemporaryDirectory(prefix="bras-kit-run-") as workdir:
             try:
-                return run_limited(_child, target, duration, echo, workdir, shared, cpu_seconds=cpu_seconds,
+                return run_limited(_child, target, duration, echo, workdir, shared, dict(parameters or {}),
+                                   cpu_seconds=cpu_seconds,
                                    memory_bytes=memory_bytes, wall_seconds=wall_seconds,
                                    what=f"the node {target.shown}")
             except ResourceLimitError as exc:
@@ -96,7 +124,8 @@ def _limit_error(kind: str, target: Target, reached: float, cpu: int, wall: floa
         return NodeRunError(
             M("the node took more than {wall} s of real time (simulated clock at t={time} s) and was stopped",
               wall=wall, time=reached),
-            hint=M("it may wait for something that never comes (input(), a thread, a socket)"),
+            hint=M("a loop that never sleeps nor spins (the clock cannot move), or a wait for something that "
+                   "never comes (input(), a thread, a socket)"),
             kind=kind, time=reached, **place)
     if kind == "memory":
         return NodeRunError(

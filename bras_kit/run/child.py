@@ -77,6 +77,37 @@ def _restore_time(saved: dict[str, Any]) -> None:
         setattr(time, name, function)
 
 
+def _patch_threads(sim: Any) -> Any:
+    """``threading.Thread(target=rclpy.spin, args=(node,)).start()`` (or an executor's ``spin``)
+    is simulated: the executor runs its callbacks while the main thread sleeps. Any other thread
+    is not simulated and says so."""
+    import threading
+
+    original = threading.Thread.start
+
+    def start(thread: threading.Thread) -> None:
+        import rclpy
+        from rclpy.executors import Executor
+
+        target = getattr(thread, "_target", None)
+        args = tuple(getattr(thread, "_args", ()))
+        kwargs = dict(getattr(thread, "_kwargs", {}) or {})
+        executor = None
+        if target is rclpy.spin and (args or "node" in kwargs):
+            node = args[0] if args else kwargs["node"]
+            executor = (args[1] if len(args) > 1 else kwargs.get("executor")) or rclpy.get_global_executor()
+            executor.add_node(node)
+        elif getattr(target, "__func__", None) is Executor.spin and isinstance(getattr(target, "__self__", None),
+                                                                            Executor):
+            executor = target.__self__  # type: ignore[union-attr]
+        if executor is None:
+            raise sim.NotSimulated("threading.Thread")
+        sim.STATE.background.append(executor)
+
+    threading.Thread.start = start  # type: ignore[method-assign,assignment]
+    return original
+
+
 def _learner_frames(exc: BaseException, target: Target) -> list[Frame]:
     root = target.root + os.sep
     frames = []
@@ -98,7 +129,8 @@ def _place(path: str, line: int, target: Target) -> tuple[str, int]:
     return "", 0
 
 
-def run_node_here(target: Target, duration: float, echo: bool, workdir: str, watch: Any = None) -> Recording:
+def run_node_here(target: Target, duration: float, echo: bool, workdir: str, watch: Any = None,
+                  parameters: dict[str, Any] | None = None) -> Recording:
     """Run the node in this (child) process and return what it did."""
     import time
 
@@ -110,6 +142,7 @@ def run_node_here(target: Target, duration: float, echo: bool, workdir: str, wat
 
     sim.STATE.end_ns = int(round(duration * 1e9))
     sim.STATE.echo = echo
+    sim.STATE.parameters = dict(parameters or {})
     if watch is not None:
         sim.STATE.on_advance = watch
     sys.path.insert(0, target.root)
@@ -119,6 +152,9 @@ def run_node_here(target: Target, duration: float, echo: bool, workdir: str, wat
     if not echo:
         sys.stdout = output
     saved = _patch_time(sim)
+    import threading
+
+    saved_start = _patch_threads(sim)
     ended, failure = "returned", None
     try:
         module = importlib.import_module(target.module)
@@ -146,6 +182,7 @@ def run_node_here(target: Target, duration: float, echo: bool, workdir: str, wat
                                               sim.STATE.now_ns / 1e9)
     finally:
         _restore_time(saved)
+        threading.Thread.start = saved_start  # type: ignore[method-assign]
         sys.stdout = saved_stdout
     state = sim.STATE
     return Recording(

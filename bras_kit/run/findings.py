@@ -4,7 +4,7 @@
 
     recording = run_node("bras_description")
     for finding in run_findings(recording, robot_of("bras_description")):
-        print(finding.code, finding.message)
+        print(finding.code, finding.text())
 """
 
 from __future__ import annotations
@@ -42,14 +42,13 @@ def run_findings(recording: Recording, robot: Any, *, lang: str | None = None, s
     package folder), its ``line`` the line there when known.
     """
     from ..i18n import current_language
-    from ..validate.findings import sort_key
-    from ..validate.i18n import word
+    from ..validate.findings import finding, sort_key
     from ..validate.package.run_rules import RUN_CHECKS, run_hits
     from ..validate.registry import select_rules
 
     lang = lang or current_language()
     chosen = {rule.code: rule for rule in select_rules(select, ignore) if rule.code in RUN_CHECKS}
-    findings = [word(chosen[code], found, lang) for code, found in run_hits(recording, robot, sorted(chosen))]
+    findings = [finding(chosen[code], found) for code, found in run_hits(recording, robot, sorted(chosen))]
     return sorted(findings, key=sort_key)
 
 

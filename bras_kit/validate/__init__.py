@@ -3,13 +3,16 @@
 ::
 
     from bras_kit.validate import validate, validate_path
-    findings = validate(robot, pose={"coude": 2.5}, lang="fr")
+    findings = validate(robot, pose={"coude": 2.5})
+    print(findings[0].text("fr"))           # findings are data, worded where shown
     findings = validate_path("bras.urdf")   # .urdf or .xacro; unreadable files give BK100-BK103
 
 Every rule lives in the registry (:data:`RULES`), one module per family: :mod:`.structure`
 (BK1xx), :mod:`.joints` (BK2xx), :mod:`.pitfalls` (BK3xx), :mod:`.geometry` (BK4xx),
 :mod:`.inertia` (BK5xx), :mod:`.package` (BK6xx, a whole ROS 2 package).
-Words come from ``messages_en`` / ``messages_fr``.
+Each rule's English texts are registered beside the rules (modules ``texts``); the French is in
+``locale/fr/LC_MESSAGES/validate.po``. Findings are data, worded where shown
+(:meth:`Finding.text`, :func:`bras_kit.validate.report.format_text`).
 """
 
 from __future__ import annotations
@@ -23,11 +26,12 @@ from collections.abc import Iterable, Iterator, Mapping, Sequence
 from typing import Any
 
 from ..errors import BrasKitError, ParameterError, XacroError, XMLSafetyError, XMLSyntaxError
+from ..i18n import LANGUAGES, resolve_language
+from ..message import M
 from ..model import Robot
-from . import geometry, inertia, joints, package, pitfalls, structure  # noqa: F401  (importing registers the rules)
+from . import geometry, inertia, joints, package, pitfalls, structure, texts  # noqa: F401  (importing registers the rules)
 from .context import Context
-from .findings import UNREADABLE_CODES, FileResult, Finding, sort_key
-from .i18n import DEFAULT_LANGUAGE, LANGUAGES, check_language, default_language, word
+from .findings import UNREADABLE_CODES, FileResult, Finding, finding, sort_key
 from .registry import ERROR, INFO, RULES, WARNING, Hit, Rule, run_rules, select_rules
 
 __all__ = [
@@ -39,12 +43,17 @@ __all__ = [
 SOURCE_SUFFIXES = (".urdf", ".xacro")
 
 
+def default_language(environ: Mapping[str, str] | None = None) -> str:
+    """``BRAS_KIT_LANG``, else ``fr`` when the locale says French, else ``en``."""
+    return resolve_language(None, environ)
+
+
 def validate(
     robot: Robot,
     *,
     pose: Mapping[str, float] | None = None,
     states: Any = None,
-    lang: str = DEFAULT_LANGUAGE,
+    lang: str | None = None,
     package_paths: Sequence[str] = (),
     select: Iterable[str] = (),
     ignore: Iterable[str] = (),
@@ -54,15 +63,16 @@ def validate(
     ``pose`` (joint -> value) is checked against the limits (BK303); ``states`` (a
     :class:`bras_kit.motion.JointStates`) against limits and velocities (BK304, BK305).
     A pose or states naming a joint the robot cannot move is a :class:`ParameterError`.
-    ``select``/``ignore`` are code prefixes (``BK3``, ``BK301``).
+    ``select``/``ignore`` are code prefixes (``BK3``, ``BK301``). Findings hold no words: show
+    them with :meth:`Finding.text` / :meth:`Finding.hint_text` in the language of the place
+    (``lang`` is accepted for older callers and has no effect).
     """
-    check_language(lang)
     context = Context(robot, pose=pose, states=states, package_paths=tuple(package_paths))
     _check_joint_names(context, pose, "--pose")
     if states is not None:
         _check_joint_names(context, dict.fromkeys(states.names, 0.0), "the motion")
     rules = _rules(select, ignore)
-    findings = [word(r, found, lang) for r, found in run_rules(rules, context)]
+    findings = [finding(r, found) for r, found in run_rules(rules, context)]
     return sorted(findings, key=sort_key)
 
 
@@ -72,7 +82,7 @@ def validate_path(
     pose: Mapping[str, float] | None = None,
     motion: Sequence[str] | None = None,
     duration: float | None = None,
-    lang: str = DEFAULT_LANGUAGE,
+    lang: str | None = None,
     package_paths: Sequence[str] = (),
     mappings: Mapping[str, str] | None = None,
     select: Iterable[str] = (),
@@ -86,19 +96,18 @@ def validate_path(
     sampled at 20 Hz for ``duration`` seconds and checked like ``states``. Only a bad ``pose``
     or ``motion`` raises (:class:`~bras_kit.errors.ParameterError`).
     """
-    check_language(lang)
     path = os.fspath(path)
     with _collector_paused():
-        robot_or_failure = load_for_validation(path, mappings=mappings, package_paths=package_paths, lang=lang)
+        robot_or_failure = load_for_validation(path, mappings=mappings, package_paths=package_paths)
         if isinstance(robot_or_failure, Finding):
             return [robot_or_failure]
         robot = robot_or_failure
         if path.endswith(".xacro") and not robot.links and robot.root_tag == "robot" \
                 and _defines_macros(path):
             chosen = any(r.code == "BK124" for r in _rules(select, ignore))
-            return [_loader_finding("BK124", Hit("robot", robot.name, None), lang)] if chosen else []
+            return [_loader_finding("BK124", Hit("robot", robot.name, None))] if chosen else []
         states = motion_states(robot, motion, duration) if motion else None
-        findings = validate(robot, pose=pose, states=states, lang=lang, package_paths=package_paths,
+        findings = validate(robot, pose=pose, states=states, package_paths=package_paths,
                             select=select, ignore=ignore)
     if path.endswith(".xacro"):
         findings = _lines_in_xacro_source(path, findings)
@@ -165,7 +174,7 @@ def generated_pairs(paths: Sequence[str], given: Iterable[str]) -> dict[str, str
 
 
 def compare_generated(urdf: str, xacro: str, *, mappings: Mapping[str, str] | None = None,
-                      package_paths: Sequence[str] = (), lang: str = DEFAULT_LANGUAGE,
+                      package_paths: Sequence[str] = (), lang: str | None = None,
                       select: Iterable[str] = (), ignore: Iterable[str] = ()) -> list[Finding]:
     """BK126 (the URDF matches a fresh expansion of its xacro) or BK127 (it does not)."""
     chosen = {rule.code for rule in _rules(select, ignore)}
@@ -182,7 +191,7 @@ def compare_generated(urdf: str, xacro: str, *, mappings: Mapping[str, str] | No
     difference = _tree_difference(actual, expected)
     params = {"xacro": xacro, "urdf": urdf, "difference": difference or ""}
     code = "BK126" if difference is None else "BK127"
-    return [word(RULES[code], Hit("file", None, None, params), lang)] if code in chosen else []
+    return [finding(RULES[code], Hit("file", None, None, params))] if code in chosen else []
 
 
 def _tree_difference(a: Any, b: Any, where: str = "") -> str | None:
@@ -215,23 +224,42 @@ def _same_value(x: str, y: str) -> bool:
 
 
 def load_for_validation(path: str, *, mappings: Mapping[str, str] | None = None,
-                        package_paths: Sequence[str] = (), lang: str = DEFAULT_LANGUAGE) -> Robot | Finding:
+                        package_paths: Sequence[str] = (), lang: str | None = None) -> Robot | Finding:
     """The robot in ``path``, or the finding (BK100-BK103) saying why it cannot be read."""
     from ..authoring import load
 
     if path == "-":  # standard input: bras-kit urdf | bras-kit validate -
         pass
     elif os.path.isdir(path):
-        return _loader_finding("BK103", Hit("file", None, None, {"path": path}, "folder"), lang)
+        return _loader_finding("BK103", Hit("file", None, None, {"path": path}, "folder"))
     elif not os.path.exists(path):
-        return _loader_finding("BK103", Hit("file", None, None, {"path": path}, "missing"), lang)
+        return _loader_finding("BK103", _missing_file(path))
     try:
         return load(path, mappings=mappings, package_paths=package_paths)
     except BrasKitError as exc:
-        return _unreadable(path, exc, lang)
+        return _unreadable(path, exc)
 
 
-def _unreadable(path: str, exc: BrasKitError, lang: str) -> Finding:
+def _missing_file(path: str) -> Hit:
+    """BK103 for a path that does not exist: a Windows-style path, or a near name in the same folder."""
+    if "\\" in path:
+        fixed = path.replace("\\", "/")
+        return Hit("file", None, None, {"path": path, "suggestion": fixed}, "windows")
+    import difflib
+
+    folder = os.path.dirname(path) or "."
+    try:
+        names = [n for n in os.listdir(folder) if n.endswith(SOURCE_SUFFIXES)]
+    except OSError:
+        names = []
+    close = difflib.get_close_matches(os.path.basename(path), names, n=1, cutoff=0.6)
+    if close:
+        return Hit("file", None, None, {"path": path, "suggestion": os.path.join(os.path.dirname(path), close[0])},
+                   "near")
+    return Hit("file", None, None, {"path": path}, "missing")
+
+
+def _unreadable(path: str, exc: BrasKitError) -> Finding:
     other = exc.path if exc.path and os.path.abspath(exc.path) != os.path.abspath(path) else None
     where = f"{other}:{exc.line}: " if other and exc.line else (f"{other}: " if other else "")
     line = None if other else exc.line
@@ -241,19 +269,21 @@ def _unreadable(path: str, exc: BrasKitError, lang: str) -> Finding:
                    else "entity" if "entity declaration" in message
                    else "external" if "external entity" in message else "")
         hit = Hit("file", None, line, {"where": f" ({where.rstrip(': ')})" if where else ""}, variant)
-        return _loader_finding("BK101", hit, lang)
+        return _loader_finding("BK101", hit)
     if isinstance(exc, XMLSyntaxError):
         encoding = _encoding_problem(exc.path or path)
         if encoding is not None:
             at, byte, guess = encoding
             return _loader_finding("BK100", Hit("file", None, at, {"at": at, "byte": byte, "guess": guess},
-                                                "encoding"), lang)
-        detail = str(exc.message).removeprefix("not well-formed XML: ")
-        return _loader_finding("BK100", Hit("file", None, line, {"detail": where + detail}), lang)
+                                                "encoding"))
+        detail: Any = exc.detail if exc.detail is not None else exc.message
+        if where:
+            detail = M("{where}{detail}", where=where, detail=detail)
+        return _loader_finding("BK100", Hit("file", None, line, {"detail": detail}))
     if isinstance(exc, XacroError):
         detail = str(exc.message).removeprefix("xacro failed: ")
-        return _loader_finding("BK102", Hit("file", None, line, {"detail": where + detail}, _xacro_kind(detail)), lang)
-    return _loader_finding("BK103", Hit("file", None, line, {"path": path, "detail": exc.message}), lang)
+        return _loader_finding("BK102", Hit("file", None, line, {"detail": where + detail}, _xacro_kind(detail)))
+    return _loader_finding("BK103", Hit("file", None, line, {"path": path, "detail": exc.message}))
 
 
 def _encoding_problem(path: str) -> tuple[int, str, str] | None:
@@ -293,8 +323,8 @@ def _xacro_kind(message: str) -> str:
     return ""
 
 
-def _loader_finding(code: str, found: Hit, lang: str) -> Finding:
-    return word(RULES[code], found, lang)
+def _loader_finding(code: str, found: Hit) -> Finding:
+    return finding(RULES[code], found)
 
 
 def _defines_macros(path: str) -> bool:

@@ -12,9 +12,10 @@ from __future__ import annotations
 import difflib
 
 from ..errors import ParameterError
+from ..i18n import catalog, current_language, say
+from ..message import M
 from . import RULES
-from .i18n import Template, rule_text, ui
-from .registry import FAMILIES, Rule, sorted_rules
+from .registry import FAMILIES, FAMILY_TITLES, SEVERITY_WORDS, Rule, Template, sorted_rules
 
 
 def find_rule(code_or_name: str) -> Rule:
@@ -33,26 +34,33 @@ def find_rule(code_or_name: str) -> Rule:
     )
 
 
-def explain_text(rule: Rule, lang: str = "en") -> str:
-    text, words = rule_text(rule.code, lang), ui(lang)
-    family = words[f"family_{rule.family}"]
-    head = f"{rule.code} {rule.name} ({words[rule.severity]})"
-    body = [head, text.title[0].upper() + text.title[1:] + ".", "",
-            text.explanation.replace("`", ""), "",
-            f"{words['family']}{words['colon']}{family}"]
+def raw_text(code: str, english: str, lang: str | None = None) -> str:
+    """One of rule ``code``'s texts in ``lang`` as written in the catalog (fields not filled in)."""
+    lang = lang or current_language()
+    return english if lang == "en" else catalog(lang, "validate").pgettext(code, english)
+
+
+def explain_text(rule: Rule, lang: str | None = None) -> str:
+    """What ``bras-kit explain CODE`` prints, in ``lang``."""
+    title = raw_text(rule.code, rule.texts.title, lang)
+    head = f"{rule.code} {rule.name} ({say(SEVERITY_WORDS[rule.severity], lang)})"
+    body = [head, title[0].upper() + title[1:] + ".", "",
+            raw_text(rule.code, rule.texts.explanation, lang).replace("`", ""), "",
+            say(M("Family: {family}", family=FAMILY_TITLES[rule.family]), lang)]
     if not rule.reported_by_loader:
-        body.append(words["skip"].format(code=rule.code))
+        body.append(say(M("Skip it with: bras-kit validate --ignore {code}", code=rule.code), lang))
     return "\n".join(body) + "\n"
 
 
-def rule_list_text(lang: str = "en") -> str:
-    words = ui(lang)
+def rule_list_text(lang: str | None = None) -> str:
+    """Every rule, family by family: what ``bras-kit explain`` prints without a code."""
     lines = []
     for prefix, family in FAMILIES.items():
-        lines.append(f"{prefix}xx {words[f'family_{family}']}")
+        lines.append(f"{prefix}xx {say(FAMILY_TITLES[family], lang)}")
         for r in sorted_rules():
             if r.code.startswith(prefix):
-                lines.append(f"  {r.code}  {words[r.severity]:<13} {r.name:<32} {rule_text(r.code, lang).title}")
+                severity = say(SEVERITY_WORDS[r.severity], lang)
+                lines.append(f"  {r.code}  {severity:<13} {r.name:<32} {raw_text(r.code, r.texts.title, lang)}")
         lines.append("")
     return "\n".join(lines)
 
@@ -66,22 +74,25 @@ def _md(text: str) -> str:
     return "`".join(part.replace("<", "&lt;") if i % 2 == 0 else part for i, part in enumerate(parts))
 
 
-def _templates(label: str, template: Template) -> list[str]:
+def _templates(label: str, code: str, template: Template, lang: str) -> list[str]:
+    def word(english: str) -> str:
+        return raw_text(code, english, lang)
+
     if isinstance(template, str):
-        return [f"- {label}: `{template}`"] if template else []
-    return [f"- {label} ({variant or 'otherwise'}): `{value}`" for variant, value in template.items()]
+        return [f"- {label}: `{word(template)}`"] if template else []
+    return [f"- {label} ({variant or 'otherwise'}): `{word(value)}`" for variant, value in template.items()]
 
 
 def _section(rule: Rule, lang: str) -> list[str]:
-    text = rule_text(rule.code, lang)
+    texts = rule.texts
     language = "English" if lang == "en" else "Français"
     return [
-        f"**{language}**: {_md(text.title)}",
+        f"**{language}**: {_md(raw_text(rule.code, texts.title, lang))}",
         "",
-        *_templates("message", text.message),
-        *_templates("hint", text.hint),
+        *_templates("message", rule.code, texts.message, lang),
+        *_templates("hint", rule.code, texts.hint, lang),
         "",
-        _md(text.explanation),
+        _md(raw_text(rule.code, texts.explanation, lang)),
         "",
     ]
 
@@ -120,10 +131,10 @@ nodes, each finding at its file and line. Those files are read, never run.
 def catalogue_markdown() -> str:
     parts = [INTRO, "| Code | Name | Severity | Finds |", "|---|---|---|---|"]
     for r in sorted_rules():
-        parts.append(f"| [{r.code}](#{r.code.lower()}) | {r.name} | {r.severity} | {_md(rule_text(r.code).title)} |")
+        parts.append(f"| [{r.code}](#{r.code.lower()}) | {r.name} | {r.severity} | {_md(r.texts.title)} |")
     parts.append("")
     for prefix, family in FAMILIES.items():
-        parts += [f"## {prefix}xx: {ui('en')[f'family_{family}']}", ""]
+        parts += [f"## {prefix}xx: {say(FAMILY_TITLES[family], 'en')}", ""]
         for r in sorted_rules():
             if r.code.startswith(prefix):
                 parts += [f"### {r.code}", "", f"`{r.name}`, {r.severity}", ""]

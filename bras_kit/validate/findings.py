@@ -1,11 +1,19 @@
-"""What the validator returns: findings (worded in one language) and per-file results."""
+"""What the validator returns: findings as data (rule code, severity, where, the facts) and per-file results.
+
+A :class:`Finding` holds no words. Where it is shown, :meth:`Finding.text` and
+:meth:`Finding.hint_text` word it in the language of that place (``say`` of
+:mod:`bras_kit.i18n`); :attr:`Finding.message` and :attr:`Finding.hint` are the
+:class:`~bras_kit.message.Message` objects themselves (``str()`` gives the English).
+"""
 
 from __future__ import annotations
 
+from collections.abc import Mapping
 from dataclasses import dataclass, field
 from typing import Any
 
-from .registry import ERROR, INFO, WARNING
+from ..message import Message
+from .registry import ERROR, INFO, TEXTS, WARNING, Hit, Rule, pick, text_message
 
 SEVERITY_ORDER = {ERROR: 0, WARNING: 1, INFO: 2}
 # the file could not be read at all: not well-formed, unsafe XML, xacro failure, missing file
@@ -14,31 +22,63 @@ UNREADABLE_CODES = frozenset({"BK100", "BK101", "BK102", "BK103"})
 
 @dataclass(frozen=True)
 class Finding:
-    """One problem, ready to print: ``path:line: code severity <element name="..."> message``.
+    """One problem: ``path:line: code severity <element name="..."> message`` once worded.
 
-    ``data`` keeps the raw numbers behind the wording (expected origin, excess...) for programs
-    and tests; it is not part of the JSON output.
+    ``variant`` picks one of the rule's wordings; ``params`` are the facts that fill it in
+    (numbers, names, the expected origin...), also read by programs and tests.
     """
 
     code: str
     severity: str
-    message: str
     element: str
     name: str | None
     line: int | None
-    hint: str
-    data: dict[str, Any] = field(default_factory=dict, compare=False, repr=False)
+    variant: str = ""
+    params: Mapping[str, Any] = field(default_factory=dict, compare=False, repr=False)
 
-    def as_dict(self) -> dict[str, Any]:
+    @property
+    def message(self) -> Message:
+        return text_message(self.code, pick(TEXTS[self.code].message, self.variant), self.params)
+
+    @property
+    def hint(self) -> Message | None:
+        template = pick(TEXTS[self.code].hint, self.variant) if TEXTS[self.code].hint else ""
+        return text_message(self.code, template, self.params) if template else None
+
+    @property
+    def data(self) -> dict[str, Any]:
+        """The raw facts behind the wording (expected origin, excess...)."""
+        return dict(self.params)
+
+    def text(self, lang: str | None = None) -> str:
+        """The message in ``lang`` (None: the library's language)."""
+        from ..i18n import say
+
+        return say(self.message, lang)
+
+    def hint_text(self, lang: str | None = None) -> str:
+        """The hint in ``lang``, or "" when the rule gives none."""
+        from ..i18n import say
+
+        hint = self.hint
+        return say(hint, lang) if hint is not None else ""
+
+    def as_dict(self, lang: str | None = None) -> dict[str, Any]:
+        """The JSON form, ``message`` and ``hint`` worded in ``lang``."""
         return {
             "code": self.code,
             "severity": self.severity,
-            "message": self.message,
+            "message": self.text(lang),
             "element": self.element,
             "name": self.name,
             "line": self.line,
-            "hint": self.hint,
+            "hint": self.hint_text(lang),
         }
+
+
+def finding(rule: Rule, found: Hit) -> Finding:
+    """The finding of ``rule`` for one hit."""
+    return Finding(rule.code, rule.severity, found.element, found.name, found.line, found.variant, dict(found.params))
 
 
 def sort_key(finding: Finding) -> tuple[int, int, str]:

@@ -121,16 +121,70 @@ def inertia_not_positive_definite(ctx: Context) -> Iterator[Hit]:
         zero = not body.tensor.any()
         if not negative and _fused_has(ctx, body.link, lambda link: link.name in definite):
             continue
+        if negative and _fused_appendage(ctx, body, definite):
+            continue  # BK508: a simulator merges it into a valid body
         yield hit("link", body.link.name, body.inertial.line, "zero" if zero else "", link=body.link.name,
                   moments=body.moments)
+
+
+GROSS_BREACH = 1.5  # largest moment over the sum of the two others: beyond this, no rounding explains it
+
+
+def _fused_appendage(ctx: Context, body: Body, definite: set[str | None]) -> bool:
+    """A massless link (under a thousandth of the rest of its body's mass) fused by fixed joints into a
+    body that has a valid inertia (TIAGo's antennas):
+    physics engines add its tensor into that body's, so a tiny defect of its own changes nothing."""
+    head, members = rigid_group(ctx, body.link)
+    others = [name for name in members if name != body.link.name]
+    if head == body.link.name or not any(name in definite for name in others):
+        return False
+    mass = body.inertial.mass or 0.0
+    inertials = [ctx.links[name].inertial for name in others if name in ctx.links]
+    rest = sum(float(i.mass or 0.0) for i in inertials if i is not None)
+    return 0 <= mass <= 1e-3 * rest  # massless next to the body it is fused into (TIAGo's 1 mg antennas)
+
+
+def _moving_main_body(ctx: Context, body: Body) -> bool:
+    """The link heads a moving body (a simulator simulates its inertia as written)."""
+    head, _ = rigid_group(ctx, body.link)
+    return head == body.link.name and moves(ctx, head)
+
+
+def _gross(body: Body) -> bool:
+    a, b, c = body.moments
+    return c > GROSS_BREACH * (a + b)
 
 
 @rule("BK502", "inertia-triangle-inequality", WARNING)
 def inertia_triangle_inequality(ctx: Context) -> Iterator[Hit]:
     for body in bodies(ctx):
         a, b, c = body.moments
-        if body.positive_definite and a + b < c * (1 - 1e-9):
+        if body.positive_definite and a + b < c * (1 - 1e-9) and not (_gross(body) and _moving_main_body(ctx, body)):
             yield hit("link", body.link.name, body.inertial.line, link=body.link.name, a=a, b=b, c=c)
+
+
+@rule("BK507", "inertia-impossible-on-moving-body", ERROR)
+def inertia_impossible_on_moving_body(ctx: Context) -> Iterator[Hit]:
+    """BK502's breach, grossly (the largest moment over 1.5 times the two others), on a body that moves."""
+    for body in bodies(ctx):
+        a, b, c = body.moments
+        if body.positive_definite and _gross(body) and _moving_main_body(ctx, body):
+            yield hit("link", body.link.name, body.inertial.line, link=body.link.name, a=a, b=b, c=c,
+                      ratio=c / (a + b))
+
+
+@rule("BK508", "negative-moment-on-fused-appendage", WARNING)
+def negative_moment_on_fused_appendage(ctx: Context) -> Iterator[Hit]:
+    """BK501's negative moment, on a massless link fused into a valid body: merged away by simulators."""
+    definite = {body.link.name for body in bodies(ctx) if body.positive_definite}
+    for body in bodies(ctx):
+        if body.positive_definite:
+            continue
+        largest = max(abs(m) for m in body.moments)
+        if body.moments[0] < -max(1e-9 * largest, 1e-12) and _fused_appendage(ctx, body, definite):
+            head, _ = rigid_group(ctx, body.link)
+            yield hit("link", body.link.name, body.inertial.line, link=body.link.name, moments=body.moments,
+                      body=head)
 
 
 def _solid_text(kind: str, link: Link, ctx: Context) -> str:

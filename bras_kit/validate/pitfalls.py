@@ -85,11 +85,13 @@ def joint_not_at_segment_end(ctx: Context) -> Iterator[Hit]:
         outside = math.dist(p, inside)
         side = max(0.001, 0.02 * max(bounds.lengths))  # off the axis by more than this: beside the segment
         on_axis = k is not None and all(bounds.lo[i] - side <= p[i] <= bounds.hi[i] + side for i in range(3) if i != k)
+        tutorial_like = k is not None and _starts_at_its_joint(ctx, parent, bounds, k, tol)
         if on_axis:
             assert k is not None
             length = bounds.lengths[k]
-            if not bounds.lo[k] - NEAR_LENGTH * length <= p[k] <= bounds.hi[k] + NEAR_LENGTH * length:
-                continue  # far past the shape: not a segment this joint belongs to
+            if not bounds.lo[k] - NEAR_LENGTH * length <= p[k] <= bounds.hi[k] + NEAR_LENGTH * length \
+                    and not (tutorial_like and _apart(ctx, joint, bounds, tol)):
+                continue  # far past the shape of something that is not the tutorial's segment
             ends = _segment_end(ctx, parent, bounds, k, p[k], tol)
             if any(abs(p[k] - end) <= tol for end in ends):
                 continue
@@ -99,6 +101,49 @@ def joint_not_at_segment_end(ctx: Context) -> Iterator[Hit]:
                       joint=joint.name, link=parent.name, tag=_tag(element), coord=f"{AXES[k]}={number(p[k])}",
                       distance=outside if beyond else abs(ends[0] - p[k]), span=bounds.span(k),
                       origin=origin_xml(expected, joint.origin.rpy), expected=expected)
+        elif tutorial_like and _apart(ctx, joint, bounds, tol):
+            # beside the tutorial's segment, the child's shape away from it: the segment's end is meant
+            assert k is not None
+            end = _segment_end(ctx, parent, bounds, k, p[k], tol)[0]
+            expected = tuple(end if i == k else bounds.centre[i] for i in range(3))
+            yield hit("joint", joint.name, joint.origin.line or joint.line, "beside",
+                      joint=joint.name, link=parent.name, tag=_tag(element), xyz=tuple(p),
+                      distance=math.dist(p, expected), span=bounds.span(k),
+                      origin=origin_xml(expected, joint.origin.rpy), expected=expected)
+        elif outside > tol and _apart(ctx, joint, bounds, tol) and _child_is_a_segment(ctx, joint, tol):
+            # a segment drawn the tutorial's way, hung in the air away from its parent's body
+            yield hit("joint", joint.name, joint.origin.line or joint.line, "detached",
+                      joint=joint.name, link=parent.name, child=joint.child, tag=_tag(element), xyz=tuple(p),
+                      distance=outside, origin=origin_xml(inside, joint.origin.rpy), expected=inside)
+
+
+def _child_is_a_segment(ctx: Context, joint: Joint, tol: float) -> bool:
+    child = ctx.links.get(joint.child or "")
+    shape = ctx.shape(child) if child is not None else None
+    if child is None or shape is None:
+        return False
+    k = shape[1].long_axis()
+    return k is not None and _starts_at_its_joint(ctx, child, shape[1], k, tolerance(shape[1]))
+
+
+def _starts_at_its_joint(ctx: Context, link: Link, bounds: Bounds, k: int, tol: float) -> bool:
+    """The tutorial's segment: a non-root link whose shape starts at its own joint and runs along k,
+    centred on the other two axes."""
+    if link.name not in ctx.graph.parent_joint:
+        return False
+    if any(abs(bounds.centre[i]) > tol for i in range(3) if i != k):
+        return False
+    return min(abs(bounds.lo[k]), abs(bounds.hi[k])) <= tol
+
+
+def _apart(ctx: Context, joint: Joint, bounds: Bounds, tol: float) -> bool:
+    """The child link's one shape, placed by ``joint``, does not touch the parent's ``bounds``
+    (a child without a shape of its own counts as apart when the joint itself is off the shape)."""
+    child = ctx.links.get(joint.child or "")
+    shape = ctx.shape(child) if child is not None else None
+    if shape is None:
+        return False
+    return shape[1].moved(joint.origin).gap(bounds) > tol
 
 
 def _tag(element: object) -> str:

@@ -2,8 +2,10 @@
 
 A rule function reads a :class:`~bras_kit.validate.context.Context` (the robot model, its
 issues and a few indexes built once) and yields :class:`Hit` objects: where the defect is and
-the numbers that describe it, never words. Wording comes later, in the user's language, from
-``messages_en`` / ``messages_fr`` (see :mod:`bras_kit.validate.i18n`).
+the numbers that describe it, never words. Each rule's English texts (title, message, hint,
+explanation) are registered with :func:`describe` (modules ``texts``); the French is in the
+gettext catalog ``locale/fr/LC_MESSAGES/validate.po`` with the rule code as ``msgctxt``. A finding
+is worded where it is shown (:mod:`bras_kit.validate.findings`).
 
 Codes by family: BK1xx structure, BK2xx joints, BK3xx the tutorial's pitfalls, BK4xx geometry,
 BK5xx inertia, BK6xx the whole ROS 2 package. Codes never change meaning; a retired code is not reused.
@@ -14,6 +16,8 @@ from __future__ import annotations
 from collections.abc import Callable, Iterable, Iterator, Mapping
 from dataclasses import dataclass, field
 from typing import TYPE_CHECKING
+
+from ..message import M, Message
 
 if TYPE_CHECKING:
     from .context import Context
@@ -29,6 +33,50 @@ FAMILIES = {
     "BK5": "inertia",
     "BK6": "package",
 }
+FAMILY_TITLES: dict[str, Message] = {
+    "structure": M("structure (is this a robot, and one tree?)"),
+    "joints": M("joints (types, axes, limits)"),
+    "pitfalls": M("the tutorial's pitfalls"),
+    "geometry": M("geometry (shapes, meshes, colours)"),
+    "inertia": M("inertia (mass and inertia for simulation)"),
+    "package": M("the ROS 2 package (setup.py, launch file, RViz configuration, nodes)"),
+}
+SEVERITY_WORDS: dict[str, Message] = {ERROR: M("error"), WARNING: M("warning"), INFO: M("info")}
+
+Template = str | Mapping[str, str]  # one text, or one per variant ("" = otherwise)
+
+
+@dataclass(frozen=True)
+class RuleTexts:
+    """A rule's English words: ``message`` and ``hint`` are ``str.format`` templates over the
+    hit's parameters, possibly one per variant; ``explanation`` is what ``bras-kit explain`` shows."""
+
+    title: str
+    message: Template
+    hint: Template
+    explanation: str
+
+
+TEXTS: dict[str, RuleTexts] = {}
+
+
+def describe(code: str, *, title: str, message: Template, hint: Template = "", explanation: str) -> None:
+    """Register the English texts of rule ``code`` (extracted into ``validate.po``, msgctxt = code)."""
+    if code in TEXTS:
+        raise ValueError(f"rule code {code} described twice")
+    TEXTS[code] = RuleTexts(title, message, hint, explanation)
+
+
+def pick(template: Template, variant: str) -> str:
+    """The template for ``variant`` (the ``""`` one when the variant has none)."""
+    if isinstance(template, str):
+        return template
+    return template.get(variant) or template.get("", "")
+
+
+def text_message(code: str, template: str, params: Mapping[str, object] | None = None) -> Message:
+    """One of rule ``code``'s texts as a message of the ``validate`` domain (msgctxt = code)."""
+    return Message(template, dict(params or {}), "validate", code)
 
 
 @dataclass(frozen=True)
@@ -68,6 +116,18 @@ class Rule:
     @property
     def reported_by_loader(self) -> bool:
         return self.check is None
+
+    @property
+    def texts(self) -> RuleTexts:
+        return TEXTS[self.code]
+
+    @property
+    def title(self) -> Message:
+        return text_message(self.code, self.texts.title)
+
+    @property
+    def explanation(self) -> Message:
+        return text_message(self.code, self.texts.explanation)
 
 
 RULES: dict[str, Rule] = {}

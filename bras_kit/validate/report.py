@@ -6,9 +6,10 @@ import json
 from collections.abc import Sequence
 from dataclasses import dataclass
 
+from ..i18n import say
+from ..message import M, Message, Mn
 from .findings import FileResult, Finding
-from .i18n import DEFAULT_LANGUAGE, ui
-from .registry import ERROR, INFO, WARNING
+from .registry import ERROR, INFO, SEVERITY_WORDS, WARNING
 
 _COLOURS = {ERROR: "31", WARNING: "33", INFO: "36"}  # red, yellow, cyan
 
@@ -42,9 +43,16 @@ def exit_code(results: Sequence[FileResult], strict: bool = False) -> int:
     return 0 if all(r.ok(strict) for r in results) else 1
 
 
-def _count(key: str, n: int, lang: str) -> str:
-    many = n > 1 if lang == "fr" else n != 1  # French: 0 and 1 take the singular
-    return ui(lang)[f"{key}_{'many' if many else 'one'}"].format(n=n)
+def _counts(kind: str, n: int) -> Message:
+    if kind == "checked":
+        return Mn("{n} file checked", "{n} files checked", n)
+    if kind == "unreadable":
+        return Mn("{n} could not be read", "{n} could not be read", n)
+    if kind == "errors":
+        return Mn("{n} error", "{n} errors", n)
+    if kind == "warnings":
+        return Mn("{n} warning", "{n} warnings", n)
+    return Mn("{n} info", "{n} info", n)
 
 
 def element_text(finding: Finding) -> str:
@@ -55,44 +63,44 @@ def element_text(finding: Finding) -> str:
     return f'<{finding.element} name="{finding.name}">'
 
 
-def finding_text(path: str, finding: Finding, lang: str = DEFAULT_LANGUAGE, colour: bool = False) -> str:
-    words = ui(lang)
+def finding_text(path: str, finding: Finding, lang: str | None = None, colour: bool = False) -> str:
     where = f"{path}:{finding.line}:" if finding.line else f"{path}:"
-    severity = words[finding.severity]
+    severity = say(SEVERITY_WORDS[finding.severity], lang)
     code = finding.code
     if colour:
         code = f"\033[1m{code}\033[0m"
         severity = f"\033[{_COLOURS[finding.severity]}m{severity}\033[0m"
     element = element_text(finding)
-    head = " ".join(part for part in (where, code, severity, element, finding.message) if part)
-    if finding.hint:
-        return f"{head}\n  {words['hint']}{words['colon']}{finding.hint}"
+    head = " ".join(part for part in (where, code, severity, element, finding.text(lang)) if part)
+    hint = finding.hint_text(lang)
+    if hint:
+        return f"{head}\n  " + say(M("hint: {hint}", hint=hint), lang)
     return head
 
 
-def summary_text(results: Sequence[FileResult], lang: str = DEFAULT_LANGUAGE) -> str:
+def summary_text(results: Sequence[FileResult], lang: str | None = None) -> str:
     t = totals(results)
-    words = ui(lang)
-    head = _count("checked", t.files, lang)
+    head = say(_counts("checked", t.files), lang)
     if t.unreadable:
-        head += f" ({_count('unreadable', t.unreadable, lang)})"
+        head += f" ({say(_counts('unreadable', t.unreadable), lang)})"
     if not (t.errors or t.warnings or t.infos):
-        return head + words["colon"] + words["clean"] + "."
-    counts = [_count("errors", t.errors, lang), _count("warnings", t.warnings, lang)]
+        return say(M("{checked}: no problems found.", checked=head), lang)
+    counts = [say(_counts("errors", t.errors), lang), say(_counts("warnings", t.warnings), lang)]
     if t.infos:
-        counts.append(_count("infos", t.infos, lang))
-    return head + words["colon"] + ", ".join(counts) + "."
+        counts.append(say(_counts("infos", t.infos), lang))
+    return say(M("{checked}: {counts}.", checked=head, counts=", ".join(counts)), lang)
 
 
-def format_text(results: Sequence[FileResult], lang: str = DEFAULT_LANGUAGE, colour: bool = False) -> str:
+def format_text(results: Sequence[FileResult], lang: str | None = None, colour: bool = False) -> str:
     blocks = [finding_text(r.path, f, lang, colour) for r in results for f in r.findings]
     return "\n".join(blocks + ([""] if blocks else []) + [summary_text(results, lang)]) + "\n"
 
 
-def format_json(results: Sequence[FileResult], strict: bool = False) -> str:
+def format_json(results: Sequence[FileResult], strict: bool = False, lang: str | None = None) -> str:
+    """Findings for programs; ``message`` and ``hint`` worded in ``lang``."""
     document = {
         "files": [
-            {"path": r.path, "ok": r.ok(strict), "findings": [f.as_dict() for f in r.findings]}
+            {"path": r.path, "ok": r.ok(strict), "findings": [f.as_dict(lang) for f in r.findings]}
             for r in results
         ],
         "summary": totals(results).as_dict(),

@@ -54,7 +54,7 @@ class Viewer:
 
     def __init__(self, source: Source, *, host: str = LOCAL_HOST, port: int = 8080, lang: str = "en",
                  motion_specs: Sequence[str] = (), loop_seconds: float = 10.0, watch: bool = True,
-                 geometry: str = "visual") -> None:
+                 geometry: str = "visual", motion_topic: str | None = None) -> None:
         viser = backends.viser()
 
         from .session import GEOMETRIES
@@ -68,6 +68,7 @@ class Viewer:
         self.lang = lang
         self.geometry = geometry
         self.motion_specs = list(motion_specs)
+        self.motion_topic = motion_topic  # the JointState topic of a bag given as a motion
         self.loop_seconds = loop_seconds
         self.error: BaseException | None = None  # why the saved file does not read, while it does not
         self.findings: list[Any] = []
@@ -101,12 +102,12 @@ class Viewer:
     def _motion(self, robot: Robot) -> Any:
         from ..motion import motion_from_specs
 
-        return motion_from_specs(robot, self.motion_specs) if self.motion_specs else None
+        return motion_from_specs(robot, self.motion_specs, topic=self.motion_topic) if self.motion_specs else None
 
     def _check(self, robot: Robot) -> None:
         from ..validate import validate
 
-        self.findings = validate(robot, lang=self.lang, package_paths=self.source.package_paths)
+        self.findings = validate(robot, package_paths=self.source.package_paths)
 
     def reload(self) -> bool:
         """Read the source again; on success show the new model in every browser, else keep the

@@ -46,11 +46,13 @@ def code(src: str, en: str | None = None, *, hidden: bool = False) -> Cell:
 
 # English comment of a shared code cell -> its French words.
 FR_COMMENTS = {
+    "1.0: radians": "1.0 : radians",
     "joint epaule": "articulation epaule",
     "joint coude": "articulation coude",
     "the library's messages and picture words in this notebook's language":
         "messages, titres et axes de la bibliothèque dans la langue du carnet",
     "+ 0.0 turns -0.0 into 0.0": "+ 0.0 change -0.0 en 0.0",
+    "the error's words, in the library's language": "les mots de l'erreur, dans la langue de la bibliothèque",
     "run this cell when you are done with the 3D view": "exécutez cette cellule quand vous avez fini avec la vue 3D",
     "--no-build-isolation: use the installed setuptools, no download":
         "--no-build-isolation : le setuptools installé, sans téléchargement",

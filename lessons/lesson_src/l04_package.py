@@ -179,7 +179,7 @@ LESSON.cells = [
             try:
                 robot = bras_kit.load(urdf)
             except bras_kit.BrasKitError as error:
-                print("le lancement échouerait :", error)
+                print("le lancement échouerait :", bras_kit.say(error))
                 return None
             print("URDF trouvé :", [link.name for link in robot.links])
             return robot
@@ -193,7 +193,7 @@ LESSON.cells = [
             try:
                 robot = bras_kit.load(urdf)
             except bras_kit.BrasKitError as error:
-                print("the launch would fail:", error)
+                print("the launch would fail:", bras_kit.say(error))
                 return None
             print("URDF found:", [link.name for link in robot.links])
             return robot

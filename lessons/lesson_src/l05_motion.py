@@ -239,6 +239,133 @@ LESSON.cells = [
     ),
     md(
         """
+        ## Votre propre nœud, sans ROS
+
+        Le tutoriel fait écrire le nœud lui-même : une classe `Node` de rclpy, un publisher
+        `JointState` sur `joint_states`, un timer de 0,05 s qui calcule les angles et publie. Sans
+        ROS installé, `bras_kit.run` exécute ce même fichier avec une **doublure** de rclpy : les
+        timers se déclenchent sur une horloge simulée (10 s de nœud prennent une fraction de
+        seconde), chaque message publié est enregistré, puis comparé au robot. En ligne de
+        commande : `bras-kit run mon_noeud.py --urdf bras.urdf` (ou `bras-kit run PAQUET animation`).
+        La vraie référence reste `ros2 run` sur une machine ROS 2.
+        """,
+        """
+        ## Your own node, without ROS
+
+        The tutorial has you write the node itself: an rclpy `Node` class, a `JointState` publisher
+        on `joint_states`, a 0.05 s timer that computes the angles and publishes. With no ROS
+        installed, `bras_kit.run` runs that very file against a **stand-in** for rclpy: timers fire
+        on a simulated clock (10 s of node time take a fraction of a second), every message
+        published is recorded, then compared with the robot. On the command line:
+        `bras-kit run my_node.py --urdf bras.urdf` (or `bras-kit run PACKAGE animation`). The real
+        thing stays `ros2 run` on a ROS 2 machine.
+        """,
+    ),
+    code(
+        """
+        from bras_kit.i18n import say
+        from bras_kit.run import joint_states, run_node
+        from bras_kit.run.findings import run_findings
+        from bras_kit.run.report import summary
+
+        NODE = \'\'\'
+        import math
+
+        import rclpy
+        from rclpy.node import Node
+        from sensor_msgs.msg import JointState
+
+        TOPIC = 'joint_states'
+        UNIT = 1.0  # 1.0: radians
+
+
+        class Oscillation(Node):
+            def __init__(self):
+                super().__init__('oscillation')
+                self.out = self.create_publisher(JointState, TOPIC, 10)
+                self.create_timer(0.05, self.step)
+                self.t = 0.0
+
+            def step(self):
+                self.t += 0.05
+                msg = JointState()
+                msg.header.stamp = self.get_clock().now().to_msg()
+                msg.name = ['epaule', 'coude']
+                msg.position = [UNIT * 0.8 * math.sin(self.t), UNIT * 1.2 * math.sin(0.7 * self.t)]
+                self.out.publish(msg)
+
+
+        def main():
+            rclpy.init()
+            rclpy.spin(Oscillation())
+        \'\'\'
+
+        def try_node(source, seconds=5.0):
+            with open("my_node.py", "w") as f:
+                f.write(source)
+            recording = run_node("my_node.py", duration=seconds)
+            for line in summary(recording):
+                print(say(line))
+            for finding in run_findings(recording, robot):
+                print(finding.code, finding.message)
+            return recording
+
+
+        recording = try_node(NODE)
+        """
+    ),
+    md(
+        """
+        Ce que le nœud a réellement publié suit bien les deux sinusoïdes, message par message (le
+        premier part au premier tic, t = 0,05 s) :
+        """,
+        """
+        What the node really published follows the two sine waves, message by message (the first
+        one leaves at the first tick, t = 0.05 s):
+        """,
+    ),
+    code(
+        """
+        sent = joint_states(recording)
+        assert np.allclose(sent.positions[:, 0], 0.8 * np.sin(sent.times))
+        assert np.allclose(sent.positions[:, 1], 1.2 * np.sin(0.7 * sent.times))
+        print(len(sent.times), sent.times[:3])
+        """
+    ),
+    md(
+        """
+        Cassons-le, comme on le ferait sans le vouloir. D'abord le sujet : `joint_state` est un
+        nom de sujet parfaitement valide pour ROS, mais robot_state_publisher écoute
+        `/joint_states`. Le nœud tourne sans erreur… et le bras ne bouge pas :
+        """,
+        """
+        Now break it, the way one does by accident. First the topic: `joint_state` is a perfectly
+        valid topic name for ROS, but robot_state_publisher listens on `/joint_states`. The node
+        runs without an error… and the arm does not move:
+        """,
+    ),
+    code(
+        """
+        broken = try_node(NODE.replace("TOPIC = 'joint_states'", "TOPIC = 'joint_state'"), seconds=2.0)
+        """
+    ),
+    md(
+        """
+        Ensuite l'unité : des degrés au lieu de radians. Le message part quand même (rien ne
+        convertit les unités), et les positions dépassent les butées de très loin :
+        """,
+        """
+        Then the unit: degrees instead of radians. The message still goes out (nothing converts
+        units), and the positions go far past the limits:
+        """,
+    ),
+    code(
+        """
+        broken = try_node(NODE.replace("UNIT = 1.0", "UNIT = 180 / math.pi"), seconds=2.0)
+        """
+    ),
+    md(
+        """
         ## À vous
 
         Écrivez un mouvement qui garde `epaule` fixe à 0,3 rad et fait osciller `coude` entre

@@ -32,9 +32,9 @@ SETUP = code(
         if not findings:
             print("aucun problème trouvé")
         for f in findings:
-            print(f"{f.code} [{SEVERITE[f.severity]}] {f.message}")
+            print(f"{f.code} [{SEVERITE[f.severity]}] {f.text('@LANG@')}")
             if f.hint:
-                print("    ->", f.hint)
+                print("    ->", f.hint_text("@LANG@"))
 
 
     def check_wrist(robot):
@@ -67,9 +67,9 @@ SETUP = code(
         if not findings:
             print("no problem found")
         for f in findings:
-            print(f"{f.code} [{f.severity}] {f.message}")
+            print(f"{f.code} [{f.severity}] {f.text('@LANG@')}")
             if f.hint:
-                print("    ->", f.hint)
+                print("    ->", f.hint_text("@LANG@"))
 
 
     def check_wrist(robot):

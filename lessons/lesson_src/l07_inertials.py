@@ -75,18 +75,18 @@ def show(findings):
     if not findings:
         print("aucun problème trouvé")
     for f in findings:
-        print(f"{f.code} [{SEVERITE[f.severity]}] {f.message}")
+        print(f"{f.code} [{SEVERITE[f.severity]}] {f.text('@LANG@')}")
         if f.hint:
-            print("    ->", f.hint)
+            print("    ->", f.hint_text("@LANG@"))
 """,
     "en": """
 def show(findings):
     if not findings:
         print("no problem found")
     for f in findings:
-        print(f"{f.code} [{f.severity}] {f.message}")
+        print(f"{f.code} [{f.severity}] {f.text('@LANG@')}")
         if f.hint:
-            print("    ->", f.hint)
+            print("    ->", f.hint_text("@LANG@"))
 """,
 }
 

@@ -48,6 +48,8 @@ LESSON.cells = [
         import importlib.util
         import math
         import re
+        import subprocess
+        import sys
         import tempfile
         from pathlib import Path
 
@@ -56,6 +58,7 @@ LESSON.cells = [
         import yaml
 
         import bras_kit
+        from bras_kit.i18n import say
         from bras_kit.motion import formula_motion, sample, tutorial_motion
         from bras_kit.render import Renderer
         from bras_kit.scaffold import scaffold_package
@@ -74,8 +77,8 @@ LESSON.cells = [
 
         def show(findings):
             for f in findings:
-                print(f"{f.code} [{SEVERITE[f.severity]}] ligne {f.line} : {f.message}")
-                print("    ->", f.hint)
+                print(f"{f.code} [{SEVERITE[f.severity]}] ligne {f.line} : {f.text('@LANG@')}")
+                print("    ->", f.hint_text("@LANG@"))
             if not findings:
                 print("aucun problème trouvé")
 
@@ -88,6 +91,8 @@ LESSON.cells = [
         import importlib.util
         import math
         import re
+        import subprocess
+        import sys
         import tempfile
         from pathlib import Path
 
@@ -96,6 +101,7 @@ LESSON.cells = [
         import yaml
 
         import bras_kit
+        from bras_kit.i18n import say
         from bras_kit.motion import formula_motion, sample, tutorial_motion
         from bras_kit.render import Renderer
         from bras_kit.scaffold import scaffold_package
@@ -111,8 +117,8 @@ LESSON.cells = [
 
         def show(findings):
             for f in findings:
-                print(f"{f.code} [{f.severity}] line {f.line}: {f.message}")
-                print("    ->", f.hint)
+                print(f"{f.code} [{f.severity}] line {f.line}: {f.text('@LANG@')}")
+                print("    ->", f.hint_text("@LANG@"))
             if not findings:
                 print("no problem found")
 
@@ -283,7 +289,7 @@ LESSON.cells = [
         try:
             formula_motion(robot, ["shoulder=0.8*sin(t)", "elbow=1.2*sin(0.7*t)"])
         except bras_kit.BrasKitError as error:
-            print(error)
+            print(say(error, "@LANG@"))
 
         fixed = sample(formula_motion(robot, ["epaule=0.8*sin(t)", "coude=1.2*sin(0.7*t)"]), duration=10.0)
         print(np.allclose(fixed.positions, states.positions))
@@ -295,38 +301,64 @@ LESSON.cells = [
 
         Le fichier de lancement lit `share/bras_description/urdf/bras.urdf` et
         `share/bras_description/rviz/…` ; seuls les dossiers listés dans `data_files` de
-        `setup.py` y sont copiés (la leçon 4 le montre avec une vraie installation). La
-        vérification : chaque dossier que le lancement lit est-il installé ?
+        `setup.py` y sont copiés (la leçon 4 le montre avec une vraie installation). Plutôt que
+        de relire `setup.py` à l'œil, on demande au validateur de vérifier tout le paquet, comme
+        on le taperait dans un terminal : `bras-kit validate bras_description/`. Il lit
+        `setup.py`, `package.xml`, le fichier de lancement, la configuration RViz et le nœud sans
+        rien exécuter, et dit pour chaque problème le fichier, la ligne et la correction.
         """,
         """
         ## 3. *file not found* at launch
 
         The launch file reads `share/bras_description/urdf/bras.urdf` and
         `share/bras_description/rviz/…`; only the folders listed in `setup.py`'s `data_files` get
-        copied there (lesson 4 shows it with a real install). The check: is every folder the launch
-        reads installed?
+        copied there (lesson 4 shows it with a real install). Rather than reading `setup.py` by eye,
+        we ask the validator to check the whole package, as one would type in a terminal:
+        `bras-kit validate bras_description/`. It reads `setup.py`, `package.xml`, the launch file,
+        the RViz configuration and the node without running anything, and gives for each problem
+        the file, the line and the fix.
         """,
     ),
     code(
         """
-        launch_text = next((package / "launch").glob("*.launch.py")).read_text()
-        setup_text = (package / "setup.py").read_text()
+        def validate_folder(folder):
+            result = subprocess.run([sys.executable, "-m", "bras_kit", "validate", str(folder), "--lang", "@LANG@"],
+                                    capture_output=True, text=True)
+            print(result.stdout)
 
 
-        def folders_installed(setup_text):
-            needed = sorted(set(re.findall(r"os\\.path\\.join\\(share, '(\\w+)'", launch_text)))
-            for folder in needed:
-                ok = re.search(rf"installed\\('{folder}'", setup_text) is not None
-                print("✓" if ok else "✗", f"share/.../{folder}/")
-
-
-        folders_installed(setup_text)
+        validate_folder(package)
         """
     ),
     code(
         """
-        forgetful = "".join(line for line in setup_text.splitlines(keepends=True) if "installed('urdf'" not in line)
-        folders_installed(forgetful)
+        setup_file = package / "setup.py"
+        setup_text = setup_file.read_text()
+        setup_file.write_text("".join(line for line in setup_text.splitlines(keepends=True) if "'urdf'" not in line))
+        validate_folder(package)
+        setup_file.write_text(setup_text)
+        validate_folder(package)
+        """
+    ),
+    md(
+        """
+        Le même outil lit le nœud sans le lancer. **On casse** : un `s` oublié dans le nom du
+        topic, `'joint_state'`. Aucune erreur ne s'afficherait nulle part avec ROS : le bras
+        resterait immobile dans RViz. **On répare** : `'joint_states'`.
+        """,
+        """
+        The same tool reads the node without running it. **Break it**: an `s` forgotten in the
+        topic's name, `'joint_state'`. ROS would show no error anywhere: the arm would just stay
+        still in RViz. **Fix it**: `'joint_states'`.
+        """,
+    ),
+    code(
+        """
+        node_file = package / "bras_description" / "animation.py"
+        node_text = node_file.read_text()
+        node_file.write_text(node_text.replace("'joint_states', 10", "'joint_state', 10"))
+        validate_folder(package)
+        node_file.write_text(node_text)
         """
     ),
     md(

@@ -217,7 +217,7 @@ LESSON.cells = [
         try:
             bras_kit.expand_xacro("piege.urdf.xacro")
         except bras_kit.BrasKitError as error:
-            print(type(error).__name__, ":", error)
+            print(type(error).__name__, ":", bras_kit.say(error))
         """
     ),
     md(

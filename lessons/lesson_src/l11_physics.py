@@ -36,13 +36,14 @@ LESSON.cells = [
         import numpy as np
 
         import bras_kit
+        from bras_kit.i18n import say_error
         from bras_kit.physics.diagnostics import report_text
 
         bras_kit.set_language("@LANG@")  # the library's messages and picture words in this notebook's language
         try:
             bras_kit.simulate(bras_kit.arm(), lang="@LANG@")
         except bras_kit.ModelError as error:
-            print(error)
+            print(say_error(error))  # the error's words, in the library's language
         """
     ),
     md(

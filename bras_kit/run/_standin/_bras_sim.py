@@ -53,6 +53,9 @@ class State:
         self.same_time_count = 0
         self.same_time_ns = -1
         self.sleeps = 0
+        self.parameters: dict = {}  # --ros-args -p NAME:=VALUE, for every node
+        self.background: list = []  # executors spinning "in another thread" (threading.Thread(target=rclpy.spin))
+        self.in_background = False
         self.on_advance = None  # called with the new time (the parent watches it through shared memory)
 
 
@@ -71,15 +74,29 @@ def stop() -> None:
     raise DurationReached()
 
 
-def advance_to(t_ns: int) -> None:
-    """Move the clock forward to ``t_ns`` (never back); past the end of the run, the node stops."""
-    if t_ns > STATE.end_ns:
-        STATE.now_ns = max(STATE.now_ns, STATE.end_ns)
-        stop()
+def set_now(t_ns: int) -> None:
     if t_ns > STATE.now_ns:
         STATE.now_ns = t_ns
         if STATE.on_advance is not None:
             STATE.on_advance(t_ns)
+
+
+def advance_to(t_ns: int) -> None:
+    """Move the clock forward to ``t_ns`` (never back); past the end of the run, the node stops.
+
+    Executors spun "in another thread" run their callbacks due on the way, in time order,
+    as a real spinning thread would while the main thread sleeps."""
+    if STATE.background and not STATE.in_background:
+        STATE.in_background = True
+        try:
+            while any(executor._run_due(min(t_ns, STATE.end_ns)) for executor in STATE.background):
+                pass
+        finally:
+            STATE.in_background = False
+    if t_ns > STATE.end_ns:
+        STATE.now_ns = max(STATE.now_ns, STATE.end_ns)
+        stop()
+    set_now(t_ns)
 
 
 def idle() -> None:

@@ -3,7 +3,7 @@
 ::
 
     from bras_kit.validate.package import validate_package
-    results = validate_package("bras_description", lang="fr")   # list of FileResult, one per file
+    results = validate_package("bras_description")   # list of FileResult, one per file
 
 Nothing in the package is run: ``setup.py``, launch files and nodes are read with :mod:`ast`,
 ``.rviz`` files as YAML, ``package.xml`` with the safe XML reader. The robot description
@@ -16,9 +16,9 @@ from __future__ import annotations
 import os
 from collections.abc import Iterable
 
-from ..findings import FileResult, Finding, sort_key
-from ..i18n import DEFAULT_LANGUAGE, check_language, word
+from ..findings import FileResult, Finding, finding, sort_key
 from ..registry import select_rules
+from . import texts  # noqa: F401  (the rules' words)
 from .rules import PACKAGE_CHECKS  # importing registers the rules
 from .run_rules import RUN_CHECKS  # the rules over a run of the node (BK640-BK659)
 from .sources import PACKAGE_XML, SETUP_PY, Package
@@ -45,15 +45,15 @@ def find_packages(paths: Iterable[str]) -> list[str]:
     return out
 
 
-def validate_package(path: str, *, lang: str = DEFAULT_LANGUAGE, select: Iterable[str] = (),
+def validate_package(path: str, *, lang: str | None = None, select: Iterable[str] = (),
                      ignore: Iterable[str] = ()) -> list[FileResult]:
     """The package rules' findings, one :class:`FileResult` per file read or with a finding
     (in name order; a file the rules read and found clean has an empty result).
 
     ``select``/``ignore`` are code prefixes as for :func:`bras_kit.validate.validate`; URDF
     rule codes among them are simply not package rules. Unknown prefixes raise ValueError.
+    Findings are data, worded where shown (``lang`` is accepted for older callers, unused).
     """
-    check_language(lang)
     package = Package(path)
     by_file: dict[str, list[Finding]] = {}
     for chosen in select_rules(select, ignore):
@@ -64,7 +64,7 @@ def validate_package(path: str, *, lang: str = DEFAULT_LANGUAGE, select: Iterabl
             continue
         for found in check(package):
             file = str(found.params.get("file", ""))
-            by_file.setdefault(file, []).append(word(chosen, found, lang))
+            by_file.setdefault(file, []).append(finding(chosen, found))
     for file in package.read:
         by_file.setdefault(file, [])
     return [FileResult(package.path(file), sorted(findings, key=sort_key))

@@ -3,8 +3,9 @@
 * "file not found" at launch (BK600-BK606): what ``setup.py`` installs, what the launch file
   opens, the ament index marker, the names, the dependencies, the maintainer's email.
 * "RViz reste vide" (BK610-BK613): the ``.rviz`` configuration the launch file gives RViz.
-* "Le robot apparaît mais ne bouge pas" (BK620-BK623): who publishes ``/joint_states``, with
-  which names and within which limits, and whether ``ros2 run`` can find the node.
+* "Le robot apparaît mais ne bouge pas" (BK620-BK626): who publishes ``/joint_states``, with
+  which names and within which limits, whether ``ros2 run`` can find the node, and whether the
+  node really sends its messages, on the right topic, in radians.
 
 Every hit carries ``file`` (relative to the package folder): the finding is reported there.
 """
@@ -16,7 +17,7 @@ import re
 from collections.abc import Callable, Iterable, Iterator
 from typing import Any
 
-from ..registry import ERROR, INFO, WARNING, Hit, hit, rule
+from ..registry import ERROR, INFO, Hit, hit, rule
 from .sources import (
     INDEX_FOLDER,
     JOINT_STATE_PUBLISHERS,
@@ -96,7 +97,37 @@ def folder_not_installed(pkg: Package) -> Iterator[Hit]:
             pattern = next((f"*{s}" for s in suffixes if all(f.endswith(s) for f in left)), "*")
             yield _at(SETUP_PY, pkg.setup.data_files_line, "all" if len(left) == len(files) else "some",
                       folder=folder, files=left, package=pkg.name,
-                      entry=f"(os.path.join('share', package_name, '{folder}'), glob('{folder}/{pattern}'))")
+                      entry=_data_files_entry(pkg, folder, pattern, left))
+
+
+def _data_files_entry(pkg: Package, folder: str, pattern: str, files: list[str]) -> str:
+    """A data_files entry that works pasted into this very setup.py: it uses os, glob and
+    package_name only when the file defines them (a ``ros2 pkg create`` setup.py imports neither)."""
+    assert pkg.setup is not None
+    defined = pkg.setup.defined
+    name = "package_name" if defined.get("package_name") == "value" else repr(pkg.name)
+    if defined.get("os") == "module":
+        target = f"os.path.join('share', {name}, '{folder}')"
+    else:
+        target = f"'share/' + {name} + '/{folder}'" if name == "package_name" else f"'share/{pkg.name}/{folder}'"
+    if defined.get("glob") == "value":
+        sources = f"glob('{folder}/{pattern}')"
+    elif defined.get("glob") == "module":
+        sources = f"glob.glob('{folder}/{pattern}')"
+    else:
+        sources = "[" + ", ".join(repr(f) for f in files) + "]"
+    return f"({target}, {sources})"
+
+
+@package_rule("BK607", "setup-py-name-undefined", ERROR)
+def setup_py_name_undefined(pkg: Package) -> Iterator[Hit]:
+    """setup.py is a Python program: a name it never imports or defines stops colcon build."""
+    if pkg.setup is None:
+        return
+    fixes = {"os": "import os", "glob": "from glob import glob", "package_name": f"package_name = '{pkg.name}'",
+             "find_packages": "from setuptools import find_packages"}
+    for name, line in pkg.setup.undefined:
+        yield _at(SETUP_PY, line, "known" if name in fixes else "", undefined=name, fix=fixes.get(name, ""))
 
 
 @package_rule("BK602", "launch-opens-uninstalled-file", ERROR)
@@ -141,7 +172,7 @@ def package_name_mismatch(pkg: Package) -> Iterator[Hit]:
                   setup_line=setup.name_line)
 
 
-@package_rule("BK605", "missing-exec-depend", WARNING)
+@package_rule("BK605", "missing-exec-depend", INFO)
 def missing_exec_depend(pkg: Package) -> Iterator[Hit]:
     manifest = pkg.manifest
     if manifest is None:
@@ -324,8 +355,9 @@ def no_joint_state_source(pkg: Package) -> Iterator[Hit]:
             continue
         line = next(n.line for n in nodes if n.package == "robot_state_publisher")
         movable = [j.name for j in pkg.robot.movable_joints()] if pkg.robot is not None else []
-        yield _at(launch.path, line, "nodes" if pkg.publishers else "", joints=movable or ["?"],
-                  node=pkg.publishers[0].module if pkg.publishers else "")
+        heard = [p for p in pkg.publishers if _on_joint_states(p.topic)]  # BK624 speaks of the others
+        yield _at(launch.path, line, "nodes" if heard else "", joints=movable or ["?"],
+                  node=heard[0].module if heard else "")
 
 
 @package_rule("BK621", "joint-state-names-mismatch", ERROR)
@@ -382,6 +414,8 @@ def node_motion_outside_limits(pkg: Package) -> Iterator[Hit]:
         return
     movable = {j.name for j in robot.movable_joints()}
     for publisher in pkg.publishers:
+        if publisher.degrees:
+            continue  # BK626 names the cause: the node's angles are in degrees
         formulas = {joint: text for joint, text in publisher.formulas.items() if joint in movable}
         for joint, text, violation in _violations(robot, formulas):
             yield _at(publisher.path, publisher.formulas_line or publisher.line, violation.side,
@@ -404,3 +438,49 @@ def _violations(robot: Any, formulas: dict[str, str]) -> Iterator[tuple[str, str
         for violation in check_limits(robot, states):
             if violation.kind == "position" and violation.joint == joint:
                 yield joint, text, violation
+
+
+@package_rule("BK614", "robot-description-not-given", ERROR)
+def robot_description_not_given(pkg: Package) -> Iterator[Hit]:
+    """robot_state_publisher needs the URDF text in its robot_description parameter."""
+    for launch in pkg.launch_files:
+        for node in launch.nodes:
+            if node.package != "robot_state_publisher" or node.parameters is None:
+                continue  # parameters built in a way only running the file would tell
+            if "robot_description" not in node.parameters:
+                yield _at(launch.path, node.line, "" if node.has_parameters else "none",
+                          fix="parameters=[{'robot_description': description}]")
+
+
+# ---------------------------------------------------------------- the node, read without running it
+
+
+def _on_joint_states(topic: Any) -> bool:
+    return not isinstance(topic, str) or topic.strip().lstrip("/") == "joint_states"
+
+
+@package_rule("BK624", "joint-state-topic-wrong", ERROR)
+def joint_state_topic_wrong(pkg: Package) -> Iterator[Hit]:
+    """robot_state_publisher listens on /joint_states only: any other literal topic is heard by nobody."""
+    for publisher in pkg.publishers:
+        if not _on_joint_states(publisher.topic):
+            yield _at(publisher.path, publisher.topic_line, topic=publisher.topic,
+                      fix="self.create_publisher(JointState, 'joint_states', 10)")
+
+
+@package_rule("BK625", "joint-state-never-sent", ERROR)
+def joint_state_never_sent(pkg: Package) -> Iterator[Hit]:
+    """A JointState publisher whose message is never published, or whose callback nothing runs."""
+    for publisher in pkg.publishers:
+        if not publisher.publishes:
+            yield _at(publisher.path, publisher.line, "publish", fix="self.pub.publish(msg)")
+        elif not publisher.scheduled:
+            yield _at(publisher.path, publisher.line, "timer", fix="self.timer = self.create_timer(0.05, self.tick)")
+
+
+@package_rule("BK626", "joint-state-in-degrees", ERROR)
+def joint_state_in_degrees(pkg: Package) -> Iterator[Hit]:
+    """JointState positions are radians (metres for prismatic joints); degrees turn the arm 57 times too far."""
+    for publisher in pkg.publishers:
+        for line, what in publisher.degrees:
+            yield _at(publisher.path, line, what=what)

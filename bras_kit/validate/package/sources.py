@@ -76,6 +76,8 @@ class Setup:
     data_files_line: int
     scripts: list[EntryPoint] | None  # None when console_scripts could not be read
     scripts_line: int  # entry_points=, else the setup( call
+    undefined: list[tuple[str, int]] = field(default_factory=list)  # names setup( uses that Python will not find
+    defined: dict[str, str] = field(default_factory=dict)  # module-level names: "module" (import x) or "value"
 
 
 @dataclass(frozen=True)
@@ -86,6 +88,8 @@ class NodeCall:
     executable: Any
     arguments: Any
     line: int
+    parameters: Any = None  # the parameters= list as far as it can be read (None: not given)
+    has_parameters: bool = False
 
 
 @dataclass(frozen=True)
@@ -108,6 +112,11 @@ class Publisher:
     formulas: dict[str, str] = field(default_factory=dict)  # joint -> formula in t
     formulas_line: int | None = None
     has_main: bool = False
+    topic: Any = None  # the topic name when written literally (or as a module constant)
+    topic_line: int | None = None
+    scheduled: bool = True  # a timer or a loop calls something: False when nothing ever runs the callback
+    publishes: bool = True  # some .publish(...) call exists
+    degrees: list[tuple[int, str]] = field(default_factory=list)  # (line, what) of angles written in degrees
 
 
 def relative(root: str, path: str) -> str:
@@ -189,6 +198,8 @@ class Package:
             data_files_line=data_node.lineno if data_node is not None else call.lineno,
             scripts=_console_scripts(evaluator, entry_node),
             scripts_line=entry_node.lineno if entry_node is not None else call.lineno,
+            undefined=_undefined_names(tree, call),
+            defined=_module_names(tree),
         )
 
     @property
@@ -336,6 +347,40 @@ class Package:
 # ---------------------------------------------------------------- setup.py details
 
 
+def _module_names(tree: ast.Module) -> dict[str, str]:
+    """Names a module defines at its top level: ``import os`` -> os: module; assignments, defs -> value."""
+    out: dict[str, str] = {}
+    for node in ast.walk(tree):
+        if isinstance(node, ast.Import):
+            for alias in node.names:
+                out[alias.asname or alias.name.split(".")[0]] = "module"
+        elif isinstance(node, ast.ImportFrom):
+            for alias in node.names:
+                out[alias.asname or alias.name] = "value"
+        elif isinstance(node, (ast.FunctionDef, ast.AsyncFunctionDef)):
+            out[node.name] = "value"
+            out.update((a.arg, "value") for a in ast.walk(node.args) if isinstance(a, ast.arg))
+        elif isinstance(node, ast.ClassDef):
+            out[node.name] = "value"
+        elif isinstance(node, ast.Name) and isinstance(node.ctx, ast.Store):
+            out.setdefault(node.id, "value")
+    return out
+
+
+def _undefined_names(tree: ast.Module, call: ast.Call) -> list[tuple[str, int]]:
+    """Names read by the ``setup(...)`` call that neither the module nor Python's builtins define:
+    running setup.py (colcon build) stops there with NameError."""
+    import builtins
+
+    defined = _module_names(tree)
+    seen: dict[str, int] = {}
+    for node in ast.walk(call):
+        if isinstance(node, ast.Name) and isinstance(node.ctx, ast.Load) and node.id not in defined \
+                and not hasattr(builtins, node.id):
+            seen.setdefault(node.id, node.lineno)
+    return sorted(seen.items(), key=lambda item: item[1])
+
+
 def _data_files(evaluator: Evaluator, node: ast.expr | None) -> list[DataEntry] | None:
     if node is None:
         return []
@@ -405,9 +450,11 @@ def _launch(tree: ast.Module, rel: str, root: str) -> LaunchFile:
         name = call_name(call.func)
         if name.rsplit(".", 1)[-1] == "Node":
             arguments = keyword(call, "arguments")
+            parameters = keyword(call, "parameters")
             nodes.append(NodeCall(evaluator.value(keyword(call, "package"), scope),
                                   evaluator.value(keyword(call, "executable"), scope),
-                                  [] if arguments is None else evaluator.value(arguments, scope), call.lineno))
+                                  [] if arguments is None else evaluator.value(arguments, scope), call.lineno,
+                                  _parameter_keys(parameters), parameters is not None))
             includes = includes or nodes[-1].package == "tf2_ros"
         elif name.rsplit(".", 1)[-1] in ("IncludeLaunchDescription", "ExecuteProcess", "OpaqueFunction"):
             includes = True
@@ -416,6 +463,21 @@ def _launch(tree: ast.Module, rel: str, root: str) -> LaunchFile:
             if isinstance(value, ShareFile) and value.relative:
                 share_files.append((value, call.lineno))
     return LaunchFile(rel, nodes, share_files, includes)
+
+
+def _parameter_keys(node: ast.expr | None) -> Any:
+    """The parameter names a ``parameters=[{...}, ...]`` list gives, as a set; None when a part of
+    it cannot be read without running the file (a YAML path, a variable, a substitution)."""
+    if node is None:
+        return set()
+    if not isinstance(node, (ast.List, ast.Tuple)):
+        return None
+    keys: set[str] = set()
+    for item in node.elts:
+        if not isinstance(item, ast.Dict) or any(k is None or not isinstance(k, ast.Constant) for k in item.keys):
+            return None
+        keys |= {str(k.value) for k in item.keys if isinstance(k, ast.Constant)}
+    return keys
 
 
 # ---------------------------------------------------------------- nodes publishing JointState
@@ -465,7 +527,67 @@ def _publisher(package: Package, tree: ast.Module, rel: str) -> Publisher | None
                 formulas[joint] = text
     has_main = any(isinstance(n, ast.FunctionDef) and n.name == "main" for n in tree.body)
     module = rel[:-3].replace("/", ".")
-    return Publisher(rel, module, create.lineno, names, names_line, formulas, formulas_line, has_main)
+    topic_node = create.args[1] if len(create.args) > 1 else keyword(create, "topic")
+    topic = evaluator.value(topic_node) if topic_node is not None else None
+    scheduled = any(call_name(c.func).rsplit(".", 1)[-1] in ("create_timer", "Timer", "create_rate")
+                    for c in calls(tree)) or any(isinstance(n, (ast.While, ast.For)) and any(
+                        isinstance(m, ast.Call) for m in ast.walk(n)) for n in ast.walk(tree))
+    publishes = any(call_name(c.func).rsplit(".", 1)[-1] == "publish" for c in calls(tree))
+    degrees = [found for node in position_nodes for found in _in_degrees(node)]
+    if positions is not None and names is not None and package.robot is not None:
+        for joint, expression in zip(names, positions):
+            robot_joint = package.robot.joint(joint) if hasattr(package.robot, "joint") else None
+            if robot_joint is not None and robot_joint.type == "revolute":
+                degrees += _large_amplitudes(expression)
+    return Publisher(rel, module, create.lineno, names, names_line, formulas, formulas_line, has_main,
+                     topic, getattr(topic_node, "lineno", create.lineno), scheduled, publishes,
+                     _one_per_line(degrees))
+
+
+def _one_per_line(found: list[tuple[int, str]]) -> list[tuple[int, str]]:
+    """The first way of writing degrees seen on each line (a conversion before the 180 inside it)."""
+    out: dict[int, str] = {}
+    for line, what in found:
+        out.setdefault(line, what)
+    return sorted(out.items())
+
+
+def _in_degrees(node: ast.expr) -> list[tuple[int, str]]:
+    """``math.degrees(...)``, ``np.rad2deg(...)``, ``* 180 / math.pi``: angles turned into degrees."""
+    out = []
+    for inner in ast.walk(node):
+        if isinstance(inner, ast.Call) and call_name(inner.func).rsplit(".", 1)[-1] in ("degrees", "rad2deg"):
+            out.append((inner.lineno, ast.unparse(inner.func) + "(...)"))
+        elif isinstance(inner, ast.BinOp) and isinstance(inner.op, (ast.Mult, ast.Div)):
+            text = ast.unparse(inner)
+            if "180" in text and "pi" in text and isinstance(inner.op, ast.Div) \
+                    and ast.unparse(inner.right).endswith("pi"):
+                out.append((inner.lineno, text))
+    return out
+
+
+def _large_amplitudes(node: ast.expr) -> list[tuple[int, str]]:
+    """Numbers beyond 2 pi multiplying or added to an angle of a revolute joint: degrees, not radians."""
+    import math
+
+    out = []
+    for inner in ast.walk(node):
+        if isinstance(inner, ast.BinOp) and isinstance(inner.op, (ast.Mult, ast.Add, ast.Sub)):
+            for side in (inner.left, inner.right):
+                if isinstance(side, ast.Constant) and isinstance(side.value, (int, float)) \
+                        and not isinstance(side.value, bool) and abs(side.value) > 2 * math.pi \
+                        and not (isinstance(inner.op, ast.Mult) and _is_time_factor(inner)):
+                    out.append((inner.lineno, ast.unparse(inner)))
+        elif isinstance(inner, ast.Constant) and inner is node and isinstance(inner.value, (int, float)) \
+                and not isinstance(inner.value, bool) and abs(inner.value) > 2 * math.pi:
+            out.append((inner.lineno, ast.unparse(inner)))
+    return out
+
+
+def _is_time_factor(node: ast.BinOp) -> bool:
+    """``2 * pi * f * t`` inside sin(): a frequency, not an amplitude (the product sits in a call's argument)."""
+    return any(isinstance(n, ast.Name) and n.id in ("t", "time") or isinstance(n, ast.Attribute) and n.attr in ("t", "time")
+               for n in (node.left, node.right))
 
 
 def _imported_names(package: Package, tree: ast.Module, rel: str) -> dict[str, Any]:

@@ -111,6 +111,28 @@ class Executor:
         # spin_once(timeout_sec=0) would never see its timers come due
         _bras_sim.advance_to(max(limit, now + POLL_NS))
 
+    def _run_due(self, until_ns):
+        """One callback due by ``until_ns`` (a message waiting, else the soonest timer), run as the
+        spinning thread would; False when none is due."""
+        if self._is_shutdown or not self._context.ok():
+            return False
+        for node in list(self._nodes):
+            for subscription in node._subscriptions_list:
+                if subscription.queue and not subscription._destroyed:
+                    subscription.callback(subscription.queue.pop(0))
+                    return True
+        timers = [t for node in self._nodes if not node._destroyed
+                  for t in node._timers_list if not t._canceled and not t._destroyed and t.callback is not None]
+        if not timers:
+            return False
+        timer = min(timers, key=lambda t: t._next_call)
+        if timer._next_call > until_ns:
+            return False
+        _bras_sim.set_now(timer._next_call)
+        timer._called()
+        timer.callback()
+        return True
+
     def spin(self):
         while self._context.ok() and not self._is_shutdown:
             self.spin_once()

@@ -206,6 +206,8 @@ class Node:
             raise ParameterAlreadyDeclaredException([name])
         if name in self._parameter_overrides and not ignore_override:
             value = self._parameter_overrides[name].value
+        elif name in _bras_sim.STATE.parameters and not ignore_override:  # -p NAME:=VALUE
+            value = _bras_sim.STATE.parameters[name]
         if isinstance(value, Parameter.Type):
             value = None
         parameter = Parameter(name, value=value)

@@ -22,7 +22,7 @@ class Publisher:
         if self._destroyed or self._node._destroyed:
             raise InvalidHandle('cannot use Destroyable because destruction was requested')
         if not isinstance(msg, self.msg_type):
-            # rclpy/src/rclpy/publisher.cpp checks the type before serialising
+            # rclpy/publisher.py Publisher.publish
             raise TypeError(f'Expected {self.msg_type}, got {type(msg)}')
         fields = _bras_msgs.to_data(msg)
         _bras_sim.record(self._node.get_name(), self.topic, _bras_msgs.type_name(self.msg_type) or '?', fields)

@@ -81,7 +81,7 @@ class Rate:
             raise InvalidHandle('Rate cannot sleep because the timer has been destroyed')
         from .executors import spinning
 
-        if not spinning():
+        if not spinning() and not _bras_sim.STATE.background:
             _bras_sim.STATE.rate_sleeps += 1
         _bras_sim.advance_to(self._timer._next_call)
         self._timer._called()

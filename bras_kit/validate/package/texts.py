@@ -1,0 +1,472 @@
+"""The English words of the package rules (BK6xx). French: ``validate.po`` (msgctxt = code)."""
+
+from __future__ import annotations
+
+from ..registry import describe
+
+# ------------------------------------------------------------------ BK6xx the ROS 2 package
+
+describe(
+    "BK600",
+    title="a file of the package cannot be read",
+    message={
+        "missing": "{file} is missing: this is not a complete ament_python package",
+        "": "{file} cannot be read: {detail}",
+    },
+    hint={
+        "missing": "run 'bras-kit new' to see a complete package, or add the missing file",
+        "": "fix this line; the package rules that need this file were skipped",
+    },
+    explanation="""\
+The package checks read `package.xml` (as XML), `setup.py`, the launch files and the Python
+nodes (as Python source, without running them) and the `.rviz` files (as YAML). A file that is
+missing or cannot be parsed is reported here, and the checks that need it say nothing: fix this
+first. colcon and `ros2 launch` would fail on the same file.""",
+)
+describe(
+    "BK601",
+    title="a folder the launch needs is not installed by setup.py",
+    message={
+        "all": "setup.py does not install {folder}/ ({files}): 'ros2 launch' will say file not found",
+        "some": "setup.py does not install {files} from {folder}/: 'ros2 launch' will not find them",
+        "": "setup.py does not install {files} from {folder}/",
+    },
+    hint="add {entry} to data_files, then run colcon build again",
+    explanation="""\
+colcon copies into `install/PKG/share/PKG/` only what `data_files` in `setup.py` lists. The
+launch file then looks for the URDF (and itself is found) there, not in the source folder. A
+package that forgets `urdf/` or `launch/` builds without a word and fails at `ros2 launch`
+with "file not found": the tutorial's third pitfall. Each folder needs its own entry
+`(os.path.join('share', package_name, 'urdf'), glob('urdf/*.urdf'))`, and a new build.""",
+)
+describe(
+    "BK602",
+    title="the launch file opens a file that is not installed",
+    message={
+        "exists": "opens share/{package}/{path}: {path} exists but setup.py does not install it",
+        "other": "opens share/{package}/{path}, but setup.py installs only {installed} in {folder}/",
+        "": "opens share/{package}/{path}, which no file of the package installs",
+    },
+    hint={
+        "exists": "add {path} to data_files in setup.py, then run colcon build again",
+        "other": "use one of the installed names ({installed}), or install {path}",
+        "": "fix the file name, or add the file to the package and to data_files",
+    },
+    explanation="""\
+The launch file builds paths in the installed share folder (`get_package_share_directory`,
+`FindPackageShare`) and opens them, or passes them to a node (RViz's `-d`). Such a path must
+name a file that `setup.py` installs there, with the same folder and name: otherwise launching
+fails with "file not found" (or RViz opens with no configuration). A renamed URDF or a typo
+in the launch file is the usual cause.""",
+)
+describe(
+    "BK603",
+    title="the package is not registered in the ament index",
+    message={
+        "file": "{marker} is missing: ros2 cannot find the package {package} once installed",
+        "entry": "data_files does not install {marker} in share/ament_index/resource_index/packages: ros2 cannot find the package {package}",
+        "": "the package {package} is not registered in the ament index ({marker})",
+    },
+    hint={
+        "file": "create the empty file {marker}",
+        "": "add ('share/ament_index/resource_index/packages', ['{marker}']) to data_files",
+    },
+    explanation="""\
+`ros2 launch`, `ros2 run` and `get_package_share_directory` find installed packages through the
+ament index: an empty file named after the package, installed in
+`share/ament_index/resource_index/packages`. `ros2 pkg create` makes `resource/PKG` and the
+`data_files` entry; deleting either gives "package not found" although the build succeeded.""",
+)
+describe(
+    "BK604",
+    title="the names in package.xml and setup.py differ",
+    message="package.xml names the package '{xml_name}' but setup.py (line {setup_line}) names it '{setup_name}'",
+    hint="use one name everywhere: <name> in package.xml, package_name in setup.py, resource/NAME",
+    explanation="""\
+colcon knows the package by the `<name>` of `package.xml`; setuptools installs it under the
+name given in `setup.py`, and the launch file looks for its share folder by name. When they
+differ, files land in one folder and are looked for in another: "package not found" or
+"file not found" at launch. Renaming a package means changing all of them.""",
+)
+describe(
+    "BK605",
+    title="a package the launch file starts is not declared in package.xml",
+    message="the launch file {launch} (line {launch_line}) starts a node of '{dependency}', which package.xml does not list as <exec_depend>",
+    hint="add <exec_depend>{dependency}</exec_depend> to package.xml",
+    explanation="""\
+`rosdep install` installs what `package.xml` declares. A node started by the launch file
+but not declared works on the machine where it happens to be installed, and fails elsewhere
+with "package not found". Every package whose nodes the launch file starts
+(robot_state_publisher, joint_state_publisher_gui, rviz2...) belongs in an `<exec_depend>`.
+This is advice (info): the tutorial's own package declares none of them and runs on a machine
+where ROS 2 desktop is installed.""",
+)
+describe(
+    "BK606",
+    title="invalid maintainer email in package.xml",
+    message={
+        "none": "package.xml has no <maintainer>",
+        "missing": "maintainer '{maintainer}' has no email attribute",
+        "": "maintainer '{maintainer}' has an invalid email '{email}': colcon will not see a ROS package",
+    },
+    hint={
+        "none": 'add <maintainer email="you@example.com">Your Name</maintainer>',
+        "": 'write a real address: <maintainer email="you@example.com">',
+    },
+    explanation="""\
+colcon reads `package.xml` with catkin_pkg, which refuses a maintainer without a valid email
+address (name@domain.tld). colcon then ignores the manifest, builds the folder as a plain Python
+package and never installs the ament index marker: `ros2 launch` cannot find the package
+although the build looked fine. Placeholders such as `TODO` are the usual cause.""",
+)
+describe(
+    "BK610",
+    title="the RViz Fixed Frame is not a link of the robot",
+    message={
+        "missing": "the RViz configuration sets no Fixed Frame: RViz uses 'map', which this robot does not publish",
+        "": "Fixed Frame '{frame}' is not a link of the robot ({links}): RViz shows nothing",
+    },
+    hint="set Fixed Frame to '{root}' (Global Options > Fixed Frame)",
+    explanation="""\
+RViz draws everything relative to its Fixed Frame. When no TF frame has that name (the
+default `map`, or a link that was renamed), RViz shows "Frame does not exist" and an empty
+view: the tutorial's first pitfall. Use the robot's root link, `base` in the tutorial.""",
+)
+describe(
+    "BK611",
+    title="the RViz configuration does not show the robot model",
+    message={
+        "missing": "the RViz configuration has no RobotModel display: the arm is not drawn",
+        "disabled": "the RobotModel display is disabled: the arm is not drawn",
+        "topic": "RobotModel reads its description from '{topic}', not /robot_description",
+        "": "the RobotModel display is not set up",
+    },
+    hint={
+        "missing": "add a RobotModel display with Description Topic /robot_description, and save the configuration",
+        "disabled": "tick the RobotModel display (Enabled: true) and save the configuration",
+        "": "set Description Topic to /robot_description",
+    },
+    explanation="""\
+robot_state_publisher publishes the URDF on the topic `/robot_description`. RViz's RobotModel
+display draws the links only when it reads that topic; with another topic, or no RobotModel at
+all, RViz stays empty although everything runs: the tutorial's first pitfall.""",
+)
+describe(
+    "BK612",
+    title="the RViz configuration has no TF display",
+    message="no TF display: the link frames are not shown",
+    hint="add a TF display (Add > TF) to see each link's frame, and save the configuration",
+    explanation="""\
+The TF display draws each link's frame and names: it is how the tutorial shows what
+robot_state_publisher computes. The robot model still appears without it, so this is advice,
+not a defect.""",
+)
+describe(
+    "BK613",
+    title="RViz is started without a configuration",
+    message={
+        "unused": "rviz2 is started without -d, so {config} is not used: RViz opens empty",
+        "": "rviz2 is started without a configuration: RViz opens empty",
+    },
+    hint={
+        "unused": "pass arguments=['-d', os.path.join(get_package_share_directory('{package}'), '{config}')]",
+        "": "save a configuration to rviz/{package}.rviz, install it, and pass it with arguments=['-d', ...]",
+    },
+    explanation="""\
+Started with no `-d`, RViz opens its default configuration: Fixed Frame `map`, no robot model.
+The tutorial then sets Fixed Frame and adds RobotModel by hand, at every launch. Saving that
+configuration in the package, installing it and passing it with `-d` shows the arm at once.""",
+)
+describe(
+    "BK620",
+    title="nothing publishes /joint_states",
+    message={
+        "nodes": "the launch file starts robot_state_publisher but nothing that publishes /joint_states ({node} does, but is not started): the joints {joints} have no angle",
+        "": "the launch file starts robot_state_publisher but nothing that publishes /joint_states: the joints {joints} have no angle",
+    },
+    hint="start joint_state_publisher_gui (or your animation node) in the launch file",
+    explanation="""\
+robot_state_publisher computes the frames of moving links from the angles it receives on
+`/joint_states`. With no publisher, those links have no transform: RViz shows them at the
+origin or not at all, and nothing moves. The tutorial's second pitfall; joint_state_publisher_gui
+or an animation node must run.""",
+)
+describe(
+    "BK621",
+    title="a node publishes JointState names that are not the robot's joints",
+    message={
+        "unknown": "JointState names {names}, which are not movable joints of the robot ({joints})",
+        "missing": "JointState never names {names} (it names {published}): those joints do not move",
+        "": "JointState names do not match the robot's movable joints",
+    },
+    hint={
+        "unknown": "use the joint names of the URDF: {joints}",
+        "missing": "add {names} to the names, with a position for each",
+        "": "name every movable joint of the URDF",
+    },
+    explanation="""\
+robot_state_publisher matches JointState entries to the URDF by name. A name the robot does
+not have is ignored; a movable joint that is never named has no transform, so its child link
+and everything after it do not move (or disappear from RViz). The usual cause: a joint added
+to the URDF, such as the tutorial's `poignet`, but not to the node's `msg.name`.""",
+)
+describe(
+    "BK622",
+    title="a node has no console_scripts entry point",
+    message={
+        "launch": "the launch file starts '{executable}' of {package}, but setup.py declares no console_scripts entry of that name",
+        "node": "{node_file} publishes JointState and has main(), but no console_scripts entry runs it",
+        "module": "console_scripts entry '{executable}' points to {module}, which does not exist",
+        "function": "console_scripts entry '{executable}' points to {module}:{function}, which is not defined",
+        "": "a node has no console_scripts entry point",
+    },
+    hint={
+        "launch": "add {entry} to entry_points['console_scripts'] in setup.py",
+        "node": "add {entry} to entry_points['console_scripts'] in setup.py",
+        "": "point the entry at an existing module and function (module.path:main)",
+    },
+    explanation="""\
+`ros2 run PKG NAME` and a launch file's `Node(package=PKG, executable=NAME)` run the programs
+that `setup.py` declares under `entry_points['console_scripts']` (`'NAME = PKG.module:main'`).
+A node without an entry is never installed as a program: "No executable found", and the robot
+does not move.""",
+)
+describe(
+    "BK623",
+    title="a node's motion leaves the joint limits",
+    message={
+        "upper": "joint '{joint}' follows {formula}: above its upper limit {bound} from t = {time} s, up to {value} {unit}",
+        "lower": "joint '{joint}' follows {formula}: below its lower limit {bound} from t = {time} s, down to {value} {unit}",
+        "": "joint '{joint}' follows {formula}, which leaves its limits",
+    },
+    hint="shrink the amplitude so that it stays between lower and upper, or widen the URDF's limits",
+    explanation="""\
+When a node writes its positions as literal formulas (`0.8 * math.sin(t)`), bras-kit follows
+each one for a minute with the same limit checks as `--motion` and compares it with the
+joint's `<limit>`. robot_state_publisher draws what it receives, so the arm goes past its
+stops in RViz, and a real robot or a simulator would refuse it: the tutorial's fifth pitfall.
+Formulas that are not literal (read from parameters, computed elsewhere) are not judged.""",
+)
+
+# ------------------------------------------------------------------ BK6xx the ROS 2 package
+
+describe(
+    "BK640",
+    title="the node raised an exception when run",
+    message="the node raised {kind} at t = {time} s of simulated time: {detail}",
+    hint="the traceback above shows your file and line; ros2 run would stop the node there too",
+    explanation="""\
+`bras-kit run` ran the node's `main()` against its stand-in for rclpy, and the node's own code
+raised. The stand-in checks what real rclpy checks: a message field given the wrong type (a
+list of integers for `position`, a float for `name`) fails as the generated message classes
+assert it; a Node made before `rclpy.init()`, or spun after `destroy_node()`, fails like
+rclpy. The traceback keeps your frames only, and the simulated time tells at which tick.""",
+)
+describe(
+    "BK641",
+    title="the node uses a part of ROS 2 that bras-kit does not simulate",
+    message="the node uses {what} (at t = {time} s), which bras-kit run does not simulate",
+    hint="run it with ros2 run on a ROS 2 machine, the real thing; bras-kit run covers rclpy's basics (nodes, publishers, subscriptions, timers, rates, parameters, logs) and common messages",
+    explanation="""\
+The stand-in covers what the tutorial's node and beginner nodes use: `rclpy.init/spin/
+spin_once/shutdown`, `Node` with publishers, subscriptions, timers, rates, parameters, clock
+and logger, QoS profiles, and the messages of sensor_msgs (JointState), std_msgs,
+builtin_interfaces and geometry_msgs. Services, actions, tf2, launch and other message
+packages are not simulated: the run stops there rather than pretend.""",
+)
+describe(
+    "BK642",
+    title="the node publishes in a loop that lets no time pass",
+    message="the node published thousands of messages on {topics} without any time passing (stopped at t = {time} s)",
+    hint="publish from a timer (create_timer) and spin, or sleep in the loop (time.sleep(0.05))",
+    explanation="""\
+A `while` loop that publishes and never sleeps, spins or waits sends messages as fast as the
+processor allows: hundreds of thousands per second on a real machine, a flood for
+robot_state_publisher and RViz, and one CPU core at 100 %. bras-kit's clock never moves in
+such a loop, so the run stops it after ten thousand messages at the same instant.""",
+)
+describe(
+    "BK643",
+    title="rate.sleep() with no executor spinning: a real node would block",
+    message="the node called rate.sleep() {count} times with no executor spinning in another thread",
+    hint="use create_timer and rclpy.spin, or spin the node in a thread before the loop",
+    explanation="""\
+In rclpy, `Rate.sleep()` waits for a timer that an executor must be spinning, in another
+thread (rclpy/timer.py). A node that calls it in its main loop without spinning elsewhere
+blocks forever at its first sleep under `ros2 run`. bras-kit's simulated clock lets the loop go
+on so the rest can be checked, and reports it here.""",
+)
+describe(
+    "BK644",
+    title="nothing was published on /joint_states",
+    message={
+        "other": "nothing was published on /joint_states; the JointState messages went to {topics} ({count} messages): robot_state_publisher does not listen there",
+        "type": "/joint_states carried {types}, not sensor_msgs/msg/JointState",
+        "silent": "the node made a JointState publisher on {topic} but never published on it in {time} s",
+        "": "nothing was published on /joint_states in {time} s (topics published: {topics})",
+    },
+    hint={
+        "other": "create the publisher on 'joint_states' (or '/joint_states'), the topic robot_state_publisher subscribes to",
+        "type": "publish sensor_msgs.msg.JointState messages on /joint_states",
+        "silent": "call publish(msg) at each tick (in the timer's callback), and spin the node",
+        "": "create a JointState publisher on 'joint_states' and publish from a timer",
+    },
+    explanation="""\
+robot_state_publisher takes the joint angles from `/joint_states` and nowhere else. A node
+that publishes on `joint_state` or `/arm/joint_states` is valid ROS (any such name is a legal
+topic) but nobody reads it: the robot appears and does not move, the tutorial's second
+pitfall. Publishing nothing at all (no timer, no spin, `publish` forgotten) looks the same.""",
+)
+describe(
+    "BK645",
+    title="JointState name and position lists of different lengths",
+    message="a JointState names {names} joints but gives {positions} positions (t = {time} s; {count} such messages)",
+    hint="give one position per name, in the same order",
+    explanation="""\
+robot_state_publisher pairs `name[i]` with `position[i]`. When the two lists differ in length it
+drops the whole message with an error ("has 2 joint names but 3 positions"), so the arm does not
+move at all, even for the joints that were right.""",
+)
+describe(
+    "BK646",
+    title="the node names joints the robot does not have",
+    message="the node's JointState names {names}, which are not movable joints of the robot ({joints})",
+    hint="use the joint names of the URDF: {joints}",
+    explanation="""\
+robot_state_publisher matches JointState entries to the URDF by name and ignores the others. A
+misspelt name (`Coude`, `elbow`, `coude_joint`) therefore leaves that joint without an angle,
+though the node runs without an error. The run shows the names actually sent.""",
+)
+describe(
+    "BK647",
+    title="movable joints the node never names",
+    message="the node's JointState never names {names} (it names {published}): those joints do not move",
+    hint="add {names} to msg.name, with a position for each",
+    explanation="""\
+A movable joint that never appears on `/joint_states` has no transform: robot_state_publisher
+cannot place its child link, which RViz then shows at the origin or not at all. The usual cause
+is a joint added to the URDF (the tutorial's `poignet`) but not to the node's message.""",
+)
+describe(
+    "BK648",
+    title="a position that is not a number",
+    message="joint '{joint}' was sent the position {value} at t = {time} s",
+    hint="check the computation (a division by zero, math.inf, a NaN read from a sensor)",
+    explanation="""\
+A JointState message accepts NaN and infinity (the generated classes only check the type), but
+no transform can be computed from them: robot_state_publisher publishes garbage frames and RViz
+draws nothing or warns. The run reports the first such value of each joint.""",
+)
+describe(
+    "BK649",
+    title="positions published past the joint limits",
+    message={
+        "upper": "joint '{joint}' was sent {value} {unit} at t = {time} s, above its upper limit {bound} ({count} messages past it, first at t = {first} s)",
+        "lower": "joint '{joint}' was sent {value} {unit} at t = {time} s, below its lower limit {bound} ({count} messages past it, first at t = {first} s)",
+        "degrees": "joint '{joint}' was sent {value} at t = {time} s, past its limit {bound}: it looks like degrees ({count} messages, first at t = {first} s)",
+    },
+    hint={
+        "upper": "keep the positions between the URDF's lower and upper limits (in radians)",
+        "lower": "keep the positions between the URDF's lower and upper limits (in radians)",
+        "degrees": "JointState positions are radians: convert with math.radians()",
+    },
+    explanation="""\
+robot_state_publisher draws whatever it receives: past a `<limit>` the arm goes through its own
+stops in RViz, and a real robot or simulator would refuse the command. The tutorial's fifth
+pitfall, seen in the messages the node actually sent (degrees instead of radians are the most
+common cause).""",
+)
+describe(
+    "BK650",
+    title="header.stamp left at zero",
+    message="{count} of {total} JointState messages have header.stamp at zero",
+    hint="set msg.header.stamp = self.get_clock().now().to_msg() before publishing",
+    explanation="""\
+robot_state_publisher stamps the frames it publishes with the JointState's time. A stamp of zero
+(1 January 1970) makes the transforms look more than fifty years old: RViz and tf2 refuse to use them
+("extrapolation into the past") or use them late. The tutorial's node stamps each message with
+the node's clock for this reason.""",
+)
+describe(
+    "BK651",
+    title="publication rate far from the timer's",
+    message="/joint_states was published at {rate} Hz, but the timer of {period} s asks for {expected} Hz",
+    hint="publish once per timer callback (not in a loop inside it, not only sometimes)",
+    explanation="""\
+A node with one timer that publishes once per tick sends messages at the timer's rate (20 Hz
+for the tutorial's 0.05 s). A very different rate means the callback publishes several times,
+or only now and then, or that another loop publishes: the motion in RViz then jerks or races.""",
+)
+describe(
+    "BK624",
+    title="the node publishes JointState on another topic than /joint_states",
+    message="the node publishes its JointState on '{topic}': robot_state_publisher listens on /joint_states only, so the arm never moves",
+    hint="publish on 'joint_states': {fix}",
+    explanation="""\
+robot_state_publisher subscribes to `/joint_states` and nothing else. A publisher created on
+`'joint_state'`, `'/joint_states/'` misspelled or any other name sends its messages to a topic
+nobody listens to: no error anywhere, the arm simply stays still in RViz (the tutorial's
+"le robot ne bouge pas"). The topic is read from the `create_publisher` call, written literally
+or as a constant of the module; `'joint_states'` and `'/joint_states'` are both right.""",
+)
+describe(
+    "BK625",
+    title="the node never sends its JointState",
+    message={
+        "publish": "the node creates a JointState publisher but never calls publish(): nothing reaches /joint_states",
+        "timer": "the node creates a JointState publisher but no timer or loop ever runs the code that publishes: nothing reaches /joint_states",
+    },
+    hint={
+        "publish": "publish the message at the end of the callback: {fix}",
+        "timer": "schedule the callback in __init__: {fix}",
+    },
+    explanation="""\
+Creating a publisher sends nothing by itself. The tutorial's node builds a JointState in
+`tick()`, sends it with `self.pub.publish(msg)`, and `self.create_timer(0.05, self.tick)` calls
+`tick()` twenty times a second while `rclpy.spin()` runs. Without the timer (and without a loop
+of its own) the callback never runs; without `publish()` the message is built and thrown away.
+Either way robot_state_publisher receives no angle and the arm does not move.""",
+)
+describe(
+    "BK626",
+    title="the node publishes angles in degrees",
+    message="the node writes its angles in degrees ({what}): JointState positions are radians, so the arm turns 57 times too far",
+    hint="give radians: drop the conversion (math.radians(45) if you think in degrees; 0.8 rad is about 46 degrees)",
+    explanation="""\
+Every angle in ROS is in radians: URDF limits, `JointState.position`, TF. A node that converts
+with `math.degrees(...)`, multiplies by `180 / math.pi`, or writes amplitudes such as `45 *
+math.sin(t)` for a revolute joint sends numbers 57 times too large: the arm spins through its
+stops in RViz, and a real controller would refuse them. An amplitude beyond 2 pi (a full turn)
+on a revolute joint is read as degrees.""",
+)
+describe(
+    "BK607",
+    title="setup.py uses a name it never imports or defines",
+    message="setup.py uses '{undefined}', which it never imports or defines: colcon build will stop with NameError: name '{undefined}' is not defined",
+    hint={
+        "known": "add this line at the top of setup.py: {fix}",
+        "": "import or define '{undefined}' before setup(...), or write its value instead",
+    },
+    explanation="""\
+colcon builds an ament_python package by running its `setup.py` as a Python program. The
+tutorial's data_files lines call `os.path.join(...)` and `glob(...)` and use `package_name`:
+they need `import os`, `from glob import glob` and `package_name = '...'` at the top of the
+file. A `setup.py` made by `ros2 pkg create` defines `package_name` but imports neither `os`
+nor `glob`, so pasting the tutorial's lines there alone stops the build with `NameError`.""",
+)
+describe(
+    "BK614",
+    title="robot_state_publisher is started without robot_description",
+    message={
+        "none": "the launch file starts robot_state_publisher without parameters: it never gets the robot_description, so RViz stays empty",
+        "": "the launch file starts robot_state_publisher without a robot_description parameter: RViz stays empty",
+    },
+    hint="read the installed URDF and pass its text: {fix}",
+    explanation="""\
+robot_state_publisher learns the robot's shape from one parameter, `robot_description`, which
+holds the URDF's text (not its path). The tutorial's launch file reads the installed
+`urdf/bras.urdf` and passes `parameters=[{'robot_description': description}]`. Without it the
+node waits for a description that never comes: no `/robot_description`, no TF frames, and
+RViz's RobotModel stays empty. Parameters given as a YAML file or built by substitutions are
+not judged here.""",
+)

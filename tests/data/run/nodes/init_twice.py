@@ -1,0 +1,6 @@
+import rclpy
+
+
+def main():
+    rclpy.init()
+    rclpy.init()  # once is enough

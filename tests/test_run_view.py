@@ -1,0 +1,80 @@
+"""bras-kit view --node in a real browser (Debian's chromium, Playwright): the forearm moves the way
+the learner's node moved it. Oracle: pixels of the orange forearm in screenshots."""
+
+from __future__ import annotations
+
+import signal
+import subprocess
+import sys
+import time
+from pathlib import Path
+
+import numpy as np
+import pytest
+
+pytestmark = pytest.mark.slow
+
+TUTORIAL = Path(__file__).parent / "data" / "run" / "tutorial_node"
+CHROMIUM = "/usr/bin/chromium"
+ARGS = ["--no-sandbox", "--disable-background-networking", "--disable-component-update", "--disable-sync",
+        "--no-first-run", "--use-angle=swiftshader", "--enable-unsafe-swiftshader"]
+SCENE = (slice(0, 700), slice(0, 590))  # the 3D view left of the panel
+
+
+def _free_port() -> int:
+    import socket
+
+    with socket.socket() as probe:
+        probe.bind(("127.0.0.1", 0))
+        return int(probe.getsockname()[1])
+
+
+def _orange(page) -> np.ndarray:
+    from io import BytesIO
+
+    from PIL import Image
+
+    image = np.asarray(Image.open(BytesIO(page.screenshot(timeout=120_000))).convert("RGB"))[SCENE].astype(int)
+    r, g, b = image[..., 0], image[..., 1], image[..., 2]
+    return np.argwhere((r > 120) & (r - b > 100) & (g > 0.35 * r) & (g < 0.7 * r))
+
+
+def _wait(condition, seconds=20.0):
+    end = time.monotonic() + seconds
+    while time.monotonic() < end:
+        if condition():
+            return True
+        time.sleep(0.05)
+    return condition()
+
+
+def test_view_node_shows_the_forearm_moving_as_the_node_moves_it():
+    from playwright.sync_api import sync_playwright
+
+    port = _free_port()
+    process = subprocess.Popen([sys.executable, "-m", "bras_kit", "view", "--node", f"{TUTORIAL}:animation",
+                                "--no-browser", "--port", str(port), "--lang", "en"],
+                               stdout=subprocess.PIPE, stderr=subprocess.PIPE, text=True)
+    try:
+        assert f"http://127.0.0.1:{port}" in process.stdout.readline()
+        with sync_playwright() as playwright:
+            browser = playwright.chromium.launch(executable_path=CHROMIUM, headless=True, args=ARGS)
+            page = browser.new_page(viewport={"width": 1000, "height": 700})
+            page.goto(f"http://127.0.0.1:{port}")
+            page.wait_for_selector("text=coude", timeout=60_000)
+            assert _wait(lambda: len(_orange(page)) > 200), "the forearm is not drawn"
+            assert "animation.csv" in page.inner_text("body")  # the motion is the node's recording
+            page.get_by_text("Play", exact=True).click()
+            centres = []
+            for _ in range(12):  # over a few seconds of the node's 10 s
+                time.sleep(0.3)
+                pixels = _orange(page)
+                if len(pixels) > 200:
+                    centres.append(pixels.mean(axis=0))
+            browser.close()
+        spread = np.ptp(np.array(centres)[:, 1])
+        assert len(centres) >= 8 and spread > 40, f"the forearm did not move: {spread:.0f} px"
+    finally:
+        process.send_signal(signal.SIGINT)
+        _, err = process.communicate(timeout=30)
+    assert "Traceback" not in err
