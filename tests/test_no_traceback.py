@@ -79,7 +79,7 @@ def _file_cases() -> list[tuple[str, str, str]]:
 
 
 def test_the_table_covers_every_command_that_reads_or_writes():
-    listed = set(FILE_COMMANDS) | set(OUTPUTS) | set(EXTRA) | {"demo", "new", "explain", "grade"}
+    listed = set(FILE_COMMANDS) | set(OUTPUTS) | set(EXTRA) | {"demo", "new", "explain", "grade", "doctor"}
     assert set(COMMANDS) <= listed
 
 

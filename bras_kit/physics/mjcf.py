@@ -94,7 +94,7 @@ def quiet_mujoco() -> Iterator[list[str]]:
     folder; bras-kit writes nothing but the outputs asked for, and reports instability itself
     (the simulation's time and joint, from ``MjData.warning``).
     """
-    import mujoco
+    mujoco = backends.mujoco()
 
     collected: list[str] = []
     previous = mujoco.get_mju_user_warning()

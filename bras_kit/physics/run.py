@@ -226,7 +226,7 @@ _UNSTABLE = ("mjWARN_BADQPOS", "mjWARN_BADQVEL", "mjWARN_BADQACC")
 
 def _steps(model, data, steps: int, start: float, timestep: float) -> Divergence | None:  # type: ignore[no-untyped-def]
     """Step ``steps`` times; stop at the first step MuJoCo finds unstable (it then resets the state)."""
-    import mujoco
+    mujoco = backends.mujoco()
 
     kinds = [int(getattr(mujoco.mjtWarning, name)) for name in _UNSTABLE]
     before = [int(data.warning[kind].number) for kind in kinds]
