@@ -99,16 +99,6 @@ def test_every_mo_file_is_compiled_from_its_po(po):
     assert mo.read_bytes() == expected.getvalue(), f"{mo} is older than {po.name}: run python -m bras_kit.i18n compile"
 
 
-def test_library_messages_are_translated_with_their_holes_filled():
-    from bras_kit.i18n import translate_message
-
-    assert translate_message("unknown joint 'genou'", "fr") == "articulation inconnue 'genou'"
-    assert translate_message("movable joints: epaule, coude", "fr") == "articulations mobiles: epaule, coude"
-    assert translate_message("coude goes past its upper limit 2 by 0.499 rad at t=1.55 s (first at t=0.95 s, "
-                             "26 samples)", "fr") == \
-        "coude dépasse sa limite haute 2 de 0.499 rad à t=1.55 s (dès t=0.95 s, 26 échantillons)"
-
-
 # ------------------------------------------------------------------ the commands, in French
 
 # English words that must not reach a French learner (whole words, any case). "options:" is left out:
