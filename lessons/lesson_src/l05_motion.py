@@ -307,7 +307,7 @@ LESSON.cells = [
             for line in summary(recording):
                 print(say(line))
             for finding in run_findings(recording, robot):
-                print(finding.code, finding.message)
+                print(finding.code, finding.text())
             return recording
 
 
