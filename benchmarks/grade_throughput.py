@@ -7,7 +7,10 @@ each, the same without pictures, and the same through a 2-worker Dask LocalClust
 before the clock: a cluster outlives one class). Every figure includes the command's start-up
 and the writing of the report (CSV, JSON, one HTML page per learner).
 
-    python benchmarks/grade_throughput.py [--sizes 50 500]
+    python benchmarks/grade_throughput.py [--sizes 50 500] [--robot ur5]
+
+With --robot ur5 every learner hands in the UR5 of example-robot-data (meshes and their
+colours in every picture; target of issue 25: 200 of them at 20 or more per second).
 """
 
 from __future__ import annotations
@@ -30,6 +33,26 @@ def make_class(folder: Path, count: int) -> None:
         (folder / f"learner{k:04d}.urdf").write_text(texts[k % len(texts)])
 
 
+def make_mesh_class(folder: Path, count: int) -> None:
+    """``count`` copies of example-robot-data's UR5 (7 .dae visuals, 7 .stl collisions), each a
+    folder with its URDF naming its meshes by relative paths; mesh files are hard links."""
+    import os
+    import site
+
+    share = next(Path(base) / "cmeel.prefix" / "share" / "example-robot-data" for base in site.getsitepackages()
+                 if (Path(base) / "cmeel.prefix" / "share" / "example-robot-data").is_dir())
+    ur = share / "robots" / "ur_description"
+    prefix = "package://example-robot-data/robots/ur_description/meshes/ur5/"
+    text = (ur / "urdf" / "ur5_robot.urdf").read_text().replace(prefix, "meshes/")
+    for k in range(count):
+        learner = folder / f"learner{k:04d}"
+        for kind in ("visual", "collision"):
+            (learner / "meshes" / kind).mkdir(parents=True)
+            for mesh in (ur / "meshes" / "ur5" / kind).iterdir():
+                os.link(mesh, learner / "meshes" / kind / mesh.name)
+        (learner / "ur5.urdf").write_text(text)
+
+
 def timed(command: list[str]) -> float:
     start = time.perf_counter()
     subprocess.run(command, capture_output=True, check=False)
@@ -46,6 +69,8 @@ def check_urdf_loop(folder: Path) -> float:
 def main() -> None:
     parser = argparse.ArgumentParser()
     parser.add_argument("--sizes", type=int, nargs="+", default=[50, 500])
+    parser.add_argument("--robot", choices=["arm", "ur5"], default="arm",
+                        help="ur5: every learner hands in example-robot-data's UR5 with its meshes (issue 25)")
     args = parser.parse_args()
     bras_kit = [sys.executable, "-m", "bras_kit", "grade"]
     print(f"{'submissions':>11}  {'check_urdf loop':>16}  {'grade --jobs 2':>15}  {'no pictures':>12}  {'Dask 2 workers':>15}")
@@ -53,7 +78,7 @@ def main() -> None:
         with tempfile.TemporaryDirectory() as tmp:
             folder = Path(tmp) / "class"
             folder.mkdir()
-            make_class(folder, size)
+            (make_mesh_class if args.robot == "ur5" else make_class)(folder, size)
             peer = check_urdf_loop(folder) if shutil.which("check_urdf") else float("nan")
             pool = timed([*bras_kit, str(folder), "-o", f"{tmp}/a", "--jobs", "2"])
             bare = timed([*bras_kit, str(folder), "-o", f"{tmp}/b", "--jobs", "2", "--no-pictures"])

@@ -9,7 +9,7 @@ load (see _process.py for the fairness rules); the medians and their ratio are p
 the GIF sizes. bras-kit draws its built-in arm; the script loads the same arm's URDF file.
 --robot draws a URDF file instead of the tutorial arm (bras-kit only: the peer script knows the arm's joints), e.g. Talos
 from example-robot-data (60 links, 206k triangles): --robot .../talos_data/robots/talos_full_v2.urdf
---package-path .../cmeel.prefix/share (target: under 10 s).
+--package-path .../cmeel.prefix/share (target of issue 25: at most 5 s).
 """
 
 from __future__ import annotations

@@ -199,6 +199,21 @@ def check_cache() -> Check:
                    "set XDG_CACHE_HOME to a folder you own"))
 
 
+def check_mesh_cache() -> Check:
+    """The decoded meshes kept in the cache folder (:mod:`bras_kit.meshes`): how many, how large."""
+    from .meshes import cache_info, disk_cache_enabled
+    from .meshes.cache import MAX_BYTES
+
+    info = cache_info()
+    found = M("{meshes}, {size:.1f} MB of at most {limit:.0f} MB, in {path}",
+              meshes=Mn("{n} decoded mesh", "{n} decoded meshes", info.entries), size=info.bytes / 1e6,
+              limit=MAX_BYTES / 1e6, path=info.folder)
+    if not disk_cache_enabled():
+        return Check(M("mesh cache"), NOTE, found,
+                     M("BRAS_KIT_NO_CACHE is set: every command decodes its mesh files again"))
+    return Check(M("mesh cache"), OK, found)
+
+
 CHECKS: list[Callable[[], Check]] = [
     check_versions,
     check_opengl,
@@ -206,6 +221,7 @@ CHECKS: list[Callable[[], Check]] = [
     check_viewer_client,
     check_browser,
     check_cache,
+    check_mesh_cache,
 ]
 
 

@@ -47,7 +47,10 @@ class BrasKitError(Exception):
 
 
 class XMLSafetyError(BrasKitError):
-    """The XML holds a DTD, an entity declaration or an external entity: refused, never expanded."""
+    """The XML holds a DTD, an entity declaration or an external entity: refused, never expanded.
+    ``kind`` says which: ``dtd``, ``attlist``, ``entity``, ``external`` or ``undefined``."""
+
+    kind = ""
 
 
 class XMLSyntaxError(BrasKitError):

@@ -23,7 +23,7 @@ from dataclasses import dataclass
 import numpy as np
 
 from .errors import ParameterError, TimeInJointValueError, UnsafeExpressionError
-from .message import M, Message, Mn
+from .message import M, Mc, Message, Mn
 
 MAX_LENGTH = 1000  # characters of a formula
 MAX_DEPTH = 100  # nesting of operations (a sum of n terms nests n deep)
@@ -184,7 +184,7 @@ def compile_expression(text: str, *, prefix: str = "") -> Expression:
         if not exc.offset or exc.offset > len(source):  # Python says 0 when the text stops short
             column, why = lead + len(source), M("it ends too early")
         else:  # Python's own words, quoted after the sentence that says what went wrong
-            column, why = lead + exc.offset - 1, exc.msg
+            column, why = lead + exc.offset - 1, Mc("python", "{reason}", reason=exc.msg)
         raise _error(ParameterError, M("the formula is not valid: {why}", why=why), text, column, prefix) from None
     except (RecursionError, MemoryError, ValueError):
         raise _error(UnsafeExpressionError, M("the formula is nested too deeply"), text, 0, prefix) from None

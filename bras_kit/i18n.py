@@ -17,14 +17,13 @@ from __future__ import annotations
 
 import gettext as _gettext
 import os
-import re
 import sys
 from collections.abc import Callable, Mapping
 from functools import cache
 from pathlib import Path
 from typing import Any
 
-from .message import Message, english_template, fill
+from .message import M, Message, english_template, fill
 
 LANGUAGES = ("en", "fr")
 DEFAULT_LANGUAGE = "en"
@@ -41,7 +40,7 @@ def resolve_language(value: str | None = None, environ: Mapping[str, str] | None
         if chosen not in LANGUAGES:
             from .errors import ParameterError
 
-            raise ParameterError(f"unknown language '{chosen}'", hint="use --lang en or --lang fr")
+            raise ParameterError(M("unknown language '{lang}'", lang=chosen), hint=M("use --lang en or --lang fr"))
         return chosen
     for var in ("LC_ALL", "LC_MESSAGES", "LANG"):
         found = env.get(var, "")
@@ -95,8 +94,6 @@ def say(text: Any, lang: str | None = None) -> str:
 
     if isinstance(text, BrasKitError):
         return say_error(text, lang)
-    if isinstance(text, str):  # transition: a finished English sentence (removed with translate_message)
-        return translate_message(text, lang)
     return "" if text is None else str(text)
 
 
@@ -134,41 +131,6 @@ def say_error(error: Any, lang: str | None = None, *, with_hint: bool = True) ->
     return text
 
 
-def _(message: str, domain: str = "cli") -> str:
-    """``message`` in the current language (library code: errors, titles, tables)."""
-    return translator(current_language(), domain)(message)
-
-
-@cache
-def _templates(lang: str, domain: str) -> list[tuple[re.Pattern[str], str]]:
-    """The catalog's entries holding ``{}`` holes, as patterns matching a filled-in message."""
-    table = getattr(catalog(lang, domain), "_catalog", {})
-    out = []
-    for msgid, msgstr in table.items():
-        if isinstance(msgid, str) and "{}" in msgid and msgstr:
-            pattern = "^" + "(.+?)".join(re.escape(part) for part in msgid.split("{}")) + "$"
-            out.append((re.compile(pattern, re.S), msgstr))
-    return out
-
-
-def translate_message(text: str, lang: str | None = None, domain: str = "cli") -> str:
-    """A finished English message in ``lang``: an exact entry, or an entry with ``{}`` holes
-    (``"unknown joint '{}'"``) whose holes are filled with what the English message held."""
-    lang = lang or current_language()
-    if lang == DEFAULT_LANGUAGE or not text:
-        return text
-    exact = translator(lang, domain)(text)
-    if exact != text:
-        return exact
-    for pattern, msgstr in _templates(lang, domain):
-        found = pattern.match(text)
-        if found:
-            pieces = msgstr.split("{}")
-            return "".join(p + (found.group(i + 1) if i < len(pieces) - 1 else "")
-                           for i, p in enumerate(pieces))
-    return text
-
-
 def domains() -> list[str]:
     return sorted(p.stem for p in (LOCALE_DIR / "fr" / "LC_MESSAGES").glob("*.po"))
 
@@ -186,7 +148,6 @@ def compile_catalogs() -> list[Path]:
             write_mo(handle, messages, use_fuzzy=False)
         written.append(po.with_suffix(".mo"))
     catalog.cache_clear()
-    _templates.cache_clear()
     return written
 
 

@@ -111,10 +111,43 @@ def extract_file(path: Path, root: Path = PACKAGE_ROOT) -> list[Extracted]:
             for context, text, plural, line, _call in calls_in(tree) if text]
 
 
+# Jinja templates whose {% trans %} blocks go into a domain: folder (under the repository's
+# templates/) -> domain. The package templates are the generated ROS 2 package's prose.
+TEMPLATE_DOMAINS = {"package": "package"}
+
+
+def templates_root() -> Path:
+    from ._resources import templates_dir
+
+    return Path(templates_dir())
+
+
+def extract_templates() -> list[Extracted]:
+    """Every ``{% trans %}`` block of the Jinja templates, read with Jinja's own Babel extractor
+    (the same parser that renders them, so ids match what ``gettext`` is asked at run time)."""
+    from jinja2.ext import babel_extract
+
+    found: list[Extracted] = []
+    for folder, domain in TEMPLATE_DOMAINS.items():
+        for path in sorted((templates_root() / folder).rglob("*.j2")):
+            options = {"extensions": "jinja2.ext.i18n", "trim_blocks": "true", "lstrip_blocks": "true",
+                       "keep_trailing_newline": "true"}
+            with path.open("rb") as handle:
+                for line, function, message, _comments in babel_extract(handle, ("_", "gettext", "ngettext"), [],
+                                                                        options):
+                    singular = message[0] if isinstance(message, tuple) else message
+                    plural = message[1] if isinstance(message, tuple) and function == "ngettext" else None
+                    if singular:
+                        found.append(Extracted(domain, singular, plural, None, str(path), line))
+    return found
+
+
 def extract_all(root: Path = PACKAGE_ROOT) -> list[Extracted]:
     found: list[Extracted] = []
     for path in sorted(root.rglob("*.py")):
         found.extend(extract_file(path, root))
+    if root == PACKAGE_ROOT:
+        found.extend(extract_templates())
     return found
 
 

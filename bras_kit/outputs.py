@@ -22,8 +22,8 @@ import tempfile
 from collections.abc import Callable, Iterator
 from typing import Any
 
-from .errors import BrasKitError, OutputExistsError
-from .i18n import _
+from .errors import BrasKitError, OutputExistsError, os_reason
+from .message import M, Message
 
 STDOUT = "-"
 
@@ -32,14 +32,14 @@ class OutputError(BrasKitError):
     """A file cannot be written where the user asked."""
 
 
-def _describe(mode: int) -> str:
+def _describe(mode: int) -> Message:
     if stat.S_ISLNK(mode):
-        return "a symbolic link"
+        return M("a symbolic link")
     if stat.S_ISDIR(mode):
-        return "a folder"
+        return M("a folder")
     if stat.S_ISREG(mode):
-        return "a file"
-    return "a special file"
+        return M("a file")
+    return M("a special file")
 
 
 def check_output(path: str, force: bool, *, make_parents: bool = False, option: str = "-o") -> None:
@@ -51,27 +51,31 @@ def check_output(path: str, force: bool, *, make_parents: bool = False, option: 
     except FileNotFoundError:
         info = None
     except OSError as exc:
-        raise OutputError(f"cannot write {path}: {exc.strerror}") from None
+        raise OutputError(M("cannot write {path}: {reason}", path=path, reason=os_reason(exc))) from None
     if info is not None:
         kind = _describe(info.st_mode)
         if stat.S_ISDIR(info.st_mode):
-            raise OutputError(f"{path} is a folder", hint=f"give a file name to {option}, e.g. {os.path.join(path, 'out')}")
+            raise OutputError(M("{path} is a folder", path=path),
+                              hint=M("give a file name to {option}, e.g. {example}", option=option,
+                                     example=os.path.join(path, "out")))
         if not force:
-            raise OutputExistsError(f"{path} already exists ({kind})",
-                                    hint=f"pass --force to replace it, or choose another {option}")
+            raise OutputExistsError(M("{path} already exists ({kind})", path=path, kind=kind),
+                                    hint=M("pass --force to replace it, or choose another {option}", option=option))
         if not (stat.S_ISREG(info.st_mode) or stat.S_ISLNK(info.st_mode)):
-            raise OutputError(f"{path} is {kind}; bras-kit replaces only files and links")
+            raise OutputError(M("{path} is {kind}; bras-kit replaces only files and links", path=path, kind=kind))
     folder = os.path.dirname(path) or "."
     if not os.path.isdir(folder):
         if os.path.lexists(folder) and not os.path.isdir(folder):
-            raise OutputError(f"cannot write {path}: {folder} is not a folder")
+            raise OutputError(M("cannot write {path}: {folder} is not a folder", path=path, folder=folder))
         if not make_parents:
-            raise OutputError(f"cannot write {path}: the folder {folder} does not exist",
-                              hint=f"create it first (mkdir -p {folder}) or check the spelling of {option}")
+            raise OutputError(M("cannot write {path}: the folder {folder} does not exist", path=path, folder=folder),
+                              hint=M("create it first (mkdir -p {folder}) or check the spelling of {option}",
+                                     folder=folder, option=option))
         try:
             os.makedirs(folder, exist_ok=True)
         except OSError as exc:
-            raise OutputError(f"cannot create the folder {folder}: {exc.strerror}") from None
+            raise OutputError(M("cannot create the folder {path}: {reason}", path=folder,
+                                reason=os_reason(exc))) from None
 
 
 @contextlib.contextmanager
@@ -88,15 +92,16 @@ def staged(path: str, force: bool, *, make_parents: bool = False, option: str = 
         fd, temporary = tempfile.mkstemp(prefix=f".{name}.", suffix=os.path.splitext(name)[1], dir=folder)
         os.close(fd)
     except OSError as exc:
-        raise OutputError(f"cannot write {path}: {exc.strerror}") from None
+        raise OutputError(M("cannot write {path}: {reason}", path=path, reason=os_reason(exc))) from None
     try:
         yield temporary
         os.chmod(temporary, 0o666 & ~_umask())
         if not force and os.path.lexists(path):  # appeared meanwhile
-            raise OutputExistsError(f"{path} already exists", hint=f"pass --force to replace it, or choose another {option}")
+            raise OutputExistsError(M("{path} already exists", path=path),
+                                    hint=M("pass --force to replace it, or choose another {option}", option=option))
         os.replace(temporary, path)
     except OSError as exc:
-        raise OutputError(f"cannot write {path}: {exc.strerror or exc}") from None
+        raise OutputError(M("cannot write {path}: {reason}", path=path, reason=os_reason(exc))) from None
     finally:
         if os.path.lexists(temporary):
             with contextlib.suppress(OSError):
@@ -104,7 +109,7 @@ def staged(path: str, force: bool, *, make_parents: bool = False, option: str = 
 
 
 def write_to(path: str, force: bool, writer: Callable[[str], Any], *, make_parents: bool = False,
-             option: str = "-o", announce: bool = True) -> Any:
+             option: str = "-o", announce: bool = True, lang: str | None = None) -> Any:
     """Check ``path``, let ``writer(temporary_path)`` write the content, then move it into place.
 
     Returns what ``writer`` returned.
@@ -112,7 +117,9 @@ def write_to(path: str, force: bool, writer: Callable[[str], Any], *, make_paren
     with staged(path, force, make_parents=make_parents, option=option) as temporary:
         result = writer(temporary)
     if announce:
-        print(_("wrote {path}").format(path=path), file=sys.stderr)
+        from .i18n import say
+
+        print(say(M("wrote {path}", path=path), lang), file=sys.stderr)
     return result
 
 

@@ -28,6 +28,7 @@ from collections.abc import Callable
 from typing import Any, TypeVar
 
 from .errors import BrasKitError
+from .message import M, Message
 
 T = TypeVar("T")
 
@@ -44,7 +45,7 @@ class ResourceLimitError(BrasKitError):
     kind = "limit"
 
 
-def _limit_error(kind: str, message: str, **where: Any) -> ResourceLimitError:
+def _limit_error(kind: str, message: Message, **where: Any) -> ResourceLimitError:
     error = ResourceLimitError(message, **where)
     error.kind = kind
     return error
@@ -140,13 +141,14 @@ def _rebuild_error(module: str, name: str, fields: dict[str, Any]) -> BrasKitErr
 
 def run_limited(function: Callable[..., T], *args: Any, cpu_seconds: int = DEFAULT_CPU_SECONDS,
                 memory_bytes: int = DEFAULT_MEMORY_BYTES, wall_seconds: float = DEFAULT_WALL_SECONDS,
-                what: str = "this file", **kwargs: Any) -> T:
+                what: Message | str | None = None, **kwargs: Any) -> T:
     """``function(*args, **kwargs)`` in a child process under limits; its result or its error.
 
-    ``what`` names the work in messages ("expanding bras.urdf.xacro").
+    ``what`` names the work in messages (``M("expanding {path}", path=...)``; "this file" unless told).
     """
     if not available():
         return function(*args, **kwargs)
+    what = M("this file") if what is None else what
     read_fd, write_fd = os.pipe()
     sys.stdout.flush()
     sys.stderr.flush()
@@ -182,29 +184,33 @@ def run_limited(function: Callable[..., T], *args: Any, cpu_seconds: int = DEFAU
             _kill(pid)
         _, status = os.waitpid(pid, 0)
     if timed_out:
-        raise _limit_error("wall", f"{what} took more than {wall_seconds:g} s and was stopped",
-                           hint="the file may loop or recurse without end; simplify it")
+        raise _limit_error("wall", M("{what} took more than {seconds:g} s and was stopped", what=what,
+                                     seconds=wall_seconds),
+                           hint=M("the file may loop or recurse without end; simplify it"))
     if too_big:
-        raise _limit_error("size", f"{what} made a result larger than {MAX_RESULT_BYTES >> 20} MiB and was stopped")
+        raise _limit_error("size", M("{what} made a result larger than {most} MiB and was stopped", what=what,
+                                     most=MAX_RESULT_BYTES >> 20))
     if os.WIFSIGNALED(status):
         sig = os.WTERMSIG(status)
         if sig in (signal.SIGXCPU, signal.SIGKILL):
-            raise _limit_error("cpu", f"{what} used more than {cpu_seconds} s of CPU and was stopped",
-                               hint="the file may loop or recurse without end; simplify it")
-        raise _limit_error("signal", f"{what} stopped the worker process (signal {sig})",
-                           hint="it may need more memory than allowed; simplify the file")
+            raise _limit_error("cpu", M("{what} used more than {seconds} s of CPU and was stopped", what=what,
+                                        seconds=cpu_seconds),
+                               hint=M("the file may loop or recurse without end; simplify it"))
+        raise _limit_error("signal", M("{what} stopped the worker process (signal {signal})", what=what, signal=sig),
+                           hint=M("it may need more memory than allowed; simplify the file"))
     if not chunks:
-        raise _limit_error("memory", f"{what} ran out of memory and was stopped",
-                           hint=f"the limit is {memory_bytes >> 20} MiB above the program's own size")
+        raise _limit_error("memory", M("{what} ran out of memory and was stopped", what=what),
+                           hint=M("the limit is {most} MiB above the program's own size", most=memory_bytes >> 20))
     kind, value = pickle.loads(b"".join(chunks))  # noqa: S301 - our own child's bytes
     if kind == "ok":
         return value  # type: ignore[no-any-return]
     if kind == "error":
         raise _rebuild_error(*value)
     if kind == "limit":
-        raise _limit_error("memory", f"{what} needed more {value} than allowed and was stopped",
-                           hint="simplify the file (no huge values, no deep recursion)")
-    raise BrasKitError(f"{what} failed: {value}")
+        needed = M("{what} needed more memory than allowed and was stopped", what=what) if value == "memory" else \
+            M("{what} needed more recursion than allowed and was stopped", what=what)
+        raise _limit_error("memory", needed, hint=M("simplify the file (no huge values, no deep recursion)"))
+    raise BrasKitError(M("{what} failed: {reason}", what=what, reason=value))
 
 
 def _kill(pid: int) -> None:

@@ -21,6 +21,7 @@ from pathlib import Path
 from . import __version__
 from ._resources import robot_template, templates_dir
 from .errors import BrasKitError, ModelError, OutputExistsError, ParameterError
+from .message import M
 from .model import Robot
 from .motion.sources import TUTORIAL_WAVES  # the one definition of the tutorial's motion
 
@@ -70,13 +71,12 @@ def check_package_name(name: str) -> None:
     """Raise :class:`ParameterError` unless ``name`` is a valid ROS package (and Python package) name."""
     if not PACKAGE_NAME_PATTERN.fullmatch(name or ""):
         raise ParameterError(
-            f"'{name}' is not a valid ROS package name",
-            hint="use lowercase letters, digits and underscores, starting with a letter "
-            "(e.g. bras_description)",
+            M("'{name}' is not a valid ROS package name", name=name),
+            hint=M("use lowercase letters, digits and underscores, starting with a letter (e.g. bras_description)"),
         )
     if keyword.iskeyword(name):
-        raise ParameterError(f"'{name}' is a Python keyword and cannot name an ament_python package",
-                             hint="choose another name, e.g. bras_description")
+        raise ParameterError(M("'{name}' is a Python keyword and cannot name an ament_python package", name=name),
+                             hint=M("choose another name, e.g. bras_description"))
 
 
 # catkin_pkg's test of a maintainer's email: colcon ignores a package.xml that fails it
@@ -94,16 +94,17 @@ def check_maintainer(name: str) -> None:
     """Raise :class:`ParameterError` for a name that would break setup.py or package.xml as written."""
     bad = sorted({c for c in name if c in "'\"\\<>&" or not c.isprintable()})
     if bad or not name.strip():
-        shown = " ".join(repr(c) for c in bad) if bad else "an empty name"
-        raise ParameterError(f"maintainer '{name}': {shown} cannot be written into setup.py and package.xml",
-                             hint="give --maintainer a plain name (letters, digits, spaces, . and -)")
+        shown = " ".join(repr(c) for c in bad) if bad else M("an empty name")
+        raise ParameterError(M("maintainer '{name}': {shown} cannot be written into setup.py and package.xml",
+                               name=name, shown=shown),
+                             hint=M("give --maintainer a plain name (letters, digits, spaces, . and -)"))
 
 
 def check_email(email: str) -> None:
     """Raise :class:`ParameterError` unless catkin_pkg (hence colcon) accepts ``email``."""
     if not EMAIL_PATTERN.match(email):
-        raise ParameterError(f"'{email}' is not an email address colcon accepts",
-                             hint="give --email name@domain.tld (colcon would treat the package as plain Python)")
+        raise ParameterError(M("'{email}' is not an email address colcon accepts", email=email),
+                             hint=M("give --email name@domain.tld (colcon would treat the package as plain Python)"))
 
 
 def _floor(value: float, digits: int = 6) -> float:
@@ -124,9 +125,9 @@ def plan_motion(robot: Robot) -> list[Wave]:
         amplitude, frequency, phase = TUTORIAL_WAVES.get(name, OTHER_JOINT_WAVE)
         lower, upper = joint.bounds()
         if lower > upper:
-            raise ModelError(f"joint '{name}': lower limit {lower:g} is above upper limit {upper:g}",
-                             line=joint.line, element="joint",
-                             hint=f"swap the values of {name}_lower and {name}_upper")
+            raise ModelError(M("joint '{name}': lower limit {lower:g} is above upper limit {upper:g}", name=name,
+                               lower=lower, upper=upper), line=joint.line, element="joint",
+                             hint=M("swap the values of {name}_lower and {name}_upper", name=name))
         centre = 0.0
         if math.isfinite(lower) and math.isfinite(upper):
             half = (upper - lower) / 2.0
@@ -170,7 +171,8 @@ def _xacro_with_defaults(text: str, defaults: Mapping[str, str]) -> str:
         pattern = re.compile(r'(<xacro:arg\s+name="' + re.escape(name) + r'"\s+default=")[^"]*(")')
         text, count = pattern.subn(r"\g<1>" + value.replace("\\", "\\\\") + r"\g<2>", text)
         if count != 1:
-            raise BrasKitError(f"the arm template has {count} <xacro:arg name=\"{name}\">, expected 1")
+            raise BrasKitError(M("the arm template has {count} <xacro:arg name=\"{name}\">, expected 1", count=count,
+                                 name=name))
     return text
 
 
@@ -223,23 +225,20 @@ def render_package(
 
     Raises :class:`ParameterError` for a bad package name or template parameter.
     """
-    import jinja2
-
     from .authoring import arm_urdf, localise_comments, normalise_parameters
-    from .i18n import LANGUAGES, translator
+    from .i18n import LANGUAGES, say
     from .kinematics import tf_tree
     from .model import robot_from_xml
     from .xmlio import parse_xml
 
     check_package_name(name)
     if lang not in LANGUAGES:
-        raise ParameterError(f"unknown language '{lang}'", hint="use --lang en or --lang fr")
-    say = translator(lang, "package")
+        raise ParameterError(M("unknown language '{lang}'", lang=lang), hint=M("use --lang en or --lang fr"))
     settings = normalise_parameters(params or {})
     # The root link gets no <inertial>: KDL (robot_state_publisher) warns about an inertia on the
     # root, and the base is fixed to the world, so its mass would play no part anyway.
-    note = say("Generated by bras-kit {version} for the package {name}: the expansion of bras.urdf.xacro "
-               "(xacro bras.urdf.xacro > bras.urdf)").format(version=__version__, name=name)
+    note = say(M("Generated by bras-kit {version} for the package {name}: the expansion of bras.urdf.xacro "
+                 "(xacro bras.urdf.xacro > bras.urdf)", version=__version__, name=name), lang)
     urdf_text = arm_urdf(wrist=wrist, inertials=inertials, params=params, root_inertial=False, lang=lang,
                          header=note)
     robot = robot_from_xml(parse_xml(urdf_text, URDF_FILE), URDF_FILE, urdf_text)
@@ -275,19 +274,10 @@ def render_package(
         "tutorial_waves": tutorial_waves_text(wrist),
         "fr": lang == "fr",
     }
-    environment = jinja2.Environment(
-        loader=jinja2.FileSystemLoader(str(templates_dir() / "package")),
-        undefined=jinja2.StrictUndefined,
-        keep_trailing_newline=True,
-        trim_blocks=True,
-        lstrip_blocks=True,
-        autoescape=False,
-    )
+    environment = template_environment(lang)
     files: dict[str, str] = {}
     for template, target in _FILES:
-        translated = template[: -len(".j2")] + f".{lang}.j2"  # prose in the learner's language
-        chosen = translated if (templates_dir() / "package" / translated).is_file() else template
-        files[target.format(name=name)] = environment.get_template(chosen).render(context)
+        files[target.format(name=name)] = environment.get_template(template).render(context)
     defaults = {"wrist": str(wrist).lower(), "inertials": str(inertials).lower(), "base_inertial": "false", **settings}
     template_text = robot_template().read_text(encoding="utf-8")
     files[XACRO_FILE] = localise_comments(_xacro_with_defaults(template_text, defaults), lang)
@@ -295,15 +285,35 @@ def render_package(
     return files
 
 
+def template_environment(lang: str):  # type: ignore[no-untyped-def]
+    """The package templates' Jinja environment, their prose (``{% trans %}`` blocks) worded in
+    ``lang`` from the ``package`` catalog (Jinja's i18n extension over gettext)."""
+    import jinja2
+
+    from .i18n import catalog
+
+    environment = jinja2.Environment(
+        loader=jinja2.FileSystemLoader(str(templates_dir() / "package")),
+        undefined=jinja2.StrictUndefined,
+        keep_trailing_newline=True,
+        trim_blocks=True,
+        lstrip_blocks=True,
+        autoescape=False,
+        extensions=["jinja2.ext.i18n"],
+    )
+    environment.install_gettext_translations(catalog(lang, "package"), newstyle=False)  # type: ignore[attr-defined]
+    return environment
+
+
 def _check_destination(dest: Path, force: bool) -> None:
     if dest.exists() and not dest.is_dir():
-        raise OutputExistsError(f"{dest} exists and is not a folder",
-                                hint="choose another DIR for the package")
+        raise OutputExistsError(M("{path} exists and is not a folder", path=str(dest)),
+                                hint=M("choose another DIR for the package"))
     if dest.is_dir() and any(dest.iterdir()) and not force:
         raise OutputExistsError(
-            f"{dest} already exists and is not empty",
-            hint="pass --force to overwrite the package's files there (other files are left alone), "
-            "or choose another DIR",
+            M("{path} already exists and is not empty", path=str(dest)),
+            hint=M("pass --force to overwrite the package's files there (other files are left alone), "
+                   "or choose another DIR"),
         )
 
 
@@ -330,8 +340,8 @@ def scaffold_package(
                            maintainer=maintainer, email=email, lang=lang)
     for relative in files:
         if (dest / relative).is_symlink():  # never write through a link planted in the folder
-            raise OutputExistsError(f"{dest / relative} is a symbolic link: refused",
-                                    hint="remove the link, or choose another DIR")
+            raise OutputExistsError(M("{path} is a symbolic link: refused", path=str(dest / relative)),
+                                    hint=M("remove the link, or choose another DIR"))
     made = []
     for relative, text in files.items():
         path = dest / relative

@@ -8,7 +8,7 @@ from __future__ import annotations
 
 from collections.abc import Sequence
 
-from .message import M, Message
+from .message import M, Mc, Message
 
 
 def joined(items: Sequence[Message | str], separator: str = ", ") -> Message | str:
@@ -30,3 +30,9 @@ def either(names: Sequence[Message | str]) -> Message | str:
     for name in names[1:]:
         said = M("{left} or {right}", left=said, right=name)
     return said
+
+
+def quoted(text: str) -> Message:
+    """Words from below (a library's or the system's English message) kept as they are: in
+    English as written, in French in quotation marks after the sentence that uses them."""
+    return Mc("quoted", "{text}", text=text)

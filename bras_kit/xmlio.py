@@ -14,10 +14,17 @@ import xml.parsers.expat
 from collections.abc import Iterator
 from dataclasses import dataclass, field
 
-from .errors import BrasKitError, XMLSafetyError, XMLSyntaxError
+from .errors import BrasKitError, XMLSafetyError, XMLSyntaxError, os_reason
 from .message import M, Message
 
-_DTD_HINT = "remove the <!DOCTYPE ...> block: URDF files never need one"
+_DTD_HINT = M("remove the <!DOCTYPE ...> block: URDF files never need one")
+# what the XML declared that bras-kit refuses, by kind (the validator words BK101 by kind)
+_REFUSED = {
+    "dtd": M("a DTD (<!DOCTYPE>)"),
+    "attlist": M("an attribute list declaration (<!ATTLIST>)"),
+    "entity": M("an entity declaration (<!ENTITY>)"),
+    "external": M("an external entity"),
+}
 
 
 @dataclass
@@ -72,8 +79,8 @@ def parse_xml(data: bytes | str, path: str | None = None) -> Node:
     root_holder: list[Node] = []
     stack: list[Node] = []
 
-    def refuse(what: str) -> None:
-        raise _Refused(what, parser.CurrentLineNumber)
+    def refuse(kind: str) -> None:
+        raise _Refused(kind, parser.CurrentLineNumber)
 
     def start(tag: str, attrs: dict[str, str]) -> None:
         node = Node(tag, dict(attrs), parser.CurrentLineNumber)
@@ -95,13 +102,13 @@ def parse_xml(data: bytes | str, path: str | None = None) -> Node:
     parser.CharacterDataHandler = chars
     def doctype(name: str, system_id: str | None, public_id: str | None, internal_subset: int) -> None:
         if system_id or public_id:  # <!DOCTYPE robot> alone names the root and is harmless
-            refuse("a DTD (<!DOCTYPE>)")
+            refuse("dtd")
 
     parser.StartDoctypeDeclHandler = doctype
-    parser.AttlistDeclHandler = lambda *a: refuse("an attribute list declaration (<!ATTLIST>)")
-    parser.EntityDeclHandler = lambda *a: refuse("an entity declaration (<!ENTITY>)")
+    parser.AttlistDeclHandler = lambda *a: refuse("attlist")
+    parser.EntityDeclHandler = lambda *a: refuse("entity")
     def refuse_external(*args: object) -> int:
-        refuse("an external entity")
+        refuse("external")
         return 0
 
     parser.ExternalEntityRefHandler = refuse_external
@@ -109,28 +116,32 @@ def parse_xml(data: bytes | str, path: str | None = None) -> Node:
     try:
         parser.Parse(data, True)
     except _Refused as exc:
-        raise XMLSafetyError(
-            f"refused: the XML contains {exc.what}; bras-kit never expands entities or DTDs",
+        refused = XMLSafetyError(
+            M("refused: the XML contains {what}; bras-kit never expands entities or DTDs", what=_REFUSED[exc.what]),
             path=path,
             line=exc.line,
             hint=_DTD_HINT,
-        ) from None
+        )
+        refused.kind = exc.what
+        raise refused from None
     except xml.parsers.expat.ExpatError as exc:
         reason = xml.parsers.expat.ErrorString(exc.code)
         if "undefined entity" in reason:
-            raise XMLSafetyError(
-                f"refused: undefined entity at column {exc.offset + 1}; entities are not expanded",
+            refused = XMLSafetyError(
+                M("refused: undefined entity at column {column}; entities are not expanded", column=exc.offset + 1),
                 path=path,
                 line=exc.lineno,
-                hint="write the character itself instead of an &entity; reference",
-            ) from None
+                hint=M("write the character itself instead of an &entity; reference"),
+            )
+            refused.kind = "undefined"
+            raise refused from None
         detail, line = _syntax_detail(exc, reason, stack, data)
         error = XMLSyntaxError(M("not well-formed XML: {detail}", detail=detail), path=path, line=line,
                                hint=M("check the tag on this line is closed and its quotes match"))
         error.detail = detail
         raise error from None
     if not root_holder:
-        raise XMLSyntaxError("the file holds no XML element", path=path, line=1)
+        raise XMLSyntaxError(M("the file holds no XML element"), path=path, line=1)
     root_holder[0].late_declaration = late_declaration
     return root_holder[0]
 
@@ -215,24 +226,24 @@ def read_bytes(path: str | os.PathLike[str]) -> bytes:
 
         data = sys.stdin.buffer.read(MAX_READ_BYTES + 1)
         if len(data) > MAX_READ_BYTES:
-            raise BrasKitError(f"refused to read standard input: more than {MAX_READ_BYTES >> 20} MiB")
+            raise BrasKitError(M("refused to read standard input: more than {mib} MiB", mib=MAX_READ_BYTES >> 20))
         return data
     try:
         info = os.stat(path)
         if not stat.S_ISREG(info.st_mode) and not stat.S_ISDIR(info.st_mode):
-            raise BrasKitError(f"refused to read {path}: it is not a regular file (a device, pipe or socket)",
-                               hint="give the path of a .urdf or .xacro file")
+            raise BrasKitError(M("refused to read {path}: it is not a regular file (a device, pipe or socket)",
+                                 path=path), hint=M("give the path of a .urdf or .xacro file"))
         if info.st_size > MAX_READ_BYTES:
-            raise BrasKitError(f"refused to read {path}: {info.st_size:,} bytes is more than the "
-                               f"{MAX_READ_BYTES >> 20} MiB a robot description may have")
+            raise BrasKitError(M("refused to read {path}: {size} bytes is more than the {mib} MiB a robot "
+                                 "description may have", path=path, size=info.st_size, mib=MAX_READ_BYTES >> 20))
         with open(path, "rb") as handle:
             return handle.read()
     except FileNotFoundError:
-        raise BrasKitError(f"no such file: {path}", hint="check the path and spelling") from None
+        raise BrasKitError(M("no such file: {path}", path=path), hint=M("check the path and spelling")) from None
     except IsADirectoryError:
-        raise BrasKitError(f"{path} is a folder, not a file") from None
+        raise BrasKitError(M("{path} is a folder, not a file", path=path)) from None
     except OSError as exc:
-        raise BrasKitError(f"cannot read {path}: {exc.strerror}") from None
+        raise BrasKitError(M("cannot read {path}: {reason}", path=path, reason=os_reason(exc))) from None
 
 
 def read_xml(path: str | os.PathLike[str]) -> Node:

@@ -62,7 +62,7 @@ def render_all() -> dict[Path, str]:
 
 def untranslated() -> list[str]:
     """English comments of shared code cells that have no French words yet."""
-    return [f"lesson {lesson.number}: no French for the comment {comment!r} (add it to FR_COMMENTS)"
+    return [f"lesson {lesson.number}: no French for the comment {comment!r} (add it to lessons/locale/fr/LC_MESSAGES/lessons.po)"
             for lesson in LESSONS for cell in lesson.cells if cell.shared
             for comment in untranslated_comments(cell.en)]
 

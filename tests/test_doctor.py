@@ -96,3 +96,18 @@ def test_a_check_that_crashes_is_a_failed_line_and_the_others_still_run():
     assert [r.status for r in results] == [FAIL, OK]
     assert str(results[0].found) == "RuntimeError: boom"
     assert not healthy(results) and healthy(results[1:])
+
+
+def test_doctor_counts_the_decoded_meshes_and_clear_cache_removes_them_alone(tmp_path):
+    meshes = tmp_path / "cache" / "bras-kit" / "meshes"
+    meshes.mkdir(parents=True)
+    for k in range(3):
+        (meshes / f"{k:040x}.npz").write_bytes(b"x" * 500_000)  # entry names: 40 hex digits
+    (meshes / "mine.txt").write_text("not an entry")
+    result = _doctor(tmp_path)
+    assert _line(result.stdout, "mesh cache") == (f"ok    mesh cache: 3 decoded meshes, 1.5 MB of at most 537 MB, "
+                                                  f"in {meshes}")
+    result = _doctor(tmp_path, "--clear-cache")
+    assert result.stdout.splitlines()[0] == f"removed 3 decoded meshes (1.5 MB) from {meshes}"
+    assert _line(result.stdout, "mesh cache").startswith("ok    mesh cache: 0 decoded meshes, 0.0 MB")
+    assert [p.name for p in meshes.iterdir()] == ["mine.txt"]

@@ -128,3 +128,38 @@ def test_errors_do_not_import_the_catalogs():
     source = (i18n_tools.PACKAGE_ROOT / "errors.py").read_text()
     assert "i18n" not in {n.module for n in ast.walk(ast.parse(source))
                           if isinstance(n, ast.ImportFrom) and n.module}
+
+
+def _error_classes() -> set[str]:
+    """The names of every BrasKitError subclass defined in bras_kit (read from the code)."""
+    import bras_kit.errors as errors
+
+    names = {n for n, v in vars(errors).items() if isinstance(v, type) and issubclass(v, errors.BrasKitError)}
+    for path in sorted(i18n_tools.PACKAGE_ROOT.rglob("*.py")):
+        for node in ast.walk(ast.parse(path.read_text(encoding="utf-8"))):
+            if isinstance(node, ast.ClassDef) and any(isinstance(b, ast.Name) and b.id in names for b in node.bases):
+                names.add(node.name)
+    return names
+
+
+def test_every_error_and_warning_carries_a_message_never_a_finished_sentence():
+    """An error, a hint or a warning built from a string literal, an f-string or a concatenation
+    could only ever be English: each must be an ``M(...)`` (or a value holding one)."""
+    errors = _error_classes()
+    assert {"BrasKitError", "ParameterError", "XMLSyntaxError"} <= errors
+    bad = []
+    for path in sorted(i18n_tools.PACKAGE_ROOT.rglob("*.py")):
+        if "_standin" in path.parts:  # the rclpy stand-in raises rclpy's own (English) errors
+            continue
+        for node in ast.walk(ast.parse(path.read_text(encoding="utf-8"))):
+            if not isinstance(node, ast.Call):
+                continue
+            name = i18n_tools._name(node.func)
+            if name not in errors and name != "warn":
+                continue
+            texts = list(node.args[:1]) + [k.value for k in node.keywords if k.arg in ("message", "hint")]
+            for value in texts:
+                if isinstance(value, (ast.JoinedStr, ast.BinOp)) or (
+                        isinstance(value, ast.Constant) and isinstance(value.value, str)):
+                    bad.append(f"{path.relative_to(i18n_tools.PACKAGE_ROOT.parent)}:{node.lineno} {name}")
+    assert not bad, "finished sentences where a Message belongs:\n" + "\n".join(bad)

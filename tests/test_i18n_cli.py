@@ -53,6 +53,14 @@ def test_there_is_a_french_cli_catalog():
     assert LOCALE_DIR / "fr" / "LC_MESSAGES" / "cli.po" in PO_FILES
 
 
+@functools.cache
+def _template_prose() -> frozenset[str]:
+    """The ids of the package templates' {% trans %} blocks (paragraphs of generated files)."""
+    from bras_kit.i18n_tools import extract_templates
+
+    return frozenset(item.id for item in extract_templates())
+
+
 @pytest.mark.parametrize("po", PO_FILES, ids=lambda p: f"{p.parent.parent.name}/{p.stem}")
 def test_every_entry_is_translated_and_keeps_its_fields(po):
     problems = []
@@ -66,12 +74,14 @@ def test_every_entry_is_translated_and_keeps_its_fields(po):
             continue
         if _fields(english) != _fields(french):
             problems.append(f"fields differ: {english!r} -> {french!r}")
+        reflowed = english in _template_prose()  # a generated file's paragraph: French wraps its own lines
         if message.context and message.context.startswith("BK"):
             # a validator rule's explanation: prose wrapped at about 95 columns in each language;
             # its paragraphs, not its lines, must match
             if english.count("\n\n") != french.count("\n\n"):
                 problems.append(f"paragraphs differ: {english!r} -> {french!r}")
-        elif english.count("\n") != french.count("\n") or english.endswith("\n") != french.endswith("\n"):
+        elif not reflowed and (english.count("\n") != french.count("\n")
+                               or english.endswith("\n") != french.endswith("\n")):
             problems.append(f"newlines differ: {english!r} -> {french!r}")
         if "\u00a0" in french or "\u202f" in french:
             problems.append(f"non-breaking space: {french!r}")
@@ -87,16 +97,6 @@ def test_every_mo_file_is_compiled_from_its_po(po):
     mo = po.with_suffix(".mo")
     assert mo.exists(), f"{mo} is missing: run python -m bras_kit.i18n compile"
     assert mo.read_bytes() == expected.getvalue(), f"{mo} is older than {po.name}: run python -m bras_kit.i18n compile"
-
-
-def test_library_messages_are_translated_with_their_holes_filled():
-    from bras_kit.i18n import translate_message
-
-    assert translate_message("unknown joint 'genou'", "fr") == "articulation inconnue 'genou'"
-    assert translate_message("movable joints: epaule, coude", "fr") == "articulations mobiles: epaule, coude"
-    assert translate_message("coude goes past its upper limit 2 by 0.499 rad at t=1.55 s (first at t=0.95 s, "
-                             "26 samples)", "fr") == \
-        "coude dépasse sa limite haute 2 de 0.499 rad à t=1.55 s (dès t=0.95 s, 26 échantillons)"
 
 
 # ------------------------------------------------------------------ the commands, in French

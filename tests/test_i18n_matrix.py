@@ -40,8 +40,8 @@ ENGLISH_WORDS = (
     "use", "unknown", "joint", "joints", "limit", "limits", "held", "formulas", "formula", "seconds",
     "samples", "file", "files", "missing", "cannot", "can't", "must", "should", "would", "below",
     "above", "between", "into", "only", "then", "when", "where", "no", "none", "every", "each",
-    "write", "read", "show", "shows", "will", "one", "two", "too", "than", "by", "on", "in", "an",
-    "for", "exists", "folder", "directory", "translation", "rotation", "degree", "reached", "reach",
+    "write", "read", "show", "shows", "will", "one", "two", "too", "than", "by", "in", "an",
+    "for", "exists", "folder", "directory", "degree", "reached", "reach",
     "unreachable", "solution", "learners", "learner", "score", "checked", "passed", "failed",
 )
 ENGLISH = re.compile(r"(?<![\w'/.-])(" + "|".join(re.escape(w) for w in ENGLISH_WORDS) + r")(?![\w'/-])",
@@ -49,7 +49,7 @@ ENGLISH = re.compile(r"(?<![\w'/.-])(" + "|".join(re.escape(w) for w in ENGLISH_
 # ROS and library names kept as they are in every language (documented allow-list).
 ROS_NAMES = ("joint_states", "JointState", "robot_state_publisher", "joint_state_publisher_gui",
              "RViz", "rviz2", "tf2_echo", "view_frames", "ros2 launch", "colcon build", "MuJoCo",
-             "MJCF", "URDF", "xacro", "Dask", "Gradescope", "EGL", "OSMesa", "ffmpeg", "PyPI")
+             "MJCF", "URDF", "xacro", "Dask", "Gradescope", "EGL", "OSMesa", "ffmpeg", "PyPI", "Fixed Frame")
 
 
 def _setup(tmp: Path) -> None:
@@ -110,6 +110,9 @@ CASES: dict[str, list[str]] = {
     "motion-bad-joint": ["motion", "--motion", str(DATA / "motion" / "bad_joint.csv")],
     "motion-bad-order": ["motion", "--motion", str(DATA / "motion" / "bad_order.csv")],
     "motion-bad-yaml": ["motion", "--motion", str(DATA / "motion" / "bad_indent.yaml")],
+    "motion-wrist-narrow": ["motion", "--wrist", "--param", "poignet_upper=0.87", "--param", "poignet_lower=-0.87",
+                            "--duration", "0.2"],
+    "motion-bad-waypoint-json": ["motion", "--motion", str(DATA / "motion" / "bad_missing.json")],
     # plot (the figure's words are checked too)
     "plot-overrun": ["plot", "--motion", "coude=2.5*sin(t)", "-o", f"{T}/p.png"],
     "plot-missing-folder": ["plot", "-o", f"{T}/absent/p.png"],
@@ -173,7 +176,7 @@ CASES: dict[str, list[str]] = {
     "view-export-exists": ["view", "--export", f"{T}/exists.png"],
 }
 # What a figure draws: plot files whose words are read back from the matplotlib figure.
-DRAWN = {"plot-overrun"}
+DRAWN = {"plot-overrun", "frames-svg", "frames-past-limit", "workspace-ok"}
 
 
 def _normalise(text: str, tmp: Path) -> str:
@@ -277,6 +280,8 @@ def english_left(text: str) -> list[str]:
     lines = [line for line in text.splitlines() if not line.startswith("$ bras-kit")]
     text = "\n".join(lines)
     text = re.sub(r"bras-kit( \w+)?", " ", text)  # the command and its sub-command
+    text = re.sub(r"(?m)^ {2,6}[a-z]+(?= {2,})", " ", text)  # command names in the help's list
+    text = re.sub(r"(?m)^\s*-?\s*\w+:\s*(\[[^\]\n]*\]|[\w.-]+)\s*$", " ", text)  # YAML keys and values
     text = re.sub(r"<[^<>\n]*>", " ", text)  # XML and <TMP>-like placeholders
     text = re.sub(r"'[^'\n]*'|\"[^\"\n]*\"|`[^`\n]*`|«[^»\n]*»", " ", text)  # quoted names and values
     text = re.sub(r"(?<=\w)-\n\s+(?=\w)", "-", text)  # argparse wraps help lines at hyphens
@@ -303,4 +308,6 @@ def test_the_detector_sees_english_and_leaves_names_alone():
         ["does", "have", "joint", "names", "not", "this", "which"]
     assert english_left("mouvement : 0.5 rad au-delà de la butée à t=7.85 s") == []
     assert english_left("publie sur joint_states avec 'the' <link name=\"to\"/> --from A") == []
-    assert english_left("Translation: [0, 0, 0.05]") == ["translation"]
+    assert english_left("At base -> bras") == ["at"]
+    assert english_left("  frames        dessiner l'arbre des repères") == []
+    assert english_left("    severity: error") == []

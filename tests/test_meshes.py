@@ -38,7 +38,8 @@ PANDA_LINK0 = ROBOTS / "panda_description" / "meshes" / "visual" / "link0.dae"
 def own_cache(tmp_path, monkeypatch):
     """Each test with an empty cache folder of its own and nothing remembered in memory."""
     monkeypatch.setenv("XDG_CACHE_HOME", str(tmp_path / "xdg"))
-    monkeypatch.setattr(meshes, "_memory", {})
+    _forget(monkeypatch)
+    monkeypatch.setattr(meshes, "_by_content", {})
     monkeypatch.setattr(meshes, "_disk", True)
     return tmp_path / "xdg" / "bras-kit" / "meshes"
 
@@ -118,6 +119,12 @@ def test_a_file_with_no_triangles_is_refused_with_a_reason(tmp_path):
 # --------------------------------------------------------------- the cache
 
 
+def _forget(monkeypatch) -> None:
+    """What a new process knows: nothing in memory (the disk cache stays)."""
+    monkeypatch.setattr(meshes, "_memory", {})
+    monkeypatch.setattr(meshes, "_by_content", {})
+
+
 def _entry(folder: Path) -> Path:
     entries = [p for p in folder.iterdir() if p.suffix == ".npz"]
     assert len(entries) == 1, entries
@@ -136,7 +143,7 @@ def _decoding_forbidden(monkeypatch) -> None:
 def test_a_second_process_reads_the_cache_instead_of_decoding(own_cache, monkeypatch):
     first = meshes.load_mesh(str(PANDA_LINK0))
     assert _entry(own_cache).stat().st_size > first.vertices.nbytes
-    monkeypatch.setattr(meshes, "_memory", {})  # as a new process
+    _forget(monkeypatch)  # as a new process
     _decoding_forbidden(monkeypatch)
     again = meshes.load_mesh(str(PANDA_LINK0))
     assert np.array_equal(again.vertices, first.vertices) and np.array_equal(again.faces, first.faces)
@@ -171,11 +178,11 @@ def test_a_damaged_or_foreign_entry_is_ignored_and_written_again(own_cache, monk
             arrays["faces"][0, 0] = len(arrays["vertices"]) + 5
         with open(entry, "wb") as handle:
             np.savez(handle, **arrays)
-    monkeypatch.setattr(meshes, "_memory", {})
+    _forget(monkeypatch)
     again = meshes.load_mesh(str(PANDA_LINK0))
     assert np.array_equal(again.faces, good.faces)
     assert again.faces.max() < len(again.vertices)
-    monkeypatch.setattr(meshes, "_memory", {})
+    _forget(monkeypatch)
     _decoding_forbidden(monkeypatch)  # the entry written again is whole
     assert np.array_equal(meshes.load_mesh(str(PANDA_LINK0)).faces, good.faces)
 
@@ -188,7 +195,7 @@ def test_a_link_in_the_cache_is_never_followed_nor_written_through(own_cache, tm
     entry.unlink()
     entry.symlink_to(elsewhere)
     before = elsewhere.read_bytes()
-    monkeypatch.setattr(meshes, "_memory", {})
+    _forget(monkeypatch)
     decoded = []
     from bras_kit.meshes import decode
 
@@ -213,7 +220,7 @@ def test_the_cache_drops_the_entries_used_longest_ago_past_its_bound(own_cache, 
     kept = list(own_cache.glob("*.npz"))
     assert len(kept) == 2
     assert cache.info(str(own_cache)).bytes <= size * 2.5
-    monkeypatch.setattr(meshes, "_memory", {})
+    _forget(monkeypatch)
     _decoding_forbidden(monkeypatch)
     meshes.load_mesh(str(paths[3]))  # the newest is still there
 
@@ -246,6 +253,27 @@ def test_no_cache_flag_renders_without_touching_the_cache(own_cache, tmp_path, r
     assert code == 0 and (tmp_path / "a.png").is_file()
     assert not own_cache.exists() or not list(own_cache.glob("*.npz"))
     monkeypatch.setattr(meshes, "_disk", True)
-    monkeypatch.setattr(meshes, "_memory", {})
+    _forget(monkeypatch)
     code, _, _ = run_cli("render", str(urdf), "-o", str(tmp_path / "b.png"), "--size", "64x48")
     assert code == 0 and len(list(own_cache.glob("*.npz"))) == 1
+
+
+def test_a_collada_file_in_inches_is_read_in_metres_as_rviz_does():
+    """KUKA KR210's link 2 is written in inches (<unit meter="0.0254">) and its URDF gives no
+    scale: RViz (assimp) applies the unit. Oracle: the unit and the raw coordinates from the XML."""
+    rtb = next(Path(base) / "rtbdata" for base in site.getsitepackages() if (Path(base) / "rtbdata").is_dir())
+    path = rtb / "xacro" / "kuka_description" / "kuka_kr210" / "meshes" / "kr210l150" / "visual" / "link_2.dae"
+    root = ET.parse(path).getroot()
+    unit = float(root.find(".//c:asset/c:unit", COLLADA).get("meter"))
+    assert unit == pytest.approx(0.0254)
+    mesh = meshes.load_mesh(str(path))
+    sources = {source.get("id"): source for source in root.iterfind(".//c:source", COLLADA)}
+    raw = []
+    for vertices in root.iterfind(".//c:vertices", COLLADA):  # the POSITION input of each mesh
+        position = vertices.find("c:input[@semantic='POSITION']", COLLADA)
+        array = sources[position.get("source").lstrip("#")].find("c:float_array", COLLADA)
+        raw.append(np.array(array.text.split(), dtype=float).reshape(-1, 3))
+    assert raw, "the oracle found no positions in the file"
+    extent = np.ptp(np.vstack(raw), axis=0).max() * unit  # the file's node matrices are identities
+    assert np.ptp(mesh.vertices, axis=0).max() == pytest.approx(extent, rel=1e-3)
+    assert 0.5 < np.ptp(mesh.vertices, axis=0).max() < 2.0  # a link of a 2.7 m-reach robot, not 56 m

@@ -42,6 +42,18 @@ def _file_facts(path: Path) -> tuple[list[tuple[str, float]], set[str]]:
     return driven, meshes
 
 
+def _dae_pieces(path: Path) -> int:
+    """From the COLLADA text: the triangle sets of every geometry the scene instances."""
+    ns = "{http://www.collada.org/2005/11/COLLADASchema}"
+    root = ET.parse(path).getroot()
+    geometries = {g.get("id"): g for g in root.iter(ns + "geometry")}
+    sets = 0
+    for instance in root.iter(ns + "instance_geometry"):
+        geometry = geometries[(instance.get("url") or "#").lstrip("#")]
+        sets += sum(1 for e in geometry.iter() if e.tag in (ns + "triangles", ns + "polylist", ns + "polygons"))
+    return sets
+
+
 @pytest.mark.parametrize("name", REAL)
 def test_real_robot_loads_in_mujoco_with_its_meshes_and_efforts(name):
     import mujoco
@@ -53,8 +65,9 @@ def test_real_robot_loads_in_mujoco_with_its_meshes_and_efforts(name):
     driven, meshes = _file_facts(path)
     assert [mujoco.mj_id2name(model, mujoco.mjtObj.mjOBJ_ACTUATOR, a) for a in range(model.nu)] == [n for n, _ in driven]
     assert list(model.actuator_forcerange[:, 1]) == pytest.approx([e for _, e in driven])
-    # every mesh file the URDF names is there; a DAE with several materials gives one mesh per colour
-    assert model.nmesh == len(built.assets) >= len(meshes)
+    # a STL is one mesh; a DAE visual one mesh per material piece (each geom with its colour)
+    files = {name: Path(PACKAGES).parent / name[len("package://"):] for name in meshes}
+    assert model.nmesh == len(built.assets) == sum(_dae_pieces(f) if f.suffix == ".dae" else 1 for f in files.values())
     assert {Path(asset.source).name for asset in built.assets.values()} == {Path(m).name for m in meshes}
     assert any(source.endswith(".dae") for source in built.converted)  # both robots draw with DAE visuals
     assert all(model.mesh_vertnum[m] > 0 for m in range(model.nmesh))

@@ -95,22 +95,34 @@ def test_patch_framebuffers_and_reader_rely_on_pyrenders_main_framebuffer_attrib
     assert list(inspect.signature(renderer._read_main_framebuffer).parameters) == ["self", "scene", "flags"]
 
 
-def test_patch_flat_shading_copy_differs_from_pyrenders_shader_by_the_normal_alone():
-    from bras_kit.render._compat import FLAT_SHADER
+def test_patch_flat_shading_shader_follows_pyrenders_mesh_frag_and_its_uniform_names():
+    import hashlib
+
+    from bras_kit.render._compat import FLAT_SHADER, PYRENDER_MESH_FRAG_SHA256
 
     pyrender = _pyrender()
-    theirs = (Path(inspect.getfile(pyrender)).parent / "shaders" / "mesh.frag").read_text()
+    theirs = (Path(inspect.getfile(pyrender)).parent / "shaders" / "mesh.frag").read_bytes()
+    assert hashlib.sha256(theirs).hexdigest() == PYRENDER_MESH_FRAG_SHA256, \
+        "pyrender's mesh.frag changed: derive flat_mesh.frag from it again"
     ours = Path(FLAT_SHADER).read_text()
-    block = re.search(r"    // bras-kit:.*?\n(?:    .*\n){2}", ours)
-    assert block, "the bras-kit block is missing from flat_mesh.frag"
-    restored = ours.replace(block.group(0), "    return normalize(cam_pos - frag_position);\n")
-    assert restored == theirs, "pyrender's mesh.frag changed: copy it again into flat_mesh.frag"
+    setter = Path(inspect.getfile(pyrender.renderer)).read_text()
+    for uniform in re.findall(r"^uniform \w+ (\w+)", ours, flags=re.M):
+        if uniform in ("material", "directional_lights"):
+            continue
+        assert f"'{uniform}'" in setter, f"pyrender no longer sets the uniform {uniform}"
+    for field in ("emissive_factor", "base_color_factor", "metallic_factor", "roughness_factor"):
+        assert f"'{field}'" in setter
+    assert "'directional_lights[{}].'" in setter
+    for field in ("direction", "color", "intensity"):
+        assert f"b + '{field}'" in setter
     cache = pyrender.shader_program.ShaderProgramCache
     assert list(inspect.signature(cache.get_program).parameters) == [
         "self", "vertex_shader", "fragment_shader", "geometry_shader", "defines"]
     assert "os.path.join(self.shader_dir, fn)" in _source(cache.get_program)  # keeps an absolute path
-    assert "fragment_shader = 'mesh.frag'" in _source(pyrender.renderer.Renderer._get_primitive_program)
-    assert "self._program_cache = ShaderProgramCache()" in Path(inspect.getfile(pyrender.renderer)).read_text()
+    program = _source(pyrender.renderer.Renderer._get_primitive_program)
+    assert "fragment_shader = 'mesh.frag'" in program and "defines['USE_METALLIC_MATERIAL'] = 1" in program
+    assert "defines['NORMAL_LOC'] = buf_idx" in program
+    assert "self._program_cache = ShaderProgramCache()" in setter
 
 
 def test_patch_front_to_back_replaces_pyrenders_farthest_first_order():

@@ -69,7 +69,7 @@ def _orange(page) -> np.ndarray:
 
     from PIL import Image
 
-    image = np.asarray(Image.open(BytesIO(page.screenshot())).convert("RGB"))[SCENE].astype(int)
+    image = np.asarray(Image.open(BytesIO(page.screenshot(timeout=120_000))).convert("RGB"))[SCENE].astype(int)
     r, g, b = image[..., 0], image[..., 1], image[..., 2]
     mask = (r > 120) & (r - b > 100) & (g > 0.35 * r) & (g < 0.7 * r)
     return np.argwhere(mask)
@@ -245,4 +245,172 @@ def test_play_moves_the_arm_and_the_panel_shows_the_joint_past_its_limit(browser
         held = session.values["coude"]
         time.sleep(0.3)
         assert session.values["coude"] == held
+        page.close()
+
+
+# -- what learners see: framing, typed joint values, the error banner, reading a link's pose ----
+
+def _screenshot(page) -> np.ndarray:
+    from io import BytesIO
+
+    from PIL import Image
+
+    return np.asarray(Image.open(BytesIO(page.screenshot(timeout=120_000))).convert("RGB")).astype(int)
+
+
+def _close_notices(page) -> None:
+    """Chromium on SwiftShader makes viser show a "Software WebGL" notice over the scene: closed."""
+    _wait(lambda: page.get_by_text("Software WebGL").count() > 0, 3)
+    for button in page.locator(".mantine-Notification-root button").all():
+        button.click()
+    assert _wait(lambda: page.get_by_text("Software WebGL").count() == 0, 3)
+
+
+def _robot_box(image: np.ndarray) -> tuple[int, int, int, int]:
+    """Rows and columns (top, bottom, left, right) of the arm's coloured pixels: the blue upper
+    arm and the orange forearm (the white background, grey grid and dark names are not coloured);
+    the view's orientation triad in the lower left corner is left out."""
+    r, g, b = image[..., 0], image[..., 1], image[..., 2]
+    blue = (b > 120) & (b - r > 70) & (b - g > 40)
+    orange = (r > 120) & (r - b > 100) & (g > 0.35 * r) & (g < 0.7 * r)
+    mask = blue | orange
+    mask[-70:, :70] = False
+    rows, columns = np.nonzero(mask)
+    assert len(rows) > 300, "no arm drawn"
+    return int(rows.min()), int(rows.max()), int(columns.min()), int(columns.max())
+
+
+def _panel_left(page) -> float:
+    box = page.get_by_text("Display", exact=True).first.bounding_box()
+    return box["x"] - 12  # the folder's frame starts a little left of its title
+
+
+def _assert_framed(page, viewer=None) -> None:
+    """The arm covers at least 40 % of the 3D view's height or width, and none of it is under
+    the panel: measured with the panel folded away."""
+    left = _panel_left(page)
+    page.locator("body").hover()
+    _close_notices(page)
+    page.get_by_text("Display", exact=True).first.wait_for()
+    page.evaluate("document.querySelectorAll('[class*=ControlPanel], .mantine-Paper-root')"
+                  ".forEach(e => { if (e.getBoundingClientRect().left > 300) e.style.visibility = 'hidden' })")
+    time.sleep(0.5)
+    top, bottom, first, last = _robot_box(_screenshot(page))
+    height, width = 700, left
+    assert (bottom - top) >= 0.4 * height or (last - first) >= 0.4 * width, (top, bottom, first, last, left)
+    assert last < left, f"the arm reaches column {last}, under the panel from {left}"
+    assert top > 0 and bottom < height - 1 and first > 0, "the arm is cut by the edge of the view"
+
+
+def test_the_view_opens_on_the_arm_left_of_the_panel(browser, viewer):
+    page = _open(browser, viewer.url)
+    assert _wait(lambda: len(_orange(page)) > 200)
+    time.sleep(1.0)  # the camera is placed once the browser has said its size
+    _assert_framed(page)
+    page.close()
+
+
+def test_a_reload_that_makes_the_arm_three_times_larger_frames_it_again(browser, viewer, arm_file, tmp_path):
+    page = _open(browser, viewer.url)
+    assert _wait(lambda: len(_orange(page)) > 200)
+    large = tmp_path / "grand.urdf"
+    done = subprocess.run([sys.executable, "-m", "bras_kit", "urdf", "--param", "bras_length=1.8",
+                           "--param", "avant_bras_length=1.5", "-o", str(large)], capture_output=True)
+    assert done.returncode == 0, done.stderr
+    arm_file.write_text(large.read_text())
+    assert _wait(lambda: viewer.model.scale > 3.0, 10), viewer.model.scale
+    time.sleep(1.5)
+    _assert_framed(page)
+    page.close()
+
+
+def test_the_exported_page_opens_on_the_arm(browser, tmp_path):
+    out = tmp_path / "bras.html"
+    done = subprocess.run([sys.executable, "-m", "bras_kit", "view", "--export", str(out), "--motion",
+                           "coude=0.3*sin(t)", "--duration", "2"], capture_output=True, text=True, timeout=120)
+    assert done.returncode == 0, done.stderr
+    page = browser.new_page(viewport={"width": 1000, "height": 700})
+    page.goto(out.as_uri())
+    assert _wait(lambda: len(_orange(page)) > 200, 60)
+    _close_notices(page)
+    top, bottom, first, last = _robot_box(_screenshot(page)[:650])  # above the play bar
+    assert (bottom - top) >= 0.4 * 650 or (last - first) >= 0.4 * 1000, (top, bottom, first, last)
+    assert top > 0 and bottom < 649 and first > 0 and last < 999
+    page.close()
+
+
+def _joint_box(page, joint: str):
+    """The text box labelled "JOINT =" under the joint's slider."""
+    return page.get_by_text(f"{joint} =", exact=True).locator("xpath=ancestor::*[.//input][1]").locator("input")
+
+
+def test_typed_joint_values_read_like_the_command_line(browser, viewer):
+    page = _open(browser, viewer.url)
+    session = next(iter(viewer.sessions.values()))
+    # the sliders' own number boxes (which read 0,5 as 5) are hidden
+    assert _wait(lambda: page.locator(".mantine-NumberInput-root").first.is_hidden(), 5)
+    coude = _joint_box(page, "coude")
+    for typed, expected in (("0,5", 0.5), ("pi/4", np.pi / 4), ("30deg", np.radians(30)), ("-1,25", -1.25)):
+        coude.fill("")
+        coude.type(typed, delay=30)
+        assert _wait(lambda want=expected: session.values["coude"] == pytest.approx(want, abs=1e-12), 30), \
+            (typed, session.values)
+    assert 'data-note' not in session.joint_note.content
+    coude.fill("")
+    coude.type("90", delay=30)  # coude's limits are -2 .. 2 rad: 90 rad means 90 degrees
+    # SwiftShader draws on the CPU: on a busy machine the page may take seconds to show the note
+    assert _wait(lambda: "looks like degrees" in page.inner_text("body"), 30), session.joint_note.content
+    assert "90deg" in page.inner_text("body")
+    assert session.values["coude"] == pytest.approx(-1.25)  # refused: the arm stays where it was
+    page.get_by_text("Allow values past the limits", exact=True).click()
+    coude.fill("")
+    coude.type("2,5", delay=30)
+    assert _wait(lambda: session.values["coude"] == pytest.approx(2.5), 30)  # asked for: past the limit
+    page.close()
+
+
+def test_the_banner_names_the_file_and_line_until_the_file_reads_again(browser, viewer, arm_file):
+    page = _open(browser, viewer.url)
+    banner = page.locator("[data-banner='count']")
+    assert _wait(lambda: banner.count() == 1 and "finding" in banner.inner_text())
+    text = arm_file.read_text()
+    arm_file.write_text(text.replace("</robot>", "<link name=\n"))  # no longer XML
+    error = page.locator("[data-banner='error']")
+    assert _wait(lambda: error.count() == 1, 10)
+    shown = error.inner_text()
+    assert "bras.urdf" in shown and "line" in shown and "cannot be read" in shown, shown
+    # at the top of the panel: above the Display folder
+    assert error.bounding_box()["y"] < page.get_by_text("Display", exact=True).first.bounding_box()["y"]
+    arm_file.write_text(text)
+    assert _wait(lambda: error.count() == 0, 10)
+    page.close()
+
+
+def test_clicking_the_forearm_reads_its_pose_in_the_fixed_frame(browser, viewer):
+    page = _open(browser, viewer.url)
+    assert _wait(lambda: len(_orange(page)) > 200)
+    _close_notices(page)
+    session = next(iter(viewer.sessions.values()))
+    row, column = _orange(page).mean(axis=0)
+    page.mouse.click(float(column), float(row))
+    assert _wait(lambda: session.selected == "avant_bras", 10)
+    # by hand: the forearm's frame is 0.05 (base) + 0.6 (bras) above the base, not turned
+    assert _wait(lambda: "[0.000, 0.000, 0.650]" in page.inner_text("body"))
+    assert "tf2_echo base avant_bras" in page.inner_text("body")
+    page.close()
+
+
+def test_the_time_slider_shows_the_motion_at_the_chosen_time(browser, arm_file):
+    from bras_kit.view import Source, Viewer
+
+    with Viewer(Source(path=str(arm_file)), port=_free_port(), motion_specs=["coude=sin(t)"]) as viewer:
+        page = _open(browser, viewer.url)
+        session = next(iter(viewer.sessions.values()))
+        scrubber = page.get_by_role("slider").nth(3)  # epaule, coude, speed, time
+        scrubber.focus()
+        page.keyboard.press("Home")
+        for _ in range(150):  # steps of 0.01 s
+            page.keyboard.press("ArrowRight")
+        assert _wait(lambda: session.values["coude"] == pytest.approx(np.sin(1.5), abs=1e-9)), session.values
+        assert not session.playing
         page.close()

@@ -107,6 +107,7 @@ def test_playback_turns_a_joint_red_while_it_is_past_its_limit(tmp_path):
     # coude's limits are -2 .. 2 rad; 2.5 sin(t) is past 2 for t in (0.927, 2.214)
     with Viewer(Source(robot=arm()), port=_free_port(), motion_specs=["coude=2.5*sin(t)"], watch=False) as viewer:
         session = _session(viewer)
+        viewer.sessions.pop(0)  # the test moves time by hand: the viewer's own player must not advance it too
         session.playing = True
         session.advance(0.5)
         assert session.values["coude"] == pytest.approx(2.5 * math.sin(0.5))
@@ -240,3 +241,70 @@ def test_library_entry_serves_a_robot_and_prints_its_address(capsys):
         assert viewer.motion is not None and set(viewer.motion.names) == {"epaule", "coude", "poignet"}
     finally:
         viewer.stop()
+
+
+def test_the_fixed_frame_is_kept_by_name_across_a_reload(tmp_path):
+    from bras_kit.authoring import arm_urdf
+    from bras_kit.view import Source, Viewer
+
+    path = tmp_path / "bras.urdf"
+    path.write_text(arm_urdf())
+    with Viewer(Source(path=str(path)), port=_free_port(), watch=False) as viewer:
+        session = _session(viewer)
+        session.fixed.value = "avant_bras"
+        session._choose_fixed_frame()
+        # a new link before the forearm in the file: the forearm's index in the tree may change
+        path.write_text(arm_urdf().replace("<robot name=\"bras\">", "<robot name=\"bras\">\n  <link name=\"camera\"/>\n"
+                        "  <joint name=\"camera_joint\" type=\"fixed\"><parent link=\"base\"/><child link=\"camera\"/>"
+                        "</joint>"))
+        assert viewer.reload()
+        assert "camera" in viewer.model.tree.links
+        assert session.fixed.value == "avant_bras"
+        forearm = viewer.model.tree.index("avant_bras")
+        np.testing.assert_allclose(session._frames[forearm].position, [0, 0, 0], atol=1e-9)
+        np.testing.assert_allclose(session._frames[0].position, [0, 0, -0.65], atol=1e-9)
+
+
+def test_coincident_frame_names_are_stacked_one_spacing_apart():
+    from bras_kit.view.panel import label_offsets
+
+    poses = np.tile(np.eye(4), (4, 1, 1))
+    poses[1, :3, 3] = [0.0, 0.0, 0.01]  # 1 cm above the first: the same place on screen
+    poses[3, :3, 3] = [1.0, 0.0, 0.0]  # far away: left alone
+    offsets = label_offsets(poses, 0.05)
+    np.testing.assert_allclose(offsets[:, 2], [0.0, 0.05, 0.10, 0.0])
+    np.testing.assert_allclose(offsets[:, :2], 0.0)
+
+
+def test_typed_joint_values_follow_the_command_line_parser_and_its_degrees_hint():
+    from bras_kit.authoring import arm
+    from bras_kit.i18n import say
+    from bras_kit.view.model import view_model
+    from bras_kit.view.panel import read_joint_box
+
+    model = view_model(arm())
+    coude = next(s for s in model.sliders if s.joint == "coude")
+    joint = model.robot.joint("coude")
+    assert read_joint_box("0,5", coude, joint, False) == (0.5, None, True)
+    assert read_joint_box("pi/4", coude, joint, False)[0] == pytest.approx(math.pi / 4)
+    assert read_joint_box("30deg", coude, joint, False)[0] == pytest.approx(math.radians(30))
+    value, note, accepted = read_joint_box("90", coude, joint, False)
+    assert (value, accepted) == (90.0, False) and "90deg" in say(note, "en") and "degrés" in say(note, "fr")
+    value, note, accepted = read_joint_box("2,5", coude, joint, True)  # asked to go past: applied, still said
+    assert (value, accepted) == (2.5, True) and "past its limits" in str(note)
+    assert read_joint_box("pi/", coude, joint, False)[:1] == (None,)
+
+
+def test_geometry_collision_at_startup_shows_the_collision_shapes_only():
+    from bras_kit.authoring import arm
+    from bras_kit.errors import ParameterError
+    from bras_kit.view import Source, Viewer
+
+    with Viewer(Source(robot=arm(collisions=True)), port=_free_port(), watch=False, geometry="collision") as viewer:
+        session = _session(viewer)
+        assert not session.show_visual.value and session.show_collision.value
+        assert len(session._collision_nodes) == 3  # base, bras, avant_bras: one <collision> each
+        assert all(node.visible for node in session._collision_nodes)
+        assert not any(node.visible for node in session._visual_nodes)
+    with pytest.raises(ParameterError):
+        Viewer(Source(robot=arm()), port=_free_port(), watch=False, geometry="collisions")

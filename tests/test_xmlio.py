@@ -37,13 +37,14 @@ def test_undefined_entity_reference_is_refused():
         parse_xml('<robot name="&nope;"/>')
 
 
-def test_malformed_xml_reports_line_and_column(tmp_path):
+def test_unclosed_element_is_reported_at_its_opening_line_with_where_the_reader_stopped(tmp_path):
     path = tmp_path / "broken.urdf"
     path.write_text('<robot name="r">\n  <link name="a">\n</robot>\n')
     with pytest.raises(XMLSyntaxError) as info:
         read_xml(path)
-    assert info.value.line == 3
+    assert info.value.line == 2  # where <link name="a"> opens: the fix goes there
     assert str(path) in str(info.value)
+    assert '<link name="a">' in str(info.value) and "line 3" in str(info.value)
 
 
 def test_lenient_model_records_unreadable_numbers():

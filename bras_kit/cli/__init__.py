@@ -16,8 +16,17 @@ import warnings
 from collections.abc import Sequence
 
 from .. import __version__
-from ..errors import BrasKitError, UnknownJointError
-from ..i18n import LANGUAGES, _, say_error, set_language, translate_message
+from ..errors import BrasKitError, UnknownJointError, os_reason
+from ..i18n import (
+    LANGUAGES,
+    current_language,
+    ntranslator,
+    say,
+    say_error,
+    set_language,
+    translator,
+)
+from ..message import M
 
 # name -> one-line help. The module is bras_kit.cli.<name> (``xacro`` lives in ``xacro_cmd``).
 COMMANDS: dict[str, str] = {
@@ -51,24 +60,30 @@ def _command_module(name: str):  # type: ignore[no-untyped-def]
     return importlib.import_module(f"{__name__}.{_MODULES.get(name, name)}")
 
 
+def _word(text: str) -> str:
+    """A help text or an argparse word in the chosen language: each is an entry of the ``cli``
+    catalog, looked up as written (``python -m bras_kit.i18n update`` reads them from the parsers)."""
+    return translator(current_language(), "cli")(text)
+
+
 class _Formatter(argparse.RawDescriptionHelpFormatter):
     """Help in the chosen language: descriptions, epilogs, group titles and option help go
     through the ``cli`` catalog (argparse's own words through :func:`_localise_argparse`)."""
 
     def _format_text(self, text: str) -> str:
-        return super()._format_text(translate_message(text))
+        return super()._format_text(_word(text))
 
     def start_section(self, heading: str | None) -> None:
-        super().start_section(translate_message(heading) if heading else heading)
+        super().start_section(_word(heading) if heading else heading)
 
     def _get_help_string(self, action: argparse.Action) -> str | None:
-        return translate_message(action.help) if action.help else action.help
+        return _word(action.help) if action.help else action.help
 
 
 def _localise_argparse() -> None:
     """argparse looks its words up through its module globals ``_`` and ``ngettext``."""
-    argparse._ = lambda text: translate_message(text)  # type: ignore[attr-defined]
-    argparse.ngettext = lambda one, many, n: translate_message(one if n == 1 else many)  # type: ignore[attr-defined]
+    argparse._ = _word  # type: ignore[attr-defined]
+    argparse.ngettext = lambda one, many, n: ntranslator(current_language(), "cli")(one, many, n)  # type: ignore[attr-defined]
 
 
 def _add_language(parser: argparse.ArgumentParser) -> None:
@@ -139,14 +154,14 @@ def main(argv: Sequence[str] | None = None) -> int:
     try:
         lang = set_language(_language_in(argv))
     except BrasKitError as exc:  # BRAS_KIT_LANG holds an unknown language
-        print(f"bras-kit: {_('error')}: {say_error(exc, 'en')}", file=sys.stderr)
+        print(f"bras-kit: {say(M('error'), 'en')}: {say_error(exc, 'en')}", file=sys.stderr)
         return 2
     selected = _selected_command(argv)
     parser = build_parser(selected)
     args, extra = parser.parse_known_args(argv)
     if extra:  # the command's own usage, not the top-level one
         target = _SUBPARSERS.get(args.command or "", parser)
-        target.error(translate_message("unrecognized arguments: %s") % " ".join(extra))
+        target.error(_word("unrecognized arguments: %s") % " ".join(extra))
     if args.command is None:
         parser.print_help()
         return 0
@@ -162,31 +177,32 @@ def main(argv: Sequence[str] | None = None) -> int:
     except UnknownJointError as exc:
         from ._common import joint_name_hint
 
-        exc.hint = joint_name_hint(exc.joint, str(exc.hint) if exc.hint else None)
-        _fail(command, say_error(exc, lang))
+        exc.hint = joint_name_hint(exc.joint, exc.hint)
+        _fail(command, say_error(exc, lang), lang)
     except BrasKitError as exc:
-        _fail(command, say_error(exc, lang))
+        _fail(command, say_error(exc, lang), lang)
     except KeyboardInterrupt:
-        print(_("interrupted"), file=sys.stderr)
+        print(say(M("interrupted"), lang), file=sys.stderr)
         return 130
     except BrokenPipeError:
         return 0
     except MemoryError:
-        _fail(command, _("out of memory: the input is too large for this machine"))
+        _fail(command, say(M("out of memory: the input is too large for this machine"), lang), lang)
     except OSError as exc:  # a file problem no command caught: still one line, never a traceback
         where = f"{exc.filename}: " if getattr(exc, "filename", None) else ""
-        _fail(command, where + translate_message(str(exc.strerror or exc)))
+        _fail(command, where + say(os_reason(exc), lang), lang)
     except Exception as exc:  # a bug: say so in one line; BRAS_KIT_DEBUG=1 shows the traceback
         if os.environ.get("BRAS_KIT_DEBUG"):
             raise
-        print(f"bras-kit {command}: {_('internal error')}: {type(exc).__name__}: {exc}\n  {_('hint')}: "
-              + _("this is a bug in bras-kit; run again with BRAS_KIT_DEBUG=1 and report the traceback"),
+        print(f"bras-kit {command}: {say(M('internal error'), lang)}: {type(exc).__name__}: {exc}\n  "
+              f"{say(M('hint'), lang)}: "
+              + say(M("this is a bug in bras-kit; run again with BRAS_KIT_DEBUG=1 and report the traceback"), lang),
               file=sys.stderr)
     return 2
 
 
-def _fail(command: str, text: str) -> None:
-    print(f"bras-kit {command}: {_('error')}: {text}", file=sys.stderr)
+def _fail(command: str, text: str, lang: str) -> None:
+    print(f"bras-kit {command}: {say(M('error'), lang)}: {text}", file=sys.stderr)
 
 
 def run() -> None:

@@ -11,6 +11,9 @@ from typing import Any
 from ..errors import BrasKitError, ParameterError, TimeInJointValueError
 from ..message import M, Message
 
+# A finding's or a note's severity, as it is shown
+SEVERITY_WORDS = {"error": M("error"), "warning": M("warning"), "info": M("info")}
+
 
 def add_model_arguments(parser: argparse.ArgumentParser, *, variants: bool = True) -> None:
     """FILE (optional: the tutorial arm), xacro args and package paths, and the arm's variants."""

@@ -7,8 +7,9 @@ import os
 import sys
 import time
 
-from ..i18n import _
-from ._common import add_force_argument, warn
+from ..i18n import say
+from ..message import M
+from ._common import SEVERITY_WORDS, add_force_argument, warn
 
 DEMO_POSE = {"epaule": 0.8, "coude": 1.2}
 
@@ -50,10 +51,10 @@ def run(args: argparse.Namespace) -> int:
     robot = arm(wrist=args.wrist)
     states = sample_loop(tutorial_motion(robot), args.duration, args.fps)
     # the diagrams (matplotlib only) are drawn by a second process while this one renders
-    with _Diagrams(robot, states) as diagrams:
-        variant = _("with the wrist 'poignet'") if args.wrist else "epaule + coude"
-        print(_("bras-kit demo: the tutorial arm '{name}' ({variant}) -> {folder}/").format(
-            name=robot.name, variant=variant, folder=outdir))
+    with _Diagrams(robot, states, args.lang) as diagrams:
+        variant = M("with the wrist 'poignet'") if args.wrist else "epaule + coude"
+        print(say(M("bras-kit demo: the tutorial arm '{name}' ({variant}) -> {folder}/", name=robot.name,
+                    variant=variant, folder=outdir), args.lang))
         made: list[str] = []
 
         def save(name: str, writer) -> str:  # type: ignore[no-untyped-def]
@@ -63,29 +64,30 @@ def run(args: argparse.Namespace) -> int:
             _remember(outdir, owned | set(made))
             return path
 
-        start = _step(_("scaffolding the ROS 2 package"))
+        start = _step(say(M("scaffolding the ROS 2 package"), args.lang))
         package_dir = os.path.join(outdir, "bras_description")
         scaffold_package(package_dir, wrist=args.wrist, force=args.force or "bras_description" in owned, lang=args.lang)
         made.append("bras_description")
         _remember(outdir, owned | set(made))
         _done(start, package_dir + "/")
 
-        start = _step(_("validating the URDF"))
-        findings = validate(robot)
+        start = _step(say(M("validating the URDF"), args.lang))
+        findings = validate(robot, lang=args.lang)
         problems = [f for f in findings if f.severity in ("error", "warning")]
-        print(" " + _("{count} errors or warnings ({seconds:.1f} s)").format(
-            count=len(problems), seconds=time.perf_counter() - start))
+        print(" " + say(M("{count} errors or warnings ({seconds:.1f} s)", count=len(problems),
+                          seconds=time.perf_counter() - start), args.lang))
         for finding in problems:
-            print(f"    {finding.code} {_(finding.severity)}: {finding.text(args.lang)}")
+            print(f"    {finding.code} {say(SEVERITY_WORDS[finding.severity], args.lang)}: "
+                  f"{say(finding.message, args.lang)}")
 
-        start = _step(_("rendering the pose {pose} with TF axes").format(
-            pose=", ".join(f"{k}={v}" for k, v in DEMO_POSE.items())))
+        start = _step(say(M("rendering the pose {pose} with TF axes",
+                            pose=", ".join(f"{k}={v}" for k, v in DEMO_POSE.items())), args.lang))
         picture = render_pose(robot, DEMO_POSE, size=size, tf=True, backend=args.backend)
         pose_png = save("pose.png", lambda path: save_png(picture, path))
         _done(start, pose_png)
 
-        start = _step(_("animating the tutorial motion ({duration:g} s at {fps:g} fps)").format(
-            duration=args.duration, fps=args.fps))
+        start = _step(say(M("animating the tutorial motion ({duration:g} s at {fps:g} fps)", duration=args.duration,
+                            fps=args.fps), args.lang))
         gif = save(f"{robot.name}.gif",
                    lambda path: save_gif(render_motion(robot, states, size=size, backend=args.backend), path, fps=args.fps))
         _done(start, gif)
@@ -93,20 +95,22 @@ def run(args: argparse.Namespace) -> int:
             warn(M("the pictures came from the pure-CPU renderer (no OpenGL here): "
                    "'bras-kit doctor' says what to install"))
         for violation in check_limits(robot, states):
-            print("    " + _("warning") + ": " + _("{joint} leaves its {kind} limit at t={time:.2f} s").format(
-                joint=violation.joint, kind=_(violation.kind), time=violation.time))
+            leaves = M("{joint} leaves its velocity limit at t={time:.2f} s", joint=violation.joint,
+                       time=violation.time) if violation.kind == "velocity" else \
+                M("{joint} leaves its position limit at t={time:.2f} s", joint=violation.joint, time=violation.time)
+            print("    " + say(M("warning"), args.lang) + ": " + say(leaves, args.lang))
 
-        start = _step(_("drawing the frame tree"))
+        start = _step(say(M("drawing the frame tree"), args.lang))
         frames_pdf = save("frames.pdf", diagrams.writer("frames.pdf"))
         save("frames.png", diagrams.writer("frames.png"))
         _done(start, frames_pdf + " (+ .png)")
 
-        start = _step(_("plotting joint angles and the tip path"))
+        start = _step(say(M("plotting joint angles and the tip path"), args.lang))
         plot_png = save("motion.png", diagrams.writer("motion.png"))
         _done(start, plot_png)
 
-        print(_("done. Open {gif} to see the arm move; build {package} with colcon on a ROS 2 machine.").format(
-            gif=gif, package=package_dir))
+        print(say(M("done. Open {gif} to see the arm move; build {package} with colcon on a ROS 2 machine.", gif=gif,
+                    package=package_dir), args.lang))
         sys.stdout.flush()
         return 1 if any(f.severity == "error" for f in findings) else 0
 
@@ -114,16 +118,16 @@ def run(args: argparse.Namespace) -> int:
 DIAGRAMS = ("frames.pdf", "frames.png", "motion.png")
 
 
-def _draw_diagrams(robot, states, folder: str) -> None:  # type: ignore[no-untyped-def]
+def _draw_diagrams(robot, states, folder: str, lang: str | None) -> None:  # type: ignore[no-untyped-def]
     """The demo's figures, written into ``folder``: the frame tree (drawn once, saved as PDF and
     PNG) and the joint-angle and tip-path plot."""
     from ..diagrams import frame_diagram, plot_motion
     from ..diagrams.output import save_figure
 
-    diagram = frame_diagram(robot, DEMO_POSE)
+    diagram = frame_diagram(robot, DEMO_POSE, lang=lang)
     for name in DIAGRAMS[:2]:
         save_figure(diagram, os.path.join(folder, name))
-    plot_motion(robot, states, path=os.path.join(folder, DIAGRAMS[2]))
+    plot_motion(robot, states, path=os.path.join(folder, DIAGRAMS[2]), lang=lang)
 
 
 class _Diagrams:
@@ -132,19 +136,19 @@ class _Diagrams:
     to their place by the demo's own writer. If that process cannot start or fails, the figures
     are drawn here instead, so a failure says what the in-process drawing says."""
 
-    def __init__(self, robot, states) -> None:  # type: ignore[no-untyped-def]
+    def __init__(self, robot, states, lang: str | None = None) -> None:  # type: ignore[no-untyped-def]
         import concurrent.futures
         import multiprocessing
         import tempfile
 
-        self._robot, self._states = robot, states
+        self._robot, self._states, self._lang = robot, states, lang
         self._folder = tempfile.mkdtemp(prefix="bras-kit-demo-")
         self._future = None
         self._pool = None
         try:  # forked before any OpenGL context exists in this process
             self._pool = concurrent.futures.ProcessPoolExecutor(max_workers=1,
                                                                 mp_context=multiprocessing.get_context("fork"))
-            self._future = self._pool.submit(_draw_diagrams, robot, states, self._folder)
+            self._future = self._pool.submit(_draw_diagrams, robot, states, self._folder, lang)
         except (OSError, ValueError, RuntimeError):
             self._future = None
         self._ready = False
@@ -169,7 +173,7 @@ class _Diagrams:
             except Exception:  # noqa: BLE001 - drawn again below, where a real error is reported plainly
                 drawn = False
         if not drawn:
-            _draw_diagrams(self._robot, self._states, self._folder)
+            _draw_diagrams(self._robot, self._states, self._folder, self._lang)
         self._ready = True
 
     def __enter__(self) -> _Diagrams:
@@ -196,11 +200,11 @@ def _claim(outdir: str, force: bool) -> set[str]:
     The demo owns its folder: running it again refreshes what it made (listed in a manifest),
     and it refuses only a folder holding something else, unless ``force``.
     """
-    from ..errors import OutputExistsError
+    from ..errors import OutputExistsError, os_reason
     from ..outputs import OutputError
 
     if os.path.islink(outdir) or (os.path.lexists(outdir) and not os.path.isdir(outdir)):
-        raise OutputError(f"{outdir} exists and is not a folder", hint="name a new folder for the demo")
+        raise OutputError(M("{path} exists and is not a folder", path=outdir), hint=M("name a new folder for the demo"))
     owned: set[str] = set()
     if os.path.isdir(outdir):
         try:
@@ -209,16 +213,17 @@ def _claim(outdir: str, force: bool) -> set[str]:
         except FileNotFoundError:
             pass
         except OSError as exc:
-            raise OutputError(f"cannot read {os.path.join(outdir, MANIFEST)}: {exc.strerror}") from None
+            raise OutputError(M("cannot read {path}: {reason}", path=os.path.join(outdir, MANIFEST),
+                                reason=os_reason(exc))) from None
         foreign = sorted(set(os.listdir(outdir)) - owned - {MANIFEST})
         if foreign and not force:
             shown = ", ".join(foreign[:5]) + (", ..." if len(foreign) > 5 else "")
-            raise OutputExistsError(f"{outdir} holds files the demo did not make ({shown})",
-                                    hint="name another folder, or pass --force to write beside them")
+            raise OutputExistsError(M("{path} holds files the demo did not make ({shown})", path=outdir, shown=shown),
+                                    hint=M("name another folder, or pass --force to write beside them"))
     try:
         os.makedirs(outdir, exist_ok=True)
     except OSError as exc:
-        raise OutputError(f"cannot create the folder {outdir}: {exc.strerror}") from None
+        raise OutputError(M("cannot create the folder {path}: {reason}", path=outdir, reason=os_reason(exc))) from None
     return owned
 
 

@@ -6,7 +6,8 @@ import argparse
 
 
 def configure(parser: argparse.ArgumentParser) -> None:
-    del parser  # no options yet: every check runs
+    parser.add_argument("--clear-cache", action="store_true",
+                        help="remove the decoded meshes kept in the cache folder, then run the checks")
 
 
 def run(args: argparse.Namespace) -> int:
@@ -15,6 +16,13 @@ def run(args: argparse.Namespace) -> int:
     from ..message import M, Mn
 
     lang = args.lang
+    if getattr(args, "clear_cache", False):
+        from ..meshes import clear_cache
+
+        removed = clear_cache()
+        print(say(Mn("removed {n} decoded mesh ({size:.1f} MB) from {path}",
+                     "removed {n} decoded meshes ({size:.1f} MB) from {path}", removed.entries,
+                     size=removed.bytes / 1e6, path=removed.folder), lang), flush=True)
     status_words = {"ok": say(M("ok"), lang), "note": say(M("note"), lang), "fail": say(M("fail"), lang)}
     width = max(len(word) for word in status_words.values())
     results = []

@@ -12,10 +12,9 @@ def configure(parser: argparse.ArgumentParser) -> None:
 
 
 def run(args: argparse.Namespace) -> int:
-    from ..validate import default_language
     from ..validate.catalogue import explain_text, find_rule, rule_list_text
 
-    lang = args.lang or default_language()
+    lang = args.lang
     if args.code is None:
         sys.stdout.write(rule_list_text(lang))
         return 0

@@ -36,10 +36,10 @@ def run(args: argparse.Namespace) -> int:
     tree.config_vector(config)  # unknown joint names fail here, before anything is written
     warn_out_of_limits(tree, config or {}, M("marked in red"), args.lang)
     if suffix is None or suffix == ".dot":
-        write_text(None if suffix is None else output, frames_dot(robot, config), args.force)
+        write_text(None if suffix is None else output, frames_dot(robot, config, args.lang), args.force)
         return 0
     check_writable(output, args.force)
-    save_with(output, args.force, lambda temporary: frame_diagram(robot, config, path=temporary), announce=False)
+    save_with(output, args.force, lambda temporary: frame_diagram(robot, config, path=temporary, lang=args.lang), announce=False)
     written = M("wrote {path}: {frames} frames, {joints} joints", path=output, frames=len(tree.links),
                 joints=len(tree.links) - 1)
     if not args.output:

@@ -7,7 +7,8 @@ import os
 import sys
 import time
 
-from ..i18n import _
+from ..i18n import say
+from ..message import M
 from ._common import add_cache_argument, add_force_argument
 
 EPILOG = """\
@@ -52,27 +53,31 @@ def run(args: argparse.Namespace) -> int:
     from ..errors import OutputExistsError, ParameterError
     from ..grade import Options, find_submissions, grade_all, load_rubric, write_reports
     from ..grade.report import REPORT_MARK, previous_results
+    from ..grade.rubric import explained_rubric
 
     rubric = load_rubric(args.rubric)
     if args.explain_rubric:
-        sys.stdout.write(rubric.text)
+        sys.stdout.write(explained_rubric(rubric, args.lang))
         return 0
     if args.submissions is None:
-        raise ParameterError("no SUBMISSIONS folder given", hint="bras-kit grade copies/ (one entry per learner)")
+        raise ParameterError(M("no SUBMISSIONS folder given"), hint=M("bras-kit grade copies/ (one entry per learner)"))
     if args.gif and args.no_pictures:
-        raise ParameterError("--gif and --no-pictures cannot go together", hint="keep one of them")
+        raise ParameterError(M("--gif and --no-pictures cannot go together"), hint=M("keep one of them"))
     if args.jobs is not None and not 1 <= args.jobs <= 256:
-        raise ParameterError(f"--jobs {args.jobs} is out of range", hint="give a number of processes from 1 to 256")
+        raise ParameterError(M("--jobs {jobs} is out of range", jobs=args.jobs),
+                             hint=M("give a number of processes from 1 to 256"))
     output = args.output
     if os.path.islink(output) or (os.path.exists(output) and not os.path.isdir(output)):
-        raise OutputExistsError(f"-o {output}: exists and is not a folder", hint="choose another report folder")
+        raise OutputExistsError(M("-o {path}: exists and is not a folder", path=output),
+                                hint=M("choose another report folder"))
     if os.path.isdir(output) and os.listdir(output) and not os.path.exists(os.path.join(output, REPORT_MARK)) \
             and not args.force:
-        raise OutputExistsError(f"-o {output}: the folder holds files that are not a bras-kit report",
-                                hint="choose another folder, or pass --force")
+        raise OutputExistsError(M("-o {path}: the folder holds files that are not a bras-kit report", path=output),
+                                hint=M("choose another folder, or pass --force"))
     submissions = find_submissions(os.path.abspath(args.submissions))  # Dask workers may start elsewhere
     if not submissions:
-        raise ParameterError(f"{args.submissions} is empty", hint="put one folder, file or archive per learner in it")
+        raise ParameterError(M("{path} is empty", path=args.submissions),
+                             hint=M("put one folder, file or archive per learner in it"))
     pictures = None if args.no_pictures else os.path.abspath(os.path.join(output, "pictures"))
     if pictures:
         os.makedirs(pictures, exist_ok=True)
@@ -85,11 +90,12 @@ def run(args: argparse.Namespace) -> int:
     elapsed = time.monotonic() - start
     unreadable = sum(1 for r in results if r["status"] != "graded")
     mean = sum(r["score"] for r in results) / len(results) if results else 0.0
-    print(_("graded {count} of {total} submissions in {seconds:.1f} s: mean {mean:.1f} / {max:g}, "
-            "{unreadable} could not be read; report: {index}").format(
-        count=len(results), total=len(submissions), seconds=elapsed, mean=mean, max=rubric.total,
-        unreadable=unreadable, index=os.path.join(output, "index.html")))
+    print(say(M("graded {count} of {total} submissions in {seconds:.1f} s: mean {mean:.1f} / {max:g}, "
+                "{unreadable} could not be read; report: {index}",
+                count=len(results), total=len(submissions), seconds=elapsed, mean=mean, max=rubric.total,
+                unreadable=unreadable, index=os.path.join(output, "index.html")), args.lang))
     if not finished:
-        print(_("interrupted: the report holds the submissions graded so far (--resume goes on)"), file=sys.stderr)
+        print(say(M("interrupted: the report holds the submissions graded so far (--resume goes on)"), args.lang),
+              file=sys.stderr)
         return 130
     return 0

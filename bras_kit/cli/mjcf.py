@@ -10,7 +10,7 @@ import argparse
 import os
 import sys
 
-from ..errors import BrasKitError
+from ..errors import BrasKitError, os_reason
 from ..i18n import say
 from ..message import M, Mn
 from ._common import add_force_argument, add_model_arguments, check_writable, write_text
@@ -39,9 +39,8 @@ def run(args: argparse.Namespace) -> int:
     from ..physics import mjcf
     from ..physics.controllers import gain_vector
     from ..physics.diagnostics import LEVELS, check_physics_ready, physics_notes
-    from ..validate import default_language
 
-    lang = args.lang or default_language()
+    lang = args.lang
     if args.output and args.output != "-":
         check_writable(args.output, args.force)
     robot = load_model(args)
@@ -73,7 +72,7 @@ def run(args: argparse.Namespace) -> int:
         try:
             os.makedirs(target, exist_ok=True)
         except OSError as exc:
-            raise BrasKitError(M("cannot create {path}: {reason}", path=target, reason=exc.strerror or str(exc)),
+            raise BrasKitError(M("cannot create {path}: {reason}", path=target, reason=os_reason(exc)),
                                hint=M("check the folder is writable and has space")) from None
         for asset in built.assets.values():  # each through the one safe write: no link followed
             write_bytes(os.path.join(target, asset.name), asset.data, args.force, announce=False)

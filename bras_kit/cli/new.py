@@ -5,7 +5,8 @@ from __future__ import annotations
 import argparse
 import os
 
-from ..i18n import _
+from ..i18n import say
+from ..message import M
 from ._common import add_force_argument, template_values
 
 
@@ -36,10 +37,10 @@ def run(args: argparse.Namespace) -> int:
     made = scaffold_package(dest, args.name, wrist=args.wrist, inertials=args.inertials,
                             params=parse_assignments(params), force=args.force,
                             maintainer=args.maintainer, email=args.email, lang=args.lang)
-    print(_("created the ROS 2 package '{name}' in {folder}:").format(name=args.name, folder=dest))
+    print(say(M("created the ROS 2 package '{name}' in {folder}:", name=args.name, folder=dest), args.lang))
     for path in made:
         print(f"  {os.path.relpath(path, dest)}")
-    print("\n" + _("next: move it into the src/ folder of a colcon workspace, then"))
+    print("\n" + say(M("next: move it into the src/ folder of a colcon workspace, then"), args.lang))
     print(f"  colcon build --packages-select {args.name} && source install/setup.bash")
     print(f"  ros2 launch {args.name} affichage.launch.py")
     return 0

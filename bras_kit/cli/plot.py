@@ -5,7 +5,8 @@ from __future__ import annotations
 import argparse
 import sys
 
-from ..i18n import _
+from ..i18n import say
+from ..message import M
 from ._common import (
     add_force_argument,
     add_model_arguments,
@@ -48,12 +49,12 @@ def run(args: argparse.Namespace) -> int:
     motion = motion_from_specs(robot, args.motion, joint_values(args.values) or None, args.interpolation, args.topic)
     warn_motion_notes(motion)
     states = sample(motion, args.duration, args.rate if args.rate is not None else DEFAULT_RATE)
-    save_with(output, args.force, lambda temporary: plot_motion(robot, states, path=temporary), announce=False)
+    save_with(output, args.force, lambda temporary: plot_motion(robot, states, path=temporary, lang=args.lang), announce=False)
     link, offset = tip_point(robot)
     duration = float(states.times[-1]) if len(states.times) else 0.0
-    print(_("wrote {path}: {count} samples over {duration:g} s; tip = '{link}' + ({offset})").format(
-        path=output, count=len(states.times), duration=duration, link=link,
-        offset=", ".join(f"{v:g}" for v in offset)), file=sys.stderr)
+    print(say(M("wrote {path}: {count} samples over {duration:g} s; tip = '{link}' + ({offset})",
+                path=output, count=len(states.times), duration=duration, link=link,
+                offset=", ".join(f"{v:g}" for v in offset)), args.lang), file=sys.stderr)
     for violation in check_limits(robot, states):
-        warn(describe_violation(violation))
+        warn(describe_violation(violation), args.lang)
     return 0

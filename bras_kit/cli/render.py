@@ -85,6 +85,9 @@ def configure(parser: argparse.ArgumentParser) -> None:
                         help="camera distance in metres (default: just far enough to see every pose)")
     parser.add_argument("--tf", action="store_true", help="draw each link's axes (x red, y green, z blue)")
     parser.add_argument("--no-grid", action="store_true", help="leave out the ground grid")
+    parser.add_argument("--geometry", choices=("visual", "collision", "both"), default="visual",
+                        help="draw the links' <visual> shapes (default), their <collision> shapes, or both, "
+                        "like RViz's Visual/Collision Enabled (not --collisions, which adds shapes to the built-in arm)")
     parser.add_argument("--antialias", action=argparse.BooleanOptionalAction, default=None,
                         help="smooth edges (default: on for -o pictures, off for animations: "
                         "twice the speed without a GPU)")
@@ -144,7 +147,7 @@ def run(args: argparse.Namespace) -> int:
 
     opts = dict(size=args.size, view=args.view, tf=args.tf, grid=not args.no_grid, background=args.background,
                 backend=args.backend, azimuth=args.azimuth, elevation=args.elevation, distance=args.distance,
-                antialias=args.antialias, package_paths=tuple(args.package_path))
+                antialias=args.antialias, package_paths=tuple(args.package_path), geometry=args.geometry)
     options = render_options(**opts)  # bad values fail before the model is even loaded
     apply_node(args, args.duration)
     robot = load_model(args)

@@ -6,6 +6,7 @@ import argparse
 import os
 import sys
 
+from ..message import M
 from ._common import add_force_argument, check_writable, warn
 
 _EPILOG = """\
@@ -81,7 +82,6 @@ def _robot(args: argparse.Namespace):  # type: ignore[no-untyped-def]
     """The robot the findings and the GIF use: --urdf, else the package's, else the built-in
     tutorial arm (a lone node file is written for it), said on stderr."""
     from ..authoring import arm
-    from ..message import M
     from ..run.findings import robot_of
 
     robot = robot_of(args.target, args.urdf)
@@ -111,7 +111,6 @@ def _write_states(recording, robot, args) -> None:  # type: ignore[no-untyped-de
     a bag holds the robot's joints in its order, as robot_state_publisher would have them)."""
     from ..errors import BrasKitError
     from ..i18n import say
-    from ..message import M
     from ..motion.states_io import states_format, write_states
     from ..run import joint_states
     from ..run.recording import states_for
@@ -137,7 +136,7 @@ def _write_gif(recording, robot, args) -> None:  # type: ignore[no-untyped-def]
 
     from ..i18n import say
     from ..kinematics import tf_tree
-    from ..message import M, Mn
+    from ..message import Mn
     from ..motion.core import JointStates
     from ..outputs import staged
     from ..render import render_motion

@@ -10,7 +10,7 @@ from __future__ import annotations
 import argparse
 import sys
 
-from ..errors import BrasKitError, ParameterError
+from ..errors import BrasKitError, ParameterError, os_reason
 from ..i18n import say
 from ..message import M
 from ._common import (
@@ -97,9 +97,8 @@ def run(args: argparse.Namespace) -> int:
         report_text,
     )
     from ..physics.run import simulate
-    from ..validate import default_language
 
-    lang = args.lang or default_language()
+    lang = args.lang
     fmt = _output_format(args.output) if args.output else None
     if args.plot:
         from ..diagrams.output import FIGURE_FORMATS, output_suffix
@@ -158,6 +157,7 @@ def run(args: argparse.Namespace) -> int:
             print(say(M("wrote {path}: {count} frames at {fps} fps", path=args.gif, count=count, fps=args.rate),
                       lang), file=sys.stderr)
     except OSError as exc:
-        raise BrasKitError(M("cannot write {path}: {reason}", path=exc.filename or "-", reason=exc.strerror or str(exc)),
+        raise BrasKitError(M("cannot write {path}: {reason}", path=exc.filename or M("the output"),
+                             reason=os_reason(exc)),
                            hint=M("check the folder exists, is writable and has space")) from None
     return 1 if args.strict and states.weak_joints else 0

@@ -35,7 +35,7 @@ def run(args: argparse.Namespace) -> int:
     config = joint_values(args.values)
     glyphs = UNICODE_GLYPHS
     ascii_only = args.ascii or not _can_print(glyphs.branch + glyphs.last + glyphs.pipe + glyphs.arrow)
-    text = tree_text(robot, config, ascii=ascii_only)
+    text = tree_text(robot, config, ascii=ascii_only, lang=args.lang)
     if not _can_print(text):  # names the terminal cannot show: print '?' rather than fail
         encoding = getattr(sys.stdout, "encoding", None) or "ascii"
         text = text.encode(encoding, errors="replace").decode(encoding)

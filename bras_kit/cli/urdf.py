@@ -4,6 +4,8 @@ from __future__ import annotations
 
 import argparse
 
+from ..i18n import say
+from ..message import M
 from ._common import add_force_argument, template_values, write_text
 
 
@@ -26,7 +28,7 @@ def run(args: argparse.Namespace) -> int:
 
     if args.list_params:
         for p in template_parameters().values():
-            print(f"{p.name:20s} {p.kind:7s} default {p.default}")
+            print(f"{p.name:20s} {p.kind:7s} " + say(M("default {value}", value=p.default), args.lang))
         return 0
     text = arm_urdf(wrist=args.wrist, inertials=args.inertials, params=parse_assignments(template_values(args)),
                     collisions=args.collisions)

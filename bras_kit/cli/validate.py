@@ -10,6 +10,8 @@ import argparse
 import os
 import sys
 
+from ..message import M
+
 EPILOG = """\
 exit status: 0 no errors (warnings allowed), 1 errors (or warnings with --strict),
 2 a file could not be read or the command line is wrong.
@@ -112,7 +114,6 @@ def run(args: argparse.Namespace) -> int:
         check_robot,
         collect_files,
         compare_generated,
-        default_language,
         generated_pairs,
         validate_path,
     )
@@ -122,28 +123,28 @@ def run(args: argparse.Namespace) -> int:
     from ..validate.report import exit_code, format_json, format_text
     from ._common import joint_values, xacro_mappings
 
-    lang = args.lang or default_language()
+    lang = args.lang
     select, ignore = _codes(args.select), _codes(args.ignore)
     try:
         select_rules(select, ignore)
     except ValueError as exc:
-        raise ParameterError(f"--select/--ignore: no rule code starts with '{exc}'",
-                             hint="codes look like BK301; 'bras-kit explain' lists them all") from None
+        raise ParameterError(M("--select/--ignore: no rule code starts with '{code}'", code=str(exc)),
+                             hint=M("codes look like BK301; 'bras-kit explain' lists them all")) from None
     pose = joint_values(_assignments(args.pose))
     if args.duration is not None and not args.duration > 0:
-        raise ParameterError(f"--duration {args.duration:g}: must be a positive number of seconds")
+        raise ParameterError(M("--duration {duration:g}: must be a positive number of seconds", duration=args.duration))
     options = dict(pose=pose or None, motion=args.motion or None, duration=args.duration, lang=lang,
                    package_paths=args.package_path, select=select, ignore=ignore)
     if args.files:
         if args.wrist or args.inertials or args.param:
-            raise ParameterError("--wrist, --inertials and --param apply to the built-in arm only",
-                                 hint="drop FILE to check the built-in arm, or edit your file")
+            raise ParameterError(M("--wrist, --inertials and --param apply to the built-in arm only"),
+                                 hint=M("drop FILE to check the built-in arm, or edit your file"))
         mappings = xacro_mappings(args.xacro_arg)
         paths = collect_files(args.files)
         packages = find_packages(args.files)
         if not paths and not packages:
-            raise ParameterError("no .urdf or .xacro file found in " + ", ".join(args.files),
-                                 hint="give a file, or a folder holding .urdf or .xacro files")
+            raise ParameterError(M("no .urdf or .xacro file found in {paths}", paths=", ".join(args.files)),
+                                 hint=M("give a file, or a folder holding .urdf or .xacro files"))
         results = [result for package in packages
                    for result in validate_package(package, lang=lang, select=select, ignore=ignore)]
         if args.run:

@@ -7,13 +7,15 @@ import argparse
 import os
 import sys
 
-from ..i18n import _
+from ..i18n import say
+from ..message import M
 from ._common import (
     add_force_argument,
     add_model_arguments,
     add_node_argument,
     add_topic_argument,
     apply_node,
+    warn,
 )
 
 EPILOG = """\
@@ -35,6 +37,9 @@ def configure(parser: argparse.ArgumentParser) -> None:
     parser.add_argument("--port", type=int, default=8080, help="port of the page (default 8080; the next free one if taken)")
     parser.add_argument("--host", default="127.0.0.1",
                         help="address to listen on (default 127.0.0.1: this computer only)")
+    parser.add_argument("--geometry", choices=("visual", "collision", "both"), default="visual",
+                        help="what the page shows first: the links' <visual> shapes (default), their <collision> "
+                        "shapes, or both (the Display checkboxes change it)")
     parser.add_argument("--no-browser", action="store_true", help="print the address without opening a browser")
     parser.add_argument("--export", metavar="HTML",
                         help="write one self-contained HTML file replaying the motion, then stop")
@@ -50,11 +55,12 @@ def run(args: argparse.Namespace) -> int:
     from ._common import xacro_mappings
 
     if not 0 <= args.port <= 65535:
-        raise ParameterError(f"--port {args.port} is out of range", hint="give a port between 1024 and 65535, e.g. 8080")
+        raise ParameterError(M("--port {port} is out of range", port=args.port),
+                             hint=M("give a port between 1024 and 65535, e.g. 8080"))
     apply_node(args, args.duration)
     if args.file is not None and (args.wrist or args.inertials or args.param or args.collisions):
-        raise ParameterError("--wrist, --inertials, --collisions and --param apply to the built-in arm only",
-                             hint="drop FILE to use the built-in arm, or edit your file")
+        raise ParameterError(M("--wrist, --inertials, --collisions and --param apply to the built-in arm only"),
+                             hint=M("drop FILE to use the built-in arm, or edit your file"))
     from ..view import Source
 
     if args.file is None:
@@ -71,12 +77,14 @@ def run(args: argparse.Namespace) -> int:
 def _export(args: argparse.Namespace, source: object) -> int:
     from ..errors import ParameterError
     from ..motion import motion_from_specs, sample
+    from ..motion.sources import motion_title
     from ..outputs import write_text
     from ..view import export_html
     from ._common import check_writable, warn_motion_notes
 
     if not 1 <= args.fps <= 120:
-        raise ParameterError(f"--fps {args.fps:g} is out of range", hint="give frames per second between 1 and 120, e.g. 20")
+        raise ParameterError(M("--fps {fps:g} is out of range", fps=args.fps),
+                             hint=M("give frames per second between 1 and 120, e.g. 20"))
     check_writable(args.export, args.force, option="--export")
     robot = source.load()  # type: ignore[attr-defined]
     motion = motion_from_specs(robot, args.motion, topic=args.topic)
@@ -84,8 +92,8 @@ def _export(args: argparse.Namespace, source: object) -> int:
     states = sample(motion, args.duration if args.duration is not None else (motion.duration or 10.0), args.fps)
     page = export_html(robot, states, package_paths=source.package_paths)  # type: ignore[attr-defined]
     write_text(args.export, page, args.force, announce=False)
-    print(_("wrote {path}: {count} frames of {label}, open it in a browser (no server needed)").format(
-        path=args.export, count=len(states.times), label=motion.label or "motion"), file=sys.stderr)
+    print(say(M("wrote {path}: {count} frames of {label}, open it in a browser (no server needed)", path=args.export,
+                count=len(states.times), label=motion_title(motion.label)), args.lang), file=sys.stderr)
     return 0
 
 
@@ -93,14 +101,14 @@ def _serve(args: argparse.Namespace, source: object) -> int:
     from ..view import Viewer
 
     if args.host not in ("127.0.0.1", "localhost", "::1"):
-        print(_("warning") + ": " + _("listening on {host}: anyone who can reach this computer can see and move "
-                                     "the arm").format(host=args.host), file=sys.stderr)
+        warn(M("listening on {host}: anyone who can reach this computer can see and move the arm", host=args.host),
+             args.lang)
     viewer = Viewer(source, host=args.host, port=args.port, lang=args.lang, motion_specs=args.motion,  # type: ignore[arg-type]
-                    motion_topic=args.topic)
+                    motion_topic=args.topic, geometry=args.geometry)
     try:
-        print(_("bras-kit view: {url} (Ctrl-C to stop)").format(url=viewer.url), flush=True)
+        print(say(M("bras-kit view: {url} (Ctrl-C to stop)", url=viewer.url), args.lang), flush=True)
         if source.path:  # type: ignore[attr-defined]
-            print(_("watching {path}: save it and the page reloads").format(path=source.path),  # type: ignore[attr-defined]
+            print(say(M("watching {path}: save it and the page reloads", path=source.path), args.lang),  # type: ignore[attr-defined]
                   file=sys.stderr, flush=True)
         if not args.no_browser and _has_screen():
             import webbrowser

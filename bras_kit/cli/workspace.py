@@ -5,7 +5,8 @@ from __future__ import annotations
 import argparse
 import os
 
-from ..i18n import _
+from ..i18n import say
+from ..message import M
 from ._common import add_force_argument, add_model_arguments, check_writable, save_with
 
 FORMATS = (".png", ".svg", ".pdf")
@@ -31,17 +32,20 @@ def run(args: argparse.Namespace) -> int:
 
     extension = os.path.splitext(args.output)[1].lower()
     if extension not in FORMATS:
-        raise ParameterError(f"cannot write '{args.output}': unknown picture format",
-                             hint="end the file name with " + ", ".join(FORMATS))
+        raise ParameterError(M("cannot write '{path}': unknown picture format", path=args.output),
+                             hint=M("end the file name with {suffixes}", suffixes=", ".join(FORMATS)))
     if not 1 <= args.samples <= 5_000_000:
-        raise ParameterError(f"--samples {args.samples} is out of range", hint="give a number from 1 to 5000000")
+        raise ParameterError(M("--samples {samples} is out of range", samples=args.samples),
+                             hint=M("give a number from 1 to 5000000"))
     check_writable(args.output, args.force)
     tree = tf_tree(load_model(args))
-    figure, _axes, summary = workspace_figure(tree, args.samples, tip_link=args.link, tip_offset=args.tip_offset)
+    figure, _axes, summary = workspace_figure(tree, args.samples, tip_link=args.link, tip_offset=args.tip_offset,
+                                              lang=args.lang)
     save_with(args.output, args.force, figure.savefig, announce=False)
     h, v = summary.axes
-    print(_("tip region in the {h}-{v} plane: {inside:.3f} m^2 within the joint limits, {free:.3f} m^2 if "
-            "every joint turned freely; farthest tip {reach:.3f} m from the first joint").format(
-        h=h, v=v, inside=summary.area_within_limits, free=summary.area_without_limits, reach=summary.max_reach))
-    print(_("wrote {path}").format(path=args.output))
+    print(say(M("tip region in the {h}-{v} plane: {inside:.3f} m^2 within the joint limits, {free:.3f} m^2 if "
+                "every joint turned freely; farthest tip {reach:.3f} m from the first joint",
+                h=h, v=v, inside=summary.area_within_limits, free=summary.area_without_limits,
+                reach=summary.max_reach), args.lang))
+    print(say(M("wrote {path}", path=args.output), args.lang))
     return 0

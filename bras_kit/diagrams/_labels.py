@@ -5,8 +5,9 @@ from __future__ import annotations
 import math
 from collections.abc import Mapping, Sequence
 
-from ..i18n import _
+from ..i18n import say
 from ..kinematics import TFTree
+from ..message import M
 from ..model import Joint
 from ..motion import joint_unit
 
@@ -31,57 +32,57 @@ def beyond_limits(joint: Joint, value: float) -> bool:
     return bool(value < lower or value > upper)
 
 
-def _range_text(joint: Joint, separator: str = "..") -> str | None:
+def _range_text(joint: Joint, separator: str = "..", lang: str | None = None) -> str | None:
     """``-1.57..1.57`` for a bounded joint, None when there is nothing to show."""
     if joint.type in ("revolute", "prismatic"):
         if joint.limit is None:
-            return _("no <limit>")
+            return say(M("no <limit>"), lang)
         return f"{format_number(joint.limit.lower)}{separator}{format_number(joint.limit.upper)}"
     return None
 
 
-def _axis_text(joint: Joint) -> str:
+def _axis_text(joint: Joint, lang: str | None = None) -> str:
     text = format_vector(joint.axis_or_default)
-    return text if joint.axis is not None else text + " (" + _("default") + ")"
+    return text if joint.axis is not None else text + " (" + say(M("default"), lang) + ")"
 
 
-def joint_summary(joint: Joint) -> str:
+def joint_summary(joint: Joint, lang: str | None = None) -> str:
     """One line about a joint: ``revolute, axis 0 1 0, -1.57..1.57``."""
-    parts = [joint.type or _("no type")]
+    parts = [joint.type or say(M("no type"), lang)]
     if joint.type in ("revolute", "continuous", "prismatic"):
-        parts.append(_("axis") + " " + _axis_text(joint))
-    limits = _range_text(joint)
+        parts.append(say(M("axis"), lang) + " " + _axis_text(joint, lang))
+    limits = _range_text(joint, lang=lang)
     if limits is not None:
         parts.append(limits)
     if joint.mimic is not None:
-        parts.append(_("mimics {joint}").format(joint=joint.mimic.joint))
+        parts.append(say(M("mimics {joint}", joint=joint.mimic.joint), lang))
     return ", ".join(parts)
 
 
-def joint_label_lines(joint: Joint, value: float | None = None) -> list[str]:
+def joint_label_lines(joint: Joint, value: float | None = None, lang: str | None = None) -> list[str]:
     """The detail lines under a joint's name in the frame diagram (origin, axis, limits, value)."""
-    lines = [joint.type or _("no type")]
+    lines = [joint.type or say(M("no type"), lang)]
     if joint.mimic is not None:
-        lines[0] += (", " + _("mimics {joint}").format(joint=joint.mimic.joint) + f" x{format_number(joint.mimic.multiplier)}"
+        lines[0] += (", " + say(M("mimics {joint}", joint=joint.mimic.joint), lang) + f" x{format_number(joint.mimic.multiplier)}"
                      f" {'+' if joint.mimic.offset >= 0 else '-'}{format_number(abs(joint.mimic.offset))}")
     lines.append("xyz " + format_vector(joint.origin.xyz))
     lines.append("rpy " + format_vector(joint.origin.rpy))
     if joint.type in ("revolute", "continuous", "prismatic"):
-        lines.append(_("axis") + " " + _axis_text(joint))
-    limits = _range_text(joint, " .. ")
+        lines.append(say(M("axis"), lang) + " " + _axis_text(joint, lang))
+    limits = _range_text(joint, " .. ", lang)
     if limits is not None:
-        lines.append(f"{_('limits')} {limits} {joint_unit(joint)}" if joint.limit is not None else limits)
+        lines.append(f"{say(M('limits'), lang)} {limits} {joint_unit(joint)}" if joint.limit is not None else limits)
     elif joint.type == "continuous":
-        lines.append(_("no position limits"))
+        lines.append(say(M("no position limits"), lang))
     if joint.limit is not None and joint.type in ("revolute", "continuous", "prismatic"):
-        lines.append(f"{_('effort')} {format_number(joint.limit.effort)}, "
-                     f"{_('velocity')} {format_number(joint.limit.velocity)}")
+        lines.append(f"{say(M('effort'), lang)} {format_number(joint.limit.effort)}, "
+                     f"{say(M('velocity'), lang)} {format_number(joint.limit.velocity)}")
     if value is not None:
-        text = f"{_('value')} {format_number(value)} {joint_unit(joint)}"
+        text = f"{say(M('value'), lang)} {format_number(value)} {joint_unit(joint)}"
         if joint.type != "prismatic":
             text += f" ({format_number(math.degrees(value))} deg)"
         if beyond_limits(joint, value):
-            text += " " + _("OUT OF LIMITS")
+            text += " " + say(M("OUT OF LIMITS"), lang)
         lines.append(text)
     return lines
 

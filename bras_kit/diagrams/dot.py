@@ -6,8 +6,9 @@ from collections.abc import Mapping
 
 import numpy as np
 
-from ..i18n import _
+from ..i18n import say
 from ..kinematics import TFTree, fk_batch, tf_tree
+from ..message import M
 from ..model import Joint, Robot
 from ._labels import beyond_limits, format_number, format_vector, joint_label_lines, joint_values
 
@@ -19,24 +20,24 @@ def pose_facts(tree: TFTree, config: Mapping[str, float] | None) -> tuple[dict[s
     return joint_values(tree, config), fk_batch(tree, tree.config_vector(config))[:, :3, 3]
 
 
-def graph_title(robot: Robot, tree: TFTree, config: Mapping[str, float] | None) -> str:
+def graph_title(robot: Robot, tree: TFTree, config: Mapping[str, float] | None, lang: str | None = None) -> str:
     joints = len(tree.links) - 1
-    title = _("{robot}: frame tree, {links} links, {joints} joints ({movable} movable)").format(
-        robot=robot.name or "robot", links=len(tree.links), joints=joints, movable=len(tree.dof))
+    title = say(M("{robot}: frame tree, {links} links, {joints} joints ({movable} movable)", robot=robot.name or M("robot"),
+                    links=len(tree.links), joints=joints, movable=len(tree.dof)), lang)
     if config:
-        title += "\n" + _("pose") + ": " + ", ".join(f"{k}={format_number(v)}" for k, v in config.items())
+        title += "\n" + say(M("pose"), lang) + ": " + ", ".join(f"{k}={format_number(v)}" for k, v in config.items())
     return title
 
 
-def link_label(name: str, position: np.ndarray | None) -> str:
+def link_label(name: str, position: np.ndarray | None, lang: str | None = None) -> str:
     if position is None:
         return name
-    return f"{name}\n" + _("at {position}").format(position=format_vector(position.tolist()))
+    return f"{name}\n" + say(M("at {position}", position=format_vector(position.tolist())), lang)
 
 
-def joint_label(joint: Joint, value: float | None) -> list[str]:
+def joint_label(joint: Joint, value: float | None, lang: str | None = None) -> list[str]:
     """The joint's name, then its detail lines."""
-    return [joint.name or "?", *joint_label_lines(joint, value)]
+    return [joint.name or "?", *joint_label_lines(joint, value, lang)]
 
 
 def _dot_string(text: str) -> str:
@@ -46,7 +47,7 @@ def _dot_string(text: str) -> str:
     return '"' + escaped.replace("\n", "\\n") + '"'
 
 
-def frames_dot(robot: Robot, config: Mapping[str, float] | None = None) -> str:
+def frames_dot(robot: Robot, config: Mapping[str, float] | None = None, lang: str | None = None) -> str:
     """The frame tree in Graphviz DOT: links as boxes, joints as edges parent -> child.
 
     Edge labels hold the joint's name, type, origin (xyz, rpy), axis and limits; with ``config``
@@ -59,7 +60,7 @@ def frames_dot(robot: Robot, config: Mapping[str, float] | None = None) -> str:
     out = [
         f"digraph {_dot_string(robot.name or 'robot')} {{",
         f"  // bras-kit frames: the TF tree of '{robot.name or 'robot'}', root '{tree.root}'",
-        f"  graph [rankdir=TB, labelloc=t, fontname=\"Helvetica\", label={_dot_string(graph_title(robot, tree, config))}];",
+        f"  graph [rankdir=TB, labelloc=t, fontname=\"Helvetica\", label={_dot_string(graph_title(robot, tree, config, lang))}];",
         '  node [shape=box, style="rounded,filled", fillcolor="#dbe8fb", color="#1f4e8c", fontname="Helvetica"];',
         '  edge [fontname="Helvetica", fontsize=9, color="#555555", arrowhead=normal];',
     ]

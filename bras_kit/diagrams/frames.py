@@ -10,6 +10,7 @@ from typing import TYPE_CHECKING, Any
 from .. import backends
 from ..errors import ModelError
 from ..kinematics import tf_tree
+from ..message import M
 from ..model import Robot
 from ._labels import beyond_limits
 from .dot import frames_dot, graph_title, joint_label, link_label, pose_facts
@@ -49,7 +50,7 @@ MAX_DIAGRAM_LINKS = 2000
 
 
 def frame_diagram(robot: Robot, config: Mapping[str, float] | None = None,
-                  path: str | os.PathLike[str] | None = None) -> Figure:
+                  path: str | os.PathLike[str] | None = None, lang: str | None = None) -> Figure:
     """Draw the frame tree with matplotlib (no Graphviz): link boxes, joint labels on the edges.
 
     The figure is sized to the tree (1 unit = 1 point). With ``path`` it is also saved; the
@@ -59,17 +60,17 @@ def frame_diagram(robot: Robot, config: Mapping[str, float] | None = None,
     tree = tf_tree(robot)
     n = len(tree.links)
     if n > MAX_DIAGRAM_LINKS:
-        raise ModelError(f"the robot has {n:,} links: a frame diagram of more than {MAX_DIAGRAM_LINKS} "
-                         "cannot be read (nor drawn in reasonable memory)",
-                         hint="use 'bras-kit tree' for the text tree, or 'bras-kit frames -o tree.dot' for Graphviz")
+        raise ModelError(M("the robot has {count:,} links: a frame diagram of more than {most} cannot be read "
+                           "(nor drawn in reasonable memory)", count=n, most=MAX_DIAGRAM_LINKS),
+                         hint=M("use 'bras-kit tree' for the text tree, or 'bras-kit frames -o tree.dot' for Graphviz"))
     values, positions = pose_facts(tree, config)
-    link_lines = [link_label(link, positions[i] if positions is not None else None).split("\n")
+    link_lines = [link_label(link, positions[i] if positions is not None else None, lang).split("\n")
                   for i, link in enumerate(tree.links)]
     joint_lines: list[list[str]] = [[]]
     for i in range(1, n):
         joint = tree.joints[i]
         assert joint is not None
-        joint_lines.append(joint_label(joint, values.get(joint.name or "")))
+        joint_lines.append(joint_label(joint, values.get(joint.name or ""), lang))
     link_size = [_text_box(lines, _LINK_FONT) for lines in link_lines]
     joint_size = [_text_box(lines, _JOINT_FONT) if lines else (0.0, 0.0) for lines in joint_lines]
     layout = tidy_layout(tree.parent, [max(a[0], b[0]) for a, b in zip(link_size, joint_size)], _SIBLING_GAP)
@@ -79,7 +80,7 @@ def frame_diagram(robot: Robot, config: Mapping[str, float] | None = None,
         d = layout.depth[i]
         label_band[d] = max(label_band[d], joint_size[i][1])
         box_band[d] = max(box_band[d], link_size[i][1])
-    title = graph_title(robot, tree, config)
+    title = graph_title(robot, tree, config, lang)
     title_height = (title.count("\n") + 1) * _LINE * 11 + 10
     box_top = [0.0] * rows
     label_bottom = [0.0] * rows
@@ -145,7 +146,7 @@ def frame_diagram(robot: Robot, config: Mapping[str, float] | None = None,
     if path is not None:
         if suffix == ".dot":
             with open(path, "w", encoding="utf-8") as handle:
-                handle.write(frames_dot(robot, config))
+                handle.write(frames_dot(robot, config, lang))
         else:
             save_figure(figure, path)
     return figure

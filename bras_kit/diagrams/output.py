@@ -9,6 +9,7 @@ from typing import TYPE_CHECKING
 
 from .. import backends
 from ..errors import ParameterError
+from ..message import M
 
 if TYPE_CHECKING:  # pragma: no cover
     from matplotlib.figure import Figure
@@ -21,8 +22,9 @@ MAX_RASTER_SIDE, MAX_RASTER_PIXELS = 16000, 40_000_000
 def output_suffix(path: str | os.PathLike[str], allowed: Sequence[str]) -> str:
     suffix = os.path.splitext(os.fspath(path))[1].lower()
     if suffix not in allowed:
-        raise ParameterError(f"cannot write '{os.fspath(path)}': unknown format '{suffix or '(none)'}'",
-                             hint="end the file name with " + ", ".join(allowed))
+        raise ParameterError(M("cannot write '{path}': unknown format '{suffix}'", path=os.fspath(path),
+                               suffix=suffix or M("(none)")),
+                             hint=M("end the file name with {suffixes}", suffixes=", ".join(allowed)))
     return suffix
 
 

@@ -10,8 +10,9 @@ from typing import TYPE_CHECKING, Any
 import numpy as np
 
 from .. import backends
-from ..i18n import _
+from ..i18n import say
 from ..kinematics import TFTree, fk_batch, tf_tree
+from ..message import M, Mn
 from ..model import Robot
 from ..motion import TOLERANCE, joint_unit
 from ..tip import tool_tip
@@ -53,7 +54,7 @@ def _skeleton(tree: TFTree, transforms: np.ndarray, tip: np.ndarray, end: int) -
     return segments
 
 
-def _plot_joint(ax: Any, robot: Robot, name: str, times: np.ndarray, values: np.ndarray) -> None:
+def _plot_joint(ax: Any, robot: Robot, name: str, times: np.ndarray, values: np.ndarray, lang: str | None) -> None:
     joint = robot.joint(name)
     lower, upper = joint.bounds() if joint is not None else (-math.inf, math.inf)
     finite = [b for b in (lower, upper) if math.isfinite(b)]
@@ -62,34 +63,36 @@ def _plot_joint(ax: Any, robot: Robot, name: str, times: np.ndarray, values: np.
     pad = 0.12 * (high - low) if high > low else 0.5
     bottom, top = low - pad, high + pad
     ax.set_ylim(bottom, top)
-    ax.plot(times, values, color="#1f4e8c", linewidth=1.4, label=_("position"), zorder=3,
+    ax.plot(times, values, color="#1f4e8c", linewidth=1.4, label=say(M("position"), lang), zorder=3,
             marker="o" if values.size == 1 else None)
     if math.isfinite(upper):
-        ax.axhspan(upper, top, color=_BAND, zorder=0, linewidth=0, label=_("out of limits"), gid=f"band:{name}:upper")
-        ax.axhline(upper, color=_LIMIT_LINE, linestyle="--", linewidth=1.0, label=_("limits"), zorder=2)
+        ax.axhspan(upper, top, color=_BAND, zorder=0, linewidth=0, label=say(M("out of limits"), lang), gid=f"band:{name}:upper")
+        ax.axhline(upper, color=_LIMIT_LINE, linestyle="--", linewidth=1.0, label=say(M("limits"), lang), zorder=2)
     if math.isfinite(lower):
         ax.axhspan(bottom, lower, color=_BAND, zorder=0, linewidth=0, gid=f"band:{name}:lower")
         ax.axhline(lower, color=_LIMIT_LINE, linestyle="--", linewidth=1.0, zorder=2)
     outside = out_of_limits_mask(robot, [name], values[:, None])[:, 0]
     if outside.any():
-        ax.plot(times[outside], values[outside], "o", color=_VIOLATION, markersize=3, label=_("violation"),
+        ax.plot(times[outside], values[outside], "o", color=_VIOLATION, markersize=3, label=say(M("violation"), lang),
                 zorder=4, gid=f"violations:{name}")
         excess = np.where(values > upper, values - upper, lower - values)
         worst = int(np.argmax(excess))
-        ax.annotate(f"{format_number(excess[worst])} {joint_unit(joint) if joint else ''} beyond limit "
-                    f"at t={format_number(times[worst])} s", (times[worst], values[worst]),
+        ax.annotate(say(M("{excess} {unit} beyond limit at t={time} s", excess=format_number(excess[worst]),
+                          unit=joint_unit(joint) if joint else "", time=format_number(times[worst])), lang),
+                    (times[worst], values[worst]),
                     xytext=(6, 6), textcoords="offset points", fontsize=8, color=_VIOLATION)
     unit = joint_unit(joint)
     ax.set_ylabel(f"{name} ({unit})")
     ax.grid(True, linewidth=0.4, alpha=0.6)
 
 
-def plot_motion(robot: Robot, states: Any, path: str | os.PathLike[str] | None = None) -> Figure:
+def plot_motion(robot: Robot, states: Any, path: str | os.PathLike[str] | None = None, *,
+                lang: str | None = None) -> Figure:
     """Joint angles over time against their limits, and the tool tip's path in the arm's plane and in 3D.
 
     ``states`` is a JointStates (``times``, ``names``, ``positions``). Out-of-limit regions are
     shaded, limits dashed and samples beyond them marked in red. With ``path`` the figure is
-    saved (.png, .svg or .pdf).
+    saved (.png, .svg or .pdf). Its words are in ``lang`` (default: the library's language).
     """
     if path is not None:
         output_suffix(path, FIGURE_FORMATS)
@@ -117,26 +120,29 @@ def plot_motion(robot: Robot, states: Any, path: str | os.PathLike[str] | None =
     left = grid[0].subgridspec(rows, 1)
     right = grid[1].subgridspec(2, 1)
     duration = float(times[-1] - times[0]) if times.size > 1 else 0.0
-    figure.suptitle(_("{robot}: {count} samples over {duration} s, tip = end of '{link}'").format(
-        robot=robot.name or "robot", count=len(times), duration=format_number(duration), link=link), fontsize=12)
+    figure.suptitle(say(Mn("{robot}: {n} sample over {duration} s, tip = end of '{link}'",
+                           "{robot}: {n} samples over {duration} s, tip = end of '{link}'", len(times),
+                           robot=robot.name or M("robot"), duration=format_number(duration), link=link), lang),
+                    fontsize=12)
     first_ax = None
     for k, name in enumerate(names):
         ax = figure.add_subplot(left[k, 0], sharex=first_ax)
         first_ax = first_ax or ax
-        _plot_joint(ax, robot, name, times, positions[:, k])
+        _plot_joint(ax, robot, name, times, positions[:, k], lang)
         if k == len(names) - 1:
-            ax.set_xlabel(_("time (s)"))
+            ax.set_xlabel(say(M("time (s)"), lang))
     if not names:
         ax = figure.add_subplot(left[0, 0])
-        ax.text(0.5, 0.5, _("no movable joints"), ha="center", va="center")
+        ax.text(0.5, 0.5, say(M("no movable joints"), lang), ha="center", va="center")
         ax.set_axis_off()
 
-    figure.legend(handles=[Line2D([], [], color="#1f4e8c", label=_("joint position")),
-                           Line2D([], [], color=_LIMIT_LINE, linestyle="--", label=_("limit")),
-                           Patch(color=_BAND, label=_("out of limits")),
-                           Line2D([], [], color=_VIOLATION, marker="o", linestyle="", markersize=3,
-                                  label=_("sample beyond a limit"))],
-                  loc="outside lower center", ncol=4, fontsize=8, frameon=False)
+    handles = [Line2D([], [], color="#1f4e8c", label=say(M("joint position"), lang)),
+               Line2D([], [], color=_LIMIT_LINE, linestyle="--", label=say(M("limit"), lang)),
+               Patch(color=_BAND, label=say(M("out of limits"), lang))]
+    if bad.any():  # the marker's entry only when a sample is marked
+        handles.append(Line2D([], [], color=_VIOLATION, marker="o", linestyle="", markersize=3,
+                              label=say(M("sample beyond a limit"), lang)))
+    figure.legend(handles=handles, loc="outside lower center", ncol=len(handles), fontsize=8, frameon=False)
 
     start_skeleton = _skeleton(tree, transforms[0], tip[0], end)
     flat = figure.add_subplot(right[0, 0])
@@ -145,18 +151,19 @@ def plot_motion(robot: Robot, states: Any, path: str | os.PathLike[str] | None =
         lines = LineCollection(list(np.stack([uv[:-1], uv[1:]], axis=1)), cmap="viridis", linewidth=2.0, zorder=3)
         lines.set_array(times[:-1])
         flat.add_collection(lines)
-        figure.colorbar(lines, ax=flat, label=_("time (s)"), shrink=0.85)
+        figure.colorbar(lines, ax=flat, label=say(M("time (s)"), lang), shrink=0.85)
     for a, b in start_skeleton:
         flat.plot([a @ plane.u, b @ plane.u], [a @ plane.v, b @ plane.v], color="#999999", linewidth=2.5,
                   solid_capstyle="round", zorder=1)
-    flat.plot(*uv[0], "o", color="black", markersize=5, label=_("start"), zorder=4)
-    flat.plot(*uv[-1], "s", color="black", markersize=5, label=_("end"), zorder=4)
+    flat.plot(*uv[0], "o", color="black", markersize=5, label=say(M("start"), lang), zorder=4)
+    flat.plot(*uv[-1], "s", color="black", markersize=5, label=say(M("end"), lang), zorder=4)
     if bad.any():
-        flat.plot(uv[bad, 0], uv[bad, 1], "x", color=_VIOLATION, markersize=4, label=_("joint out of limits"), zorder=5)
+        flat.plot(uv[bad, 0], uv[bad, 1], "x", color=_VIOLATION, markersize=4, label=say(M("joint out of limits"), lang), zorder=5)
     flat.set_xlabel(plane.u_label)
     flat.set_ylabel(plane.v_label)
-    kind = _("plane of the joint axes") if plane.common_axis else _("side view (joint axes differ)")
-    flat.set_title(_("tip path, {kind}").format(kind=kind), fontsize=10)
+    # the arm moves in the plane perpendicular to its (parallel) joint axes
+    kind = M("plane perpendicular to the joint axes") if plane.common_axis else M("side view (joint axes differ)")
+    flat.set_title(say(M("tip path, {kind}", kind=kind), lang), fontsize=10)
     flat.set_aspect("equal", adjustable="datalim")
     flat.autoscale_view()
     flat.grid(True, linewidth=0.4, alpha=0.6)
@@ -179,7 +186,7 @@ def plot_motion(robot: Robot, states: Any, path: str | os.PathLike[str] | None =
     space.set_xlabel("x (m)")
     space.set_ylabel("y (m)")
     space.set_zlabel("z (m)")
-    space.set_title(_("tip path in 3D (grey: arm at the first sample)"), fontsize=10)
+    space.set_title(say(M("tip path in 3D (grey: arm at the first sample)"), lang), fontsize=10)
     if path is not None:
         save_figure(figure, path)
     return figure

@@ -5,8 +5,9 @@ from __future__ import annotations
 from collections.abc import Mapping
 from dataclasses import dataclass
 
-from ..i18n import _
+from ..i18n import say
 from ..kinematics import tf_tree
+from ..message import M
 from ..model import Robot
 from ._labels import beyond_limits, format_number, joint_summary, joint_values
 from ._tree import children_of
@@ -30,7 +31,8 @@ ASCII_GLYPHS = TreeGlyphs("|- ", "`- ", "|  ", "   ", "->")
 MAX_INDENT = 64  # levels of indentation drawn; deeper links carry their depth instead
 
 
-def tree_text(robot: Robot, config: Mapping[str, float] | None = None, *, ascii: bool = False) -> str:
+def tree_text(robot: Robot, config: Mapping[str, float] | None = None, *, ascii: bool = False,
+              lang: str | None = None) -> str:
     """The TF tree as indented text, one link per line (the root first), each child under its joint.
 
     ``config`` adds each movable joint's value. Each level is indented by three characters, so a
@@ -50,13 +52,13 @@ def tree_text(robot: Robot, config: Mapping[str, float] | None = None, *, ascii:
         index, prefix, last, depth = stack.pop()
         joint = tree.joints[index]
         assert joint is not None
-        text = f"{joint.name or '?'} ({joint_summary(joint)})"
+        text = f"{joint.name or '?'} ({joint_summary(joint, lang)})"
         if joint.name in values:
             value = values[joint.name]  # type: ignore[index]
             text += f" = {format_number(value)}"
             if beyond_limits(joint, value):
-                text += " (" + _("out of limits") + ")"
-        deep = "[" + _("depth {depth}").format(depth=depth) + "] " if depth > MAX_INDENT else ""
+                text += " (" + say(M("out of limits"), lang) + ")"
+        deep = "[" + say(M("depth {depth}", depth=depth), lang) + "] " if depth > MAX_INDENT else ""
         lines.append(f"{prefix}{deep}{glyphs.last if last else glyphs.branch}{text} {glyphs.arrow} {tree.links[index]}")
         below = prefix if depth >= MAX_INDENT else prefix + (glyphs.blank if last else glyphs.pipe)
         kids = children[index]

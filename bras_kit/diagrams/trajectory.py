@@ -8,7 +8,8 @@ from typing import Any
 import numpy as np
 
 from ..errors import ParameterError
-from ..kinematics import TFTree, fk_batch, tf_tree
+from ..kinematics import TFTree, fk_batch, movable_joints_hint, tf_tree
+from ..message import M
 from ..model import Robot
 from ..tip import tool_tip
 from ._labels import format_vector
@@ -28,15 +29,16 @@ def states_matrix(tree: TFTree, states: Any) -> np.ndarray:
     if isinstance(states, np.ndarray):
         q = np.atleast_2d(np.asarray(states, dtype=float))
         if q.shape[1] != len(tree.dof):
-            raise ParameterError(f"expected {len(tree.dof)} joint columns ({', '.join(tree.dof)}), got {q.shape[1]}")
+            raise ParameterError(M("expected {count} joint columns ({names}), got {got}", count=len(tree.dof),
+                                   names=", ".join(tree.dof), got=q.shape[1]))
         return q
     positions = np.atleast_2d(np.asarray(states.positions, dtype=float))
     q = np.zeros((positions.shape[0], len(tree.dof)))
     columns = {name: k for k, name in enumerate(tree.dof)}
     for k, name in enumerate(states.names):
         if name not in columns:
-            raise ParameterError(f"the motion drives '{name}', which is not a movable joint of this robot",
-                                 hint="movable joints: " + (", ".join(tree.dof) or "none"))
+            raise ParameterError(M("the motion drives '{name}', which is not a movable joint of this robot", name=name),
+                                 hint=movable_joints_hint(tree.dof))
         q[:, columns[name]] = positions[:, k]
     return q
 

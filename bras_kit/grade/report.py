@@ -12,7 +12,8 @@ from collections import Counter
 from collections.abc import Callable, Sequence
 from typing import Any
 
-from .rubric import SEVERITIES, Item, Rubric
+from ..message import M, Message, Mn
+from .rubric import SEVERITIES, Item, Rubric, rubric_words
 
 REPORT_MARK = ".bras-kit-grade"  # a folder holding this file is a report bras-kit may refresh
 
@@ -35,15 +36,17 @@ def results_json(results: Sequence[dict[str, Any]], rubric: Rubric) -> str:
                        "learners": list(results)}, indent=1, ensure_ascii=False) + "\n"
 
 
-def gradescope_json(result: dict[str, Any], rubric: Rubric) -> str:
+def gradescope_json(result: dict[str, Any], rubric: Rubric, lang: str | None = None) -> str:
     """One learner's results.json in the shape Gradescope's autograder reads."""
-    tests = [{"name": item.title, "score": result["items"].get(item.id, 0.0), "max_score": item.points,
-              "output": _item_output(item, result)} for item in rubric.items]
+    from ..i18n import say
+
+    tests = [{"name": say(rubric_words(item.title), lang), "score": result["items"].get(item.id, 0.0),
+              "max_score": item.points, "output": _item_output(item, result, lang)} for item in rubric.items]
     return json.dumps({"score": result["score"], "tests": tests,
                        "output": result.get("first_error") or ""}, indent=1, ensure_ascii=False) + "\n"
 
 
-def _item_output(item: Item, result: dict[str, Any]) -> str:
+def _item_output(item: Item, result: dict[str, Any], lang: str | None) -> str:
     """What the learner reads under one Gradescope test: why it was not earned."""
     if result["status"] != "graded":
         return str(result.get("first_error", ""))
@@ -54,7 +57,9 @@ def _item_output(item: Item, result: dict[str, Any]) -> str:
         return "\n".join(f"{f['code']} {f['file']}{':' + str(f['line']) if f.get('line') else ''}: {f['message']}"
                          + (f" ({f['hint']})" if f.get("hint") else "") for f in hits)
     if result["items"].get(item.id, 0.0) < item.points:
-        return f"not met: {item.title}"
+        from ..i18n import say
+
+        return say(M("not met: {title}", title=rubric_words(item.title)), lang)
     return ""
 
 
@@ -70,27 +75,27 @@ def _page(title: str, body: str, lang: str) -> str:
             "</style></head><body>\n" + body + "\n</body></html>\n")
 
 
-_NO_PICTURE = {False: "no picture: the robot could not be read",
-               True: "no picture (--no-pictures, or the arm could not be drawn)"}
+_NO_PICTURE = {False: M("no picture: the robot could not be read"),
+               True: M("no picture (--no-pictures, or the arm could not be drawn)")}
 
 
-def learner_page(result: dict[str, Any], rubric: Rubric, t: Callable[[str], str], lang: str) -> str:
-    rows = "".join(f"<tr><td>{html.escape(t(item.title))}</td><td>{_number(result['items'].get(item.id, 0.0))}"
+def learner_page(result: dict[str, Any], rubric: Rubric, t: Callable[[Message | str], str], lang: str) -> str:
+    rows = "".join(f"<tr><td>{html.escape(t(rubric_words(item.title)))}</td><td>{_number(result['items'].get(item.id, 0.0))}"
                    f" / {_number(item.points)}</td></tr>" for item in rubric.items)
     picture = (f"<p><img src='../{html.escape(result['picture'])}' alt='{html.escape(result['learner'])}'></p>"
-               + (f"<p><img src='../{html.escape(result['animation'])}' alt='{html.escape(t('the arm moving'))}'></p>"
+               + (f"<p><img src='../{html.escape(result['animation'])}' alt='{html.escape(t(M('the arm moving')))}'></p>"
                   if result.get("animation") else "")
                if result.get("picture") else f"<p><i>{html.escape(t(_NO_PICTURE[result['status'] == 'graded']))}</i></p>")
     findings = "".join(
         f"<li><b class='{html.escape(f['severity'])}'>{html.escape(f['code'])}</b> "
         f"{html.escape(f['file'] or '')}{':' + str(f['line']) if f.get('line') else ''} — {html.escape(f['message'])}"
-        + (f"<br><small>{html.escape(t('fix'))}: {html.escape(f['hint'])}</small>" if f.get("hint") else "")
+        + (f"<br><small>{html.escape(t(M('fix')))}: {html.escape(f['hint'])}</small>" if f.get("hint") else "")
         + "</li>" for f in result["findings"])
-    body = (f"<p><a href='../index.html'>← {html.escape(t('class summary'))}</a></p>"
+    body = (f"<p><a href='../index.html'>← {html.escape(t(M('class summary')))}</a></p>"
             f"<h1>{html.escape(result['learner'])}: {_number(result['score'])} / {_number(result['max'])}</h1>"
-            + picture + f"<h2>{html.escape(t('Score'))}</h2><table>{rows}</table>"
-            + f"<h2>{html.escape(t('Findings'))}</h2>"
-            + (f"<ul>{findings}</ul>" if findings else f"<p>{html.escape(t('No finding'))}</p>"))
+            + picture + f"<h2>{html.escape(t(M('Score')))}</h2><table>{rows}</table>"
+            + f"<h2>{html.escape(t(M('Findings')))}</h2>"
+            + (f"<ul>{findings}</ul>" if findings else f"<p>{html.escape(t(M('No finding')))}</p>"))
     return _page(result["learner"], body, lang)
 
 
@@ -114,7 +119,7 @@ def histogram_svg(scores: Sequence[float], total: float, width: int = 480, heigh
     return "".join(parts)
 
 
-def index_page(results: Sequence[dict[str, Any]], rubric: Rubric, t: Callable[[str], str], lang: str,
+def index_page(results: Sequence[dict[str, Any]], rubric: Rubric, t: Callable[[Message | str], str], lang: str,
                finished: bool) -> str:
     rows = "".join(
         f"<tr><td><a href='learners/{html.escape(_file_name(r['learner']))}'>{html.escape(r['learner'])}</a></td>"
@@ -122,16 +127,16 @@ def index_page(results: Sequence[dict[str, Any]], rubric: Rubric, t: Callable[[s
         for r in results)
     hits = Counter(f["code"] for r in results for f in {(x["code"]): x for x in r["findings"]}.values())
     rules = "".join(f"<tr><td>{html.escape(code)}</td><td>{count}</td></tr>" for code, count in sorted(hits.items()))
-    note = "" if finished else f"<p class='warning'>{html.escape(t('interrupted: only the learners below were graded'))}</p>"
-    body = (f"<h1>{html.escape(rubric.name)}</h1>" + note
-            + f"<p>{len(results)} {html.escape(t('learners'))}</p>"
-            + f"<h2>{html.escape(t('Scores'))}</h2>" + histogram_svg([r["score"] for r in results], rubric.total)
-            + f"<table><tr><th>{html.escape(t('learner'))}</th><th>{html.escape(t('score'))}</th>"
-              f"<th>{html.escape(t('first error'))}</th></tr>{rows}</table>"
-            + f"<h2>{html.escape(t('Learners hitting each rule'))}</h2>"
-            + (f"<table><tr><th>{html.escape(t('rule'))}</th><th>{html.escape(t('learners'))}</th></tr>{rules}</table>"
-               if rules else f"<p>{html.escape(t('No finding'))}</p>"))
-    return _page(rubric.name, body, lang)
+    note = "" if finished else f"<p class='warning'>{html.escape(t(M('interrupted: only the learners below were graded')))}</p>"
+    body = (f"<h1>{html.escape(t(rubric_words(rubric.name)))}</h1>" + note
+            + f"<p>{html.escape(t(Mn('{n} learner', '{n} learners', len(results))))}</p>"
+            + f"<h2>{html.escape(t(M('Scores')))}</h2>" + histogram_svg([r["score"] for r in results], rubric.total)
+            + f"<table><tr><th>{html.escape(t(M('learner')))}</th><th>{html.escape(t(M('score')))}</th>"
+              f"<th>{html.escape(t(M('first error')))}</th></tr>{rows}</table>"
+            + f"<h2>{html.escape(t(M('Learners hitting each rule')))}</h2>"
+            + (f"<table><tr><th>{html.escape(t(M('rule')))}</th><th>{html.escape(t(M('learners')))}</th></tr>{rules}</table>"
+               if rules else f"<p>{html.escape(t(M('No finding')))}</p>"))
+    return _page(t(rubric_words(rubric.name)), body, lang)
 
 
 def _file_name(learner: str) -> str:
@@ -142,10 +147,12 @@ def _file_name(learner: str) -> str:
 
 def write_reports(folder: str, results: Sequence[dict[str, Any]], rubric: Rubric, lang: str, *,
                   gradescope: bool = False, finished: bool = True) -> None:
-    from ..i18n import translator
+    from ..i18n import say
     from ..outputs import write_text
 
-    t = translator(lang, "grade")
+    def t(words: Message | str) -> str:
+        return say(words, lang)
+
     os.makedirs(os.path.join(folder, "learners"), exist_ok=True)
     write_text(os.path.join(folder, "grades.csv"), grades_csv(results, rubric), True, announce=False)
     write_text(os.path.join(folder, "results.json"), results_json(results, rubric), True, announce=False)
@@ -153,7 +160,7 @@ def write_reports(folder: str, results: Sequence[dict[str, Any]], rubric: Rubric
         os.makedirs(os.path.join(folder, "gradescope"), exist_ok=True)
         for result in results:
             write_text(os.path.join(folder, "gradescope", _file_name(result["learner"])[:-5] + ".json"),
-                       gradescope_json(result, rubric), True, announce=False)
+                       gradescope_json(result, rubric, lang), True, announce=False)
     for result in results:
         write_text(os.path.join(folder, "learners", _file_name(result["learner"])),
                    learner_page(result, rubric, t, lang), True, announce=False)

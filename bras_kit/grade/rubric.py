@@ -8,7 +8,9 @@ from dataclasses import dataclass, field
 from pathlib import Path
 from typing import Any
 
-from ..errors import ParameterError
+from ..errors import ParameterError, os_reason
+from ..message import M, Message
+from ..wording import quoted
 
 DEFAULT_RUBRIC = Path(__file__).with_name("tutorial.yaml")
 MAX_RUBRIC_BYTES = 1 << 20
@@ -56,45 +58,48 @@ def load_rubric(path: str | None = None) -> Rubric:
     where = Path(path) if path else DEFAULT_RUBRIC
     try:
         if not where.is_file() or where.stat().st_size > MAX_RUBRIC_BYTES:
-            raise ParameterError(f"the rubric must be a YAML file of at most {MAX_RUBRIC_BYTES >> 10} kB",
-                                 path=str(where), hint="bras-kit grade --explain-rubric prints the default one")
+            raise ParameterError(M("the rubric must be a YAML file of at most {most} kB", most=MAX_RUBRIC_BYTES >> 10),
+                                 path=str(where), hint=M("bras-kit grade --explain-rubric prints the default one"))
         text = where.read_text(encoding="utf-8")
         data = yaml.safe_load(text)
     except (OSError, UnicodeDecodeError) as exc:
-        raise ParameterError(f"cannot read the rubric: {getattr(exc, 'strerror', None) or exc}", path=str(where),
-                             hint="give a YAML file; bras-kit grade --explain-rubric prints the default one") from None
+        reason = os_reason(exc) if isinstance(exc, OSError) else quoted(str(exc))
+        raise ParameterError(M("cannot read the rubric: {reason}", reason=reason), path=str(where),
+                             hint=M("give a YAML file; bras-kit grade --explain-rubric prints the default one")) from None
     except yaml.YAMLError as exc:
         mark = getattr(exc, "problem_mark", None)
-        raise ParameterError(f"the rubric is not valid YAML: {getattr(exc, 'problem', exc)}", path=str(where),
+        raise ParameterError(M("the rubric is not valid YAML: {problem}",
+                               problem=quoted(str(getattr(exc, "problem", exc)))), path=str(where),
                              line=mark.line + 1 if mark else None) from None
     if not isinstance(data, dict) or not isinstance(data.get("items"), list) or not data["items"]:
-        raise ParameterError("the rubric has no 'items' list", path=str(where),
-                             hint="see bras-kit grade --explain-rubric for the shape")
+        raise ParameterError(M("the rubric has no 'items' list"), path=str(where),
+                             hint=M("see bras-kit grade --explain-rubric for the shape"))
     items = [_item(raw, k, str(where)) for k, raw in enumerate(data["items"], 1)]
     ids = [item.id for item in items]
     if len(set(ids)) != len(ids):
-        raise ParameterError("two rubric items have the same id", path=str(where), hint="give each item its own id")
+        raise ParameterError(M("two rubric items have the same id"), path=str(where),
+                             hint=M("give each item its own id"))
     return Rubric(str(data.get("name") or where.stem), tuple(items), text)
 
 
 def _item(raw: Any, number: int, where: str) -> Item:
     if not isinstance(raw, dict):
-        raise ParameterError(f"rubric item {number} is not a mapping", path=where)
+        raise ParameterError(M("rubric item {number} is not a mapping", number=number), path=where)
     unknown = sorted(set(raw) - _KEYS)
     if unknown:
-        raise ParameterError(f"rubric item {number}: unknown key '{unknown[0]}'", path=where,
-                             hint="keys: " + ", ".join(sorted(_KEYS)))
+        raise ParameterError(M("rubric item {number}: unknown key '{key}'", number=number, key=unknown[0]),
+                             path=where, hint=M("keys: {keys}", keys=", ".join(sorted(_KEYS))))
     check = raw.get("check")
     if check not in CHECKS:
-        raise ParameterError(f"rubric item {number}: unknown check {check!r}", path=where,
-                             hint="checks: " + ", ".join(CHECKS))
+        raise ParameterError(M("rubric item {number}: unknown check {check}", number=number, check=repr(check)),
+                             path=where, hint=M("checks: {checks}", checks=", ".join(CHECKS)))
     points = raw.get("points")
     if isinstance(points, bool) or not isinstance(points, (int, float)) or not math.isfinite(points) or points < 0:
-        raise ParameterError(f"rubric item {number}: points must be a number of 0 or more", path=where)
+        raise ParameterError(M("rubric item {number}: points must be a number of 0 or more", number=number), path=where)
     severity = str(raw.get("severity", "error"))
     if severity not in SEVERITIES:
-        raise ParameterError(f"rubric item {number}: unknown severity '{severity}'", path=where,
-                             hint="error, warning or info")
+        raise ParameterError(M("rubric item {number}: unknown severity '{severity}'", number=number,
+                               severity=severity), path=where, hint=M("error, warning or info"))
     codes = raw.get("codes") or ()
     joints = raw.get("joints") or ()
     if isinstance(codes, str):
@@ -107,7 +112,60 @@ def _item(raw: Any, number: int, where: str) -> Item:
                 parent=str(raw.get("parent") or ""), at_tip=bool(raw.get("at_tip", False)),
                 tolerance=float(raw.get("tolerance", 0.005)), needs_package=bool(raw.get("needs_package", False)))
     if check == "joint" and not item.joint:
-        raise ParameterError(f"rubric item {number}: the joint check needs 'joint'", path=where)
+        raise ParameterError(M("rubric item {number}: the joint check needs 'joint'", number=number), path=where)
     if check == "joints" and not item.joints:
-        raise ParameterError(f"rubric item {number}: the joints check needs 'joints'", path=where)
+        raise ParameterError(M("rubric item {number}: the joints check needs 'joints'", number=number), path=where)
     return item
+
+
+# The words of the default rubric (tutorial.yaml), so the catalog holds them: its name, its items'
+# titles and the comment that explains the checks. A teacher's own rubric is shown as written.
+DEFAULT_WORDS: dict[str, Message] = {m.id: m for m in (
+    M("bras-kit tutorial: the arm, the wrist exercise and the inertials exercise"),
+    M("The robot description loads"),
+    M("No validator error"),
+    M("None of the tutorial's pitfalls (BK3xx)"),
+    M("The tutorial's joints epaule and coude"),
+    M("Exercise 1: a joint poignet at the tip of avant_bras"),
+    M("Exercise 2: every moving link has a mass and an inertia"),
+    M("The ROS 2 package has none of the package pitfalls (BK6xx)"),
+)}
+_EXPLANATION = M(
+    "The default rubric of bras-kit grade: the tutorial's arm and its two exercises, out of 20.\n"
+    "Copy it, change the points or the checks, and pass it with --rubric.\n"
+    "\n"
+    "Each item is worth its points when its check passes, nothing otherwise. Checks:\n"
+    "  loads          the robot description can be read (well-formed URDF, xacro that expands)\n"
+    "  no_findings    no validator finding of at least `severity` (error, warning or info)\n"
+    "                 among `codes` (code prefixes; all codes when left out)\n"
+    "  joints         every joint of `joints` exists and moves\n"
+    "  joint          the joint `joint` exists, its parent is `parent`, and with `at_tip` its\n"
+    "                 origin is at the end of the parent's shape (within `tolerance`, metres)\n"
+    "  inertials      every link that moves has a mass above 0 and a positive inertia\n"
+    "`needs_package: true` gives no points when the submission holds no ROS 2 package.")
+
+
+def rubric_words(text: str) -> Message | str:
+    """A rubric's name or an item's title, worded where shown when it is one of the default rubric's."""
+    return DEFAULT_WORDS.get(text, text)
+
+
+def explained_rubric(rubric: Rubric, lang: str | None = None) -> str:
+    """The rubric's YAML as ``--explain-rubric`` prints it: the default rubric with its comment, name
+    and titles in ``lang``; any other rubric as written."""
+    from ..i18n import say
+
+    if rubric.text != DEFAULT_RUBRIC.read_text(encoding="utf-8"):
+        return rubric.text
+    lines = rubric.text.splitlines(keepends=True)
+    body = [line for line in lines if not line.startswith("#")]
+    comment = "".join(("# " + line).rstrip() + "\n" for line in say(_EXPLANATION, lang).split("\n"))
+    out = []
+    for line in body:
+        key, sep, value = line.partition(": ")
+        words = DEFAULT_WORDS.get(value.strip().strip('"')) if sep and key.strip() in ("name", "- title", "title") \
+            else None
+        if words is not None:
+            line = f'{key}: "{say(words, lang)}"\n'
+        out.append(line)
+    return comment + "".join(out)

@@ -15,7 +15,9 @@ from concurrent.futures.process import BrokenProcessPool
 from typing import IO, Any
 
 from .. import backends
-from ..errors import BrasKitError
+from ..errors import BrasKitError, os_reason
+from ..message import M, Message
+from ..wording import quoted
 from .rubric import Rubric
 from .submissions import Submission, content_hash
 from .worker import Options, grade
@@ -29,9 +31,10 @@ def executor(jobs: int | None = None, scheduler: str | None = None) -> Iterator[
         try:
             client = Client(scheduler, timeout=10)
         except (OSError, TimeoutError) as exc:
-            raise BrasKitError(f"cannot reach the Dask scheduler {scheduler}: {exc}",
-                               hint="start it with 'dask scheduler' and its workers with 'dask worker "
-                                    f"{scheduler}'") from None
+            raise BrasKitError(M("cannot reach the Dask scheduler {scheduler}: {reason}", scheduler=scheduler,
+                                 reason=os_reason(exc) if isinstance(exc, OSError) and exc.errno else quoted(str(exc))),
+                               hint=M("start it with 'dask scheduler' and its workers with 'dask worker {scheduler}'",
+                                      scheduler=scheduler)) from None
         try:
             yield client.get_executor()
         finally:
@@ -74,8 +77,9 @@ def _start_worker() -> None:
 class Progress:
     """done / total, failures and rate on one line of a terminal; nothing when piped."""
 
-    def __init__(self, total: int, stream: IO[str] | None = None) -> None:
+    def __init__(self, total: int, stream: IO[str] | None = None, lang: str | None = None) -> None:
         self.stream = stream or sys.stderr
+        self.lang = lang
         self.enabled = bool(getattr(self.stream, "isatty", lambda: False)())
         self.total, self.done, self.failed = total, 0, 0
         self.start = time.monotonic()
@@ -84,13 +88,13 @@ class Progress:
         self.done += 1
         self.failed += int(failed)
         if self.enabled:
-            from ..i18n import _
+            from ..i18n import say
 
             rate = self.done / max(time.monotonic() - self.start, 1e-6)
             filled = int(30 * self.done / max(self.total, 1))
-            self.stream.write("\r" + _("grading [{bar}] {done}/{total}, {failed} unreadable, {rate:.1f}/s ").format(
-                bar="#" * filled + "." * (30 - filled), done=self.done, total=self.total, failed=self.failed,
-                rate=rate))
+            self.stream.write("\r" + say(M("grading [{bar}] {done}/{total}, {failed} unreadable, {rate:.1f}/s ",
+                                           bar="#" * filled + "." * (30 - filled), done=self.done, total=self.total,
+                                           failed=self.failed, rate=rate), self.lang))
             self.stream.flush()
 
     def close(self) -> None:
@@ -117,7 +121,7 @@ def grade_all(submissions: Sequence[Submission], rubric: Rubric, options: Option
             results[submission.learner] = old
         else:
             todo.append(submission)
-    progress = Progress(len(submissions))
+    progress = Progress(len(submissions), lang=options.lang)
     for _ in results:
         progress.update(False)
     finished = True
@@ -168,7 +172,7 @@ def _run_batch(todo: list[Submission], rubric: Rubric, options: Options, jobs: i
                 again.append(submission)
                 return
             except Exception as exc:  # an error in a worker: that learner only
-                result = _failed(submission, rubric, exc)
+                result = _failed(submission, rubric, exc, options.lang)
             keep(submission, result)
 
         try:
@@ -183,8 +187,7 @@ def _run_batch(todo: list[Submission], rubric: Rubric, options: Options, jobs: i
             pool.shutdown(wait=True)  # the other workers have taken their markers away once they are gone
             culprits = _marked(markers) or {s.learner for s in again}  # none known: stop rather than loop
             for submission in [s for s in again if s.learner in culprits]:
-                keep(submission, _failed(submission, rubric, DiedError("the worker process died while grading "
-                                                                       "it (a crash, or out of memory)")))
+                keep(submission, _failed(submission, rubric, DiedError(), options.lang))
             again = [s for s in again if s.learner not in culprits]
     order = {s.learner: k for k, s in enumerate(todo)}
     return sorted(again, key=lambda s: order[s.learner])
@@ -217,12 +220,18 @@ class DiedError(Exception):
     """A submission whose worker process died while grading it."""
 
 
-def _failed(submission: Submission, rubric: Rubric, exc: BaseException) -> dict[str, Any]:
-    message = str(exc) if isinstance(exc, DiedError) else f"{type(exc).__name__}: {exc}"
+def _failed(submission: Submission, rubric: Rubric, exc: BaseException, lang: str) -> dict[str, Any]:
+    from ..i18n import say
+
+    if isinstance(exc, DiedError):
+        why: Message | str = M("the worker process died while grading it (a crash, or out of memory)")
+    else:  # an unexpected error: its type and Python's own words
+        why = f"{type(exc).__name__}: {exc}"
+    message = say(M("could not be graded: {why}", why=why), lang)
     return {"learner": submission.learner, "path": submission.path, "hash": content_hash(submission.path),
             "status": "unreadable", "picture": None, "animation": None, "main_file": None, "package": False,
             "findings": [{"file": os.path.basename(submission.path), "line": None, "code": "BK103",
-                          "severity": "error", "message": f"could not be graded: {message}",
-                          "hint": "check the submission by hand with bras-kit validate"}],
+                          "severity": "error", "message": message,
+                          "hint": say(M("check the submission by hand with bras-kit validate"), lang)}],
             "items": {item.id: 0.0 for item in rubric.items}, "score": 0.0, "max": rubric.total,
-            "first_error": f"BK103 could not be graded: {message}", "seconds": 0.0}
+            "first_error": f"BK103 {message}", "seconds": 0.0}

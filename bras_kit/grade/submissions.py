@@ -11,7 +11,9 @@ import zipfile
 from dataclasses import dataclass
 from pathlib import Path
 
-from ..errors import BrasKitError
+from ..errors import BrasKitError, os_reason
+from ..message import M
+from ..wording import quoted
 
 ARCHIVE_SUFFIXES = (".zip", ".tar.gz", ".tgz", ".tar")
 FILE_SUFFIXES = (".urdf", ".xacro")
@@ -46,7 +48,8 @@ def find_submissions(folder: str | os.PathLike[str]) -> list[Submission]:
     """Every entry of ``folder`` (hidden ones skipped), by name: each is one learner's submission."""
     root = Path(folder)
     if not root.is_dir():
-        raise BrasKitError(f"{folder} is not a folder", hint="give the folder holding one entry per learner")
+        raise BrasKitError(M("{folder} is not a folder", folder=str(folder)),
+                           hint=M("give the folder holding one entry per learner"))
     out = []
     for entry in sorted(root.iterdir(), key=lambda p: p.name):
         if entry.name.startswith("."):
@@ -96,26 +99,28 @@ def unpack(archive: str, target: str) -> None:
         else:
             _untar(archive, target)
     except (zipfile.BadZipFile, tarfile.TarError, EOFError, OSError) as exc:
-        raise SubmissionError(f"the archive cannot be read: {exc}", path=archive,
-                              hint="hand in a .zip or .tar.gz made by an archive tool") from None
+        raise SubmissionError(M("the archive cannot be read: {reason}",
+                                reason=os_reason(exc) if isinstance(exc, OSError) and exc.errno else quoted(str(exc))),
+                              path=archive, hint=M("hand in a .zip or .tar.gz made by an archive tool")) from None
 
 
 def _safe_member(name: str, archive: str) -> str:
     clean = name.replace("\\", "/")
     parts = [p for p in clean.split("/") if p not in ("", ".")]
     if clean.startswith("/") or (len(clean) > 1 and clean[1] == ":") or ".." in parts:
-        raise SubmissionError(f"the archive holds '{name}', a path outside its folder: refused", path=archive,
-                              hint="archives must only hold relative paths (this one may be a zip-slip attack)")
+        raise SubmissionError(M("the archive holds '{name}', a path outside its folder: refused", name=name),
+                              path=archive,
+                              hint=M("archives must only hold relative paths (this one may be a zip-slip attack)"))
     return "/".join(parts)
 
 
 def _check_totals(count: int, size: int, archive: str) -> None:
     if count > MAX_ARCHIVE_FILES:
-        raise SubmissionError(f"the archive holds more than {MAX_ARCHIVE_FILES} files", path=archive,
-                              hint="hand in the package only (no build/ or install/ folders)")
+        raise SubmissionError(M("the archive holds more than {most} files", most=MAX_ARCHIVE_FILES), path=archive,
+                              hint=M("hand in the package only (no build/ or install/ folders)"))
     if size > MAX_ARCHIVE_BYTES:
-        raise SubmissionError(f"the archive unpacks to more than {MAX_ARCHIVE_BYTES >> 20} MB", path=archive,
-                              hint="hand in the package only (no build/ or install/ folders)")
+        raise SubmissionError(M("the archive unpacks to more than {most} MB", most=MAX_ARCHIVE_BYTES >> 20),
+                              path=archive, hint=M("hand in the package only (no build/ or install/ folders)"))
 
 
 def _unzip(archive: str, target: str) -> None:
@@ -126,8 +131,8 @@ def _unzip(archive: str, target: str) -> None:
         for member in members:
             mode = member.external_attr >> 16
             if stat.S_ISLNK(mode):
-                raise SubmissionError(f"the archive holds a link '{member.filename}': refused", path=archive,
-                                      hint="archives must hold plain files")
+                raise SubmissionError(M("the archive holds a link '{name}': refused", name=member.filename),
+                                      path=archive, hint=M("archives must hold plain files"))
             plan.append((member, _safe_member(member.filename, archive)))
         written = 0
         for member, relative in plan:
@@ -142,7 +147,7 @@ def _unzip(archive: str, target: str) -> None:
                 while chunk := source.read(HASH_CHUNK):
                     written += len(chunk)
                     if written > MAX_ARCHIVE_BYTES:  # the sizes in the directory can lie
-                        raise SubmissionError("the archive unpacks to more than it says", path=archive)
+                        raise SubmissionError(M("the archive unpacks to more than it says"), path=archive)
                     sink.write(chunk)
 
 
@@ -153,6 +158,7 @@ def _untar(archive: str, target: str) -> None:
         for member in members:
             _safe_member(member.name, archive)
             if not (member.isfile() or member.isdir()):
-                raise SubmissionError(f"the archive holds '{member.name}', which is not a plain file: refused",
-                                      path=archive, hint="archives must hold plain files and folders")
+                raise SubmissionError(M("the archive holds '{name}', which is not a plain file: refused",
+                                        name=member.name),
+                                      path=archive, hint=M("archives must hold plain files and folders"))
         bundle.extractall(target, members=members, filter="data")

@@ -21,6 +21,7 @@ import numpy as np
 
 from ..errors import BrasKitError
 from ..i18n import say, say_error
+from ..message import M
 from .rubric import SEVERITIES, Item, Rubric
 from .submissions import MAX_SUBMISSION_BYTES, Submission, SubmissionError, content_hash, unpack
 
@@ -85,12 +86,12 @@ def grade(submission: Submission, rubric: Rubric, options: Options) -> dict[str,
 
 def _materialise(submission: Submission, workdir: str) -> str:
     if submission.kind == "other":
-        raise SubmissionError("not a robot description: hand in a folder, a .urdf or .xacro file, or a .zip/.tar.gz",
+        raise SubmissionError(M("not a robot description: hand in a folder, a .urdf or .xacro file, or a .zip/.tar.gz"),
                               path=submission.path)
     size = _size(submission.path)
     if size > MAX_SUBMISSION_BYTES:
-        raise SubmissionError(f"the submission holds {size >> 20} MB, more than {MAX_SUBMISSION_BYTES >> 20} MB",
-                              path=submission.path, hint="hand in the package only")
+        raise SubmissionError(M("the submission holds {size} MB, more than {most} MB", size=size >> 20,
+                                most=MAX_SUBMISSION_BYTES >> 20), path=submission.path, hint=M("hand in the package only"))
     if submission.kind == "archive":
         target = os.path.join(workdir, "unpacked")
         os.makedirs(target)
@@ -132,7 +133,7 @@ def _inspect_limited(root: str, lang: str) -> dict[str, Any]:
     from ..validate import package  # noqa: F401  (else every submission would pay for importing them)
 
     return run_limited(_inspect, root, lang, cpu_seconds=CHECK_CPU_SECONDS, memory_bytes=CHECK_MEMORY_BYTES,
-                       wall_seconds=CHECK_WALL_SECONDS, what=f"checking {os.path.basename(root)}")
+                       wall_seconds=CHECK_WALL_SECONDS, what=M("checking {name}", name=os.path.basename(root)))
 
 
 def _inspect(root: str, lang: str) -> dict[str, Any]:

@@ -10,8 +10,9 @@ import numpy as np
 
 from .. import backends
 from ..errors import ParameterError
-from ..i18n import _
+from ..i18n import say
 from ..kinematics import TFTree, fk_batch
+from ..message import M
 from ..model import Robot
 from ._inputs import Vector, _as_tree
 from ._limits import _bounds
@@ -29,7 +30,7 @@ def workspace_points(model: TFTree | Robot, samples: int = 100_000, *, limits: b
     tree = _as_tree(model)
     link, offset = resolve_tip(tree, tip_link, tip_offset)
     if samples < 1:
-        raise ParameterError(f"--samples must be at least 1, not {samples}")
+        raise ParameterError(M("--samples must be at least 1, not {samples}", samples=samples))
     lower, upper = _bounds(tree)
     revolute = np.array([j.type in ("revolute", "continuous") for j in tree.dof_joints()], dtype=bool)
     if not limits:
@@ -106,7 +107,7 @@ def _plane_axes(points: np.ndarray) -> tuple[int, int]:
 
 def workspace_figure(model: TFTree | Robot, samples: int = 100_000, *, tip_link: str | None = None,
                      tip_offset: Vector | None = None, size: tuple[float, float] = (7.0, 6.0),
-                     dpi: int = 100):  # type: ignore[no-untyped-def]
+                     dpi: int = 100, lang: str | None = None):  # type: ignore[no-untyped-def]
     """A matplotlib figure of the region the tip reaches, in the arm's plane.
 
     Faint: every joint turning freely; solid: within the limits; the base and the arm at its
@@ -164,13 +165,20 @@ def workspace_figure(model: TFTree | Robot, samples: int = 100_000, *, tip_link:
         else:
             continue
         axes.add_patch(Rectangle((centre[h] - w / 2, centre[v] - hh / 2), w, hh, facecolor=(0.5, 0.5, 0.5),
-                                 edgecolor="black", linewidth=0.8, zorder=3, label=_("base")))
+                                 edgecolor="black", linewidth=0.8, zorder=3, label=say(M("base"), lang)))
     if v == 2:  # the floor the base stands on: the tip cannot go below it on a real arm
         bottoms = [patch.get_y() for patch in axes.patches if isinstance(patch, Rectangle)]
         floor = min(bottoms) if bottoms else float(zero[0][2, 3])
-        axes.axhline(floor, color=(0.45, 0.3, 0.15), linewidth=2, zorder=3, label=_("floor"))
+        axes.axhline(floor, color=(0.45, 0.3, 0.15), linewidth=2, zorder=3, label=say(M("floor"), lang))
+        if (free[:, v] < floor - 1e-9).any():  # the model's tip reaches below the floor: say so on the figure
+            axes.axhspan(y_edges[0], floor, facecolor="none", edgecolor=(0.45, 0.3, 0.15, 0.55), hatch="///",
+                         linewidth=0, zorder=2.5)
+            axes.text((x_edges[0] + x_edges[-1]) / 2, (y_edges[0] + floor) / 2,
+                      say(M("below the floor: reached by the model, not by a real arm"), lang), ha="center", va="center",
+                      fontsize=8, color=(0.35, 0.22, 0.1), zorder=6,
+                      bbox={"facecolor": "white", "edgecolor": "none", "alpha": 0.85, "pad": 2})
     axes.plot(arm_points[:, h], arm_points[:, v], "-", color=(0.95, 0.5, 0.1), linewidth=3, zorder=4,
-              label=_("arm at zero pose"))
+              label=say(M("arm at zero pose"), lang))
     axes.plot(arm_points[1:-1, h], arm_points[1:-1, v], "o", color="black", markersize=5, zorder=5)
     axes.plot(arm_points[-1, h], arm_points[-1, v], "*", color="black", markersize=9, zorder=5)
     shoulder = arm_points[1] if len(arm_points) > 2 else arm_points[0]
@@ -182,10 +190,10 @@ def workspace_figure(model: TFTree | Robot, samples: int = 100_000, *, tip_link:
     axes.set_ylabel(f"{names[v]} (m)")
     axes.grid(True, linewidth=0.3, alpha=0.5, zorder=0)
     tip_text = f"{link} + ({', '.join(f'{c:g}' for c in offset)})"
-    axes.set_title(_("Workspace of {robot}: tip {tip}").format(robot=tree.robot.name or "robot", tip=tip_text),
+    axes.set_title(say(M("Workspace of {robot}: tip {tip}", robot=tree.robot.name or M("robot"), tip=tip_text), lang),
                    fontsize=10)
-    handles: list[Any] = [Patch(facecolor=free_colour, label=_("reachable if joints turned freely")),
-                          Patch(facecolor=bounded_colour, label=_("reachable within the joint limits"))]
+    handles: list[Any] = [Patch(facecolor=free_colour, label=say(M("reachable if joints turned freely"), lang)),
+                          Patch(facecolor=bounded_colour, label=say(M("reachable within the joint limits"), lang))]
     handles += axes.get_legend_handles_labels()[0]
     axes.legend(handles=handles, loc="lower left", fontsize=8, framealpha=0.9)
     figure.tight_layout()

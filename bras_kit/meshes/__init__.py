@@ -22,6 +22,7 @@ __all__ = ["CacheInfo", "Color", "DecodeError", "Issue", "MeshData", "Piece", "c
 
 MEMORY_BYTES = 256 << 20  # decoded meshes kept in this process (robots share meshes)
 _memory: dict[tuple[str, int, int, tuple[float, ...] | None], MeshData] = {}
+_by_content: dict[str, MeshData] = {}
 _disk = os.environ.get("BRAS_KIT_NO_CACHE", "") in ("", "0")
 
 
@@ -52,7 +53,9 @@ def load_mesh(path: str, scale: Sequence[float] | None = None) -> MeshData:
     with open(path, "rb") as handle:
         data = handle.read()
     key = cache.content_key(data, scale_key)
-    mesh = cache.read(key) if _disk else None
+    mesh = _by_content.get(key)  # the same bytes at another path (a class of learners' copies)
+    if mesh is None and _disk:
+        mesh = cache.read(key)
     if mesh is None:
         from .decode import decode
 
@@ -60,9 +63,11 @@ def load_mesh(path: str, scale: Sequence[float] | None = None) -> MeshData:
         if _disk:
             cache.write(key, mesh)
     mesh.freeze()
-    if sum(m.nbytes for m in _memory.values()) + mesh.nbytes > MEMORY_BYTES:
+    if sum(m.nbytes for m in _by_content.values()) + mesh.nbytes > MEMORY_BYTES:
         _memory.clear()
+        _by_content.clear()
     _memory[memo] = mesh
+    _by_content[key] = mesh
     return mesh
 
 
@@ -74,4 +79,5 @@ def cache_info() -> CacheInfo:
 def clear_cache() -> CacheInfo:
     """Empty the disk cache of decoded meshes (and this process's memory of them); returns what went."""
     _memory.clear()
+    _by_content.clear()
     return cache.clear()

@@ -62,7 +62,7 @@ def _collada(path: str) -> tuple[list[Piece], list[Issue]]:
     if scene is not None:
         for node in scene.nodes:
             pieces += _collada_node(document, node, root, path, 0)
-    elif document.geometries:  # no scene at all: the geometries as they are
+    if not pieces:  # no scene, or one that instances nothing we read (a skin): the geometries as they are
         for geometry in document.geometries:
             pieces += _collada_geometry(document, geometry, root, {}, path)
     return pieces, issues

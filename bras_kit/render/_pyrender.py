@@ -22,6 +22,8 @@ from typing import Any
 import numpy as np
 
 from ..errors import BackendError
+from ..message import M
+from ..wording import quoted
 from ._compat import (
     ColorReader,
     delete_renderer,
@@ -55,19 +57,22 @@ def choose_platform(requested: str) -> str:
         elif ctypes.util.find_library("OSMesa"):
             wanted = "osmesa"
         else:
-            raise BackendError("no OpenGL library found (neither libEGL nor libOSMesa)",
-                               hint="on Debian/Ubuntu: apt-get install libegl1 libegl-mesa0 libgl1-mesa-dri libgbm1")
+            raise BackendError(M("no OpenGL library found (neither libEGL nor libOSMesa)"),
+                               hint=M("on Debian/Ubuntu: apt-get install libegl1 libegl-mesa0 libgl1-mesa-dri libgbm1"))
     else:
         wanted = requested
     if wanted not in ("egl", "osmesa"):
-        raise BackendError(f"OpenGL is already set up for {wanted} in this process, not for off-screen rendering",
-                           hint="set PYOPENGL_PLATFORM=egl before starting Python, or use backend 'software'")
+        raise BackendError(M("OpenGL is already set up for {platform} in this process, not for off-screen rendering",
+                             platform=wanted),
+                           hint=M("set PYOPENGL_PLATFORM=egl before starting Python, or use backend 'software'"))
     if loaded is not None and loaded != wanted:
-        raise BackendError(f"OpenGL is already set up for {loaded} in this process, so {wanted} cannot start",
-                           hint=f"start a new process with PYOPENGL_PLATFORM={wanted}, or use backend {loaded}")
+        raise BackendError(M("OpenGL is already set up for {loaded} in this process, so {wanted} cannot start",
+                             loaded=loaded, wanted=wanted),
+                           hint=M("start a new process with PYOPENGL_PLATFORM={wanted}, or use backend {loaded}",
+                                  wanted=wanted, loaded=loaded))
     if wanted == "osmesa" and pyopengl_version() < (3, 1, 5):
-        raise BackendError("OSMesa needs PyOpenGL 3.1.5 or later, which pyrender's pin (3.1.0) excludes",
-                           hint="use backend egl (Mesa's EGL also works with no GPU) or software")
+        raise BackendError(M("OSMesa needs PyOpenGL 3.1.5 or later, which pyrender's pin (3.1.0) excludes"),
+                           hint=M("use backend egl (Mesa's EGL also works with no GPU) or software"))
     if loaded is None:
         os.environ["PYOPENGL_PLATFORM"] = wanted
     return wanted
@@ -218,14 +223,16 @@ class PyrenderBackend:
         try:
             renderer = pyrender.OffscreenRenderer(camera.width * scale, camera.height * scale)
         except Exception as exc:
-            raise BackendError(f"cannot start OpenGL ({platform}): {exc}".rstrip(),
-                               hint="use backend software, or install Mesa's EGL "
-                               "(libegl1 libegl-mesa0 libgl1-mesa-dri libgbm1)") from None
+            raise BackendError(M("cannot start OpenGL ({platform}): {reason}", platform=platform,
+                                 reason=quoted(str(exc).strip())),
+                               hint=M("use backend software, or install Mesa's EGL "
+                                      "(libegl1 libegl-mesa0 libgl1-mesa-dri libgbm1)")) from None
         inner, platform_ = getattr(renderer, "_renderer", None), getattr(renderer, "_platform", None)
         if inner is None or platform_ is None or getattr(inner, "_main_fb", 1) is not None:
             delete_renderer(renderer)
-            raise BackendError(f"this pyrender ({getattr(pyrender, '__version__', '?')}) is not the one bras-kit "
-                               "knows how to draw with", hint="pip install 'pyrender==0.1.45', or use backend software")
+            raise BackendError(M("this pyrender ({version}) is not the one bras-kit knows how to draw with",
+                                 version=getattr(pyrender, "__version__", "?")),
+                               hint=M("pip install 'pyrender==0.1.45', or use backend software"))
         platform_.make_current()
         spare = make_framebuffers(inner, camera.width * scale, camera.height * scale, samples, spare=not supersample)
         if scale > 1:

@@ -14,6 +14,7 @@ from collections.abc import Sequence
 from dataclasses import dataclass, field, fields
 
 from ..errors import ParameterError
+from ..message import M, Mn
 
 # name -> (azimuth, elevation) in degrees. Azimuth is measured from +x towards +y, so the
 # camera of "front" stands on the -y side and looks along +y at the x-z plane, the plane
@@ -25,6 +26,7 @@ VIEWS: dict[str, tuple[float, float]] = {
     "top": (-90.0, 90.0),
 }
 BACKENDS = ("auto", "egl", "osmesa", "software")
+GEOMETRIES = ("visual", "collision", "both")  # RViz's RobotModel: Visual Enabled / Collision Enabled
 MAX_SIDE = 8192  # larger than this, GL renderbuffers fail on common drivers
 
 # Colours that have a name here but not in CSS.
@@ -51,6 +53,7 @@ class RenderOptions:
     antialias: bool | None = None
     package_paths: Sequence[str] = field(default_factory=tuple)
     targets: Sequence[Sequence[float]] = field(default_factory=tuple)  # points marked in the world (reach)
+    geometry: str = "visual"  # what of each link is drawn: its <visual>s, its <collision>s or both
 
     @property
     def width(self) -> int:
@@ -66,18 +69,18 @@ def parse_size(text: str | Sequence[int]) -> tuple[int, int]:
     if isinstance(text, str):
         match = re.fullmatch(r"\s*(\d+)\s*[xX×]\s*(\d+)\s*", text)
         if match is None:
-            raise ParameterError(f"size '{text}' is not WIDTHxHEIGHT",
-                                 hint="give the picture size in pixels, e.g. --size 640x480")
+            raise ParameterError(M("size '{text}' is not WIDTHxHEIGHT", text=text),
+                                 hint=M("give the picture size in pixels, e.g. --size 640x480"))
         width, height = int(match.group(1)), int(match.group(2))
     else:
         try:
             width, height = (int(v) for v in text)
         except (TypeError, ValueError):
-            raise ParameterError(f"size {text!r} is not (width, height)",
-                                 hint="give two whole numbers of pixels, e.g. size=(640, 480)") from None
+            raise ParameterError(M("size {text} is not (width, height)", text=repr(text)),
+                                 hint=M("give two whole numbers of pixels, e.g. size=(640, 480)")) from None
     if not (8 <= width <= MAX_SIDE and 8 <= height <= MAX_SIDE):
-        raise ParameterError(f"size {width}x{height} is out of range",
-                             hint=f"each side must be between 8 and {MAX_SIDE} pixels")
+        raise ParameterError(M("size {width}x{height} is out of range", width=width, height=height),
+                             hint=M("each side must be between 8 and {most} pixels", most=MAX_SIDE))
     check_memory_for(width, height)
     return width, height
 
@@ -117,9 +120,9 @@ def check_memory_for(width: int, height: int) -> None:
     need = width * height * BYTES_PER_PIXEL
     if free is not None and need > free:
         side = max(8, int(math.sqrt(free / BYTES_PER_PIXEL)) // 8 * 8)
-        raise ParameterError(f"size {width}x{height} needs about {need / 2**30:.1f} GiB of memory, "
-                             f"and only {free / 2**30:.1f} GiB are free",
-                             hint=f"the largest square picture that fits now is about {side}x{side}")
+        raise ParameterError(M("size {width}x{height} needs about {need:.1f} GiB of memory, and only {free:.1f} GiB "
+                               "are free", width=width, height=height, need=need / 2**30, free=free / 2**30),
+                             hint=M("the largest square picture that fits now is about {side}x{side}", side=side))
 
 
 def parse_color(text: str | Sequence[float]) -> tuple[int, int, int]:
@@ -134,8 +137,8 @@ def parse_color(text: str | Sequence[float]) -> tuple[int, int, int]:
         scale = 1.0 if bytes_like else 255.0
         if len(values) == 3 and all(0.0 <= v * scale <= 255.0 for v in values):
             return tuple(round(v * scale) for v in values)  # type: ignore[return-value]
-        raise ParameterError(f"colour {text!r} is neither three numbers in 0..1 nor three in 0..255",
-                             hint="e.g. background=(1, 1, 1), background=(255, 255, 255) or background='white'")
+        raise ParameterError(M("colour {text} is neither three numbers in 0..1 nor three in 0..255", text=repr(text)),
+                             hint=M("e.g. background=(1, 1, 1), background=(255, 255, 255) or background='white'"))
     name = text.strip().lower()
     if name in _NAMED:
         return _NAMED[name]
@@ -152,9 +155,9 @@ def parse_color(text: str | Sequence[float]) -> tuple[int, int, int]:
     try:
         rgb = ImageColor.getrgb(name)
     except ValueError:
-        raise ParameterError(f"'{text}' is not a colour",
-                             hint="give a name (white, black, lightgrey, rviz), #rrggbb, "
-                             "or three numbers between 0 and 1 such as '0.9 0.9 0.9'") from None
+        raise ParameterError(M("'{text}' is not a colour", text=text),
+                             hint=M("give a name (white, black, lightgrey, rviz), #rrggbb, "
+                                    "or three numbers between 0 and 1 such as '0.9 0.9 0.9'")) from None
     return rgb[:3]  # type: ignore[return-value]
 
 
@@ -164,10 +167,11 @@ def _angle(name: str, value: object, low: float, high: float) -> float | None:
     try:
         number = float(value)  # type: ignore[arg-type]
     except (TypeError, ValueError):
-        raise ParameterError(f"{name} {value!r} is not a number", hint=f"give {name} in degrees") from None
+        raise ParameterError(M("{name} {value} is not a number", name=name, value=repr(value)),
+                             hint=M("give {name} in degrees", name=name)) from None
     if not (math.isfinite(number) and low <= number <= high):
-        raise ParameterError(f"{name} {number:g} is out of range",
-                             hint=f"give {name} in degrees between {low:g} and {high:g}")
+        raise ParameterError(M("{name} {value:g} is out of range", name=name, value=number),
+                             hint=M("give {name} in degrees between {low:g} and {high:g}", name=name, low=low, high=high))
     return number
 
 
@@ -176,8 +180,9 @@ def render_options(**opts: object) -> RenderOptions:
     known = {f.name for f in fields(RenderOptions)}
     unknown = sorted(set(opts) - known)
     if unknown:
-        raise ParameterError("unknown render option" + ("s " if len(unknown) > 1 else " ") + ", ".join(unknown),
-                             hint="valid options: " + ", ".join(sorted(known)))
+        raise ParameterError(Mn("unknown render option {names}", "unknown render options {names}", len(unknown),
+                                names=", ".join(unknown)),
+                             hint=M("valid options: {names}", names=", ".join(sorted(known))))
     values = dict(opts)
     if "size" in values:
         values["size"] = parse_size(values["size"])  # type: ignore[arg-type]
@@ -185,10 +190,15 @@ def render_options(**opts: object) -> RenderOptions:
         values["background"] = parse_color(values["background"])  # type: ignore[arg-type]
     view = values.get("view", "iso")
     if view not in VIEWS:
-        raise ParameterError(f"unknown view '{view}'", hint="views: " + ", ".join(VIEWS))
+        raise ParameterError(M("unknown view '{view}'", view=str(view)), hint=M("views: {names}", names=", ".join(VIEWS)))
     backend = values.get("backend", "auto")
     if backend not in BACKENDS:
-        raise ParameterError(f"unknown backend '{backend}'", hint="backends: " + ", ".join(BACKENDS))
+        raise ParameterError(M("unknown backend '{backend}'", backend=str(backend)),
+                             hint=M("backends: {names}", names=", ".join(BACKENDS)))
+    geometry = values.get("geometry", "visual")
+    if geometry not in GEOMETRIES:
+        raise ParameterError(M("unknown geometry '{value}'", value=geometry),
+                             hint=M("geometries: {names}", names=list(GEOMETRIES)))
     values["azimuth"] = _angle("azimuth", values.get("azimuth"), -360.0, 360.0)
     values["elevation"] = _angle("elevation", values.get("elevation"), -90.0, 90.0)
     distance = values.get("distance")
@@ -198,8 +208,8 @@ def render_options(**opts: object) -> RenderOptions:
         except (TypeError, ValueError):
             distance = math.nan
         if not (math.isfinite(distance) and distance > 0):
-            raise ParameterError(f"distance {values['distance']!r} is not a positive number",
-                                 hint="give the camera's distance to the robot's centre in metres")
+            raise ParameterError(M("distance {value} is not a positive number", value=repr(values["distance"])),
+                                 hint=M("give the camera's distance to the robot's centre in metres"))
         values["distance"] = distance
     fov = _angle("fov", values.get("fov", 30.0), 1.0, 170.0)
     values["fov"] = fov

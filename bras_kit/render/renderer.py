@@ -14,8 +14,10 @@ from typing import Any
 import numpy as np
 
 from ..errors import BackendError, ParameterError
-from ..kinematics import TFTree, fk_batch, tf_tree
+from ..kinematics import TFTree, fk_batch, movable_joints_hint, tf_tree
+from ..message import M
 from ..model import Robot
+from ..wording import quoted
 from .camera import Camera, fit_camera
 from .options import RenderOptions, render_options
 from .scene import Scene, build_scene
@@ -41,8 +43,8 @@ def configurations(tree: TFTree, value: Any) -> np.ndarray:
         out = np.zeros((len(positions), len(tree.dof)))
         for column, name in enumerate(names):
             if name not in tree.dof:
-                raise ParameterError(f"joint states name '{name}', which is not a movable joint of the robot",
-                                     hint="movable joints: " + (", ".join(tree.dof) or "none"))
+                raise ParameterError(M("joint states name '{name}', which is not a movable joint of the robot", name=name),
+                                     hint=movable_joints_hint(tree.dof))
             out[:, tree.dof.index(name)] = positions[:, column]
         return out
     if isinstance(value, (list, tuple)) and value and isinstance(value[0], Mapping):
@@ -51,8 +53,8 @@ def configurations(tree: TFTree, value: Any) -> np.ndarray:
     if q.ndim == 1:
         q = q[None, :]
     if q.ndim != 2 or q.shape[1] != len(tree.dof):
-        raise ParameterError(f"expected joint values with {len(tree.dof)} columns ({', '.join(tree.dof)}), "
-                             f"got shape {q.shape}")
+        raise ParameterError(M("expected joint values with {count} columns ({names}), got shape {shape}",
+                               count=len(tree.dof), names=", ".join(tree.dof), shape=str(q.shape)))
     return q
 
 
@@ -92,7 +94,8 @@ def open_backend(scene: Scene, camera: Camera, options: RenderOptions,  # type: 
         return PyrenderBackend(scene, camera, options.background, platform,
                                antialias=options.antialias is not False, supersample=not sequence)
     except ImportError as exc:
-        error = BackendError(f"cannot load pyrender: {exc}", hint="pip install pyrender, or use backend software")
+        error = BackendError(M("cannot load pyrender: {reason}", reason=quoted(str(exc))),
+                             hint=M("pip install pyrender, or use backend software"))
     except BackendError as exc:
         error = exc
     if options.backend != "auto":
@@ -100,8 +103,10 @@ def open_backend(scene: Scene, camera: Camera, options: RenderOptions,  # type: 
     global _announced_fallback
     if not _announced_fallback:
         _announced_fallback = True
-        print(f"bras-kit render: no OpenGL here ({error.message}); using the software renderer, slower",
-              file=sys.stderr)
+        from ..i18n import say
+
+        print(say(M("bras-kit render: no OpenGL here ({reason}); using the software renderer, slower",
+                    reason=error.message)), file=sys.stderr)
     return SoftwareBackend(scene, camera, options.background)
 
 
@@ -139,7 +144,10 @@ MAX_NAMED_FRAMES = 60  # past that, names would hide the robot
 
 def frame_names(image: np.ndarray, camera: Any, names: Any, origins: np.ndarray) -> np.ndarray:
     """``image`` with each frame's name written beside its origin, over everything, like RViz's TF
-    display with "Show Names" on: dark text with a light outline, readable on any colour."""
+    display with "Show Names" on: dark text with a light outline, readable on any colour. A name
+    that would cover one already written moves up until it is clear (frames that coincide, such
+    as a link and the base it sits on, get one name above the other). A legend in the lower left
+    corner gives the axes' colours: x red, y green, z blue."""
     from PIL import Image, ImageDraw, ImageFont
 
     points = np.hstack([origins, np.ones((len(origins), 1))]) @ (camera.projection() @ camera.view()).T
@@ -150,14 +158,37 @@ def frame_names(image: np.ndarray, camera: Any, names: Any, origins: np.ndarray)
         font: Any = ImageFont.load_default(size=size)
     except TypeError:  # Pillow without FreeType sizes
         font = ImageFont.load_default()
+    placed: list[tuple[float, float, float, float]] = []
     for name, (x, y, _depth, w) in zip(names, points):
         if w <= 1e-9:  # behind the camera
             continue
         column = (x / w + 1.0) / 2.0 * camera.width + 4
         row = (1.0 - y / w) / 2.0 * camera.height - size - 2
+        for _ in range(len(placed) + 1):
+            left, top, right, bottom = draw.textbbox((column, row), str(name), font=font, stroke_width=2)
+            clash = next((box for box in placed if left < box[2] and box[0] < right and top < box[3] and box[1] < bottom),
+                         None)
+            if clash is None:
+                break
+            row -= bottom - clash[1] + 1  # just above the name it covered
+        placed.append(draw.textbbox((column, row), str(name), font=font, stroke_width=2))
         draw.text((column, row), str(name), fill=(20, 20, 20), font=font, stroke_width=2,
                   stroke_fill=(255, 255, 255))
+    axes_legend(draw, font, size, camera.height)
     return np.asarray(picture)
+
+
+LEGEND_COLOURS = (("x", (255, 0, 0)), ("y", (0, 255, 0)), ("z", (0, 0, 255)))  # the triads' (scene.AXIS_COLORS)
+
+
+def axes_legend(draw: Any, font: Any, size: int, height: int) -> None:
+    """"— x  — y  — z" in the axes' colours, in the lower left corner (no words: no language)."""
+    column, row = 8, height - size - 8
+    for letter, colour in LEGEND_COLOURS:
+        draw.line([(column, row + size * 0.6), (column + 2 * size, row + size * 0.6)], fill=colour, width=max(2, size // 5))
+        column += 2 * size + 4
+        draw.text((column, row), letter, fill=colour, font=font, stroke_width=2, stroke_fill=(255, 255, 255))
+        column += size + 8
 
 
 class Renderer:
@@ -179,13 +210,14 @@ class Renderer:
         if len(self.tree.links) > MAX_RENDER_LINKS:
             from ..errors import ModelError
 
-            raise ModelError(f"the robot has {len(self.tree.links):,} links, more than the {MAX_RENDER_LINKS:,} "
-                             "bras-kit draws", hint="'bras-kit tree' and 'bras-kit validate' work on models of any size")
+            raise ModelError(M("the robot has {count:,} links, more than the {most:,} bras-kit draws",
+                               count=len(self.tree.links), most=MAX_RENDER_LINKS),
+                             hint=M("'bras-kit tree' and 'bras-kit validate' work on models of any size"))
         check_drawable(robot)
         fit_q = workspace_samples(self.tree) if fit is None else configurations(self.tree, fit)
         self.scene, points = build_scene(self.tree, fk_batch(self.tree, fit_q), tf=self.options.tf,
                                          grid=self.options.grid, package_paths=self.options.package_paths,
-                                         targets=self.options.targets)
+                                         targets=self.options.targets, geometry=self.options.geometry)
         self.camera = fit_camera(points, self.options)
         self._backend = open_backend(self.scene, self.camera, self.options, sequence)
 
@@ -198,7 +230,8 @@ class Renderer:
         """The picture of one pose ({joint: value} or a vector in ``tree.dof`` order): (H, W, 3) uint8."""
         q = configurations(self.tree, config)
         if len(q) != 1:
-            raise ParameterError(f"render draws one pose, got {len(q)}", hint="use frames() for a sequence")
+            raise ParameterError(M("render draws one pose, got {count}", count=len(q)),
+                                 hint=M("use frames() for a sequence"))
         return self._draw(fk_batch(self.tree, q[0]))
 
     def frames(self, positions: Any) -> Iterator[np.ndarray]:
@@ -289,7 +322,7 @@ class Frames:
 
 def render_pose(robot: Robot, config: Mapping[str, float] | Sequence[float] | None = None, **opts: Any) -> np.ndarray:
     """One picture of ``robot`` at ``config`` (missing joints at 0), framed on that pose: (H, W, 3) uint8."""
-    with Renderer(robot, fit=config, **opts) as renderer:
+    with Renderer(robot, fit={} if config is None else config, **opts) as renderer:  # {}: the zero pose
         return renderer.render(config)
 
 

@@ -68,9 +68,10 @@ def resolve_mesh_path(filename: str, robot: Robot, package_paths: Sequence[str] 
         try:
             folder = find_package(package, package_roots(roots))
         except XacroError:
-            raise ModelError(f"mesh '{filename}': package '{package}' not found",
+            raise ModelError(M("mesh '{file}': package '{package}' not found", file=filename, package=package),
                              path=robot.path, line=line, element="mesh",
-                             hint=f"pass --package-path DIR, a folder holding {package}/ (with its package.xml)") from None
+                             hint=M("pass --package-path DIR, a folder holding {package}/ (with its package.xml)",
+                                    package=package)) from None
         path = os.path.join(folder, rest)
     elif filename.startswith("file://"):
         path = filename[len("file://"):]
@@ -78,11 +79,11 @@ def resolve_mesh_path(filename: str, robot: Robot, package_paths: Sequence[str] 
         base = os.path.dirname(os.path.abspath(robot.path)) if robot.path and os.path.exists(robot.path) else os.getcwd()
         path = os.path.join(base, filename)
     if not os.path.isfile(path):
-        raise ModelError(f"mesh file not found: {path}", path=robot.path, line=line, element="mesh",
-                         hint="check the filename, or pass --package-path for package:// names")
+        raise ModelError(M("mesh file not found: {path}", path=path), path=robot.path, line=line, element="mesh",
+                         hint=M("check the filename, or pass --package-path for package:// names"))
     if os.path.getsize(path) > MAX_MESH_BYTES:
-        raise ModelError(f"mesh file {path} is larger than {MAX_MESH_BYTES >> 20} MiB", path=robot.path,
-                         line=line, element="mesh", hint="simplify the mesh (fewer triangles)")
+        raise ModelError(M("mesh file {path} is larger than {most} MiB", path=path, most=MAX_MESH_BYTES >> 20),
+                         path=robot.path, line=line, element="mesh", hint=M("simplify the mesh (fewer triangles)"))
     return path
 
 
@@ -285,6 +286,30 @@ def robot_parts(tree: TFTree, package_paths: Sequence[str] = (), lang: str | Non
     return parts
 
 
+COLLISION_COLOR = (0.35, 0.63, 0.35, 1.0)  # green-grey, as the viewer draws collision shapes
+
+
+def collision_parts(tree: TFTree, package_paths: Sequence[str] = (), opacity: float = 1.0) -> list[Part]:
+    """A :class:`Part` per drawable ``<collision>`` of every link (RViz's "Collision Enabled"),
+    in one colour; an unreadable collision mesh is drawn as the visuals' red stand-in."""
+    robot = tree.robot
+    parts = []
+    for index, name in enumerate(tree.links):
+        link = robot.link(name)
+        for number, collision in enumerate(link.collisions if link is not None else [], 1):
+            shape = Visual(collision.origin, collision.geometry)
+            color = (*COLLISION_COLOR[:3], opacity)
+            try:
+                mesh = visual_mesh(robot, shape, package_paths)
+            except ModelError:
+                mesh, color = placeholder_mesh(robot, link, shape), PLACEHOLDER_COLOR
+            if mesh is None:
+                continue
+            parts.append(Part(index, np.asarray(mesh.vertices, dtype=float), np.asarray(mesh.faces, dtype=np.int64),
+                              color, label=f"{name} collision {number}"))  # type: ignore[arg-type]
+    return parts
+
+
 def triad_parts(tree: TFTree, length: float) -> list[Part]:
     """Red, green and blue rods along each link's x, y and z axes (RViz's TF display)."""
     radius = length / 22.0
@@ -360,9 +385,13 @@ def target_parts(targets: Sequence[Sequence[float]], size: float) -> list[Part]:
 
 
 def build_scene(tree: TFTree, fit_transforms: np.ndarray, *, tf: bool = False, grid: bool = True,
-                package_paths: Sequence[str] = (), targets: Sequence[Sequence[float]] = ()) -> tuple[Scene, np.ndarray]:
-    """The scene and the world points the camera must keep in view (every part over ``fit_transforms``)."""
-    parts = robot_parts(tree, package_paths)
+                package_paths: Sequence[str] = (), targets: Sequence[Sequence[float]] = (),
+                geometry: str = "visual") -> tuple[Scene, np.ndarray]:
+    """The scene and the world points the camera must keep in view (every part over ``fit_transforms``).
+    ``geometry``: draw the links' visuals, their collision shapes, or both (collisions see-through)."""
+    parts = robot_parts(tree, package_paths) if geometry != "collision" else []
+    if geometry != "visual":
+        parts = parts + collision_parts(tree, package_paths, 0.5 if geometry == "both" else 1.0)
     points = world_points(parts, fit_transforms)
     if len(targets):
         extent = float(np.ptp(points, axis=0).max()) if len(parts) else 0.5

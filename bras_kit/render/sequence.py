@@ -21,6 +21,8 @@ from typing import IO, Any, Protocol
 import numpy as np
 
 from ..errors import BackendError, ParameterError
+from ..i18n import say
+from ..message import M, Message
 
 PALETTE_SAMPLES = 4  # frames the GIF palette is computed from
 TRANSPARENT = 255  # GIF palette index left for "unchanged since the previous frame"
@@ -43,7 +45,8 @@ class Progress:
             isatty = getattr(self.stream, "isatty", None)
             enabled = bool(isatty and isatty())
         self.enabled = enabled
-        self.total, self.label, self.done = max(total, 1), label, 0
+        self.total, self.done = max(total, 1), 0
+        self.label: Message | str = M("rendering") if label == "rendering" else label
         self._start = self._last = time.monotonic()
 
     def update(self, count: int = 1) -> None:
@@ -58,22 +61,25 @@ class Progress:
         filled = int(share * 30)
         elapsed = now - self._start
         left = elapsed / share - elapsed if share > 0 else 0.0
-        self.stream.write(f"\r{self.label} [{'#' * filled}{'.' * (30 - filled)}] "
-                          f"{self.done}/{self.total} frames, {left:4.1f} s left ")
+        self.stream.write(f"\r{say(self.label)} [{'#' * filled}{'.' * (30 - filled)}] "
+                          + say(M("{done}/{total} frames, {left:4.1f} s left ", done=self.done, total=self.total,
+                                  left=left)))
         self.stream.flush()
 
     def close(self) -> None:
         if self.enabled:
             elapsed = time.monotonic() - self._start
-            self.stream.write(f"\r{self.label} [{'#' * 30}] {self.done}/{self.total} frames "
-                              f"in {elapsed:.1f} s{' ' * 8}\n")
+            self.stream.write(f"\r{say(self.label)} [{'#' * 30}] "
+                              + say(M("{done}/{total} frames in {elapsed:.1f} s", done=self.done, total=self.total,
+                                      elapsed=elapsed)) + " " * 8 + "\n")
             self.stream.flush()
 
 
 def _rgb(frame: np.ndarray) -> np.ndarray:
     frame = np.asarray(frame)
     if frame.ndim != 3 or frame.shape[2] not in (3, 4) or frame.dtype != np.uint8:
-        raise ParameterError(f"a frame must be an (H, W, 3) uint8 image, got {frame.dtype} {frame.shape}")
+        raise ParameterError(M("a frame must be an (H, W, 3) uint8 image, got {dtype} {shape}", dtype=str(frame.dtype),
+                               shape=str(frame.shape)))
     return frame[..., :3]
 
 
@@ -149,7 +155,7 @@ class GifWriter:
     def __init__(self, target: str | os.PathLike[str] | IO[bytes], fps: float,
                  palette_samples: Sequence[np.ndarray]) -> None:
         if not palette_samples:
-            raise ParameterError("a GIF palette needs at least one sample frame")
+            raise ParameterError(M("a GIF palette needs at least one sample frame"))
         samples = [np.array(_rgb(s)) for s in palette_samples]
         from PIL import GifImagePlugin, Image  # noqa: F401 - loaded here, not in the worker
         self._delay = gif_delay(fps)
@@ -167,7 +173,7 @@ class GifWriter:
         if self._shape is None:
             self._shape = rgb.shape
         elif rgb.shape != self._shape:
-            raise ParameterError("all frames of a GIF must have the same size")
+            raise ParameterError(M("all frames of a GIF must have the same size"))
         self._raise_failure()
         self._queue.put(np.array(rgb))
         self.frames += 1
@@ -260,7 +266,7 @@ class Mp4Writer:
             try:
                 import imageio_ffmpeg
             except ImportError:
-                raise BackendError("MP4 needs imageio-ffmpeg", hint="pip install imageio-ffmpeg") from None
+                raise BackendError(M("MP4 needs imageio-ffmpeg"), hint=M("pip install imageio-ffmpeg")) from None
             self._pipe = imageio_ffmpeg.write_frames(
                 self._path, (rgb.shape[1], rgb.shape[0]), fps=self._fps, codec="libx264",
                 pix_fmt_in="rgb24", pix_fmt_out="yuv420p", quality=None, macro_block_size=1,
@@ -294,8 +300,8 @@ def save_png(image: np.ndarray, path: str | os.PathLike[str] | IO[bytes]) -> Non
         picture.save(os.fspath(path), compress_level=3) if str(path).lower().endswith(".png") \
             else picture.save(os.fspath(path))
     except (KeyError, ValueError):
-        raise ParameterError(f"cannot tell the picture format of '{path}'",
-                             hint="end the name with .png (or .jpg, .bmp)") from None
+        raise ParameterError(M("cannot tell the picture format of '{path}'", path=str(path)),
+                             hint=M("end the name with .png (or .jpg, .bmp)")) from None
 
 
 class FramesDirWriter:
@@ -362,7 +368,7 @@ def save_gif(frames: Iterable[np.ndarray], path: str | os.PathLike[str] | IO[byt
     _check_fps(fps)
     samples, stream = palette_samples(frames)
     if not samples:
-        raise ParameterError("no frames to write", hint="give at least one frame")
+        raise ParameterError(M("no frames to write"), hint=M("give at least one frame"))
     return write_frames(stream, [GifWriter(path, fps, samples)])
 
 
@@ -387,4 +393,5 @@ def gif_bytes(frames: Iterable[np.ndarray], fps: float = 20.0) -> bytes:
 
 def _check_fps(fps: float) -> None:
     if not (isinstance(fps, (int, float)) and 0 < fps <= 120):
-        raise ParameterError(f"fps {fps!r} is out of range", hint="give frames per second between 1 and 120, e.g. 20")
+        raise ParameterError(M("fps {fps} is out of range", fps=repr(fps)),
+                             hint=M("give frames per second between 1 and 120, e.g. 20"))

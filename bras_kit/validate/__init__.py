@@ -264,10 +264,7 @@ def _unreadable(path: str, exc: BrasKitError) -> Finding:
     where = f"{other}:{exc.line}: " if other and exc.line else (f"{other}: " if other else "")
     line = None if other else exc.line
     if isinstance(exc, XMLSafetyError):
-        message = str(exc.message)
-        variant = ("undefined" if "undefined entity" in message else "dtd" if "DTD" in message
-                   else "entity" if "entity declaration" in message
-                   else "external" if "external entity" in message else "")
+        variant = {"attlist": "dtd"}.get(exc.kind, exc.kind)
         hit = Hit("file", None, line, {"where": f" ({where.rstrip(': ')})" if where else ""}, variant)
         return _loader_finding("BK101", hit)
     if isinstance(exc, XMLSyntaxError):
@@ -360,15 +357,17 @@ def _check_joint_names(context: Context, values: Mapping[str, float] | None, sou
     for name in values or {}:
         joint = context.joints.get(name)
         movable = [j.name for j in context.robot.movable_joints() if j.name]
-        hint = "movable joints: " + (", ".join(movable) or "none")
+        hint = M("movable joints: {names}", names=", ".join(movable)) if movable else M("this robot has no movable joint")
         where = context.robot.path
         if joint is None:
-            raise ParameterError(f"{source} names joint '{name}', which this robot does not have",
-                                 path=where, hint=hint)
+            raise ParameterError(M("{source} names joint '{name}', which this robot does not have",
+                                   source=source, name=name), path=where, hint=hint)
         if not joint.movable:
-            why = f"follows '{joint.mimic.joint}'" if joint.mimic is not None else f"is {joint.type}"
-            raise ParameterError(f"{source} sets joint '{name}', which {why} and cannot be set",
-                                 path=where, hint=hint)
+            if joint.mimic is not None:
+                raise ParameterError(M("{source} sets joint '{name}', which follows '{leader}' and cannot be set",
+                                       source=source, name=name, leader=joint.mimic.joint), path=where, hint=hint)
+            raise ParameterError(M("{source} sets joint '{name}', which is {type} and cannot be set",
+                                   source=source, name=name, type=joint.type), path=where, hint=hint)
 
 
 def motion_states(robot: Robot, specs: Sequence[str] | None, duration: float | None = None) -> Any:
@@ -392,5 +391,5 @@ def _rules(select: Iterable[str], ignore: Iterable[str]) -> list[Rule]:
     try:
         return select_rules(select, ignore)
     except ValueError as exc:
-        raise ParameterError(f"no rule code starts with '{exc}'",
-                             hint="codes look like BK301; families are BK1 to BK6 (bras-kit explain lists them)") from None
+        raise ParameterError(M("no rule code starts with '{prefix}'", prefix=str(exc)),
+                             hint=M("codes look like BK301; families are BK1 to BK6 (bras-kit explain lists them)")) from None

@@ -28,9 +28,10 @@ def find_rule(code_or_name: str) -> Rule:
         return by_name[key.lower()]
     close = [by_name[n].code for n in difflib.get_close_matches(key.lower(), list(by_name), n=1)]
     raise ParameterError(
-        f"unknown rule '{code_or_name}'",
-        hint=(f"did you mean {close[0]} ({RULES[close[0]].name})? " if close else "")
-        + "run 'bras-kit explain' with no code to list every rule",
+        M("unknown rule '{rule}'", rule=code_or_name),
+        hint=M("did you mean {code} ({name})? run 'bras-kit explain' with no code to list every rule",
+               code=close[0], name=RULES[close[0]].name) if close
+        else M("run 'bras-kit explain' with no code to list every rule"),
     )
 
 

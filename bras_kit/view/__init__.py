@@ -16,11 +16,12 @@ from .viewer import Source, Viewer
 
 
 def view(robot: Any = None, *, motion: Any = (), port: int = 8080, lang: str | None = None,
-         height: int = 500, package_paths: tuple[str, ...] = ()) -> Viewer:
+         height: int = 500, package_paths: tuple[str, ...] = (), geometry: str = "visual") -> Viewer:
     """Show ``robot`` (a :class:`~bras_kit.model.Robot`, a file path, or the tutorial arm) live.
 
     In a Jupyter notebook with a local kernel the page appears inline; elsewhere the URL is
-    printed. Returns the :class:`Viewer` (``viewer.stop()`` ends it).
+    printed. ``geometry``: "visual", "collision" or "both", what is shown first. Returns the
+    :class:`Viewer` (``viewer.stop()`` ends it).
     """
     from ..i18n import resolve_language
 
@@ -31,7 +32,7 @@ def view(robot: Any = None, *, motion: Any = (), port: int = 8080, lang: str | N
     source = Source(path=str(robot), package_paths=package_paths) if isinstance(robot, str) \
         else Source(robot=robot, package_paths=package_paths)
     specs = [motion] if isinstance(motion, str) else list(motion)
-    viewer = Viewer(source, port=port, lang=resolve_language(lang), motion_specs=specs)
+    viewer = Viewer(source, port=port, lang=resolve_language(lang), motion_specs=specs, geometry=geometry)
     try:
         from IPython import get_ipython
         from IPython.display import IFrame, display

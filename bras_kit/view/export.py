@@ -10,6 +10,7 @@ import numpy as np
 from .. import backends
 from ..model import Robot
 from .model import view_model, wxyz
+from .panel import label_offsets
 from .session import ROOT, _nice
 from .viewer import never_share, quiet
 
@@ -31,21 +32,30 @@ def export_html(robot: Robot, states: Any, *, package_paths: tuple[str, ...] = (
         length = 0.12 * model.scale
         scene.add_grid(f"{ROOT}/grid", width=4 * model.scale, height=4 * model.scale,
                        cell_size=_nice(model.scale / 5), section_size=_nice(model.scale))
-        handles = []
+        handles, labels = [], []
         for index, link in enumerate(model.tree.links):
             handles.append(scene.add_frame(f"{ROOT}/link{index}", axes_length=length, axes_radius=length / 22,
                                            origin_radius=length / 10, show_axes=frames))
             if names:
-                scene.add_label(f"{ROOT}/link{index}/name", link, font_screen_scale=0.8, anchor="bottom-left")
+                labels.append(scene.add_label(f"{ROOT}/link{index}/name", link, font_screen_scale=0.8,
+                                              anchor="bottom-left"))
+        shifts: dict[int, tuple[float, ...]] = {}
         for k, mesh in enumerate(model.visuals):
             scene.add_mesh_simple(f"{ROOT}/link{mesh.link}/visual{k}", mesh.vertices.astype(np.float32),
                                   mesh.faces.astype(np.uint32), color=mesh.color,
                                   opacity=None if mesh.opacity >= 1.0 else mesh.opacity)
 
         def place(row: np.ndarray) -> None:
-            for frame, pose in zip(handles, model.poses(dict(zip(names_in_states, row)))):
+            poses = model.poses(dict(zip(names_in_states, row)))
+            for frame, pose in zip(handles, poses):
                 frame.position = pose[:3, 3]
                 frame.wxyz = wxyz(pose[:3, :3])
+            # names of frames at one place stacked, as in the live viewer (sent only when they move)
+            for k, (label, offset) in enumerate(zip(labels, label_offsets(poses, 0.045 * model.scale))):
+                local = tuple(float(v) for v in poses[k][:3, :3].T @ offset)
+                if shifts.get(k, (0.0, 0.0, 0.0)) != local:
+                    label.position = local
+                    shifts[k] = local
 
         place(positions[0] if len(positions) else np.zeros(0))
         _frame_camera(server, model, names_in_states, positions)

@@ -11,7 +11,7 @@ from dataclasses import dataclass, field
 import numpy as np
 
 from ..kinematics import TFTree, fk_batch, tf_tree
-from ..model import Robot, Visual
+from ..model import Robot
 from ..motion.limits import TOLERANCE
 
 Color = tuple[int, int, int]
@@ -133,23 +133,12 @@ def _merged_by_colour(parts) -> list[Mesh]:  # type: ignore[no-untyped-def]
 
 def view_model(robot: Robot, package_paths: Sequence[str] = ()) -> ViewModel:
     """The robot ready to show: visual and collision meshes per link, sliders, the tool tip."""
-    from ..render.scene import placeholder_mesh, robot_parts, visual_mesh
+    from ..render.scene import collision_parts, robot_parts
     from ..tip import tool_tip
 
     tree = tf_tree(robot)
     visuals = _merged_by_colour(robot_parts(tree, package_paths))
-    collisions = []
-    for index, name in enumerate(tree.links):
-        link = robot.link(name)
-        for collision in link.collisions if link is not None else []:
-            shape = Visual(collision.origin, collision.geometry)
-            try:
-                mesh = visual_mesh(robot, shape, package_paths)
-            except Exception:  # an unreadable collision mesh: its stand-in, as in pictures
-                mesh = placeholder_mesh(robot, link, shape)
-            if mesh is not None:
-                collisions.append(Mesh(index, np.asarray(mesh.vertices, float), np.asarray(mesh.faces, np.int64),
-                                       COLLISION_COLOR, 0.6))
+    collisions = [Mesh(p.link, p.vertices, p.faces, COLLISION_COLOR, 0.6) for p in collision_parts(tree, package_paths)]
     sliders = []
     for joint in tree.dof_joints():
         lower, upper = joint.bounds()

@@ -102,9 +102,8 @@ def read_joint_box(text: str, slider: Any, joint: Any, allow_past: bool) -> tupl
         return None, None, False
     try:
         value = parse_joint_value(text)
-    except BrasKitError as exc:
-        return None, M("'{text}' is not a joint value: {reason}", text=text.strip(),
-                       reason=exc.hint if exc.hint else exc.message), False
+    except BrasKitError:  # often a value half typed: a short note, the slider stays
+        return None, M("'{text}' is not a joint value (yet): write 0.5, 0,5, pi/4 or 30deg", text=text.strip()), False
     lower, upper = joint.bounds() if joint is not None else (slider.lower, slider.upper)
     if not (math.isfinite(lower) and math.isfinite(upper)) or lower - TOLERANCE <= value <= upper + TOLERANCE:
         return value, None, True

@@ -130,7 +130,7 @@ class Session:
             self.motion_text = gui.add_html("")
         self.play.on_update(lambda _event: self._toggle_play())
         self.speed_slider.on_update(lambda _event: setattr(self, "speed", float(self.speed_slider.value)))
-        self.scrubber.on_update(lambda event: event.client is None or self._scrubbed())
+        self.scrubber.on_update(lambda event: self._scrubbed(event))
         with gui.add_folder(s(M("Readouts")), order=4):
             self.readout = gui.add_html("")
             self.echo = gui.add_html(f"<small><i>{self.w(M('click a link to read its pose in the fixed frame'))}</i></small>")
@@ -208,9 +208,9 @@ class Session:
         handle = gui.add_slider(slider.joint, slider.lower, slider.upper, _step(slider), _clip(value, slider),
                                 hint=f"{slider.lower:g} .. {slider.upper:g} {slider.unit}")
         handle.on_update(lambda _event, name=slider.joint, h=handle: self._slider_moved(name, h))
-        box = gui.add_text("", joint_box_text(value),
+        box = gui.add_text(f"{slider.joint} =", joint_box_text(value),
                            hint=self.s(M("a value for {joint}: 0.5, 0,5, pi/4, 90deg", joint=slider.joint)))
-        box.on_update(lambda event, name=slider.joint, b=box: event.client is None or self._box_typed(name, b))
+        box.on_update(lambda event, name=slider.joint, b=box: self._box_typed(name, b, event))
         self._sliders[slider.joint] = handle
         self._boxes[slider.joint] = box
         self._model_gui += [handle, box]
@@ -319,11 +319,11 @@ class Session:
             self._show_box_notes()
             self.update()
 
-    def _box_typed(self, name: str, box: Any) -> None:
+    def _box_typed(self, name: str, box: Any, event: Any) -> None:
         """A value typed in a joint's box, read as the CLI reads ``--set``: decimal comma,
         ``pi/2``, ``90deg``; past the limits it is refused (with the degrees hint when it fits)
-        unless "Allow values past the limits" is on."""
-        if self._setting:
+        unless "Allow values past the limits" is on. Values set from code (no client) are not read."""
+        if self._setting or event.client is None:
             return
         slider = next((s for s in self.model.sliders if s.joint == name), None)
         if slider is None:
@@ -360,9 +360,10 @@ class Session:
         for handle in [*self._sliders.values(), *self._boxes.values()]:
             handle.disabled = self.playing
 
-    def _scrubbed(self) -> None:
-        """The time slider moved by hand: pause, and show the motion at that time."""
-        if self.viewer.motion is None:
+    def _scrubbed(self, event: Any) -> None:
+        """The time slider moved by hand: pause, and show the motion at that time (moved by
+        playback, from code: no client, nothing to do)."""
+        if self.viewer.motion is None or event.client is None:
             return
         with self._lock:
             if self.playing:

@@ -2,9 +2,11 @@
 
 from __future__ import annotations
 
+import functools
 import re
 import textwrap
 from dataclasses import dataclass, field
+from pathlib import Path
 
 
 @dataclass
@@ -13,7 +15,7 @@ class Cell:
     fr: str
     en: str
     hidden: bool = False  # a collapsed solution cell (source_hidden)
-    shared: bool = False  # a code cell written once; its French comments come from FR_COMMENTS
+    shared: bool = False  # a code cell written once; its French comments come from the lessons' catalog
 
 
 @dataclass
@@ -35,8 +37,9 @@ def md(fr: str, en: str) -> Cell:
 def code(src: str, en: str | None = None, *, hidden: bool = False) -> Cell:
     """A code cell; ``en`` only when the English cell differs (printed words).
 
-    A cell given once is shared; its comments are English and become French through
-    :data:`FR_COMMENTS` (a comment missing there stays English: the build script says so).
+    A cell given once is shared; its comments are English and become French through the
+    lessons' catalog, :data:`CATALOG` (a comment missing there stays English: the build script
+    says so).
     """
     if en is not None:
         return Cell("code", _dedent(src), _dedent(en), hidden=hidden)
@@ -44,44 +47,45 @@ def code(src: str, en: str | None = None, *, hidden: bool = False) -> Cell:
     return Cell("code", french_comments(text), text, hidden=hidden, shared=True)
 
 
-# English comment of a shared code cell -> its French words.
-FR_COMMENTS = {
-    "1.0: radians": "1.0 : radians",
-    "joint epaule": "articulation epaule",
-    "joint coude": "articulation coude",
-    "the library's messages and picture words in this notebook's language":
-        "messages, titres et axes de la bibliothèque dans la langue du carnet",
-    "+ 0.0 turns -0.0 into 0.0": "+ 0.0 change -0.0 en 0.0",
-    "the error's words, in the library's language": "les mots de l'erreur, dans la langue de la bibliothèque",
-    "run this cell when you are done with the 3D view": "exécutez cette cellule quand vous avez fini avec la vue 3D",
-    "--no-build-isolation: use the installed setuptools, no download":
-        "--no-build-isolation : le setuptools installé, sans téléchargement",
-    "tidy up the temporary folder": "ranger le dossier temporaire",
-    "20 Hz, like the node's 0.05 s timer": "20 Hz, comme le minuteur de 0,05 s du nœud",
-    "ixx = iyy = 0.030533, izz = 0.0010667": "ixx = iyy = 0.030533, izz = 0.0010667",
-    "repaired: the generated arm": "réparé : le bras généré",
-}
+# The French words of the shared code cells' comments: the lessons' gettext catalog
+# (lessons/locale/fr/LC_MESSAGES/lessons.po, one entry per English comment; a translator edits
+# it with any PO editor, and the build script lists the comments it does not hold yet).
+CATALOG = Path(__file__).resolve().parent.parent / "locale" / "fr" / "LC_MESSAGES" / "lessons.po"
+
+
+@functools.cache
+def _french() -> dict[str, str]:
+    from babel.messages.pofile import read_po
+
+    with CATALOG.open("rb") as handle:
+        return {str(m.id): str(m.string) for m in read_po(handle) if m.id and m.string}
+
+
+def french_comment(english: str) -> str | None:
+    """The French of a shared cell's comment, or None when the catalog does not hold it."""
+    return _french().get(english)
+
 
 _COMMENT = re.compile(r"(#\s*)(.+)$")
 
 
 def french_comments(text: str) -> str:
-    """``text`` with each ``# comment`` found in :data:`FR_COMMENTS` in French."""
+    """``text`` with each ``# comment`` found in the lessons' catalog (:data:`CATALOG`) in French."""
     out = []
     for line in text.split("\n"):
         match = _COMMENT.search(line)
-        if match and not _in_string(line, match.start()) and match.group(2).strip() in FR_COMMENTS:
-            line = line[:match.start(2)] + FR_COMMENTS[match.group(2).strip()]
+        if match and not _in_string(line, match.start()) and french_comment(match.group(2).strip()) is not None:
+            line = line[:match.start(2)] + str(french_comment(match.group(2).strip()))
         out.append(line)
     return "\n".join(out)
 
 
 def untranslated_comments(text: str) -> list[str]:
-    """Comments of a shared cell that :data:`FR_COMMENTS` does not translate."""
+    """Comments of a shared cell that the lessons' catalog (:data:`CATALOG`) does not translate."""
     found = []
     for line in text.split("\n"):
         match = _COMMENT.search(line)
-        if match and not _in_string(line, match.start()) and match.group(2).strip() not in FR_COMMENTS:
+        if match and not _in_string(line, match.start()) and french_comment(match.group(2).strip()) is None:
             found.append(match.group(2).strip())
     return found
 

@@ -181,7 +181,7 @@ LESSON.cells = [
 
         print(check_limits(robot, path_states))
         for segment in waypoint_speeds(robot, waypoints):
-            print(describe_segment(segment))
+            print(bras_kit.say(describe_segment(segment)))  # a library message in the notebook's language
         """
     ),
     md(

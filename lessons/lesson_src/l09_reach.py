@@ -107,14 +107,14 @@ LESSON.cells = [
         """
         COUDE = {"up": "haut", "down": "bas"}  # solution.elbow : "up" ou "down"
         result = ik_2r(robot, target)
-        print(result.reachable, "-", result.message)
+        print(result.reachable, "-", bras_kit.say(result.message))
         for solution in result.solutions:
             print(f"  coude {COUDE[solution.elbow]:4s}: {solution.joints}  dans les butées : {solution.within_limits}")
         print("choisie :", result.joints, " écart :", result.residual)
         """,
         """
         result = ik_2r(robot, target)
-        print(result.reachable, "-", result.message)
+        print(result.reachable, "-", bras_kit.say(result.message))
         for solution in result.solutions:
             print(f"  elbow {solution.elbow:4s}: {solution.joints}  within limits: {solution.within_limits}")
         print("chosen:", result.joints, " error:", result.residual)
@@ -207,7 +207,7 @@ LESSON.cells = [
         for point in ([1.5, 0, 0.5], [0.4, 0.3, 0.5], [0.2, 0, -0.2]):
             failed = ik_2r(robot, point)
             print(point, failed.reachable, failed.reason)
-            print("   ", failed.message)
+            print("   ", bras_kit.say(failed.message))
         """
     ),
     md(

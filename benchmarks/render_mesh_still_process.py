@@ -1,0 +1,84 @@
+"""Whole-process time for one 640x480 picture of real mesh robots from example-robot-data (UR5:
+7 .dae, Panda: 10 .dae) against a plain pybullet script loading the same URDF and writing one
+TinyRenderer frame with Pillow. Target (issue 25): with the decoded-mesh cache warm (every run
+after the first), bras-kit at most 1.3x the script.
+
+Run: python benchmarks/render_mesh_still_process.py [--repeat 9]
+Fresh processes, alternating run after run (see _process.py). bras-kit is timed twice per
+robot: as a user runs it again (cache warm) and with --no-cache (every .dae decoded again, the
+cost of a first run).
+"""
+
+from __future__ import annotations
+
+import argparse
+import os
+import site
+import sys
+import tempfile
+
+from _process import alternate, bras_kit_command, ratio, table
+
+TARGET = 1.3
+
+PEER = r'''
+import os, sys
+fd = os.dup(1); null = os.open(os.devnull, os.O_WRONLY); os.dup2(null, 1); os.dup2(null, 2)
+import numpy as np, pybullet as p
+from PIL import Image
+p.connect(p.DIRECT)
+p.setAdditionalSearchPath(sys.argv[3])
+body = p.loadURDF(sys.argv[1], useFixedBase=True)
+os.dup2(fd, 1)
+view = p.computeViewMatrix([1.9, -2.7, 1.6], [0.3, 0.0, 0.45], [0, 0, 1])
+projection = p.computeProjectionMatrixFOV(30, 640 / 480, 0.1, 20)
+rgba = p.getCameraImage(640, 480, view, projection, renderer=p.ER_TINY_RENDERER)[2]
+Image.fromarray(np.reshape(rgba, (480, 640, 4))[..., :3].astype(np.uint8)).save(sys.argv[2])
+'''
+
+ROBOTS = {"UR5": "ur_description/urdf/ur5_robot.urdf", "Panda": "panda_description/urdf/panda.urdf"}
+
+
+def _share() -> str:
+    for base in site.getsitepackages():
+        share = os.path.join(base, "cmeel.prefix", "share")
+        if os.path.isdir(os.path.join(share, "example-robot-data")):
+            return share
+    raise SystemExit("example-robot-data is not installed (pip install example-robot-data)")
+
+
+def main() -> None:
+    parser = argparse.ArgumentParser(description=__doc__, formatter_class=argparse.RawDescriptionHelpFormatter)
+    parser.add_argument("--repeat", type=int, default=9)
+    parser.add_argument("--baseline", metavar="DIR",
+                        help="also time the bras-kit source tree in DIR (e.g. `git archive main` unpacked)")
+    args = parser.parse_args()
+    share = _share()
+    ours = bras_kit_command()
+    commands = []
+    with tempfile.TemporaryDirectory() as tmp:
+        for name, relative in ROBOTS.items():
+            urdf = os.path.join(share, "example-robot-data", "robots", relative)
+            out = os.path.join(tmp, f"{name}.png")
+            base = ours + ["render", urdf, "--package-path", share, "-o", out, "--force"]
+            if args.baseline:
+                start = ("import sys; sys.path.insert(0, sys.argv.pop(1)); sys.argv[0] = 'bras-kit'; "
+                         "from bras_kit.cli import run; run()")
+                commands.append((f"baseline render {name}", [sys.executable, "-c", start, args.baseline] + base[1:]))
+            commands += [(f"bras-kit render {name} (cache warm)", base),
+                         (f"bras-kit render {name} --no-cache", base + ["--no-cache"]),
+                         (f"pybullet TinyRenderer {name}", [sys.executable, "-c", PEER, urdf, out + ".peer.png",
+                                                            os.path.dirname(urdf)])]
+        commands.append(("python -c pass (floor)", [sys.executable, "-c", "pass"]))
+        times = alternate(commands, args.repeat)
+    print(f"one 640x480 picture, whole process, {args.repeat} alternating runs each, {os.cpu_count()} cores")
+    table(times)
+    for name in ROBOTS:
+        for label in (f"bras-kit render {name} (cache warm)", f"bras-kit render {name} --no-cache"):
+            value = ratio(times, label, f"pybullet TinyRenderer {name}")
+            verdict = f"target <= {TARGET} -> {'met' if value <= TARGET else 'NOT met'}" if "warm" in label else ""
+            print(f"ratio {label} / pybullet (medians): {value:.2f}  {verdict}")
+
+
+if __name__ == "__main__":
+    main()
