@@ -526,7 +526,7 @@ def test_simulate_records_measured_states_with_their_torques(tmp_path, run_cli):
 
 def test_run_records_what_the_tutorial_node_published(tmp_path, run_cli):
     """bras-kit run -o run.mcap: the node's /joint_states, with the package's URDF and its TF."""
-    node = os.path.join(os.path.dirname(__file__), "data", "run", "tutorial_node")
+    node = os.path.join(os.path.dirname(__file__), "data", "tutorial_package")
     code, _, err = run_cli("run", node, "animation", "--duration", "1", "--quiet", "-o", str(tmp_path / "node.mcap"))
     assert code == 0, err
     topics = _read_foxglove(str(tmp_path / "node" / "node.mcap"))

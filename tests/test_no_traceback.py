@@ -124,7 +124,7 @@ def test_bad_output_path_is_a_clean_error(bad, command, label, target, words):
         os.symlink(bad / "nowhere" / f"victim{suffix}", bad / target)
     args = [command] + ([str(HOSTILE.parent / "xacro" / "features.xacro")] if command == "xacro" else [])
     if command == "run":  # a node that runs, so the output is the only thing wrong
-        args += [str(HOSTILE.parent / "run" / "tutorial_node"), "--duration", "0.5", "--quiet"]
+        args += [str(HOSTILE.parent / "tutorial_package"), "--duration", "0.5", "--quiet"]
     result = _run([*args, *OUTPUTS[command], target], bad)
     _clean(result, words)
     assert not (bad / "nowhere").exists(), "a dangling link was followed"

@@ -19,7 +19,7 @@ from bras_kit.run import NodeRunError, joint_states, run_node
 from bras_kit.run.findings import robot_of, run_findings
 
 DATA = Path(__file__).parent / "data" / "run"
-TUTORIAL = DATA / "tutorial_node"
+TUTORIAL = DATA.parent / "tutorial_package"  # the tutorial's package exactly as printed (shared with the validator's tests)
 NODES = DATA / "nodes"
 START = 1_767_225_600  # the simulated wall clock's start, in seconds
 

@@ -14,7 +14,7 @@ from bras_kit.run import run_node
 from bras_kit.run.findings import robot_of, run_findings
 from bras_kit.scaffold import scaffold_package
 
-TUTORIAL = Path(__file__).parent / "data" / "run" / "tutorial_node"
+TUTORIAL = Path(__file__).parent / "data" / "tutorial_package"
 ORANGE_HUE = 28.2  # the forearm's material (0.95 0.5 0.1)
 GREY = 0.08  # saturation under which a pixel is the grey base
 

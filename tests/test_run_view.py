@@ -14,7 +14,7 @@ import pytest
 
 pytestmark = pytest.mark.slow
 
-TUTORIAL = Path(__file__).parent / "data" / "run" / "tutorial_node"
+TUTORIAL = Path(__file__).parent / "data" / "tutorial_package"
 CHROMIUM = "/usr/bin/chromium"
 ARGS = ["--no-sandbox", "--disable-background-networking", "--disable-component-update", "--disable-sync",
         "--no-first-run", "--use-angle=swiftshader", "--enable-unsafe-swiftshader"]
