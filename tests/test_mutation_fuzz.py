@@ -16,7 +16,6 @@ import site
 import tempfile
 from pathlib import Path
 
-import pytest
 from hypothesis import HealthCheck, given, settings
 from hypothesis import strategies as st
 
@@ -75,13 +74,18 @@ def commands(path: Path, folder: Path) -> list[list[str]]:
     ]
 
 
-@pytest.mark.skipif(ROBOTS is None or not ROBOTS.is_dir(), reason="example-robot-data is a dev dependency")
+def test_the_real_robots_to_mutate_are_installed():
+    """example-robot-data is in the dev extra: without it the mutation test below would prove nothing."""
+    assert ROBOTS is not None and all((ROBOTS / name).is_file() for name in FILES)
+
+
 @settings(max_examples=EXAMPLES, derandomize=True, deadline=None, database=None,
           suppress_health_check=[HealthCheck.too_slow])
 @given(st.sampled_from(FILES),
        st.lists(st.tuples(st.integers(0, 10_000), st.sampled_from(REPLACEMENTS)), min_size=1, max_size=3),
        st.lists(st.integers(0, 1000), max_size=2))
 def test_every_command_on_a_mutated_real_robot_ends_cleanly(name, edits, drops):
+    assert ROBOTS is not None, "example-robot-data is missing: pip install -e .[dev]"
     text = mutate((ROBOTS / name).read_text(encoding="utf-8"), edits, drops)
     with tempfile.TemporaryDirectory() as folder:
         path = Path(folder) / Path(name).name
