@@ -11,6 +11,7 @@ from dataclasses import dataclass
 import numpy as np
 
 from ..kinematics import rpy_to_matrix
+from ..message import number as format_number
 from ..model import Geometry, Origin
 
 AXES = "xyz"
@@ -63,9 +64,9 @@ class Bounds:
 
 
 def number(value: float) -> str:
-    """A number the way a person writes it in a URDF: ``0.6``, ``-1.57``, ``0.0305``, ``0``."""
-    text = f"{value:.6g}"
-    return "0" if text in ("-0", "0") else text
+    """A number the way a person writes it in a URDF: ``0.6``, ``-1.57``, ``0.0305``, ``0``
+    (the one formatter of numbers in text, :func:`bras_kit.message.number`)."""
+    return format_number(float(value))
 
 
 def vector(values: tuple[float, ...] | list[float]) -> str:
