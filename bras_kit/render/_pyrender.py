@@ -129,22 +129,74 @@ def _linear(rgb: tuple[float, ...]) -> np.ndarray:
     return np.clip(np.asarray(rgb[:3], dtype=float), 0.0, 1.0) ** 2.2
 
 
+def _grouped(parts) -> dict[tuple[int, bool], dict[tuple[float, ...], list]]:  # type: ignore[no-untyped-def, type-arg]
+    """The parts by link and lighting, then by colour."""
+    grouped: dict[tuple[int, bool], dict[tuple[float, ...], list]] = {}  # type: ignore[type-arg]
+    for part in parts:
+        grouped.setdefault((part.link, part.unlit), {}).setdefault(tuple(part.color), []).append(part)
+    return grouped
+
+
+def _joined(members) -> tuple[np.ndarray, np.ndarray]:  # type: ignore[no-untyped-def]
+    """The triangles of parts of one colour in one vertex array (float32) and one index array (uint32)."""
+    starts = np.cumsum([0] + [len(p.vertices) for p in members])
+    vertices = np.concatenate([p.vertices for p in members]).astype(np.float32)
+    faces = np.concatenate([np.asarray(p.faces) + start for p, start in zip(members, starts)])
+    return vertices, faces.astype(np.uint32)
+
+
 def _merged(parts) -> dict[tuple[int, bool], dict[tuple[float, ...], tuple[np.ndarray, np.ndarray]]]:  # type: ignore[no-untyped-def]
     """The parts grouped by link and lighting, then by colour, each group's triangles in one
     vertex array (float32) and one index array (uint32): one scene node per link and one draw
     call per colour, however many visuals and material pieces the link's meshes have."""
-    grouped: dict[tuple[int, bool], dict[tuple[float, ...], list]] = {}  # type: ignore[type-arg]
-    for part in parts:
-        grouped.setdefault((part.link, part.unlit), {}).setdefault(tuple(part.color), []).append(part)
-    out: dict[tuple[int, bool], dict[tuple[float, ...], tuple[np.ndarray, np.ndarray]]] = {}
-    for key, colours in grouped.items():
-        out[key] = {}
-        for color, members in colours.items():
-            starts = np.cumsum([0] + [len(p.vertices) for p in members])
-            vertices = np.concatenate([p.vertices for p in members]).astype(np.float32)
-            faces = np.concatenate([np.asarray(p.faces) + start for p, start in zip(members, starts)])
-            out[key][color] = (vertices, faces.astype(np.uint32))
-    return out
+    return {key: {color: _joined(members) for color, members in colours.items()}
+            for key, colours in _grouped(parts).items()}
+
+
+def _shared_key(builder: object, unlit: bool, colours) -> tuple[object, ...] | None:  # type: ignore[no-untyped-def]
+    """What a link's group of parts is made of, by identity, when every array in it is a shared
+    read-only one (the placed mesh pieces of :func:`scene.robot_parts`, the same objects for
+    the same mesh bytes, scale and origin); None when one may change (triads, targets...).
+    ``builder`` (the function making primitives) is part of it: another one makes other meshes."""
+    key: list[object] = [builder, unlit]
+    for color, members in colours.items():
+        if not all(_frozen(p.vertices) and _frozen(p.faces) for p in members):
+            return None
+        key.append((color, tuple((id(p.vertices), id(p.faces)) for p in members)))
+    return tuple(key)
+
+
+def _frozen(array: object) -> bool:
+    return isinstance(array, np.ndarray) and not array.flags.writeable
+
+
+MESH_MEMORY_BYTES = 128 << 20  # vertex and index arrays of meshes kept with one renderer
+
+
+class _MeshMemo:
+    """pyrender meshes kept with one OffscreenRenderer, by :func:`_shared_key`: a robot drawn
+    again (the next learner of a class handing in the same meshes, a reloaded file) reuses the
+    mesh objects, so pyrender finds them already in its OpenGL context and uploads nothing.
+    A mesh drawn in no scene of the renderer any more has its buffers freed by pyrender at the
+    next picture, and is uploaded again if it comes back. The entries keep the arrays their key
+    names alive, so an identity in a key is never reused by another array."""
+
+    def __init__(self) -> None:
+        self._kept: dict[tuple[object, ...], tuple[Any, list[np.ndarray]]] = {}
+        self._bytes = 0
+
+    def get(self, key: tuple[object, ...]) -> Any:
+        kept = self._kept.get(key)
+        return None if kept is None else kept[0]
+
+    def put(self, key: tuple[object, ...], mesh: Any, arrays: list[np.ndarray]) -> None:
+        size = sum(a.nbytes for a in arrays)
+        if self._bytes + size > MESH_MEMORY_BYTES:
+            self._kept.clear()
+            self._bytes = 0
+        if size <= MESH_MEMORY_BYTES:
+            self._kept[key] = (mesh, arrays)
+            self._bytes += size
 
 
 def _emissive(pyrender, rgb: tuple[float, ...]):  # type: ignore[no-untyped-def]
@@ -174,14 +226,33 @@ class PyrenderBackend:
         warming = _warm_egl() if platform == "egl" and "pyrender" not in sys.modules else None
         pyrender = import_pyrender()
         self.name = platform
+        self._key = (platform, camera.width, camera.height, antialias, supersample)
+        self._renderer: Any = _POOL.take(self._key)
+        if warming is not None:
+            warming.join(timeout=5.0)
+        if self._renderer is None:
+            self._renderer = self._open(pyrender, camera, platform, antialias, supersample)
+        # a backend dropped without close() still hands its renderer back (see _RendererPool)
+        self._finalizer = weakref.finalize(self, _POOL.give, self._key, self._renderer)
+        memo = getattr(self._renderer, "_bras_kit_meshes", None)
+        if memo is None:
+            memo = self._renderer._bras_kit_meshes = _MeshMemo()
         self._scene = pyrender.Scene(bg_color=[c / 255.0 for c in background] + [1.0],
                                      ambient_light=[AMBIENT] * 3)
         self._nodes = []
         self._solids: list[Any] = []  # meshes hidden while the TF axes are drawn on top
         self._overlays: list[Any] = []  # TF axes and targets: drawn in a second pass, over the solids
-        for (link, unlit), groups in _merged(scene.parts).items():
-            mesh = pyrender.Mesh([self._primitive(pyrender, vertices, faces, color, unlit)
-                                  for color, (vertices, faces) in groups.items()])
+        for (link, unlit), colours in _grouped(scene.parts).items():
+            key = _shared_key(type(self)._primitive, unlit, colours)
+            mesh = memo.get(key) if key is not None else None
+            if mesh is None:
+                merged = {color: _joined(members) for color, members in colours.items()}
+                mesh = pyrender.Mesh([self._primitive(pyrender, vertices, faces, color, unlit)
+                                      for color, (vertices, faces) in merged.items()])
+                if key is not None:
+                    memo.put(key, mesh, [a for members in colours.values() for p in members
+                                         for a in (p.vertices, p.faces)] + [a for pair in merged.values() for a in pair])
+            mesh.is_visible = True
             self._nodes.append((self._scene.add(mesh), link))
             (self._overlays if unlit else self._solids).append(mesh)
         if scene.grid is not None:
@@ -198,14 +269,6 @@ class PyrenderBackend:
         for direction, intensity in camera.world_lights():
             self._scene.add(pyrender.DirectionalLight(color=np.ones(3), intensity=intensity),
                             pose=_look_pose(direction))
-        self._key = (platform, camera.width, camera.height, antialias, supersample)
-        self._renderer: Any = _POOL.take(self._key)
-        if warming is not None:
-            warming.join(timeout=5.0)
-        if self._renderer is None:
-            self._renderer = self._open(pyrender, camera, platform, antialias, supersample)
-        # a backend dropped without close() still hands its renderer back (see _RendererPool)
-        self._finalizer = weakref.finalize(self, _POOL.give, self._key, self._renderer)
 
     @staticmethod
     def _open(pyrender, camera: Camera, platform: str, antialias: bool,  # type: ignore[no-untyped-def]

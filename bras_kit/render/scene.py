@@ -11,8 +11,8 @@ import math
 import os
 import sys
 from collections.abc import Sequence
-from dataclasses import dataclass
-from typing import NamedTuple
+from dataclasses import dataclass, field
+from typing import TYPE_CHECKING, NamedTuple
 
 import numpy as np
 
@@ -20,6 +20,9 @@ from ..errors import ModelError, XacroError
 from ..kinematics import TFTree, origin_matrix
 from ..message import M
 from ..model import Robot, Visual
+
+if TYPE_CHECKING:
+    from ..meshes import MeshData
 
 DEFAULT_COLOR = (0.7, 0.7, 0.7, 1.0)  # a visual with no material, as RViz shows it
 GRID_COLOR = (0.78, 0.78, 0.78)
@@ -37,6 +40,7 @@ class Part:
     color: tuple[float, float, float, float]  # sRGB, 0..1
     unlit: bool = False
     label: str = ""
+    bounds: np.ndarray | None = field(default=None, repr=False, compare=False)  # (2, 3) low, high of vertices
 
 
 @dataclass
@@ -203,17 +207,63 @@ def _primitive_mesh(g) -> TriangleMesh | None:  # type: ignore[no-untyped-def]
 def visual_pieces(robot: Robot, visual: Visual, package_paths: Sequence[str] = ()):  # type: ignore[no-untyped-def]
     """The visual's shape in the link frame as (mesh, own colour or None) pieces, and the mesh
     file's issues (what it names but could not be used); ``([], ())`` when it has no usable shape."""
+    pieces, issues = _placed_visual(robot, visual, package_paths)
+    return [(piece.mesh, piece.color) for piece in pieces], issues
+
+
+class PlacedPiece(NamedTuple):
+    """One material's triangles of a visual, in the link frame: read-only arrays, and the
+    (2, 3) low and high corners of its vertices."""
+
+    mesh: TriangleMesh
+    color: tuple[float, float, float, float] | None
+    bounds: np.ndarray
+
+
+PLACED_MEMORY_BYTES = 128 << 20  # placed mesh pieces kept in this process (a class of the same robot)
+_placed: dict[tuple[int, tuple[float, ...], tuple[float, ...]], tuple[MeshData, list[PlacedPiece]]] = {}
+_placed_bytes = 0
+
+
+def _placed_visual(robot: Robot, visual: Visual, package_paths: Sequence[str] = ()):  # type: ignore[no-untyped-def]
+    """:func:`visual_pieces` as :class:`PlacedPiece` s. A mesh file's pieces placed at one origin
+    are computed once per process: :func:`bras_kit.meshes.load_mesh` gives the same decoded
+    object for the same bytes and scale (whatever the path), so a class of learners handing in
+    the same meshes at the same origins share them. Primitives are built each time (cheap)."""
+    global _placed_bytes
     g = visual.geometry
     if g is None:
         return [], ()
     placed = origin_matrix(visual.origin.xyz, visual.origin.rpy)
-    if g.kind == "mesh" and g.filename:
-        path = resolve_mesh_path(g.filename, robot, package_paths, g.line)
-        data = mesh_file_data(path, robot, g.line, g.scale)
-        return [(TriangleMesh(np.asarray(p.vertices, dtype=float), np.asarray(p.faces, dtype=np.int64)).transformed(placed),
-                 p.color) for p in data.pieces()], data.issues
-    mesh = _primitive_mesh(g)
-    return ([] if mesh is None else [(mesh.transformed(placed), None)]), ()
+    if not (g.kind == "mesh" and g.filename):
+        mesh = _primitive_mesh(g)
+        return ([] if mesh is None else [_piece(mesh.transformed(placed), None)]), ()
+    path = resolve_mesh_path(g.filename, robot, package_paths, g.line)
+    data = mesh_file_data(path, robot, g.line, g.scale)
+    key = (id(data), tuple(float(v) for v in visual.origin.xyz), tuple(float(v) for v in visual.origin.rpy))
+    kept = _placed.get(key)
+    if kept is not None and kept[0] is data:  # the entry holds ``data``: its id cannot have been reused
+        return kept[1], data.issues
+    pieces = [_piece(TriangleMesh(np.asarray(p.vertices, dtype=float), np.asarray(p.faces, dtype=np.int64))
+                     .transformed(placed), p.color) for p in data.pieces()]
+    size = sum(p.mesh.vertices.nbytes + p.mesh.faces.nbytes for p in pieces)
+    if _placed_bytes + size > PLACED_MEMORY_BYTES:
+        _placed.clear()
+        _placed_bytes = 0
+    if size <= PLACED_MEMORY_BYTES:
+        _placed[key] = (data, pieces)
+        _placed_bytes += size
+    return pieces, data.issues
+
+
+def _piece(mesh: TriangleMesh, color: tuple[float, float, float, float] | None) -> PlacedPiece:
+    vertices = np.asarray(mesh.vertices, dtype=float)
+    faces = np.asarray(mesh.faces, dtype=np.int64)
+    for array in (vertices, faces):
+        array.flags.writeable = False  # shared between scenes: nobody may change them in place
+    bounds = np.stack([vertices.min(axis=0), vertices.max(axis=0)]) if len(vertices) else np.zeros((2, 3))
+    bounds.flags.writeable = False
+    return PlacedPiece(TriangleMesh(vertices, faces), color, bounds)
 
 
 def visual_mesh(robot: Robot, visual: Visual, package_paths: Sequence[str] = ()) -> TriangleMesh | None:
@@ -266,9 +316,9 @@ def robot_parts(tree: TFTree, package_paths: Sequence[str] = (), lang: str | Non
         for number, visual in enumerate(link.visuals, 1):
             color = robot.material_rgba(visual) or DEFAULT_COLOR
             try:
-                pieces, issues = visual_pieces(robot, visual, package_paths)
+                pieces, issues = _placed_visual(robot, visual, package_paths)
             except ModelError as exc:  # draw what can be drawn: a red stand-in, one warning per file
-                pieces, issues = [(placeholder_mesh(robot, link, visual), PLACEHOLDER_COLOR)], ()
+                pieces, issues = [_piece(placeholder_mesh(robot, link, visual), PLACEHOLDER_COLOR)], ()
                 if str(exc.message) not in warned:
                     warned.add(str(exc.message))
                     print(f"{say(M('warning'), lang)}: " + say(M("{problem}; drawn as a red stand-in (link '{link}')",
@@ -279,10 +329,11 @@ def robot_parts(tree: TFTree, package_paths: Sequence[str] = (), lang: str | Non
                 print(f"{say(M('warning'), lang)}: " + say(M(
                     "mesh {file} names what it does not hold ({details}); the rest of it is drawn",
                     file=filename, details=sorted({i.detail for i in issues})), lang), file=sys.stderr)
-            for mesh, own in pieces:
-                rgba = own if own is not None else color
-                parts.append(Part(index, np.asarray(mesh.vertices, dtype=float), np.asarray(mesh.faces, dtype=np.int64),
-                                  tuple(float(c) for c in rgba), label=f"{name} visual {number}"))  # type: ignore[arg-type]
+            for piece in pieces:
+                rgba = piece.color if piece.color is not None else color
+                rgba = tuple(float(c) for c in rgba)
+                parts.append(Part(index, piece.mesh.vertices, piece.mesh.faces, rgba,  # type: ignore[arg-type]
+                                  label=f"{name} visual {number}", bounds=piece.bounds))
     return parts
 
 
@@ -311,31 +362,51 @@ def collision_parts(tree: TFTree, package_paths: Sequence[str] = (), opacity: fl
 
 
 def triad_parts(tree: TFTree, length: float) -> list[Part]:
-    """Red, green and blue rods along each link's x, y and z axes (RViz's TF display)."""
-    radius = length / 22.0
-    rods = []
-    for axis, color in zip(np.eye(3), AXIS_COLORS):
-        rod = rod_mesh(radius, axis * length)
-        rods.append((rod.vertices, rod.faces, color))
-    return [Part(i, v.copy(), f, c, unlit=True, label=f"{name} axes")
-            for i, name in enumerate(tree.links) for v, f, c in rods]
+    """Red, green and blue rods along each link's x, y and z axes (RViz's TF display). Every
+    link's triad shares the same read-only arrays, kept for the next scene with this length."""
+    rods = _triad(float(length))
+    return [Part(i, v, f, c, unlit=True, label=f"{name} axes", bounds=b)
+            for i, name in enumerate(tree.links) for v, f, c, b in rods]
+
+
+TRIADS_KEPT = 16
+_triads: dict[float, list[tuple[np.ndarray, np.ndarray, tuple[float, float, float, float], np.ndarray]]] = {}
+
+
+def _triad(length: float) -> list[tuple[np.ndarray, np.ndarray, tuple[float, float, float, float], np.ndarray]]:
+    rods = _triads.get(length)
+    if rods is None:
+        radius = length / 22.0
+        rods = []
+        for axis, color in zip(np.eye(3), AXIS_COLORS):
+            piece = _piece(rod_mesh(radius, axis * length), color)
+            rods.append((piece.mesh.vertices, piece.mesh.faces, color, piece.bounds))
+        if len(_triads) >= TRIADS_KEPT:
+            _triads.clear()
+        _triads[length] = rods
+    return rods
 
 
 def part_corners(parts: Sequence[Part]) -> np.ndarray:
     """The 8 corners of each part's box in its link frame: shape (P, 8, 3)."""
-    out = np.empty((len(parts), 8, 3))
-    for k, part in enumerate(parts):
-        low, high = part.vertices.min(axis=0), part.vertices.max(axis=0)
-        out[k] = [[(low, high)[i][0], (low, high)[j][1], (low, high)[m][2]]
-                  for i in (0, 1) for j in (0, 1) for m in (0, 1)]
-    return out
+    if not parts:
+        return np.zeros((0, 8, 3))
+    bounds = np.stack([p.bounds if p.bounds is not None else _bounds(p.vertices) for p in parts])  # (P, 2, 3)
+    pick = np.array([[i, j, m] for i in (0, 1) for j in (0, 1) for m in (0, 1)])  # (8, 3): low or high per axis
+    return np.ascontiguousarray(bounds[:, pick, np.arange(3)])  # einsum sums a C-ordered array as before
 
 
-def world_points(parts: Sequence[Part], transforms: np.ndarray) -> np.ndarray:
-    """Corners of every part over every pose (``transforms``: (N, L, 4, 4)) in the world: (M, 3)."""
+def _bounds(vertices: np.ndarray) -> np.ndarray:
+    return np.stack([vertices.min(axis=0), vertices.max(axis=0)])
+
+
+def world_points(parts: Sequence[Part], transforms: np.ndarray, corners: np.ndarray | None = None) -> np.ndarray:
+    """Corners of every part over every pose (``transforms``: (N, L, 4, 4)) in the world: (M, 3).
+    ``corners``: the parts' :func:`part_corners`, when already known."""
     if not parts:
         return np.zeros((1, 3))
-    corners = part_corners(parts)  # (P, 8, 3)
+    if corners is None:
+        corners = part_corners(parts)  # (P, 8, 3)
     links = np.array([p.link for p in parts])
     chosen = transforms[:, links]  # (N, P, 4, 4)
     rot, pos = chosen[..., :3, :3], chosen[..., :3, 3]
@@ -343,12 +414,17 @@ def world_points(parts: Sequence[Part], transforms: np.ndarray) -> np.ndarray:
     return points.reshape(-1, 3)
 
 
-def floor_height(parts: Sequence[Part], transforms: np.ndarray) -> float:
+def floor_height(parts: Sequence[Part], transforms: np.ndarray, corners: np.ndarray | None = None) -> float:
     """Where the ground is: the bottom of what never moves (the base), else z = 0 or below the lowest point."""
-    static = [p for p in parts if np.allclose(transforms[:, p.link], transforms[0, p.link], atol=1e-9)]
-    if static:
-        return float(world_points(static, transforms[:1])[:, 2].min())
-    return min(0.0, float(world_points(parts, transforms)[:, 2].min()))
+    if corners is None:
+        corners = part_corners(parts)
+    links = np.array([p.link for p in parts], dtype=np.int64)
+    still = np.isclose(transforms, transforms[:1], rtol=1e-5, atol=1e-9).all(axis=(0, 2, 3))  # per link, as allclose
+    static = still[links] if len(links) else np.zeros(0, dtype=bool)
+    if static.any():
+        chosen = [p for p, keep in zip(parts, static) if keep]
+        return float(world_points(chosen, transforms[:1], corners[static])[:, 2].min())
+    return min(0.0, float(world_points(parts, transforms, corners)[:, 2].min()))
 
 
 def _nice_step(span: float) -> float:
@@ -392,16 +468,19 @@ def build_scene(tree: TFTree, fit_transforms: np.ndarray, *, tf: bool = False, g
     parts = robot_parts(tree, package_paths) if geometry != "collision" else []
     if geometry != "visual":
         parts = parts + collision_parts(tree, package_paths, 0.5 if geometry == "both" else 1.0)
-    points = world_points(parts, fit_transforms)
+    corners = part_corners(parts)
+    points = world_points(parts, fit_transforms, corners)
     if len(targets):
         extent = float(np.ptp(points, axis=0).max()) if len(parts) else 0.5
-        parts = parts + target_parts(targets, max(0.025 * extent, 0.01))
-        points = world_points(parts, fit_transforms)
+        extra = target_parts(targets, max(0.025 * extent, 0.01))
+        parts, corners = parts + extra, np.concatenate([corners, part_corners(extra)])
+        points = world_points(parts, fit_transforms, corners)
     if tf:
         extent = float(np.ptp(points, axis=0).max()) if len(parts) else 0.0
-        parts = parts + triad_parts(tree, max(0.18 * extent, 0.05))
-        points = world_points(parts, fit_transforms)
+        extra = triad_parts(tree, max(0.18 * extent, 0.05))
+        parts, corners = parts + extra, np.concatenate([corners, part_corners(extra)])
+        points = world_points(parts, fit_transforms, corners)
     ground = None
     if grid:
-        ground = ground_grid(points, floor_height(parts, fit_transforms) if parts else 0.0)
+        ground = ground_grid(points, floor_height(parts, fit_transforms, corners) if parts else 0.0)
     return Scene(tree, parts, ground), points

@@ -1,0 +1,169 @@
+"""What one process shares between the robots it draws (a grading worker draws a whole class):
+mesh files decoded once, their pieces placed once per origin, their OpenGL buffers uploaded once
+per renderer; and nothing of it changes a picture.
+
+Oracles: hand-placed vertices of a tetrahedron written by hand (tests/data/shared_mesh), the
+decoder itself run afresh, pyrender's own upload calls counted, and pictures of the same
+submission drawn by a process that drew nothing before."""
+
+from __future__ import annotations
+
+import os
+import shutil
+import site
+import subprocess
+import sys
+from pathlib import Path
+
+import numpy as np
+import pytest
+
+from bras_kit import meshes
+from bras_kit.authoring import load
+from bras_kit.kinematics import fk_batch, tf_tree
+from bras_kit.render import scene
+
+DATA = Path(__file__).parent / "data"
+TIP = np.array([[0, 0, 0], [0.2, 0, 0], [0, 0.1, 0], [0, 0, 0.3]])  # the vertices written in tip.stl
+
+
+def _share() -> Path:
+    for base in map(Path, site.getsitepackages()):
+        if (base / "cmeel.prefix" / "share" / "example-robot-data").is_dir():
+            return base / "cmeel.prefix" / "share" / "example-robot-data"
+    raise AssertionError("example-robot-data (the dev extra) is needed for these tests")
+
+
+UR = _share() / "robots" / "ur_description"
+
+
+def _ur5_copy(folder: Path) -> Path:
+    """A learner's folder holding example-robot-data's UR5 with its own copies of the visual meshes."""
+    (folder / "meshes" / "visual").mkdir(parents=True)
+    for mesh in (UR / "meshes" / "ur5" / "visual").iterdir():
+        shutil.copyfile(mesh, folder / "meshes" / "visual" / mesh.name)
+    text = (UR / "urdf" / "ur5_robot.urdf").read_text()
+    text = text.replace("package://example-robot-data/robots/ur_description/meshes/ur5/", "meshes/")
+    text = text.replace("meshes/collision/", "meshes/visual/").replace(".stl", ".dae")  # no collision meshes here
+    (folder / "ur5.urdf").write_text(text)
+    return folder
+
+
+def _rows(array: np.ndarray) -> np.ndarray:
+    return np.array(sorted(map(tuple, np.round(np.asarray(array, dtype=float), 9))))
+
+
+@pytest.fixture
+def fresh(monkeypatch):
+    """Nothing remembered by this process, and no disk cache: every file is decoded here."""
+    monkeypatch.setattr(meshes, "_memory", {})
+    monkeypatch.setattr(meshes, "_by_content", {})
+    monkeypatch.setattr(meshes, "_disk", False)
+    monkeypatch.setattr(scene, "_placed", {})
+    monkeypatch.setattr(scene, "_placed_bytes", 0)
+
+
+def test_copies_of_a_mesh_file_are_decoded_once_and_give_a_fresh_decode(fresh, tmp_path, monkeypatch):
+    from bras_kit.meshes import decode
+
+    real, calls = decode.decode, []
+    monkeypatch.setattr(decode, "decode", lambda *args: calls.append(args) or real(*args))
+    source = UR / "meshes" / "ur5" / "visual" / "forearm.dae"
+    copies = [tmp_path / "a.dae", tmp_path / "b" / "forearm.dae"]
+    copies[1].parent.mkdir()
+    for copy in copies:
+        shutil.copyfile(source, copy)
+    first, second = (meshes.load_mesh(str(copy)) for copy in copies)
+    assert len(calls) == 1
+    alone = real(str(source))
+    for got in (first, second):
+        assert np.array_equal(got.vertices, alone.vertices) and np.array_equal(got.faces, alone.faces)
+        assert np.array_equal(got.colors, alone.colors, equal_nan=True)
+
+
+def test_two_learners_copies_share_pieces_placed_where_their_origins_say(fresh, tmp_path):
+    robots = []
+    for learner in ("a", "b"):
+        shutil.copytree(DATA / "shared_mesh", tmp_path / learner)
+        robots.append(load(str(tmp_path / learner / "two_tips.urdf")))
+    parts_a, parts_b = (scene.robot_parts(tf_tree(robot)) for robot in robots)
+    # base: a quarter turn about z, then xyz 1 2 3: (x, y, z) -> (1 - y, 2 + x, 3 + z)
+    turned = np.column_stack([1 - TIP[:, 1], 2 + TIP[:, 0], 3 + TIP[:, 2]])
+    assert np.allclose(_rows(parts_a[0].vertices), _rows(turned), atol=1e-7)
+    assert np.allclose(_rows(parts_a[1].vertices), _rows(2 * TIP + [0, 0, 0.5]), atol=1e-7)  # scale 2, up 0.5
+    for mine, theirs in zip(parts_a, parts_b):
+        assert mine.vertices is theirs.vertices and mine.faces is theirs.faces
+        assert np.array_equal(mine.bounds, [mine.vertices.min(axis=0), mine.vertices.max(axis=0)])
+        with pytest.raises(ValueError):
+            mine.vertices[0, 0] = 5.0  # shared with the other scene: refused, never changed in place
+
+
+def test_part_corners_and_floor_are_those_of_each_parts_box(fresh):
+    tree = tf_tree(load(str(DATA / "shared_mesh" / "two_tips.urdf")))
+    parts = scene.robot_parts(tree)
+    corners = scene.part_corners(parts)
+    low, high = TIP.min(axis=0), TIP.max(axis=0)  # the tip link's box: the tetrahedron's, doubled and raised
+    wanted = [(x, y, z) for x in (2 * low[0], 2 * high[0]) for y in (2 * low[1], 2 * high[1])
+              for z in (2 * low[2] + 0.5, 2 * high[2] + 0.5)]
+    assert np.allclose(corners[1], wanted, atol=1e-6)  # float32 mesh vertices
+    poses = fk_batch(tree, np.array([[0.0], [0.5]]))  # the tip moves, the base does not
+    assert scene.floor_height(parts, poses) == pytest.approx(3.0)  # the base's lowest point: z = 3 + 0
+
+
+GRADE_ALONE = """
+import sys
+from bras_kit.grade.rubric import load_rubric
+from bras_kit.grade.submissions import Submission
+from bras_kit.grade.worker import Options, grade
+result = grade(Submission(sys.argv[1], sys.argv[2], "folder"), load_rubric(None), Options(pictures=sys.argv[3]))
+assert result["picture"], result
+"""
+
+
+def test_a_learners_picture_graded_after_others_is_the_one_graded_alone(fresh, tmp_path):
+    from bras_kit.grade.rubric import load_rubric
+    from bras_kit.grade.submissions import Submission
+    from bras_kit.grade.worker import Options, grade
+
+    class_dir, pictures, alone = tmp_path / "class", tmp_path / "pictures", tmp_path / "alone"
+    for folder in (pictures, alone):
+        folder.mkdir()
+    first, second = _ur5_copy(class_dir / "first"), _ur5_copy(class_dir / "second")
+    shutil.copytree(DATA / "shared_mesh", class_dir / "other")
+    env = {**os.environ, "PYOPENGL_PLATFORM": "egl", "BRAS_KIT_NO_CACHE": "1"}
+    subprocess.run([sys.executable, "-c", GRADE_ALONE, "second", str(second), str(alone)], env=env, check=True,
+                   timeout=300)
+
+    from bras_kit.render._compat import import_pyrender
+
+    pyrender = import_pyrender()  # as bras-kit loads it
+    uploads = []
+    real = pyrender.primitive.Primitive._add_to_context
+
+    def counted(self):  # noqa: ANN001, ANN202
+        uploads.append(self)
+        return real(self)
+
+    pyrender.primitive.Primitive._add_to_context = counted
+    try:
+        order = [("first", first), ("second", second), ("other", class_dir / "other"), ("second", second)]
+        drawn = []
+        for learner, folder in order:
+            before = len(uploads)
+            result = grade(Submission(learner, str(folder), "folder"), load_rubric(None), Options(pictures=str(pictures)))
+            drawn.append((len(uploads) - before, _picture(pictures / f"{learner}.png")))
+    finally:
+        pyrender.primitive.Primitive._add_to_context = real
+    assert result["picture"] == "pictures/second.png"
+    wanted = _picture(alone / "second.png")
+    (first_uploads, _), (second_uploads, after_one), (_, _), (_, after_other) = drawn
+    assert np.array_equal(after_one, wanted)  # drawn with the buffers of the first learner's meshes
+    assert np.array_equal(after_other, wanted)  # and after another robot made the renderer free them
+    assert first_uploads >= 7 and second_uploads == 1  # the second UR5 sends only its ground grid
+
+
+def _picture(path: Path) -> np.ndarray:
+    from PIL import Image
+
+    with Image.open(path) as image:
+        return np.asarray(image.convert("RGB"))
