@@ -58,23 +58,31 @@ def fresh(monkeypatch):
     """Nothing remembered by this process, and no disk cache: every file is decoded here."""
     monkeypatch.setattr(meshes, "_memory", {})
     monkeypatch.setattr(meshes, "_by_content", {})
+    monkeypatch.setattr(meshes, "_by_bytes", {})
     monkeypatch.setattr(meshes, "_disk", False)
     monkeypatch.setattr(scene, "_placed", {})
     monkeypatch.setattr(scene, "_placed_bytes", 0)
 
 
-def test_copies_of_a_mesh_file_are_decoded_once_and_give_a_fresh_decode(fresh, tmp_path, monkeypatch):
-    from bras_kit.meshes import decode
+def test_copies_of_a_mesh_file_are_hashed_and_decoded_once_and_give_a_fresh_decode(fresh, tmp_path, monkeypatch):
+    from bras_kit.meshes import cache, decode
 
     real, calls = decode.decode, []
     monkeypatch.setattr(decode, "decode", lambda *args: calls.append(args) or real(*args))
+    hash_, hashed = cache.content_key, []
+    monkeypatch.setattr(cache, "content_key", lambda *args: hashed.append(args) or hash_(*args))
     source = UR / "meshes" / "ur5" / "visual" / "forearm.dae"
     copies = [tmp_path / "a.dae", tmp_path / "b" / "forearm.dae"]
     copies[1].parent.mkdir()
     for copy in copies:
         shutil.copyfile(source, copy)
     first, second = (meshes.load_mesh(str(copy)) for copy in copies)
-    assert len(calls) == 1
+    assert len(calls) == 1 and len(hashed) == 1  # the copy's bytes are compared with the first's, not hashed
+    changed = bytearray(source.read_bytes())
+    changed[-40] ^= 1  # one bit in the last lines: the same length, other bytes
+    (tmp_path / "c.dae").write_bytes(bytes(changed))
+    meshes.load_mesh(str(tmp_path / "c.dae"))
+    assert len(hashed) == 2  # bytes of the same length that differ are hashed (and looked up) on their own
     alone = real(str(source))
     for got in (first, second):
         assert np.array_equal(got.vertices, alone.vertices) and np.array_equal(got.faces, alone.faces)

@@ -20,9 +20,10 @@ from .mesh import Color, Issue, MeshData, Piece
 __all__ = ["CacheInfo", "Color", "DecodeError", "Issue", "MeshData", "Piece", "cache_info", "clear_cache",
            "load_mesh", "set_disk_cache"]
 
-MEMORY_BYTES = 256 << 20  # decoded meshes kept in this process (robots share meshes)
+MEMORY_BYTES = 256 << 20  # decoded meshes (and the bytes of their files) kept in this process
 _memory: dict[tuple[str, int, int, tuple[float, ...] | None], MeshData] = {}
 _by_content: dict[str, MeshData] = {}
+_by_bytes: dict[tuple[int, tuple[float, ...] | None], list[tuple[bytes, str]]] = {}  # file bytes -> content key
 _disk = os.environ.get("BRAS_KIT_NO_CACHE", "") in ("", "0")
 
 
@@ -52,7 +53,9 @@ def load_mesh(path: str, scale: Sequence[float] | None = None) -> MeshData:
         return mesh
     with open(path, "rb") as handle:
         data = handle.read()
-    key = cache.content_key(data, scale_key)
+    key = _known_key(data, scale_key)
+    if key is None:
+        key = cache.content_key(data, scale_key)
     mesh = _by_content.get(key)  # the same bytes at another path (a class of learners' copies)
     if mesh is None and _disk:
         mesh = cache.read(key)
@@ -63,12 +66,25 @@ def load_mesh(path: str, scale: Sequence[float] | None = None) -> MeshData:
         if _disk:
             cache.write(key, mesh)
     mesh.freeze()
-    if sum(m.nbytes for m in _by_content.values()) + mesh.nbytes > MEMORY_BYTES:
+    kept = sum(m.nbytes for m in _by_content.values()) + sum(len(b) for same in _by_bytes.values() for b, _ in same)
+    if kept + mesh.nbytes + len(data) > MEMORY_BYTES:
         _memory.clear()
         _by_content.clear()
+        _by_bytes.clear()
     _memory[memo] = mesh
-    _by_content[key] = mesh
+    if key not in _by_content:
+        _by_content[key] = mesh
+        _by_bytes.setdefault((len(data), scale_key), []).append((data, key))
     return mesh
+
+
+def _known_key(data: bytes, scale: tuple[float, ...] | None) -> str | None:
+    """The content key of bytes equal to those of a file read earlier in this process (a copy
+    of it handed in by another learner): comparing them costs far less than hashing them."""
+    for seen, key in _by_bytes.get((len(data), scale), ()):
+        if seen == data:
+            return key
+    return None
 
 
 def cache_info() -> CacheInfo:
@@ -80,4 +96,5 @@ def clear_cache() -> CacheInfo:
     """Empty the disk cache of decoded meshes (and this process's memory of them); returns what went."""
     _memory.clear()
     _by_content.clear()
+    _by_bytes.clear()
     return cache.clear()
