@@ -42,10 +42,10 @@ def executor(jobs: int | None = None, scheduler: str | None = None) -> Iterator[
         return
     import multiprocessing
 
+    workers = jobs or os.cpu_count() or 1
     # fork: workers start at once and share what this process already imported
-    pool = futures.ProcessPoolExecutor(max_workers=jobs or os.cpu_count() or 1,
-                                       mp_context=multiprocessing.get_context("fork"),
-                                       initializer=_start_worker)
+    pool = futures.ProcessPoolExecutor(max_workers=workers, mp_context=multiprocessing.get_context("fork"),
+                                       initializer=_start_worker, initargs=(rasteriser_threads(workers),))
     try:
         yield pool
     finally:
@@ -55,14 +55,28 @@ def executor(jobs: int | None = None, scheduler: str | None = None) -> Iterator[
 _marker: str | None = None  # in a pool worker: the file naming the submission it is grading
 
 
-def _start_worker() -> None:
+def rasteriser_threads(workers: int) -> str:
+    """LP_NUM_THREADS for each of ``workers`` processes drawing at once: the cores they leave
+    each other ("0": Mesa's software rasteriser draws in the worker's own thread). By default
+    llvmpipe starts a thread per core in every process, so workers filling the cores would each
+    hand their pictures to threads fighting the other workers for the same cores."""
+    return str(max((os.cpu_count() or 1) // max(workers, 1), 1) if (os.cpu_count() or 1) > workers else 0)
+
+
+def _start_worker(rasteriser: str = "") -> None:
     """Ctrl-C is the parent's to handle: a worker killed by it would break the pool and turn
     the submissions still queued into failures instead of leaving them for --resume.
 
     When one worker dies, the pool terminates the others (SIGTERM): they take their marker
     away first, so their submissions are graded again rather than blamed.
+
+    ``rasteriser``: the LP_NUM_THREADS of this worker (see :func:`rasteriser_threads`), unless
+    the user set it; read by Mesa when the worker opens its first picture.
     """
     import signal
+
+    if rasteriser:
+        os.environ.setdefault("LP_NUM_THREADS", rasteriser)
 
     def terminated(signum: int, frame: object) -> None:
         if _marker is not None:
