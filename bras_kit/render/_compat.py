@@ -489,6 +489,7 @@ def lean_forward_pass(pyrender, inner) -> None:  # type: ignore[no-untyped-def]
         GL.glPolygonMode(GL.GL_FRONT_AND_BACK, GL.GL_FILL)
         GL.glDisable(GL.GL_PROGRAM_POINT_SIZE)
         program = bound = None
+        direct = _DirectCalls.get()
         ready: set[int] = set()
         blend = cull = None
         for node, pose in _nodes_in_order(scene, camera_position):
@@ -518,19 +519,23 @@ def lean_forward_pass(pyrender, inner) -> None:  # type: ignore[no-untyped-def]
                     if bound is not None:
                         bound._unbind()
                         bound = None
+                    if direct is not None:
+                        direct.forget(program)  # set_uniform sets them again: its record is stale
                     self._bind_and_draw_primitive(primitive=primitive, pose=pose, program=program, flags=flags)
                     self._reset_active_textures()
                     blend = cull = None
                     GL.glPolygonMode(GL.GL_FRONT_AND_BACK, GL.GL_FILL)
                     GL.glDisable(GL.GL_PROGRAM_POINT_SIZE)
                     continue
-                program.set_uniform("M", pose)
-                primitive._bind()
+                if direct is None:
+                    program.set_uniform("M", pose)
+                    primitive._bind()
+                    for name, value in zip(DIRECT_UNIFORMS[1:], (material.emissiveFactor, material.baseColorFactor,
+                                                                 material.metallicFactor, material.roughnessFactor)):
+                        program.set_uniform(name, value)
+                else:
+                    direct.draw_setup(program, primitive, pose, material)
                 bound = primitive
-                program.set_uniform("material.emissive_factor", material.emissiveFactor)
-                program.set_uniform("material.base_color_factor", material.baseColorFactor)
-                program.set_uniform("material.metallic_factor", material.metallicFactor)
-                program.set_uniform("material.roughness_factor", material.roughnessFactor)
                 wanted = material.alphaMode == "BLEND"
                 if wanted is not blend:
                     if blend is None:
@@ -545,7 +550,9 @@ def lean_forward_pass(pyrender, inner) -> None:  # type: ignore[no-untyped-def]
                     else:
                         GL.glDisable(GL.GL_CULL_FACE)
                     cull = wanted
-                if primitive.indices is not None:
+                if direct is not None and primitive.indices is not None:
+                    direct.draw_elements(primitive.mode, primitive.indices.size, GL.GL_UNSIGNED_INT, None, 1)
+                elif primitive.indices is not None:
                     GL.glDrawElementsInstanced(primitive.mode, primitive.indices.size, GL.GL_UNSIGNED_INT, null, 1)
                 else:
                     GL.glDrawArraysInstanced(primitive.mode, 0, len(primitive.positions), 1)
@@ -553,10 +560,93 @@ def lean_forward_pass(pyrender, inner) -> None:  # type: ignore[no-untyped-def]
             bound._unbind()
         if program is not None:
             program._unbind()
+        if direct is not None:
+            direct.forget_all()
         GL.glFlush()
         return self._read_main_framebuffer(scene, flags)
 
     inner._forward_pass = types.MethodType(forward_pass, inner)
+
+
+DIRECT_UNIFORMS = ("M", "material.emissive_factor", "material.base_color_factor", "material.metallic_factor",
+                   "material.roughness_factor")
+
+
+class _DirectCalls:
+    """The five OpenGL calls the lean pass makes for every primitive (its pose, its material's
+    four factors, its vertex array) and the draw, made straight through ctypes at the addresses
+    the platform's ``getExtensionProcedure`` gives PyOpenGL. PyOpenGL's wrappers convert every
+    argument and check for errors after each call (10 to 20 microseconds a call, about half of
+    the lean pass's Python time on Talos); the values are those ``set_uniform`` would send
+    (float32, the pose transposed by OpenGL as pyrender asks). ``set_uniform``'s record of what
+    a program holds is wiped for these names, so its next call sets them again. None when the
+    platform does not give the addresses: the pass then uses PyOpenGL's calls."""
+
+    _made: _DirectCalls | None = None
+    _tried = False
+
+    def __init__(self, address) -> None:  # type: ignore[no-untyped-def]
+        c = ctypes
+
+        def entry(name: str, *arguments: Any) -> Any:
+            where = address(name.encode())
+            if not where:
+                raise LookupError(name)
+            return c.CFUNCTYPE(None, *arguments)(where)
+
+        self.uniform_matrix4 = entry("glUniformMatrix4fv", c.c_int, c.c_int, c.c_ubyte, c.c_void_p)
+        self.uniform3 = entry("glUniform3fv", c.c_int, c.c_int, c.c_void_p)
+        self.uniform4 = entry("glUniform4fv", c.c_int, c.c_int, c.c_void_p)
+        self.uniform1 = entry("glUniform1f", c.c_int, c.c_float)
+        self.bind_vertex_array = entry("glBindVertexArray", c.c_uint)
+        self.draw_elements = entry("glDrawElementsInstanced", c.c_uint, c.c_int, c.c_uint, c.c_void_p, c.c_int)
+        self.touched: dict[int, Any] = {}
+
+    @classmethod
+    def get(cls) -> _DirectCalls | None:
+        if not cls._tried:
+            cls._tried = True
+            try:
+                from OpenGL import platform
+
+                cls._made = cls(platform.PLATFORM.getExtensionProcedure)
+            except Exception:  # noqa: BLE001 - PyOpenGL's own calls still draw
+                cls._made = None
+        return cls._made
+
+    def draw_setup(self, program, primitive, pose: np.ndarray, material) -> None:  # type: ignore[no-untyped-def]
+        identifier = program._program_id
+        known = program.__dict__.get("_bras_kit_direct")
+        if known is None or known[0] != identifier:  # kept on the program, as set_uniform keeps its own
+            from OpenGL import GL
+
+            known = program._bras_kit_direct = (identifier, tuple(GL.glGetUniformLocation(identifier, name)
+                                                                  for name in DIRECT_UNIFORMS))
+        where = known[1]
+        self.touched[id(program)] = program
+        matrix = np.ascontiguousarray(pose, dtype=np.float32)
+        emissive = np.ascontiguousarray(material.emissiveFactor, dtype=np.float32)
+        base = np.ascontiguousarray(material.baseColorFactor, dtype=np.float32)
+        self.uniform_matrix4(where[0], 1, 1, matrix.ctypes.data)  # -1 (not in the program): OpenGL ignores it
+        self.uniform3(where[1], 1, emissive.ctypes.data)
+        self.uniform4(where[2], 1, base.ctypes.data)
+        self.uniform1(where[3], float(material.metallicFactor))
+        self.uniform1(where[4], float(material.roughnessFactor))
+        self.bind_vertex_array(primitive._vaid)
+
+    def forget(self, program) -> None:  # type: ignore[no-untyped-def]
+        """Wipe ``set_uniform``'s record of these uniforms in ``program`` (see :func:`_keep_uniform_locations`)."""
+        state = program.__dict__.get("_bras_kit_uniforms")
+        if state:
+            for name in DIRECT_UNIFORMS:
+                known = state.get((program._program_id, name))
+                if known is not None:
+                    state[(program._program_id, name)] = (known[0], None)
+
+    def forget_all(self) -> None:
+        for program in self.touched.values():
+            self.forget(program)
+        self.touched.clear()
 
 
 def _nodes_in_order(scene, camera: np.ndarray) -> list[tuple[Any, np.ndarray]]:  # type: ignore[no-untyped-def]
