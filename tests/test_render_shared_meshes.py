@@ -207,3 +207,25 @@ def _picture(path: Path) -> np.ndarray:
 
     with Image.open(path) as image:
         return np.asarray(image.convert("RGB"))
+
+
+def test_frame_names_are_rendered_once_per_process_with_the_pixels_of_pillows_own_font(monkeypatch):
+    from PIL import Image, ImageDraw, ImageFont
+
+    from bras_kit.render.renderer import label_font
+
+    def names(font) -> np.ndarray:  # noqa: ANN001
+        image = Image.new("RGB", (320, 120), (90, 140, 200))
+        draw = ImageDraw.Draw(image)
+        for k, name in enumerate(("epaule", "coude", "avant_bras")):
+            draw.text((10.3 + 3 * k, 12.6 + 30 * k), name, fill=(20, 20, 20), font=font, stroke_width=2,
+                      stroke_fill=(255, 255, 255))
+        return np.asarray(image)
+
+    wanted = names(ImageFont.load_default(size=13))
+    first = names(label_font(13))
+    real, rendered = ImageFont.FreeTypeFont.getmask2, []
+    monkeypatch.setattr(ImageFont.FreeTypeFont, "getmask2", lambda *a, **k: rendered.append(a) or real(*a, **k))
+    again = names(label_font(13))
+    assert np.array_equal(first, wanted) and np.array_equal(again, wanted)
+    assert rendered == []  # the same names at the same places: FreeType is not asked again

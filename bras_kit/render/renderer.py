@@ -6,6 +6,7 @@ a sequence or a notebook slider only moves the links between frames.
 
 from __future__ import annotations
 
+import functools
 import math
 import sys
 from collections.abc import Iterator, Mapping, Sequence
@@ -148,16 +149,13 @@ def frame_names(image: np.ndarray, camera: Any, names: Any, origins: np.ndarray)
     that would cover one already written moves up until it is clear (frames that coincide, such
     as a link and the base it sits on, get one name above the other). A legend in the lower left
     corner gives the axes' colours: x red, y green, z blue."""
-    from PIL import Image, ImageDraw, ImageFont
+    from PIL import Image, ImageDraw
 
     points = np.hstack([origins, np.ones((len(origins), 1))]) @ (camera.projection() @ camera.view()).T
     picture = Image.fromarray(np.ascontiguousarray(image))
     draw = ImageDraw.Draw(picture)
     size = max(9, min(16, camera.height // 30))
-    try:
-        font: Any = ImageFont.load_default(size=size)
-    except TypeError:  # Pillow without FreeType sizes
-        font = ImageFont.load_default()
+    font = label_font(size)
     placed: list[tuple[float, float, float, float]] = []
     for name, (x, y, _depth, w) in zip(names, points):
         if w <= 1e-9:  # behind the camera
@@ -176,6 +174,49 @@ def frame_names(image: np.ndarray, camera: Any, names: Any, origins: np.ndarray)
                   stroke_fill=(255, 255, 255))
     axes_legend(draw, font, size, camera.height)
     return np.asarray(picture)
+
+
+LABEL_MASKS_KEPT = 1024
+
+
+@functools.lru_cache(maxsize=8)
+def label_font(size: int) -> Any:
+    """Pillow's default font at ``size`` for frame names and the legend, kept for the process,
+    remembering the masks it renders: a class of robots with the same names at the same places
+    (a grading worker) has them rendered once. A mask is a pure function of the font and of
+    the arguments of ``getmask2`` (text, mode, stroke, sub-pixel start...), so the pixels are
+    those of a new font's; Pillow without FreeType sizes gets its fixed default font."""
+    import io
+
+    from PIL import ImageFont
+
+    try:
+        default = ImageFont.load_default(size=size)
+    except TypeError:  # Pillow without FreeType sizes
+        return ImageFont.load_default()
+    data = getattr(default, "font_bytes", None)
+    if not isinstance(default, ImageFont.FreeTypeFont) or not isinstance(data, bytes):
+        return default
+
+    class LabelFont(ImageFont.FreeTypeFont):
+        def getmask2(self, text: Any, *args: Any, **kwargs: Any) -> Any:
+            mode = args[0] if args else kwargs.get("mode", "")
+            key: Any = (text, args, tuple(sorted(kwargs.items())))
+            try:
+                hash(key)
+            except TypeError:  # features given as a list: not remembered
+                key = None
+            if mode == "RGBA" or key is None:  # Pillow writes into colour masks: never shared
+                return super().getmask2(text, *args, **kwargs)
+            found = masks.get(key)
+            if found is None:
+                if len(masks) >= LABEL_MASKS_KEPT:
+                    masks.clear()
+                found = masks[key] = super().getmask2(text, *args, **kwargs)
+            return found
+
+    masks: dict[Any, Any] = {}
+    return LabelFont(io.BytesIO(data), size, layout_engine=default.layout_engine)
 
 
 LEGEND_COLOURS = (("x", (255, 0, 0)), ("y", (0, 255, 0)), ("z", (0, 0, 255)))  # the triads' (scene.AXIS_COLORS)
