@@ -218,3 +218,125 @@ def _kill(pid: int) -> None:
         os.kill(pid, signal.SIGKILL)
     except ProcessLookupError:
         pass
+
+
+class ForkServer:
+    """A small process that forks the limited children of :func:`run_limited` for a big one.
+
+    After a fork, every page the forking process writes to is copied or at least faulted in
+    again (copy on write): a grading worker holding OpenGL, pyrender and a class's meshes paid
+    some 8,000 page faults per learner for forking the check of each submission, more than the
+    check itself. Started while the process is still small, this server forks the children
+    instead, and the big process never forks. The function and its arguments go to the server
+    pickled (a module-level function and plain data); limits, results and errors are those of
+    :func:`run_limited`. The server ends when its owner closes it or dies (the end of its
+    request pipe); if it is gone or stuck, :meth:`run` forks from the calling process as before.
+    """
+
+    def __init__(self) -> None:
+        self._pid = self._owner = 0
+        self._requests = self._replies = -1
+        if not available():
+            return
+        request_read, request_write = os.pipe()
+        reply_read, reply_write = os.pipe()
+        sys.stdout.flush()
+        sys.stderr.flush()
+        pid = os.fork()
+        if pid == 0:  # the server
+            status = 0
+            try:
+                os.close(request_write)
+                os.close(reply_read)
+                _serve(request_read, reply_write)
+            except BaseException:  # noqa: BLE001 - its owner forks for itself from then on
+                status = 1
+            finally:
+                os._exit(status)
+        os.close(request_read)
+        os.close(reply_write)
+        self._pid, self._owner = pid, os.getpid()
+        self._requests, self._replies = request_write, reply_read
+
+    def run(self, function: Callable[..., T], *args: Any, cpu_seconds: int = DEFAULT_CPU_SECONDS,
+            memory_bytes: int = DEFAULT_MEMORY_BYTES, wall_seconds: float = DEFAULT_WALL_SECONDS,
+            what: Message | str | None = None) -> T:
+        """:func:`run_limited` with the child forked by the server."""
+        limits: dict[str, Any] = {"cpu_seconds": cpu_seconds, "memory_bytes": memory_bytes,
+                                  "wall_seconds": wall_seconds, "what": what}
+        if self._pid and os.getpid() == self._owner:
+            try:
+                _send(self._requests, (function, args, limits))
+                reply = _receive(self._replies, wall_seconds + 10.0)
+            except (OSError, EOFError, TimeoutError, pickle.PickleError):
+                reply = None
+            if reply is not None:
+                kind, value = reply
+                if kind == "ok":
+                    return value  # type: ignore[no-any-return]
+                raise _rebuild_error(*value)
+            self.close()  # gone or stuck: fork from here from now on
+        return run_limited(function, *args, **limits)
+
+    def close(self) -> None:
+        """End the server (its child, if one is running, ends at its own limits)."""
+        pid, self._pid = self._pid, 0
+        if not pid or os.getpid() != self._owner:
+            return
+        for fd in (self._requests, self._replies):
+            try:
+                os.close(fd)
+            except OSError:
+                pass
+        _kill(pid)
+        try:
+            os.waitpid(pid, 0)
+        except ChildProcessError:
+            pass
+
+
+def _serve(requests: int, replies: int) -> None:
+    """The server's loop: each request run by :func:`run_limited`, its result or error sent back."""
+    while True:
+        try:
+            function, args, limits = _receive(requests, None)
+        except EOFError:
+            return  # closed by the owner, or the owner died
+        try:
+            reply: tuple[str, Any] = ("ok", run_limited(function, *args, **limits))
+        except BrasKitError as exc:
+            reply = ("error", _error_fields(exc))
+        except Exception as exc:  # noqa: BLE001 - reported to the owner as run_limited reports a crash
+            failed = BrasKitError(M("{what} failed: {reason}", what=limits.get("what") or M("this file"),
+                                    reason=f"{type(exc).__name__}: {exc}"[:500]))
+            reply = ("error", _error_fields(failed))
+        _send(replies, reply)
+
+
+def _send(fd: int, value: Any) -> None:
+    data = pickle.dumps(value, protocol=pickle.HIGHEST_PROTOCOL)
+    view = memoryview(len(data).to_bytes(8, "little") + data)
+    while view:
+        view = view[os.write(fd, view[:1 << 20]):]
+
+
+def _receive(fd: int, timeout: float | None) -> Any:
+    """One value written by :func:`_send`: EOFError at the end of the pipe, TimeoutError after ``timeout`` s."""
+    deadline = None if timeout is None else time.monotonic() + timeout
+
+    def exactly(count: int) -> bytes:
+        chunks: list[bytes] = []
+        while count:
+            if deadline is not None:
+                ready, _, _ = select.select([fd], [], [], max(0.0, deadline - time.monotonic()))
+                if not ready:
+                    raise TimeoutError
+            chunk = os.read(fd, min(count, 1 << 20))
+            if not chunk:
+                raise EOFError
+            chunks.append(chunk)
+            count -= len(chunk)
+        return b"".join(chunks)
+
+    size = int.from_bytes(exactly(8), "little")
+    return pickle.loads(exactly(size))  # noqa: S301 - our own server's or owner's bytes

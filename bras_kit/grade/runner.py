@@ -86,6 +86,9 @@ def _start_worker(rasteriser: str = "") -> None:
 
     signal.signal(signal.SIGINT, signal.SIG_IGN)
     signal.signal(signal.SIGTERM, terminated)
+    from .worker import start_fork_server
+
+    start_fork_server()  # now, while this worker is small (see bras_kit.sandbox.ForkServer)
 
 
 class Progress:

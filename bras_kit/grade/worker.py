@@ -127,13 +127,30 @@ def _run_nodes(root: str, lang: str) -> list[dict[str, Any]]:
     return findings
 
 
+_fork_server: Any = None  # a local pool worker's ForkServer (see start_fork_server)
+
+
+def start_fork_server() -> None:
+    """In a pool worker that has drawn nothing yet: the small process its checks are forked
+    from (:class:`bras_kit.sandbox.ForkServer`), holding the modules they use."""
+    global _fork_server
+    from .. import authoring, validate  # noqa: F401  imported before the fork: the checks' children have them
+    from ..sandbox import ForkServer
+    from ..validate import package  # noqa: F401
+
+    if _fork_server is None:
+        _fork_server = ForkServer()
+
+
 def _inspect_limited(root: str, lang: str) -> dict[str, Any]:
     from .. import authoring, validate  # noqa: F401  imported here, the limited child is forked with them
     from ..sandbox import run_limited
     from ..validate import package  # noqa: F401  (else every submission would pay for importing them)
 
-    return run_limited(_inspect, root, lang, cpu_seconds=CHECK_CPU_SECONDS, memory_bytes=CHECK_MEMORY_BYTES,
-                       wall_seconds=CHECK_WALL_SECONDS, what=M("checking {name}", name=os.path.basename(root)))
+    run = _fork_server.run if _fork_server is not None else run_limited
+    return run(_inspect, root, lang, cpu_seconds=CHECK_CPU_SECONDS,  # type: ignore[no-any-return]
+               memory_bytes=CHECK_MEMORY_BYTES, wall_seconds=CHECK_WALL_SECONDS,
+               what=M("checking {name}", name=os.path.basename(root)))
 
 
 def _inspect(root: str, lang: str) -> dict[str, Any]:
