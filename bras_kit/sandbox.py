@@ -279,7 +279,7 @@ class ForkServer:
         return run_limited(function, *args, **limits)
 
     def close(self) -> None:
-        """End the server (its child, if one is running, ends at its own limits)."""
+        """End the server: it finishes the check under way, if any, and goes (killed after a second)."""
         pid, self._pid = self._pid, 0
         if not pid or os.getpid() != self._owner:
             return
@@ -288,9 +288,14 @@ class ForkServer:
                 os.close(fd)
             except OSError:
                 pass
-        _kill(pid)
+        deadline = time.monotonic() + 1.0
         try:
-            os.waitpid(pid, 0)
+            while os.waitpid(pid, os.WNOHANG) == (0, 0):  # its CPU time is counted with its owner's
+                if time.monotonic() > deadline:
+                    _kill(pid)
+                    os.waitpid(pid, 0)
+                    break
+                time.sleep(0.005)
         except ChildProcessError:
             pass
 

@@ -139,7 +139,11 @@ def start_fork_server() -> None:
     from ..validate import package  # noqa: F401
 
     if _fork_server is None:
+        import multiprocessing.util
+
         _fork_server = ForkServer()
+        # a pool worker ends through multiprocessing's exit functions, not atexit
+        multiprocessing.util.Finalize(_fork_server, _fork_server.close, exitpriority=10)
 
 
 def _inspect_limited(root: str, lang: str) -> dict[str, Any]:
