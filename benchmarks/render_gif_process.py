@@ -10,6 +10,15 @@ the GIF sizes. bras-kit draws its built-in arm; the script loads the same arm's 
 --robot draws a URDF file instead of the tutorial arm (bras-kit only: the peer script knows the arm's joints), e.g. Talos
 from example-robot-data (60 links, 206k triangles): --robot .../talos_data/robots/talos_full_v2.urdf
 --package-path .../cmeel.prefix/share (target of issue 25: at most 5 s).
+--mujoco-python PATH adds MuJoCo's renderer as a peer (the same number of frames at the same size,
+the GIF written with Pillow), run by a Python with mujoco, numpy and pillow, made once with
+
+    python -m venv /tmp/mj && /tmp/mj/bin/pip install mujoco numpy pillow
+
+(MuJoCo needs a newer PyOpenGL than the 3.1.0 bras-kit pins for pyrender). It loads the MJCF
+``bras-kit mjcf`` writes from the same URDF (built once, untimed; MuJoCo's own URDF import
+drops the visuals) and moves its first two joints as the pybullet script does
+(benchmarks/_mujoco_peer.py).
 """
 
 from __future__ import annotations
@@ -53,6 +62,8 @@ def main() -> None:
     parser.add_argument("--robot", help="a URDF to draw instead of the tutorial arm (bras-kit alone)")
     parser.add_argument("--package-path", action="append", default=[], metavar="DIR",
                         help="where the robot's package:// meshes are (passed to bras-kit)")
+    parser.add_argument("--mujoco-python", metavar="PATH",
+                        help="a Python with mujoco, numpy and pillow: adds MuJoCo's renderer as a peer")
     args = parser.parse_args()
     from bras_kit.authoring import arm_urdf
 
@@ -69,6 +80,13 @@ def main() -> None:
         commands = [("bras-kit render --gif", ours, ours_gif)]
         if not args.robot:
             commands.append(("pybullet TinyRenderer + Pillow GIF", peer, peer_gif))
+        if args.mujoco_python:
+            from render_mesh_still_process import mujoco_peer
+
+            share = args.package_path[0] if args.package_path else tmp
+            mujoco = mujoco_peer(args.mujoco_python, args.robot or urdf, share, tmp, os.path.join(tmp, "mujoco"),
+                                 FRAMES, FPS, SIZE)
+            commands.append(("MuJoCo Renderer + Pillow GIF", mujoco, mujoco[3]))
         times = alternate([(label, command) for label, command, _ in commands], args.repeat)
         sizes = {label: os.path.getsize(gif) / 1024 for label, _, gif in commands}
     print(f"{FRAMES} frames at {SIZE[0]}x{SIZE[1]}, whole process, {args.repeat} alternating runs each, "
@@ -78,6 +96,8 @@ def main() -> None:
         value = ratio(times, commands[0][0], commands[1][0])
         print(f"ratio bras-kit / pybullet script (medians): {value:.2f}  target <= {TARGET} -> "
               f"{'met' if value <= TARGET else 'NOT met'}")
+    if args.mujoco_python:
+        print(f"ratio bras-kit / MuJoCo script (medians): {ratio(times, commands[0][0], commands[-1][0]):.2f}")
 
 
 if __name__ == "__main__":
