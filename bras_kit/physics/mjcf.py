@@ -269,9 +269,14 @@ def _has_mass(inertial) -> bool:  # type: ignore[no-untyped-def]
 def _inertial_xml(link) -> str:  # type: ignore[no-untyped-def]
     inertial = link.inertial
     i = {k: (v if v is not None else 0.0) for k, v in inertial.inertia.items()}
-    full = _vec((i["ixx"], i["iyy"], i["izz"], i["ixy"], i["ixz"], i["iyz"]))
-    pose = _pose_attrs(inertial.origin) if any(inertial.origin.xyz) else ' pos="0 0 0"' + _pose_attrs(inertial.origin)
-    return f'<inertial{pose} mass="{_f(inertial.mass or 0.0)}" fullinertia="{full}"/>'
+    tensor = np.array([[i["ixx"], i["ixy"], i["ixz"]], [i["ixy"], i["iyy"], i["iyz"]], [i["ixz"], i["iyz"], i["izz"]]])
+    if any(inertial.origin.rpy):
+        # MuJoCo takes fullinertia with no orientation: the URDF's tensor, given in the frame
+        # turned by rpy, is turned into the link's frame (R I R^T)
+        rotation = rpy_to_matrix(inertial.origin.rpy)
+        tensor = rotation @ tensor @ rotation.T
+    full = _vec((tensor[0, 0], tensor[1, 1], tensor[2, 2], tensor[0, 1], tensor[0, 2], tensor[1, 2]))
+    return f'<inertial pos="{_vec(inertial.origin.xyz)}" mass="{_f(inertial.mass or 0.0)}" fullinertia="{full}"/>'
 
 
 def joint_dynamics(joint: Joint, damping: float | None = None) -> tuple[float, float]:
