@@ -84,7 +84,7 @@ def main() -> None:
             from render_mesh_still_process import mujoco_peer
 
             share = args.package_path[0] if args.package_path else tmp
-            mujoco = mujoco_peer(args.mujoco_python, args.robot or urdf, share, tmp, os.path.join(tmp, "mujoco"),
+            mujoco = mujoco_peer(args.mujoco_python, args.robot, share, tmp, os.path.join(tmp, "mujoco"),
                                  FRAMES, FPS, SIZE)
             commands.append(("MuJoCo Renderer + Pillow GIF", mujoco, mujoco[3]))
         times = alternate([(label, command) for label, command, _ in commands], args.repeat)

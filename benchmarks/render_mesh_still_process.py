@@ -99,15 +99,16 @@ def main() -> None:
                 print(f"ratio {label} / MuJoCo (medians): {ratio(times, label, f'MuJoCo Renderer {name}'):.2f}")
 
 
-def mujoco_peer(python: str, urdf: str, share: str, tmp: str, out: str, frames: int = 1, fps: int = 20,
+def mujoco_peer(python: str, urdf: str | None, share: str, tmp: str, out: str, frames: int = 1, fps: int = 20,
                 size: tuple[int, int] = (640, 480)) -> list[str]:
-    """The MuJoCo peer's command: the MJCF of ``urdf`` built by ``bras-kit mjcf`` (once, here),
-    drawn ``frames`` times by ``_mujoco_peer.py`` under ``python``."""
+    """The MuJoCo peer's command: the MJCF of ``urdf`` (None: the tutorial arm, given the
+    masses MuJoCo needs with --inertials; the same shapes) built by ``bras-kit mjcf`` (once,
+    here), drawn ``frames`` times by ``_mujoco_peer.py`` under ``python``."""
     import subprocess
 
-    model = os.path.join(tmp, os.path.splitext(os.path.basename(urdf))[0] + "_mujoco.xml")
-    subprocess.run(bras_kit_command() + ["mjcf", urdf, "--package-path", share, "-o", model, "--force"],
-                   check=True, capture_output=True)
+    model = os.path.join(tmp, os.path.splitext(os.path.basename(urdf or "bras"))[0] + "_mujoco.xml")
+    source = [urdf, "--package-path", share] if urdf else ["--inertials"]
+    subprocess.run(bras_kit_command() + ["mjcf", *source, "-o", model, "--force"], check=True, capture_output=True)
     suffix = ".png" if frames == 1 else ".gif"
     return [python, MUJOCO_PEER, model, out + ".mujoco" + suffix, str(frames), str(fps), str(size[0]), str(size[1])]
 
