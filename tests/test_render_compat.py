@@ -174,3 +174,120 @@ def test_patch_loaded_platform_knows_pyopengls_platform_classes(module, name):
         _pyrender()  # loads OpenGL.platform for this platform
         assert type(sys.modules["OpenGL.platform"].PLATFORM).__name__ == name
         assert loaded_platform() == _PLATFORM_CLASSES[name]
+
+
+def test_patch_lean_forward_pass_repeats_the_steps_of_pyrenders_own_pass():
+    """The lean pass (``_compat.lean_forward_pass``) makes pyrender's per-primitive calls once a
+    frame: it relies on these steps, helpers and values being pyrender's."""
+    def squeezed(text: str) -> str:
+        return re.sub(r"\s+", "", text)
+
+    renderer = _pyrender().renderer.Renderer
+    forward = squeezed(_source(renderer._forward_pass))
+    for step in ("self._configure_forward_pass_viewport(flags)", "glClearColor(*scene.bg_color)",
+                 "glClear(GL_COLOR_BUFFER_BIT | GL_DEPTH_BUFFER_BIT)", "glEnable(GL_MULTISAMPLE)",
+                 "V, P = self._get_camera_matrices(scene)", "if not mesh.is_visible:",
+                 "self._get_primitive_program(\n                    primitive, flags, ProgramFlags.USE_MATERIAL",
+                 "program.set_uniform('V', V)", "program.set_uniform('P', P)",
+                 "'cam_pos', scene.get_pose(scene.main_camera_node)[:3,3]",
+                 "self._bind_lighting(scene, program, node, flags)", "pose=scene.get_pose(node)",
+                 "self._reset_active_textures()", "program._unbind()", "glFlush()",
+                 "return self._read_main_framebuffer(scene, flags)"):
+        assert squeezed(step) in forward, f"pyrender's _forward_pass no longer has {step!r}: review lean_forward_pass"
+    draw = squeezed(_source(renderer._bind_and_draw_primitive))
+    for step in ("program.set_uniform('M', pose)", "primitive._bind()", "b.format('emissive_factor')",
+                 "b.format('base_color_factor')", "b.format('metallic_factor')", "b.format('roughness_factor')",
+                 "if material.alphaMode == 'BLEND':", "glBlendFunc(GL_SRC_ALPHA, GL_ONE_MINUS_SRC_ALPHA)",
+                 "glBlendFunc(GL_ONE, GL_ZERO)", "glPolygonMode(GL_FRONT_AND_BACK, GL_FILL)",
+                 "if material.doubleSided or flags & RenderFlags.SKIP_CULL_FACES:", "glCullFace(GL_BACK)",
+                 "glDisable(GL_PROGRAM_POINT_SIZE)", "primitive.mode, primitive.indices.size, GL_UNSIGNED_INT",
+                 "glDrawArraysInstanced(\n                primitive.mode, 0, len(primitive.positions), n_instances",
+                 "primitive._unbind()"):
+        assert squeezed(step) in draw, f"pyrender's _bind_and_draw_primitive no longer has {step!r}: review lean_forward_pass"
+    lighting = _source(renderer._bind_lighting)
+    assert "self._sorted_nodes_by_distance(" in lighting  # only past the shader's light limits: excluded
+    assert list(inspect.signature(renderer._forward_pass).parameters) == ["self", "scene", "flags", "seg_node_map"]
+
+
+def _scene_of_every_kind(pyrender):
+    """A pyrender scene with a primitive of each kind the lean pass draws itself or hands back."""
+    import numpy as np
+
+    scene = pyrender.Scene(bg_color=[0.1, 0.2, 0.3, 1.0], ambient_light=[0.2] * 3)
+    box = np.array([[x, y, z] for x in (-0.5, 0.5) for y in (-0.5, 0.5) for z in (-0.5, 0.5)], dtype=np.float32)
+    faces = np.array([[0, 2, 1], [1, 2, 3], [4, 5, 6], [5, 7, 6], [0, 1, 4], [1, 5, 4],
+                      [2, 6, 3], [3, 6, 7], [0, 4, 2], [2, 4, 6], [1, 3, 5], [3, 7, 5]], dtype=np.uint32)
+
+    def metal(rgba, **extra):
+        return pyrender.MetallicRoughnessMaterial(baseColorFactor=rgba, metallicFactor=0.0, roughnessFactor=1.0,
+                                                  **extra)
+
+    def at(x, y, z=0.0):
+        pose = np.eye(4)
+        pose[:3, 3] = (x, y, z)
+        return pose
+
+    scene.add(pyrender.Mesh([pyrender.Primitive(positions=box, indices=faces, material=metal([0.8, 0.1, 0.1, 1.0]))]),
+              pose=at(-1.2, 0.6))
+    scene.add(pyrender.Mesh([pyrender.Primitive(positions=box, indices=faces,
+                                                material=metal([0.1, 0.8, 0.1, 0.5], alphaMode="BLEND"))]),
+              pose=at(-0.6, 0.4, 0.5))
+    scene.add(pyrender.Mesh([pyrender.Primitive(positions=box[[0, 1, 2]], indices=np.array([[0, 2, 1]]),
+                                                material=metal([0.9, 0.9, 0.1, 1.0], doubleSided=True))]),
+              pose=at(0.3, 0.6))
+    normals = box / np.linalg.norm(box, axis=1, keepdims=True)
+    scene.add(pyrender.Mesh([pyrender.Primitive(positions=box, normals=normals.astype(np.float32), indices=faces,
+                                                material=metal([0.2, 0.3, 0.9, 1.0]))]), pose=at(1.2, 0.6))
+    texture = pyrender.Texture(source=np.array([[[255, 0, 0], [0, 255, 0]], [[0, 0, 255], [255, 255, 255]]],
+                                               dtype=np.uint8), source_channels="RGB")
+    uv = (box[:, :2] + 0.5).astype(np.float32)
+    scene.add(pyrender.Mesh([pyrender.Primitive(positions=box, texcoord_0=uv, indices=faces,
+                                                material=metal([1.0, 1.0, 1.0, 1.0], baseColorTexture=texture))]),
+              pose=at(-1.2, -0.8))
+    scene.add(pyrender.Mesh([pyrender.Primitive(positions=box, mode=pyrender.constants.GLTF.POINTS,
+                                                material=metal([1.0, 1.0, 1.0, 1.0]))]), pose=at(1.2, -0.8))
+    scene.add(pyrender.Mesh([pyrender.Primitive(positions=box[[0, 7, 1, 6]], mode=pyrender.constants.GLTF.LINES,
+                                                material=metal([0.0, 0.0, 0.0, 1.0], emissiveFactor=[1.0, 0.5, 0.0]))]),
+              pose=at(0.6, -0.2, 0.4))
+    hidden = scene.add(pyrender.Mesh([pyrender.Primitive(positions=box, indices=faces,
+                                                         material=metal([1.0, 1.0, 1.0, 1.0]))]), pose=at(0, 0, 1.5))
+    hidden.mesh.is_visible = False
+    scene.add(pyrender.PerspectiveCamera(yfov=0.9, aspectRatio=4 / 3), pose=at(0.0, 0.0, 4.0))
+    light = np.eye(4)
+    light[:3, :3] = [[1, 0, 0], [0, 0.8, -0.6], [0, 0.6, 0.8]]
+    scene.add(pyrender.DirectionalLight(color=np.ones(3), intensity=3.0), pose=light)
+    scene.add(pyrender.PointLight(color=[1.0, 0.8, 0.6], intensity=4.0), pose=at(0.5, 1.0, 2.0))
+    scene.add(pyrender.SpotLight(color=[0.6, 0.8, 1.0], intensity=6.0, outerConeAngle=0.8), pose=at(-0.5, 0.0, 3.0))
+    return scene
+
+
+def test_patch_lean_forward_pass_draws_what_pyrenders_own_pass_draws():
+    """Every kind of primitive (opaque, blended, double-sided, with normals, textured,
+    points, lines, hidden) and of light: pyrender's own pass is the oracle, pixel for pixel and
+    in depth, drawn twice so the second frame starts from the state the first one left."""
+    import numpy as np
+
+    from bras_kit.render._compat import delete_renderer, disown_renderer, lean_forward_pass
+
+    pyrender = _pyrender()
+    flags = pyrender.constants.RenderFlags
+    scene = _scene_of_every_kind(pyrender)
+    pictures = {}
+    for lean in (False, True):
+        renderer = pyrender.OffscreenRenderer(160, 120)
+        try:
+            if lean:
+                lean_forward_pass(pyrender, renderer._renderer)
+            first = renderer.render(scene)
+            second = renderer.render(scene)
+            flat = renderer.render(scene, flags=flags.FLAT)  # a flag the lean pass leaves to pyrender
+        finally:
+            delete_renderer(renderer)
+            disown_renderer(renderer)
+        assert np.array_equal(first[0], second[0]) and np.array_equal(first[1], second[1])
+        pictures[lean] = (first, flat)
+    (color, depth), flat = pictures[False]
+    assert len(np.unique(color.reshape(-1, 3), axis=0)) > 50  # the scene is drawn, not a blank
+    assert np.array_equal(pictures[True][0][0], color)
+    assert np.array_equal(pictures[True][0][1], depth)
+    assert np.array_equal(pictures[True][1][0], flat[0])

@@ -29,6 +29,7 @@ from ._compat import (
     delete_renderer,
     disown_renderer,
     import_pyrender,
+    lean_forward_pass,
     loaded_platform,
     make_framebuffers,
     pyopengl_version,
@@ -242,6 +243,7 @@ class PyrenderBackend:
         reader = ColorReader(camera.width, camera.height, scale, spare)
         inner._read_main_framebuffer = types.MethodType(reader, inner)
         use_flat_shading(pyrender, inner)
+        lean_forward_pass(pyrender, inner)
         renderer._bras_kit_reader = reader  # its spare framebuffer is deleted with the renderer (_delete)
         return renderer
 
