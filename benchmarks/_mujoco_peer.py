@@ -2,12 +2,13 @@
 ``numpy`` and ``pillow``: MuJoCo's renderer needs a newer PyOpenGL than the 3.1.0 bras-kit pins
 for pyrender, so it cannot share bras-kit's environment).
 
-    python _mujoco_peer.py MODEL.xml OUT.png|OUT.gif FRAMES FPS WIDTH HEIGHT
+    python _mujoco_peer.py MODEL.xml OUT.png|OUT.gif FRAMES FPS WIDTH HEIGHT [swing]
 
 Loads the MJCF (built by ``bras-kit mjcf`` from the URDF: MuJoCo's own URDF import drops the
 visuals), renders FRAMES pictures with ``mujoco.Renderer`` on EGL from a free camera looking at
-the model's centre, moving the joints as the benchmark's motion does, and writes one still (PNG)
-or a GIF with Pillow. Standard library, numpy, Pillow and mujoco only: bras-kit is not
+the model's centre, moving the joints as the pybullet scripts do (the tutorial's two-joint sine;
+with ``swing``, every joint about the middle of its limits), and writes one still (PNG) or a
+GIF with Pillow. Standard library, numpy, Pillow and mujoco only: bras-kit is not
 importable here.
 """
 
@@ -37,11 +38,17 @@ def main() -> None:
     camera.azimuth, camera.elevation = 235.0, -25.0  # about the pictures' iso view
     hinges = [j for j in range(model.njnt) if model.jnt_type[j] in (mujoco.mjtJoint.mjJNT_HINGE,
                                                                      mujoco.mjtJoint.mjJNT_SLIDE)]
+    swing = sys.argv[7:8] == ["swing"]
     frames = []
     for k in range(count):
         t = k / fps
-        for n, joint in enumerate(hinges[:2]):  # the benchmark's two-joint sine motion
-            data.qpos[model.jnt_qposadr[joint]] = (0.8 * math.sin(t)) if n == 0 else (1.2 * math.sin(0.7 * t))
+        for n, joint in enumerate(hinges if swing else hinges[:2]):
+            if swing:
+                low, high = model.jnt_range[joint] if model.jnt_limited[joint] else (-1.0, 1.0)
+                value = (low + high) / 2 + (high - low) / 4 * math.sin(2 * math.pi * t / 6 + n)
+            else:  # the tutorial's motion
+                value = (0.8 * math.sin(t)) if n == 0 else (1.2 * math.sin(0.7 * t))
+            data.qpos[model.jnt_qposadr[joint]] = value
         mujoco.mj_kinematics(model, data)
         renderer.update_scene(data, camera)
         frames.append(Image.fromarray(np.asarray(renderer.render())))

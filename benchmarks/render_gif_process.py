@@ -14,8 +14,7 @@ the GIF written with Pillow), run by a Python with mujoco, numpy and pillow, mad
 
 (MuJoCo needs a newer PyOpenGL than the 3.1.0 bras-kit pins for pyrender). It loads the MJCF
 ``bras-kit mjcf`` writes from the same URDF (built once, untimed; MuJoCo's own URDF import
-drops the visuals) and moves its first two joints as the pybullet script does
-(benchmarks/_mujoco_peer.py).
+drops the visuals) and moves the joints as the pybullet script does (benchmarks/_mujoco_peer.py).
 --robot draws a URDF file instead of the tutorial arm, e.g. Talos from example-robot-data (60 links,
 206k triangles): --robot .../talos_data/robots/talos_full_v2.urdf --package-path
 .../cmeel.prefix/share (target of issue 25: at most 5 s). The peer script then loads that file in

@@ -110,7 +110,8 @@ def mujoco_peer(python: str, urdf: str | None, share: str, tmp: str, out: str, f
     source = [urdf, "--package-path", share] if urdf else ["--inertials"]
     subprocess.run(bras_kit_command() + ["mjcf", *source, "-o", model, "--force"], check=True, capture_output=True)
     suffix = ".png" if frames == 1 else ".gif"
-    return [python, MUJOCO_PEER, model, out + ".mujoco" + suffix, str(frames), str(fps), str(size[0]), str(size[1])]
+    return [python, MUJOCO_PEER, model, out + ".mujoco" + suffix, str(frames), str(fps), str(size[0]), str(size[1]),
+            *(["swing"] if urdf and frames > 1 else [])]
 
 
 if __name__ == "__main__":
