@@ -36,8 +36,8 @@ def main() -> None:
     camera = mujoco.MjvCamera()
     mujoco.mjv_defaultFreeCamera(model, camera)
     camera.azimuth, camera.elevation = 235.0, -25.0  # about the pictures' iso view
-    hinges = [j for j in range(model.njnt) if model.jnt_type[j] in (mujoco.mjtJoint.mjJNT_HINGE,
-                                                                     mujoco.mjtJoint.mjJNT_SLIDE)]
+    moving = (int(mujoco.mjtJoint.mjJNT_HINGE), int(mujoco.mjtJoint.mjJNT_SLIDE))  # the enum is no int
+    hinges = [j for j in range(model.njnt) if int(model.jnt_type[j]) in moving]
     swing = sys.argv[7:8] == ["swing"]
     frames = []
     for k in range(count):
