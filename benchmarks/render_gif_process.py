@@ -7,6 +7,14 @@ Each command runs in a fresh Python process (imports, model, OpenGL start-up and
 writing included). The two commands alternate, run after run, so both see the same machine
 load (see _process.py for the fairness rules); the medians and their ratio are printed with
 the GIF sizes. bras-kit draws its built-in arm; the script loads the same arm's URDF file.
+--mujoco-python PATH adds MuJoCo's renderer as a peer (the same number of frames at the same size,
+the GIF written with Pillow), run by a Python with mujoco, numpy and pillow, made once with
+
+    python -m venv /tmp/mj && /tmp/mj/bin/pip install mujoco numpy pillow
+
+(MuJoCo needs a newer PyOpenGL than the 3.1.0 bras-kit pins for pyrender). It loads the MJCF
+``bras-kit mjcf`` writes from the same URDF (built once, untimed; MuJoCo's own URDF import
+drops the visuals) and moves the joints as the pybullet script does (benchmarks/_mujoco_peer.py).
 --robot draws a URDF file instead of the tutorial arm, e.g. Talos from example-robot-data (60 links,
 206k triangles): --robot .../talos_data/robots/talos_full_v2.urdf --package-path
 .../cmeel.prefix/share (target of issue 25: at most 5 s). The peer script then loads that file in
@@ -90,6 +98,8 @@ def main() -> None:
     parser.add_argument("--robot", help="a URDF to draw instead of the tutorial arm")
     parser.add_argument("--package-path", action="append", default=[], metavar="DIR",
                         help="where the robot's package:// meshes are (passed to bras-kit)")
+    parser.add_argument("--mujoco-python", metavar="PATH",
+                        help="a Python with mujoco, numpy and pillow: adds MuJoCo's renderer as a peer")
     args = parser.parse_args()
     from bras_kit.authoring import arm_urdf
 
@@ -107,6 +117,13 @@ def main() -> None:
         else:
             peer = [sys.executable, "-c", PEER, urdf, peer_gif, str(FRAMES), str(FPS)]
         commands = [("bras-kit render --gif", ours, ours_gif), ("pybullet TinyRenderer + Pillow GIF", peer, peer_gif)]
+        if args.mujoco_python:
+            from render_mesh_still_process import mujoco_peer
+
+            share = args.package_path[0] if args.package_path else tmp
+            mujoco = mujoco_peer(args.mujoco_python, args.robot, share, tmp, os.path.join(tmp, "mujoco"),
+                                 FRAMES, FPS, SIZE)
+            commands.append(("MuJoCo Renderer + Pillow GIF", mujoco, mujoco[3]))
         times = alternate([(label, command) for label, command, _ in commands], args.repeat)
         sizes = {label: os.path.getsize(gif) / 1024 for label, _, gif in commands}
     print(f"{FRAMES} frames at {SIZE[0]}x{SIZE[1]}, whole process, {args.repeat} alternating runs each, "
@@ -120,6 +137,8 @@ def main() -> None:
     else:
         print(f"ratio bras-kit / pybullet script (medians): {value:.2f}  target <= {TARGET} -> "
               f"{'met' if value <= TARGET else 'NOT met'}")
+    if args.mujoco_python:
+        print(f"ratio bras-kit / MuJoCo script (medians): {ratio(times, commands[0][0], commands[-1][0]):.2f}")
 
 
 if __name__ == "__main__":

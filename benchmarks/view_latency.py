@@ -2,14 +2,20 @@
 the peer a viser user would reach for.
 
 1. start -> first frame: from running ``bras-kit view`` to the orange forearm drawn in headless
-   chromium (WebGL on the CPU);
+   chromium (WebGL on the CPU); and for Talos (example-robot-data's talos_full_v2: 60 links,
+   206k triangles) from running ``bras-kit view talos_full_v2.urdf`` and from running a script
+   serving the same file with ViserUrdf, to its dark-grey meshes drawn (issue 25: <= 3 s);
 2. slider change -> link transforms sent: median and 95th percentile over 200 changes, for
-   bras-kit's session and for ViserUrdf.update_cfg on the same robot;
+   bras-kit's session and for ViserUrdf.update_cfg on the same robot (issue 25: Talos < 20 ms p95);
 3. file save -> model shown again (rebuilt in one connected session): the tutorial arm as URDF
    and as xacro (expanded in the sandbox), and Talos (a 30+-link mesh robot from
    example-robot-data).
 
-    python benchmarks/view_latency.py
+    python benchmarks/view_latency.py           # everything
+    python benchmarks/view_latency.py --talos   # the two Talos targets only, alternating runs
+
+The machine's load changes these figures a lot (chromium draws on the CPU): run when it is quiet,
+and read the ``uptime`` line printed first.
 """
 
 from __future__ import annotations
@@ -27,10 +33,10 @@ CHROMIUM_ARGS = ["--no-sandbox", "--disable-background-networking", "--disable-c
                  "--disable-sync", "--no-first-run", "--use-angle=swiftshader", "--enable-unsafe-swiftshader"]
 
 
-def _talos() -> tuple[Path, str] | None:
+def _talos(name: str = "talos_reduced.urdf") -> tuple[Path, str] | None:
     for base in map(Path, site.getsitepackages()):
         share = base / "cmeel.prefix" / "share"
-        path = share / "example-robot-data" / "robots" / "talos_data" / "robots" / "talos_reduced.urdf"
+        path = share / "example-robot-data" / "robots" / "talos_data" / "robots" / name
         if path.exists():
             return path, str(share)
     return None
@@ -49,15 +55,106 @@ def _free_port() -> int:
         return int(probe.getsockname()[1])
 
 
-def _orange_pixels(page) -> int:  # type: ignore[no-untyped-def]
-    """How many pixels of the forearm's orange the 3D view shows (as tests/test_view.py counts)."""
+def _scene(png: bytes) -> np.ndarray:
+    """The 3D view left of the panel, without viser's "Software WebGL rendering detected" notice
+    at its top left (its orange bar and dark title would count as the robot)."""
     from io import BytesIO
 
     from PIL import Image
 
-    image = np.asarray(Image.open(BytesIO(page.screenshot())).convert("RGB"))[:700, :590].astype(int)
+    image = np.asarray(Image.open(BytesIO(png)).convert("RGB"))[:700, :590].astype(int)
+    image[:200, :330] = 255
+    return image
+
+
+def _orange_pixels(page) -> int:  # type: ignore[no-untyped-def]
+    """How many pixels of the forearm's orange the 3D view shows (as tests/test_view.py counts)."""
+
+
+    image = _scene(page.screenshot())
     r, g, b = image[..., 0], image[..., 1], image[..., 2]
     return int(((r > 120) & (r - b > 100) & (g > 0.35 * r) & (g < 0.7 * r)).sum())
+
+
+def _dark_pixels(page) -> int:  # type: ignore[no-untyped-def]
+    """How many pixels of the 3D view are dark grey: Talos's meshes (0.2 0.2 0.2 and darker,
+    shaded) and not the white background, the grey grid, the names or the orange notice."""
+
+
+    image = _scene(page.screenshot(timeout=300_000))
+    return int(((image[..., 0] < 90) & (image[..., 1] < 90) & (image[..., 2] < 90)).sum())
+
+
+TALOS_DRAWN = 2500  # dark pixels once drawn (bras-kit about 17,000, ViserUrdf about 3,900); before, about 400
+
+
+def talos_first_frame(path: Path, package_root: str, runs: int = 3) -> dict[str, list[float]]:
+    """Seconds from starting each server (``bras-kit view FILE``, a ViserUrdf script) to Talos's
+    meshes drawn in chromium; runs alternate so both see the same machine load."""
+    import subprocess
+    import sys
+
+    from _process import bras_kit_command, environment
+    from playwright.sync_api import sync_playwright
+
+    from bras_kit.authoring import load
+    from bras_kit.view import view_model
+    from bras_kit.view.framing import place_camera
+
+    # the peer's camera starts where bras-kit's does (viser's default sees Talos a few pixels
+    # tall): both pictures then hold the same robot at the same size
+    camera = place_camera(view_model(load(str(path), package_paths=(package_root,)), (package_root,)).box_points())
+    placement = ",".join(f"{v:.6g}" for v in (*camera.position, *camera.look_at, camera.fov))
+    commands = {
+        "bras-kit view": [*bras_kit_command(), "view", str(path), "--package-path", package_root, "--no-browser"],
+        "ViserUrdf": [sys.executable, __file__, "--serve-peer", str(path), package_root, placement],
+    }
+    times: dict[str, list[float]] = {label: [] for label in commands}
+    with sync_playwright() as playwright:
+        browser = playwright.chromium.launch(executable_path="/usr/bin/chromium", headless=True, args=CHROMIUM_ARGS)
+        for _ in range(runs):
+            for label, command in commands.items():
+                port = _free_port()
+                start = time.perf_counter()
+                process = subprocess.Popen([*command, "--port", str(port)], stdout=subprocess.PIPE,
+                                           stderr=subprocess.DEVNULL, text=True, env=environment())
+                try:
+                    assert process.stdout is not None
+                    while "http" not in process.stdout.readline():  # the URL line: the server listens
+                        pass
+                    page = browser.new_page(viewport={"width": 1000, "height": 700})
+                    page.goto(f"http://127.0.0.1:{port}")
+                    while _dark_pixels(page) < TALOS_DRAWN and time.perf_counter() - start < 300:
+                        pass
+                    times[label].append(time.perf_counter() - start)
+                    page.close()
+                finally:
+                    process.terminate()
+                    process.wait(20)
+        browser.close()
+    return times
+
+
+def serve_peer(path: str, package_root: str, placement: str, port: int) -> None:
+    """The peer's server: what a viser user writes to show a URDF (yourdfpy + ViserUrdf), on
+    127.0.0.1, printing its URL once the robot is in the scene."""
+    import viser
+    import yourdfpy
+    from viser.extras import ViserUrdf
+
+    def handler(fname: str) -> str:
+        return fname.replace("package://", package_root + "/")
+
+    model = yourdfpy.URDF.load(path, filename_handler=handler, build_scene_graph=True, load_meshes=True)
+    server = viser.ViserServer(host="127.0.0.1", port=port, verbose=False)
+    x, y, z, ax, ay, az, fov = (float(v) for v in placement.split(","))
+    server.initial_camera.fov = fov
+    server.initial_camera.position = (x, y, z)
+    server.initial_camera.look_at = (ax, ay, az)
+    ViserUrdf(server, model)
+    print(f"ViserUrdf: http://127.0.0.1:{port}", flush=True)
+    while True:
+        time.sleep(1)
 
 
 def first_frame(runs: int = 3) -> tuple[float, float]:
@@ -98,6 +195,14 @@ class _FakeClient:
     def __init__(self, server) -> None:  # type: ignore[no-untyped-def]
         self.scene, self.gui, self.client_id = server.scene, server.gui, 0
         self.atomic = server.atomic
+        self.camera = _NoCamera()
+
+
+class _NoCamera:
+    """A browser that has not said its canvas size yet: the camera is left where it starts."""
+
+    def on_update(self, _callback) -> None:  # type: ignore[no-untyped-def]
+        pass
 
 
 def slider_latency(path: Path | None, package_root: str | None, changes: int = 200) -> tuple[list[float], list[float]]:
@@ -114,7 +219,7 @@ def slider_latency(path: Path | None, package_root: str | None, changes: int = 2
     ours, theirs = [], []
     rng = np.random.default_rng(0)
     with Viewer(source, port=_free_port(), watch=False) as viewer:
-        session = Session(_FakeClient(viewer.server), viewer, viewer.t)
+        session = Session(_FakeClient(viewer.server), viewer, viewer.lang)
         sliders = viewer.model.sliders
         for _ in range(changes):
             slider = sliders[rng.integers(len(sliders))]
@@ -166,7 +271,7 @@ def reload_time(path: Path, package_root: str | None, runs: int = 5) -> float:
             from bras_kit.view.session import Session
 
             # one connected panel and scene to rebuild, as with one browser open
-            viewer.sessions[0] = Session(_FakeClient(viewer.server), viewer, viewer.t)
+            viewer.sessions[0] = Session(_FakeClient(viewer.server), viewer, viewer.lang)
             times = []
             for k in range(runs):
                 before = viewer.reloads
@@ -212,9 +317,35 @@ def reload_in_browser(runs: int = 5) -> float:
     return statistics.median(times)
 
 
+def talos_targets() -> None:
+    """Issue 25's two viewer targets on talos_full_v2, bras-kit and ViserUrdf in the same run."""
+    import os
+
+    found = _talos("talos_full_v2.urdf")
+    if found is None:
+        print("example-robot-data is not installed: pip install example-robot-data")
+        return
+    print(f"load: {' '.join(f'{v:.2f}' for v in os.getloadavg())} (1, 5, 15 min) on {os.cpu_count()} cores")
+    print("talos_full_v2: start -> meshes drawn in chromium (3 runs each, alternating)")
+    for label, runs in talos_first_frame(*found).items():
+        print(f"  {label:14s} median {statistics.median(runs):6.2f} s  best {min(runs):6.2f} s  "
+              f"({', '.join(f'{v:.2f}' for v in runs)})")
+    ours, theirs = slider_latency(*found)
+    print("talos_full_v2: slider change -> transforms sent (200 changes)")
+    print(f"  bras-kit {_percentiles(ours)}   |   ViserUrdf {_percentiles(theirs)}")
+
+
 def main() -> None:
     import subprocess
     import sys
+
+    if "--serve-peer" in sys.argv:
+        at = sys.argv.index("--serve-peer")
+        serve_peer(*sys.argv[at + 1:at + 4], int(sys.argv[sys.argv.index("--port") + 1]))  # type: ignore[call-arg]
+        return
+    if "--talos" in sys.argv:
+        talos_targets()
+        return
 
     url, frame = first_frame()
     print(f"bras-kit view -> URL printed {url:.2f} s, -> first frame in chromium {frame:.2f} s (tutorial arm, median of 3)")
@@ -244,6 +375,8 @@ def main() -> None:
         model = view_model(load(str(talos[0]), package_paths=(talos[1],)), (talos[1],))
         print(f"  (talos_reduced: {len(model.tree.links)} links, {len(model.visuals)} visual meshes, "
               f"{sum(len(m.faces) for m in model.visuals):,} triangles)")
+    print()
+    talos_targets()
 
 
 if __name__ == "__main__":

@@ -301,3 +301,49 @@ def test_missing_inertials_are_explained_in_french():
     assert "links bougent mais n'ont pas d'<inertial> : 'bras', 'avant_bras'" in say_error(info.value, "fr")
     assert "--inertials" in str(info.value.hint)
     check_physics_ready(arm(inertials=True), "fr")  # nothing to say
+
+
+def test_an_inertia_given_in_a_turned_frame_reaches_mujoco_turned_into_the_link_frame():
+    import mujoco
+
+    from bras_kit.authoring import load
+
+    robot = load(str(Path(__file__).parent / "data" / "urdf" / "physics" / "rotated_inertia.urdf"))
+    model = build_mjcf(robot).compile()  # MuJoCo refused fullinertia beside an orientation
+    body = mujoco.mj_name2id(model, mujoco.mjtObj.mjOBJ_BODY, "bloc")
+    rotation = np.zeros(9)
+    mujoco.mju_quat2Mat(rotation, model.body_iquat[body])
+    rotation = rotation.reshape(3, 3)
+    tensor = rotation @ np.diag(model.body_inertia[body]) @ rotation.T  # MuJoCo's tensor, in the link's frame
+    # a quarter turn about z swaps the x and y moments: diag(1, 2, 3) seen from the link is diag(2, 1, 3)
+    np.testing.assert_allclose(tensor, np.diag([2.0, 1.0, 3.0]), atol=1e-9)
+    np.testing.assert_allclose(model.body_ipos[body], [0.1, 0.0, 0.0], atol=1e-12)
+    assert model.body_mass[body] == pytest.approx(2.0)
+
+
+def test_a_point_mass_without_inertia_on_a_fixed_frame_is_accepted_with_its_mass():
+    import mujoco
+
+    from bras_kit.authoring import load
+
+    robot = load(str(Path(__file__).parent / "data" / "urdf" / "physics" / "rotated_inertia.urdf"))
+    model = build_mjcf(robot).compile()  # MuJoCo refused a zero fullinertia (eigenvalues must be > 0)
+    frame = mujoco.mj_name2id(model, mujoco.mjtObj.mjOBJ_BODY, "repere")
+    assert model.body_mass[frame] == pytest.approx(0.01)
+    np.testing.assert_allclose(model.body_inertia[frame], 0.0, atol=1e-12)
+
+
+def test_a_scaled_mesh_is_scaled_by_its_mujoco_asset():
+    import mujoco
+
+    from bras_kit.authoring import load
+
+    robot = load(str(Path(__file__).parent / "data" / "urdf" / "physics" / "scaled_mesh.urdf"))
+    model = build_mjcf(robot).compile()  # MuJoCo refused scale= on a <geom>
+    radius = {}
+    for name in ("simple", "double"):
+        body = mujoco.mj_name2id(model, mujoco.mjtObj.mjOBJ_BODY, name)
+        geoms = [g for g in range(model.ngeom) if model.geom_bodyid[g] == body and model.geom_type[g] == mujoco.mjtGeom.mjGEOM_MESH]
+        assert len(geoms) == 1
+        radius[name] = model.geom_rbound[geoms[0]]
+    assert radius["double"] == pytest.approx(2 * radius["simple"], rel=1e-6)

@@ -19,6 +19,7 @@ CHROMIUM = "/usr/bin/chromium"
 ARGS = ["--no-sandbox", "--disable-background-networking", "--disable-component-update", "--disable-sync",
         "--no-first-run", "--use-angle=swiftshader", "--enable-unsafe-swiftshader"]
 SCENE = (slice(0, 700), slice(0, 590))  # the 3D view left of the panel (rows, columns)
+NOTICE = (slice(0, 200), slice(0, 330))  # where viser shows its notice on SwiftShader (an orange bar: 660 pixels)
 
 
 def _free_port() -> int:
@@ -72,6 +73,7 @@ def _orange(page) -> np.ndarray:
     image = np.asarray(Image.open(BytesIO(page.screenshot(timeout=120_000))).convert("RGB"))[SCENE].astype(int)
     r, g, b = image[..., 0], image[..., 1], image[..., 2]
     mask = (r > 120) & (r - b > 100) & (g > 0.35 * r) & (g < 0.7 * r)
+    mask[NOTICE] = False  # the orange bar of viser's "Software WebGL" notice is not the forearm
     return np.argwhere(mask)
 
 

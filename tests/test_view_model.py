@@ -308,3 +308,67 @@ def test_geometry_collision_at_startup_shows_the_collision_shapes_only():
         assert not any(node.visible for node in session._visual_nodes)
     with pytest.raises(ParameterError):
         Viewer(Source(robot=arm()), port=_free_port(), watch=False, geometry="collisions")
+
+
+def _record_messages(scene) -> list:
+    """Every message the scene sends to the browsers from now on, in order."""
+    sent: list = []
+    interface = scene._websock_interface
+    queue = interface.queue_message
+
+    def record(message):  # type: ignore[no-untyped-def]
+        sent.append(message)
+        return queue(message)
+
+    interface.queue_message = record
+    return sent
+
+
+def test_moving_coude_sends_the_poses_of_the_links_it_moves_only():
+    from bras_kit.authoring import arm
+    from bras_kit.view import Source, Viewer
+
+    with Viewer(Source(robot=arm(wrist=True)), port=_free_port(), watch=False) as viewer:
+        session = _session(viewer)
+        links = list(viewer.model.tree.links)
+        sent = _record_messages(viewer.server.scene)
+        session.set_values({"coude": 0.7})
+        moved = {m.name for m in sent if type(m).__name__ in ("SetPositionMessage", "SetOrientationMessage")}
+        # coude turns the forearm and what hangs from it (the wrist's link), never base nor bras
+        below = {links.index(name) for name in links if name not in ("base", "bras")}
+        assert moved and moved <= {f"/bras/link{k}" for k in below}
+        assert "/bras/link0" not in moved and f"/bras/link{links.index('bras')}" not in moved
+        # the forearm's origin sits at the top of bras whatever the angle; its orientation turned by 0.7 rad about y
+        forearm = session._frames[links.index("avant_bras")]
+        w, x, y, z = forearm.wxyz
+        assert 2 * math.atan2(math.hypot(x, y, z), w) == pytest.approx(0.7, abs=1e-9)
+        sent.clear()
+        session.set_values({"coude": 0.7})  # the same pose again: nothing to send
+        assert not [m for m in sent if type(m).__name__ in ("SetPositionMessage", "SetOrientationMessage")]
+
+
+def test_a_heavy_robot_is_lit_without_environment_map_nor_shadows_and_a_light_one_gets_them_back(monkeypatch):
+    import bras_kit.view.session as session_module
+    from bras_kit.authoring import arm
+    from bras_kit.view import Source, Viewer
+
+    with Viewer(Source(robot=arm()), port=_free_port(), watch=False) as viewer:
+        triangles = sum(len(mesh.faces) for mesh in viewer.model.visuals)
+        monkeypatch.setattr(session_module, "HEAVY_TRIANGLES", triangles - 1)  # this arm counts as heavy
+        sent = _record_messages(viewer.server.scene)
+        session = _session(viewer)
+        kinds = {type(m).__name__: m for m in sent}
+        assert kinds["EnvironmentMapMessage"].hdri_data is None  # no image-based lighting
+        assert kinds["EnableLightsMessage"].cast_shadow is False
+        assert "AmbientLightMessage" in kinds
+        meshes = [m for m in sent if type(m).__name__ == "MeshMessage"]
+        assert meshes and not any(m.props.cast_shadow or m.props.receive_shadow for m in meshes)
+        sent.clear()
+        monkeypatch.setattr(session_module, "HEAVY_TRIANGLES", triangles)  # now a light robot
+        session.show_model(viewer.model)
+        kinds = {type(m).__name__: m for m in sent}
+        assert kinds["EnvironmentMapMessage"].hdri_data  # viser's default image is back
+        assert kinds["EnableLightsMessage"].cast_shadow is True
+        assert "RemoveSceneNodeMessage" in kinds
+        meshes = [m for m in sent if type(m).__name__ == "MeshMessage"]
+        assert meshes and all(m.props.cast_shadow and m.props.receive_shadow for m in meshes)

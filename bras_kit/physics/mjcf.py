@@ -158,8 +158,9 @@ class _Meshes:
         self.robot, self.package_paths = robot, package_paths
         self.assets: dict[str, MeshAsset] = {}
         self._keys: dict[tuple[str, tuple[float, ...]], str] = {}
-        self._piece_names: dict[tuple[str, str], list[tuple[str, tuple[float, float, float, float] | None]]] = {}
+        self._piece_names: dict[tuple[str, str, tuple[float, ...]], list[tuple[str, tuple[float, float, float, float] | None]]] = {}
         self.converted: list[str] = []
+        self.scales: dict[str, tuple[float, ...]] = {}  # MuJoCo scales a <mesh> asset, not a <geom>
 
     def asset(self, geometry: Geometry) -> tuple[str, str]:
         """(mesh name, scale attribute) for a mesh geometry."""
@@ -180,7 +181,8 @@ class _Meshes:
                 self.assets[name] = MeshAsset(name + ".stl", binary_stl(data.vertices, data.faces), path, True)
                 self.converted.append(path)
             self._keys[key] = name
-        return self._keys[key], _scale_attr(scale)
+            self.scales[name] = scale
+        return self._keys[key], ""
 
     def pieces(self, geometry: Geometry) -> list[tuple[str, tuple[float, float, float, float] | None]] | None:
         """(mesh name, own colour) of each material piece of a mesh whose file gives colours of
@@ -191,12 +193,14 @@ class _Meshes:
         data = self._decoded(path, geometry)
         if len(data) == 1 and all(p.color is None for p in data.pieces()):
             return None
-        key = (path, "pieces")
+        scale = tuple(geometry.scale or (1.0, 1.0, 1.0))
+        key = (path, "pieces", scale)
         if key not in self._piece_names:
             names = []
             for piece in data.pieces():
                 name = self._name(path)
                 self.assets[name] = MeshAsset(name + ".stl", binary_stl(piece.vertices, piece.faces), path, True)
+                self.scales[name] = scale
                 names.append((name, piece.color))
             self._piece_names[key] = names
             if path not in self.converted:
@@ -214,7 +218,8 @@ class _Meshes:
         return mesh_file_data(path, self.robot, geometry.line)
 
     def xml(self) -> list[str]:
-        return [f'    <mesh name="{name}" file="{asset.name}" inertia="shell"/>' for name, asset in self.assets.items()]
+        return [f'    <mesh name="{name}" file="{asset.name}"{_scale_attr(self.scales.get(name, (1.0, 1.0, 1.0)))} '
+                'inertia="shell"/>' for name, asset in self.assets.items()]
 
 
 def _scale_attr(scale: tuple[float, ...]) -> str:
@@ -269,9 +274,17 @@ def _has_mass(inertial) -> bool:  # type: ignore[no-untyped-def]
 def _inertial_xml(link) -> str:  # type: ignore[no-untyped-def]
     inertial = link.inertial
     i = {k: (v if v is not None else 0.0) for k, v in inertial.inertia.items()}
-    full = _vec((i["ixx"], i["iyy"], i["izz"], i["ixy"], i["ixz"], i["iyz"]))
-    pose = _pose_attrs(inertial.origin) if any(inertial.origin.xyz) else ' pos="0 0 0"' + _pose_attrs(inertial.origin)
-    return f'<inertial{pose} mass="{_f(inertial.mass or 0.0)}" fullinertia="{full}"/>'
+    tensor = np.array([[i["ixx"], i["ixy"], i["ixz"]], [i["ixy"], i["iyy"], i["iyz"]], [i["ixz"], i["iyz"], i["izz"]]])
+    if any(inertial.origin.rpy):
+        # MuJoCo takes fullinertia with no orientation: the URDF's tensor, given in the frame
+        # turned by rpy, is turned into the link's frame (R I R^T)
+        rotation = rpy_to_matrix(inertial.origin.rpy)
+        tensor = rotation @ tensor @ rotation.T
+    if not tensor.any():  # a point mass (Talos's sensor frames): MuJoCo's fullinertia wants eigenvalues > 0
+        inertia = 'diaginertia="0 0 0"'
+    else:
+        inertia = f'fullinertia="{_vec((tensor[0, 0], tensor[1, 1], tensor[2, 2], tensor[0, 1], tensor[0, 2], tensor[1, 2]))}"'
+    return f'<inertial pos="{_vec(inertial.origin.xyz)}" mass="{_f(inertial.mass or 0.0)}" {inertia}/>'
 
 
 def joint_dynamics(joint: Joint, damping: float | None = None) -> tuple[float, float]:
@@ -392,12 +405,11 @@ def build_mjcf(robot: Robot, *, package_paths: Sequence[str] = (), kp: float | M
                 pieces = meshes.pieces(visual.geometry) if visual.geometry is not None and \
                     visual.geometry.kind == "mesh" and visual.geometry.filename else None
                 if pieces:
-                    scale = _scale_attr(tuple(visual.geometry.scale or (1.0, 1.0, 1.0)))  # type: ignore[union-attr]
                     fallback = robot.material_rgba(visual) or (0.7, 0.7, 0.7, 1.0)
                     for k, (mesh_name, own) in enumerate(pieces, 1):
                         body_lines.append(
                             f'{pad}  <geom name={_name(f"{link_name}/visual{n}.{k}")} type="mesh" mesh="{mesh_name}"'
-                            f'{scale}{_pose_attrs(visual.origin)} rgba="{_vec(own or fallback)}" contype="0" '
+                            f'{_pose_attrs(visual.origin)} rgba="{_vec(own or fallback)}" contype="0" '
                             f'conaffinity="0" group="{VISUAL_GROUP}" density="0"/>')
                     continue
                 shape = _geom_shape(visual.geometry, meshes)

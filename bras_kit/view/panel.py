@@ -124,7 +124,7 @@ def label_offsets(poses: np.ndarray, spacing: float) -> np.ndarray:
     ones goes up by n times ``spacing``."""
     origins = poses[:, :3, 3]
     out = np.zeros((len(origins), 3))
-    for k in range(1, len(origins)):
-        near = np.linalg.norm(origins[:k] - origins[k], axis=1) < spacing
-        out[k, 2] = spacing * int(near.sum())
+    distances = np.linalg.norm(origins[:, None, :] - origins[None, :, :], axis=2)
+    earlier_near = np.tril(distances < spacing, k=-1)  # row k: the frames before k within spacing
+    out[:, 2] = spacing * earlier_near.sum(axis=1)
     return out

@@ -28,6 +28,12 @@ from .panel import (
 
 ROOT = "/bras"
 GEOMETRIES = ("visual", "collision", "both")
+# Past this many visual triangles (Talos has 206k), a browser drawing WebGL on the CPU
+# (SwiftShader, a school laptop without a GPU driver) spends seconds a frame on the
+# image-based lighting and the shadow maps: such robots are lit by plain lights instead, with
+# no shadows, which looks nearly the same (issue 25: Talos's first frame in 3 s).
+HEAVY_TRIANGLES = 50_000
+DEFAULT_HDRI = "city"  # the environment map viser's page shows when none is configured
 # a slider's own number box (Mantine's, in the browser) reads "0,5" as 5 and knows no pi/2 nor
 # 90deg: hidden; the joint's text box below its slider reads typed values with the CLI's parser
 _HIDE_SLIDER_BOXES = "<style>.mantine-Slider-root + .mantine-NumberInput-root{display:none}</style>"
@@ -60,6 +66,8 @@ class Session:
         self._model_gui: list[Any] = []
         self._setting = False  # values being set from code: slider callbacks do nothing
         self._framed = False  # the camera is placed for this browser's canvas once it says its size
+        self._sent: np.ndarray | None = None  # the link poses the browser has, to send only changes
+        self._plain_light: Any = None  # the ambient light of a heavy robot (None: viser's lighting)
         self._build_panel()
         self.show_model(viewer.model)
         client.camera.on_update(self._camera_reported)
@@ -155,9 +163,11 @@ class Session:
                 handle.remove()
             self._frames, self._labels, self._visual_nodes, self._collision_nodes = [], [], [], []
             self._label_offsets = []
+            self._sent = None
             self._sliders, self._boxes, self._box_notes, self._model_gui = {}, {}, {}, []
             scene = self.client.scene
             self.model = model
+            heavy = self._light(model)
             names = [s.joint for s in model.sliders]
             self.values = {name: self.values.get(name, 0.0) for name in names}
             length = 0.12 * model.scale
@@ -175,13 +185,15 @@ class Session:
                 node = scene.add_mesh_simple(
                     f"{ROOT}/link{mesh.link}/visual{k}", mesh.vertices.astype(np.float32),
                     mesh.faces.astype(np.uint32), color=mesh.color,
-                    opacity=None if mesh.opacity >= 1.0 else mesh.opacity)
+                    opacity=None if mesh.opacity >= 1.0 else mesh.opacity,
+                    cast_shadow=not heavy, receive_shadow=not heavy)
                 node.on_click(lambda _event, link=mesh.link: self.select(model.tree.links[link]))
                 self._visual_nodes.append(node)
             for k, mesh in enumerate(model.collisions):
                 node = scene.add_mesh_simple(
                     f"{ROOT}/link{mesh.link}/collision{k}", mesh.vertices.astype(np.float32),
-                    mesh.faces.astype(np.uint32), color=mesh.color, opacity=mesh.opacity, visible=False)
+                    mesh.faces.astype(np.uint32), color=mesh.color, opacity=mesh.opacity, visible=False,
+                    cast_shadow=not heavy, receive_shadow=not heavy)
                 node.on_click(lambda _event, link=mesh.link: self.select(model.tree.links[link]))
                 self._collision_nodes.append(node)
             choices = tuple(model.tree.links)
@@ -201,6 +213,22 @@ class Session:
             self._apply_visibility()
             self.update()
         self.show_checks()
+
+    def _light(self, model: ViewModel) -> bool:
+        """Light ``model``: viser's own lighting (environment map, shadows), or for a heavy robot
+        plain lights and no shadows. Returns whether the robot is heavy."""
+        heavy = sum(len(mesh.faces) for mesh in model.visuals) > HEAVY_TRIANGLES
+        scene = self.client.scene
+        if heavy and self._plain_light is None:
+            scene.configure_environment_map(None)
+            scene.configure_default_lights(True, cast_shadow=False)
+            self._plain_light = scene.add_light_ambient(f"{ROOT}_ambient", intensity=1.0)
+        elif not heavy and self._plain_light is not None:
+            self._plain_light.remove()
+            self._plain_light = None
+            scene.configure_environment_map(DEFAULT_HDRI)
+            scene.configure_default_lights(True, cast_shadow=True)
+        return heavy
 
     def _add_joint(self, slider: Any) -> None:
         gui = self.client.gui
@@ -244,15 +272,22 @@ class Session:
         model = self.model
         poses = model.poses(self.values, self.fixed_frame)
         offsets = label_offsets(poses, 0.045 * model.scale)
-        with self.client.atomic():
-            for frame, pose in zip(self._frames, poses):
-                frame.position = pose[:3, 3]
-                frame.wxyz = wxyz(pose[:3, :3])
-            for k, (label, offset) in enumerate(zip(self._labels, offsets)):
-                local = tuple(float(v) for v in poses[k][:3, :3].T @ offset)
-                if not np.allclose(local, self._label_offsets[k], atol=1e-9):
-                    label.position = local
-                    self._label_offsets[k] = local  # type: ignore[assignment]
+        # each name's offset in its own link's frame: R^T @ offset, for every link at once
+        local = np.einsum("nji,nj->ni", poses[:, :3, :3], offsets)
+        moved = np.arange(len(poses)) if self._sent is None else \
+            np.flatnonzero(np.abs(poses - self._sent).max(axis=(1, 2)) > 1e-9)
+        with self.client.atomic():  # one message to the browser: the links move together
+            for k in moved:  # only the links that moved (one joint moves its subtree only)
+                frame = self._frames[k]
+                frame.position = poses[k, :3, 3]
+                frame.wxyz = wxyz(poses[k, :3, :3])
+            shifted = np.flatnonzero(np.abs(local - np.asarray(self._label_offsets).reshape(-1, 3)).max(axis=1) > 1e-9) \
+                if len(local) else ()
+            for k in shifted:
+                position = tuple(float(v) for v in local[k])
+                self._labels[k].position = position
+                self._label_offsets[k] = position  # type: ignore[assignment]
+        self._sent = poses
         self.last_update_ms = 1000 * (time.perf_counter() - start)
         self._readouts(poses)
 
