@@ -291,3 +291,20 @@ def test_patch_lean_forward_pass_draws_what_pyrenders_own_pass_draws():
     assert np.array_equal(pictures[True][0][0], color)
     assert np.array_equal(pictures[True][0][1], depth)
     assert np.array_equal(pictures[True][1][0], flat[0])
+
+
+def test_nodes_at_the_same_distance_are_drawn_in_the_order_of_their_names_not_of_their_addresses():
+    """A link's TF axes and its neighbours' sit at one distance from the camera: the order they
+    are drawn in decides which pixels win, so it must not hang on memory addresses."""
+    import numpy as np
+
+    from bras_kit.render._compat import _nodes_in_order
+
+    pyrender = _pyrender()
+    scene = pyrender.Scene()
+    triangle = pyrender.Primitive(positions=np.eye(3, dtype=np.float32), indices=np.array([[0, 1, 2]]))
+    names = ["000004", "000001", "000003", "000000", "000002"]
+    for name in names:  # made (and placed in memory) in another order than their names'
+        scene.add(pyrender.Mesh([triangle]), name=name)
+    ordered = [node.name for node, _ in _nodes_in_order(scene, np.array([0.0, 0.0, 5.0]))]
+    assert ordered == sorted(names)

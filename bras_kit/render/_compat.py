@@ -651,13 +651,16 @@ class _DirectCalls:
 
 def _nodes_in_order(scene, camera: np.ndarray) -> list[tuple[Any, np.ndarray]]:  # type: ignore[no-untyped-def]
     """The scene's mesh nodes, each with its pose (asked of the scene graph once), opaque ones
-    nearest ``camera`` first, then transparent ones farthest first (see :func:`draw_front_to_back`)."""
-    solid: list[tuple[float, int, Any, np.ndarray]] = []
-    clear: list[tuple[float, int, Any, np.ndarray]] = []
+    nearest ``camera`` first, then transparent ones farthest first (see :func:`draw_front_to_back`).
+    Nodes at the same distance (a link's TF axes and its target, say) keep the order of their
+    names, so the same scene gives the same picture in every process (not the order of their
+    memory addresses)."""
+    solid: list[tuple[float, str, int, Any, np.ndarray]] = []
+    clear: list[tuple[float, str, int, Any, np.ndarray]] = []
     for node in scene.mesh_nodes:
         pose = scene.get_pose(node)
         distance = float(np.linalg.norm(pose[:3, 3] - camera))
-        (clear if node.mesh.is_transparent else solid).append((distance, id(node), node, pose))
-    solid.sort(key=lambda item: item[:2])
-    clear.sort(key=lambda item: (-item[0], item[1]))
+        (clear if node.mesh.is_transparent else solid).append((distance, node.name or "", id(node), node, pose))
+    solid.sort(key=lambda item: item[:3])
+    clear.sort(key=lambda item: (-item[0], item[1], item[2]))
     return [(node, pose) for *_, node, pose in solid] + [(node, pose) for *_, node, pose in clear]

@@ -240,7 +240,7 @@ class PyrenderBackend:
             memo = self._renderer._bras_kit_meshes = _MeshMemo()
         self._scene = pyrender.Scene(bg_color=[c / 255.0 for c in background] + [1.0],
                                      ambient_light=[AMBIENT] * 3)
-        self._nodes = []
+        self._nodes: list[tuple[Any, int]] = []
         self._solids: list[Any] = []  # meshes hidden while the TF axes are drawn on top
         self._overlays: list[Any] = []  # TF axes and targets: drawn in a second pass, over the solids
         for (link, unlit), colours in _grouped(scene.parts).items():
@@ -254,7 +254,8 @@ class PyrenderBackend:
                     memo.put(key, mesh, [a for members in colours.values() for p in members
                                          for a in (p.vertices, p.faces)] + [a for pair in merged.values() for a in pair])
             mesh.is_visible = True
-            self._nodes.append((self._scene.add(mesh), link))
+            # named in order: nodes at the same distance are drawn in this order (see _compat._nodes_in_order)
+            self._nodes.append((self._scene.add(mesh, name=f"{len(self._nodes):06d}"), link))
             (self._overlays if unlit else self._solids).append(mesh)
         if scene.grid is not None:
             material = _emissive(pyrender, scene.grid.color)
