@@ -8,6 +8,7 @@ submission drawn by a process that drew nothing before."""
 
 from __future__ import annotations
 
+import contextlib
 import os
 import shutil
 import site
@@ -63,6 +64,26 @@ def fresh(monkeypatch):
     monkeypatch.setattr(scene, "_placed", {})
     monkeypatch.setattr(scene, "_placed_bytes", 0)
 
+
+
+@contextlib.contextmanager
+def _counted_uploads():
+    """The primitives pyrender (as bras-kit loads it) sends to OpenGL while the block runs."""
+    from bras_kit.render._compat import import_pyrender
+
+    primitive = import_pyrender().primitive.Primitive
+    uploads: list[object] = []
+    real = primitive._add_to_context
+
+    def counted(self):  # noqa: ANN001, ANN202
+        uploads.append(self)
+        return real(self)
+
+    primitive._add_to_context = counted
+    try:
+        yield uploads
+    finally:
+        primitive._add_to_context = real
 
 def test_copies_of_a_mesh_file_are_hashed_and_decoded_once_and_give_a_fresh_decode(fresh, tmp_path, monkeypatch):
     from bras_kit.meshes import cache, decode
@@ -131,7 +152,6 @@ def test_a_robot_drawn_after_others_is_the_one_drawn_alone_and_sends_its_meshes_
     """Without TF axes: pyrender breaks ties between axes at one distance by object address, so
     pictures with axes may differ in a few pixels from one process to another (before this too)."""
     from bras_kit.render import render_pose
-    from bras_kit.render._compat import import_pyrender
 
     first, second = _ur5_copy(tmp_path / "first"), _ur5_copy(tmp_path / "second")
     other = tmp_path / "other"
@@ -141,23 +161,12 @@ def test_a_robot_drawn_after_others_is_the_one_drawn_alone_and_sends_its_meshes_
                    check=True, timeout=300)
     wanted = np.load(tmp_path / "alone.npy")
 
-    pyrender = import_pyrender()  # as bras-kit loads it
-    uploads = []
-    real = pyrender.primitive.Primitive._add_to_context
-
-    def counted(self):  # noqa: ANN001, ANN202
-        uploads.append(self)
-        return real(self)
-
-    pyrender.primitive.Primitive._add_to_context = counted
-    try:
-        drawn = []
+    drawn = []
+    with _counted_uploads() as uploads:
         for urdf in (first / "ur5.urdf", second / "ur5.urdf", other / "two_tips.urdf", second / "ur5.urdf"):
             before = len(uploads)
             image = render_pose(load(str(urdf)), {}, size=(480, 360))
             drawn.append((len(uploads) - before, image))
-    finally:
-        pyrender.primitive.Primitive._add_to_context = real
     (first_uploads, _), (second_uploads, after_one), _, (_, after_other) = drawn
     assert np.array_equal(after_one, wanted)  # drawn with the buffers of the first learner's meshes
     assert np.array_equal(after_other, wanted)  # and after another robot made the renderer free them
@@ -168,29 +177,17 @@ def test_grading_a_class_sends_a_learners_copy_of_the_same_robot_once(fresh, tmp
     from bras_kit.grade.rubric import load_rubric
     from bras_kit.grade.submissions import Submission
     from bras_kit.grade.worker import Options, grade
-    from bras_kit.render._compat import import_pyrender
 
     pictures = tmp_path / "pictures"
     pictures.mkdir()
     learners = [(name, _ur5_copy(tmp_path / "class" / name)) for name in ("first", "second")]
-    pyrender = import_pyrender()
-    uploads = []
-    real = pyrender.primitive.Primitive._add_to_context
-
-    def counted(self):  # noqa: ANN001, ANN202
-        uploads.append(self)
-        return real(self)
-
-    pyrender.primitive.Primitive._add_to_context = counted
-    try:
-        counts, results = [], []
+    counts, results = [], []
+    with _counted_uploads() as uploads:
         for learner, folder in learners:
             before = len(uploads)
             results.append(grade(Submission(learner, str(folder), "folder"), load_rubric(None),
                                  Options(pictures=str(pictures))))
             counts.append(len(uploads) - before)
-    finally:
-        pyrender.primitive.Primitive._add_to_context = real
     assert [r["picture"] for r in results] == ["pictures/first.png", "pictures/second.png"]
     assert results[0]["items"] == results[1]["items"] and results[0]["findings"] == results[1]["findings"]
     assert counts[0] >= 7 + 1 and counts[1] == 1  # meshes and the TF axes once; then the ground grid only
