@@ -342,9 +342,12 @@ def test_ctrl_c_writes_the_report_of_what_was_finished(tmp_path):
 
     folder = tmp_path / "classe"
     folder.mkdir()
-    for k in range(200):  # long enough a batch (several seconds) to be interrupted in its middle
-        (folder / f"eleve{k:03d}.urdf").write_text(arm_urdf() if k % 2 else arm_urdf(wrist=True))
-    expected = {f"eleve{k:03d}": 13 if k % 2 else 16 for k in range(200)}
+    # a class far longer than the time between the third picture and the signal: 200 tutorial
+    # arms once took several seconds, and grading them was made fast enough to end first
+    first, wrist = arm_urdf(), arm_urdf(wrist=True)
+    for k in range(3000):
+        (folder / f"eleve{k:04d}.urdf").write_text(first if k % 2 else wrist)
+    expected = {f"eleve{k:04d}": 13 if k % 2 else 16 for k in range(3000)}
     out = tmp_path / "rapport"
     process = subprocess.Popen([sys.executable, "-m", "bras_kit", "grade", str(folder), "-o", str(out), "--jobs", "1"],
                                stdout=subprocess.PIPE, stderr=subprocess.PIPE, text=True, start_new_session=True)
