@@ -349,8 +349,11 @@ def test_ctrl_c_writes_the_report_of_what_was_finished(tmp_path):
         (folder / f"eleve{k:04d}.urdf").write_text(first if k % 2 else wrist)
     expected = {f"eleve{k:04d}": 13 if k % 2 else 16 for k in range(3000)}
     out = tmp_path / "rapport"
+    # SIGINT as a terminal leaves it: a test run started in the background (nohup, `cmd &` in a
+    # script) inherits it ignored, and Python then never turns it into KeyboardInterrupt
     process = subprocess.Popen([sys.executable, "-m", "bras_kit", "grade", str(folder), "-o", str(out), "--jobs", "1"],
-                               stdout=subprocess.PIPE, stderr=subprocess.PIPE, text=True, start_new_session=True)
+                               stdout=subprocess.PIPE, stderr=subprocess.PIPE, text=True, start_new_session=True,
+                               preexec_fn=lambda: signal.signal(signal.SIGINT, signal.SIG_DFL))
     deadline = time.monotonic() + 120
     # a third picture means the one worker has finished two learners (a picture is drawn before scoring)
     while time.monotonic() < deadline and len(list((out / "pictures").glob("*.png"))) < 3:
