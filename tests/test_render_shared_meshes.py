@@ -61,8 +61,7 @@ def fresh(monkeypatch):
     monkeypatch.setattr(meshes, "_by_content", {})
     monkeypatch.setattr(meshes, "_by_bytes", {})
     monkeypatch.setattr(meshes, "_disk", False)
-    monkeypatch.setattr(scene, "_placed", {})
-    monkeypatch.setattr(scene, "_placed_bytes", 0)
+    monkeypatch.setattr(scene, "_placed", scene.BoundedMemo(scene.PLACED_MEMORY_BYTES))
 
 
 

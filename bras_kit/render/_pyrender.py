@@ -36,6 +36,7 @@ from ._compat import (
     release_renderer,
     use_flat_shading,
 )
+from ._memo import BoundedMemo
 from .camera import AMBIENT, Camera
 from .scene import Scene
 
@@ -146,14 +147,6 @@ def _joined(members) -> tuple[np.ndarray, np.ndarray]:  # type: ignore[no-untype
     return vertices, faces.astype(np.uint32)
 
 
-def _merged(parts) -> dict[tuple[int, bool], dict[tuple[float, ...], tuple[np.ndarray, np.ndarray]]]:  # type: ignore[no-untyped-def]
-    """The parts grouped by link and lighting, then by colour, each group's triangles in one
-    vertex array (float32) and one index array (uint32): one scene node per link and one draw
-    call per colour, however many visuals and material pieces the link's meshes have."""
-    return {key: {color: _joined(members) for color, members in colours.items()}
-            for key, colours in _grouped(parts).items()}
-
-
 def _shared_key(builder: object, unlit: bool, colours) -> tuple[object, ...] | None:  # type: ignore[no-untyped-def]
     """What a link's group of parts is made of, by identity, when every array in it is a shared
     read-only one (the placed mesh pieces of :func:`scene.robot_parts`, the same objects for
@@ -171,33 +164,12 @@ def _frozen(array: object) -> bool:
     return isinstance(array, np.ndarray) and not array.flags.writeable
 
 
+# pyrender meshes kept with one OffscreenRenderer, by _shared_key, with the arrays their key names
+# (so an id in a key is never reused): a robot drawn again (the next learner of a class handing in
+# the same meshes, a reloaded file) reuses the mesh objects, already in the renderer's OpenGL
+# context, and uploads nothing. A mesh in no scene any more has its buffers freed by pyrender at
+# the next picture, and is uploaded again if it comes back.
 MESH_MEMORY_BYTES = 128 << 20  # vertex and index arrays of meshes kept with one renderer
-
-
-class _MeshMemo:
-    """pyrender meshes kept with one OffscreenRenderer, by :func:`_shared_key`: a robot drawn
-    again (the next learner of a class handing in the same meshes, a reloaded file) reuses the
-    mesh objects, so pyrender finds them already in its OpenGL context and uploads nothing.
-    A mesh drawn in no scene of the renderer any more has its buffers freed by pyrender at the
-    next picture, and is uploaded again if it comes back. The entries keep the arrays their key
-    names alive, so an identity in a key is never reused by another array."""
-
-    def __init__(self) -> None:
-        self._kept: dict[tuple[object, ...], tuple[Any, list[np.ndarray]]] = {}
-        self._bytes = 0
-
-    def get(self, key: tuple[object, ...]) -> Any:
-        kept = self._kept.get(key)
-        return None if kept is None else kept[0]
-
-    def put(self, key: tuple[object, ...], mesh: Any, arrays: list[np.ndarray]) -> None:
-        size = sum(a.nbytes for a in arrays)
-        if self._bytes + size > MESH_MEMORY_BYTES:
-            self._kept.clear()
-            self._bytes = 0
-        if size <= MESH_MEMORY_BYTES:
-            self._kept[key] = (mesh, arrays)
-            self._bytes += size
 
 
 def _emissive(pyrender, rgb: tuple[float, ...]):  # type: ignore[no-untyped-def]
@@ -237,7 +209,7 @@ class PyrenderBackend:
         self._finalizer = weakref.finalize(self, _POOL.give, self._key, self._renderer)
         memo = getattr(self._renderer, "_bras_kit_meshes", None)
         if memo is None:
-            memo = self._renderer._bras_kit_meshes = _MeshMemo()
+            memo = self._renderer._bras_kit_meshes = BoundedMemo(MESH_MEMORY_BYTES)
         self._scene = pyrender.Scene(bg_color=[c / 255.0 for c in background] + [1.0],
                                      ambient_light=[AMBIENT] * 3)
         self._nodes: list[tuple[Any, int]] = []
@@ -245,14 +217,16 @@ class PyrenderBackend:
         self._overlays: list[Any] = []  # TF axes and targets: drawn in a second pass, over the solids
         for (link, unlit), colours in _grouped(scene.parts).items():
             key = _shared_key(type(self)._primitive, unlit, colours)
-            mesh = memo.get(key) if key is not None else None
+            kept = memo.get(key) if key is not None else None
+            mesh = kept[0] if kept is not None else None
             if mesh is None:
                 merged = {color: _joined(members) for color, members in colours.items()}
                 mesh = pyrender.Mesh([self._primitive(pyrender, vertices, faces, color, unlit)
                                       for color, (vertices, faces) in merged.items()])
                 if key is not None:
-                    memo.put(key, mesh, [a for members in colours.values() for p in members
-                                         for a in (p.vertices, p.faces)] + [a for pair in merged.values() for a in pair])
+                    arrays = [a for members in colours.values() for p in members for a in (p.vertices, p.faces)] \
+                        + [a for pair in merged.values() for a in pair]
+                    memo.put(key, (mesh, arrays), sum(a.nbytes for a in arrays))
             mesh.is_visible = True
             # named in order: nodes at the same distance are drawn in this order (see _compat._nodes_in_order)
             self._nodes.append((self._scene.add(mesh, name=f"{len(self._nodes):06d}"), link))

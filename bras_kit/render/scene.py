@@ -12,7 +12,7 @@ import os
 import sys
 from collections.abc import Sequence
 from dataclasses import dataclass, field
-from typing import TYPE_CHECKING, NamedTuple
+from typing import NamedTuple
 
 import numpy as np
 
@@ -20,9 +20,7 @@ from ..errors import ModelError, XacroError
 from ..kinematics import TFTree, origin_matrix
 from ..message import M
 from ..model import Robot, Visual
-
-if TYPE_CHECKING:
-    from ..meshes import MeshData
+from ._memo import BoundedMemo
 
 DEFAULT_COLOR = (0.7, 0.7, 0.7, 1.0)  # a visual with no material, as RViz shows it
 GRID_COLOR = (0.78, 0.78, 0.78)
@@ -221,8 +219,7 @@ class PlacedPiece(NamedTuple):
 
 
 PLACED_MEMORY_BYTES = 128 << 20  # placed mesh pieces kept in this process (a class of the same robot)
-_placed: dict[tuple[int, tuple[float, ...], tuple[float, ...]], tuple[MeshData, list[PlacedPiece]]] = {}
-_placed_bytes = 0
+_placed = BoundedMemo(PLACED_MEMORY_BYTES)  # (id of MeshData, xyz, rpy) -> (that MeshData, its pieces)
 
 
 def _placed_visual(robot: Robot, visual: Visual, package_paths: Sequence[str] = ()):  # type: ignore[no-untyped-def]
@@ -230,7 +227,6 @@ def _placed_visual(robot: Robot, visual: Visual, package_paths: Sequence[str] = 
     are computed once per process: :func:`bras_kit.meshes.load_mesh` gives the same decoded
     object for the same bytes and scale (whatever the path), so a class of learners handing in
     the same meshes at the same origins share them. Primitives are built each time (cheap)."""
-    global _placed_bytes
     g = visual.geometry
     if g is None:
         return [], ()
@@ -246,13 +242,7 @@ def _placed_visual(robot: Robot, visual: Visual, package_paths: Sequence[str] = 
         return kept[1], data.issues
     pieces = [_piece(TriangleMesh(np.asarray(p.vertices, dtype=float), np.asarray(p.faces, dtype=np.int64))
                      .transformed(placed), p.color) for p in data.pieces()]
-    size = sum(p.mesh.vertices.nbytes + p.mesh.faces.nbytes for p in pieces)
-    if _placed_bytes + size > PLACED_MEMORY_BYTES:
-        _placed.clear()
-        _placed_bytes = 0
-    if size <= PLACED_MEMORY_BYTES:
-        _placed[key] = (data, pieces)
-        _placed_bytes += size
+    _placed.put(key, (data, pieces), sum(p.mesh.vertices.nbytes + p.mesh.faces.nbytes for p in pieces))
     return pieces, data.issues
 
 
@@ -261,7 +251,7 @@ def _piece(mesh: TriangleMesh, color: tuple[float, float, float, float] | None) 
     faces = np.asarray(mesh.faces, dtype=np.int64)
     for array in (vertices, faces):
         array.flags.writeable = False  # shared between scenes: nobody may change them in place
-    bounds = np.stack([vertices.min(axis=0), vertices.max(axis=0)]) if len(vertices) else np.zeros((2, 3))
+    bounds = _bounds(vertices) if len(vertices) else np.zeros((2, 3))
     bounds.flags.writeable = False
     return PlacedPiece(TriangleMesh(vertices, faces), color, bounds)
 
