@@ -88,7 +88,7 @@ def _dark_pixels(page) -> int:  # type: ignore[no-untyped-def]
 TALOS_DRAWN = 2500  # dark pixels once drawn (bras-kit about 17,000, ViserUrdf about 3,900); before, about 400
 
 
-def talos_first_frame(path: Path, package_root: str, runs: int = 3) -> dict[str, list[float]]:
+def talos_first_frame(path: Path, package_root: str, runs: int = 5) -> dict[str, list[float]]:
     """Seconds from starting each server (``bras-kit view FILE``, a ViserUrdf script) to Talos's
     meshes drawn in chromium; runs alternate so both see the same machine load."""
     import subprocess
@@ -326,7 +326,7 @@ def talos_targets() -> None:
         print("example-robot-data is not installed: pip install example-robot-data")
         return
     print(f"load: {' '.join(f'{v:.2f}' for v in os.getloadavg())} (1, 5, 15 min) on {os.cpu_count()} cores")
-    print("talos_full_v2: start -> meshes drawn in chromium (3 runs each, alternating)")
+    print("talos_full_v2: start -> meshes drawn in chromium (5 runs each, alternating)")
     for label, runs in talos_first_frame(*found).items():
         print(f"  {label:14s} median {statistics.median(runs):6.2f} s  best {min(runs):6.2f} s  "
               f"({', '.join(f'{v:.2f}' for v in runs)})")

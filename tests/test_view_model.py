@@ -372,3 +372,67 @@ def test_a_heavy_robot_is_lit_without_environment_map_nor_shadows_and_a_light_on
         assert "RemoveSceneNodeMessage" in kinds
         meshes = [m for m in sent if type(m).__name__ == "MeshMessage"]
         assert meshes and all(m.props.cast_shadow and m.props.receive_shadow for m in meshes)
+
+
+def _chain_urdf(links: int) -> str:
+    """A robot of ``links`` links in a row, each 0.1 m above the last on a revolute joint."""
+    body = "".join(f'<link name="l{k}"/>' for k in range(links))
+    body += "".join(f'<joint name="j{k}" type="revolute"><parent link="l{k}"/><child link="l{k + 1}"/>'
+                    f'<origin xyz="0 0 0.1"/><axis xyz="0 1 0"/>'
+                    f'<limit lower="-1" upper="1" effort="1" velocity="1"/></joint>' for k in range(links - 1))
+    return f'<?xml version="1.0"?><robot name="chaine">{body}</robot>'
+
+
+def _name_places(sent) -> dict:
+    """Where each frame name made in ``sent`` was last put (its offset in its link's frame;
+    a name never moved stays where it was made, at its link's origin)."""
+    places = {m.name: (0.0, 0.0, 0.0) for m in sent if type(m).__name__ == "LabelMessage"}
+    places.update({m.name: tuple(float(v) for v in np.round(m.position, 9)) for m in sent
+                   if type(m).__name__ == "SetPositionMessage" and m.name in places})
+    return places
+
+
+def test_a_robot_of_many_links_starts_without_frame_names_and_gets_them_when_ticked(tmp_path, monkeypatch):
+    import bras_kit.view.session as session_module
+    from bras_kit.view import Source, Viewer
+    from bras_kit.view.session import MANY_LINKS
+
+    links = MANY_LINKS + 10
+    path = tmp_path / "chaine.urdf"
+    path.write_text(_chain_urdf(links))
+    with Viewer(Source(path=str(path)), port=_free_port(), watch=False) as viewer:
+        sent = _record_messages(viewer.server.scene)
+        session = _session(viewer)
+        assert session.show_names.value is False
+        assert not [m for m in sent if type(m).__name__ == "LabelMessage"]  # no names made at all
+        frames = {m.name for m in sent if type(m).__name__ == "FrameMessage" and m.props.show_axes}
+        assert frames == {f"/bras/link{k}" for k in range(links)}  # the TF axes are there
+        sent.clear()
+        session.show_names.value = True  # the learner ticks "Frame names"
+        labels = [m for m in sent if type(m).__name__ == "LabelMessage"]
+        assert sorted(m.props.text for m in labels) == sorted(f"l{k}" for k in range(links))
+        assert {m.name for m in labels} == {f"/bras/link{k}/name" for k in range(links)}
+        late = _name_places(sent)
+        sent.clear()
+        session.show_model(viewer.model)  # a reload keeps the learner's choice
+        assert len([m for m in sent if type(m).__name__ == "LabelMessage"]) == links
+        # names made late are placed as a browser that had them from the start places them
+        monkeypatch.setattr(session_module, "MANY_LINKS", links)
+        sent.clear()
+        early = _session(viewer)
+        assert early.show_names.value is True
+        assert _name_places(sent) == late
+        assert any(place != (0.0, 0.0, 0.0) for place in late.values())  # the stacked ones moved
+
+
+def test_the_tutorial_arm_shows_its_frame_names_from_the_start():
+    from bras_kit.authoring import arm
+    from bras_kit.view import Source, Viewer
+
+    with Viewer(Source(robot=arm(wrist=True)), port=_free_port(), watch=False) as viewer:
+        sent = _record_messages(viewer.server.scene)
+        session = _session(viewer)
+        assert session.show_names.value is True
+        names = sorted(m.props.text for m in sent if type(m).__name__ == "LabelMessage")
+        assert names == sorted(viewer.model.tree.links)
+        assert {"base", "bras", "avant_bras"} <= set(names)

@@ -33,6 +33,10 @@ GEOMETRIES = ("visual", "collision", "both")
 # image-based lighting and the shadow maps: such robots are lit by plain lights instead, with
 # no shadows, which looks nearly the same (issue 25: Talos's first frame in 3 s).
 HEAVY_TRIANGLES = 50_000
+# Past this many links (Talos has 60) the frame names start hidden, and are made only once the
+# learner ticks "Frame names": sixty names stack into an unreadable column over the robot, and
+# their text atlas and shader cost a CPU-drawn browser about 0.8 s before the robot shows.
+MANY_LINKS = 20
 DEFAULT_HDRI = "city"  # the environment map viser's page shows when none is configured
 # a slider's own number box (Mantine's, in the browser) reads "0,5" as 5 and knows no pi/2 nor
 # 90deg: hidden; the joint's text box below its slider reads typed values with the CLI's parser
@@ -68,6 +72,7 @@ class Session:
         self._framed = False  # the camera is placed for this browser's canvas once it says its size
         self._sent: np.ndarray | None = None  # the link poses the browser has, to send only changes
         self._plain_light: Any = None  # the ambient light of a heavy robot (None: viser's lighting)
+        self._names_chosen = False  # "Frame names" set for the first model; later models keep it
         self._build_panel()
         self.show_model(viewer.model)
         client.camera.on_update(self._camera_reported)
@@ -174,13 +179,16 @@ class Session:
             self.grid = scene.add_grid(f"{ROOT}/grid", width=4 * model.scale, height=4 * model.scale,
                                        cell_size=_nice(model.scale / 5), section_size=_nice(model.scale))
             self._model_gui.append(self.grid)
-            for index, link in enumerate(model.tree.links):
+            for index in range(len(model.tree.links)):
                 frame = scene.add_frame(f"{ROOT}/link{index}", axes_length=length, axes_radius=length / 22,
                                         origin_radius=length / 10)
                 self._frames.append(frame)
-                self._labels.append(scene.add_label(f"{ROOT}/link{index}/name", link, font_screen_scale=0.8,
-                                                    anchor="bottom-left"))
-                self._label_offsets.append((0.0, 0.0, 0.0))
+            if not self._names_chosen:
+                self._names_chosen = True
+                few = len(model.tree.links) <= MANY_LINKS
+                if bool(self.show_names.value) != few:
+                    self.show_names.value = few
+            self._make_labels()
             for k, mesh in enumerate(model.visuals):
                 node = scene.add_mesh_simple(
                     f"{ROOT}/link{mesh.link}/visual{k}", mesh.vertices.astype(np.float32),
@@ -213,6 +221,16 @@ class Session:
             self._apply_visibility()
             self.update()
         self.show_checks()
+
+    def _make_labels(self) -> None:
+        """The frame names, made the first time they are to be shown."""
+        if self._labels or not self.show_names.value:
+            return
+        scene = self.client.scene
+        for index, link in enumerate(self.model.tree.links):
+            self._labels.append(scene.add_label(f"{ROOT}/link{index}/name", link, font_screen_scale=0.8,
+                                                anchor="bottom-left"))
+            self._label_offsets.append((0.0, 0.0, 0.0))
 
     def _light(self, model: ViewModel) -> bool:
         """Light ``model``: viser's own lighting (environment map, shadows), or for a heavy robot
@@ -282,7 +300,7 @@ class Session:
                 frame.position = poses[k, :3, 3]
                 frame.wxyz = wxyz(poses[k, :3, :3])
             shifted = np.flatnonzero(np.abs(local - np.asarray(self._label_offsets).reshape(-1, 3)).max(axis=1) > 1e-9) \
-                if len(local) else ()
+                if len(local) and self._labels else ()
             for k in shifted:
                 position = tuple(float(v) for v in local[k])
                 self._labels[k].position = position
@@ -426,7 +444,11 @@ class Session:
 
     # -- display toggles ---------------------------------------------------------------------
     def _apply_visibility(self) -> None:
-        with self.client.atomic():
+        with self._lock, self.client.atomic():
+            if self.show_names.value and not self._labels:
+                self._make_labels()
+                self._sent = None  # the new names get their places in the update below
+                self.update()
             for node in self._visual_nodes:
                 node.visible = bool(self.show_visual.value)
             for node in self._collision_nodes:
