@@ -392,7 +392,7 @@ def _name_places(sent) -> dict:
     return places
 
 
-def test_a_robot_of_many_links_starts_without_frame_names_and_gets_them_when_ticked(tmp_path, monkeypatch):
+def test_a_robot_of_many_links_starts_without_tf_axes_nor_names_and_gets_them_when_ticked(tmp_path, monkeypatch):
     import bras_kit.view.session as session_module
     from bras_kit.view import Source, Viewer
     from bras_kit.view.session import MANY_LINKS
@@ -403,10 +403,16 @@ def test_a_robot_of_many_links_starts_without_frame_names_and_gets_them_when_tic
     with Viewer(Source(path=str(path)), port=_free_port(), watch=False) as viewer:
         sent = _record_messages(viewer.server.scene)
         session = _session(viewer)
-        assert session.show_names.value is False
+        assert session.show_names.value is False and session.show_frames.value is False
         assert not [m for m in sent if type(m).__name__ == "LabelMessage"]  # no names made at all
-        frames = {m.name for m in sent if type(m).__name__ == "FrameMessage" and m.props.show_axes}
-        assert frames == {f"/bras/link{k}" for k in range(links)}  # the TF axes are there
+        frames = {m.name: m.props.show_axes for m in sent if type(m).__name__ == "FrameMessage"}
+        assert {name for name in frames if name.startswith("/bras/link")} == {f"/bras/link{k}" for k in range(links)}
+        assert not any(frames.values())  # every link's frame is there, its axes hidden
+        sent.clear()
+        session.show_frames.value = True  # the learner ticks "TF frames (axes)"
+        shown = {m.name for m in sent if type(m).__name__ == "SceneNodeUpdateMessage" and m.updates.get("show_axes")}
+        assert shown == {f"/bras/link{k}" for k in range(links)}
+        assert not [m for m in sent if type(m).__name__ == "LabelMessage"]  # the names are another box
         sent.clear()
         session.show_names.value = True  # the learner ticks "Frame names"
         labels = [m for m in sent if type(m).__name__ == "LabelMessage"]
@@ -420,19 +426,20 @@ def test_a_robot_of_many_links_starts_without_frame_names_and_gets_them_when_tic
         monkeypatch.setattr(session_module, "MANY_LINKS", links)
         sent.clear()
         early = _session(viewer)
-        assert early.show_names.value is True
+        assert early.show_names.value is True and early.show_frames.value is True
         assert _name_places(sent) == late
         assert any(place != (0.0, 0.0, 0.0) for place in late.values())  # the stacked ones moved
 
 
-def test_the_tutorial_arm_shows_its_frame_names_from_the_start():
+def test_the_tutorial_arm_shows_its_tf_axes_and_frame_names_from_the_start():
     from bras_kit.authoring import arm
     from bras_kit.view import Source, Viewer
 
     with Viewer(Source(robot=arm(wrist=True)), port=_free_port(), watch=False) as viewer:
         sent = _record_messages(viewer.server.scene)
         session = _session(viewer)
-        assert session.show_names.value is True
+        assert session.show_names.value is True and session.show_frames.value is True
+        assert all(m.props.show_axes for m in sent if type(m).__name__ == "FrameMessage" and m.name.startswith("/bras/link"))
         names = sorted(m.props.text for m in sent if type(m).__name__ == "LabelMessage")
         assert names == sorted(viewer.model.tree.links)
         assert {"base", "bras", "avant_bras"} <= set(names)

@@ -33,9 +33,10 @@ GEOMETRIES = ("visual", "collision", "both")
 # image-based lighting and the shadow maps: such robots are lit by plain lights instead, with
 # no shadows, which looks nearly the same (issue 25: Talos's first frame in 3 s).
 HEAVY_TRIANGLES = 50_000
-# Past this many links (Talos has 60) the frame names start hidden, and are made only once the
-# learner ticks "Frame names": sixty names stack into an unreadable column over the robot, and
-# their text atlas and shader cost a CPU-drawn browser about 0.8 s before the robot shows.
+# Past this many links (Talos has 60) the TF axes and the frame names start hidden: sixty of
+# each bristle over a humanoid and hide it. The names are made only once the learner ticks
+# "Frame names". A browser drawing on the CPU shows the robot sooner (Talos: their text atlas
+# and shaders cost it about 0.75 s, the axes 0.3 s).
 MANY_LINKS = 20
 DEFAULT_HDRI = "city"  # the environment map viser's page shows when none is configured
 # a slider's own number box (Mantine's, in the browser) reads "0,5" as 5 and knows no pi/2 nor
@@ -72,7 +73,8 @@ class Session:
         self._framed = False  # the camera is placed for this browser's canvas once it says its size
         self._sent: np.ndarray | None = None  # the link poses the browser has, to send only changes
         self._plain_light: Any = None  # the ambient light of a heavy robot (None: viser's lighting)
-        self._names_chosen = False  # "Frame names" set for the first model; later models keep it
+        self._building = False  # a model being drawn: the display boxes' callbacks wait
+        self._tf_chosen = False  # "TF frames" and "Frame names" set for the first model; later models keep them
         self._build_panel()
         self.show_model(viewer.model)
         client.camera.on_update(self._camera_reported)
@@ -179,15 +181,20 @@ class Session:
             self.grid = scene.add_grid(f"{ROOT}/grid", width=4 * model.scale, height=4 * model.scale,
                                        cell_size=_nice(model.scale / 5), section_size=_nice(model.scale))
             self._model_gui.append(self.grid)
-            for index in range(len(model.tree.links)):
-                frame = scene.add_frame(f"{ROOT}/link{index}", axes_length=length, axes_radius=length / 22,
-                                        origin_radius=length / 10)
-                self._frames.append(frame)
-            if not self._names_chosen:
-                self._names_chosen = True
+            if not self._tf_chosen:
+                self._tf_chosen = True
                 few = len(model.tree.links) <= MANY_LINKS
-                if bool(self.show_names.value) != few:
-                    self.show_names.value = few
+                self._building = True  # the boxes' callbacks wait for the frames, made below
+                try:
+                    for box in (self.show_frames, self.show_names):
+                        if bool(box.value) != few:
+                            box.value = few
+                finally:
+                    self._building = False
+            for index in range(len(model.tree.links)):
+                frame = scene.add_frame(f"{ROOT}/link{index}", bool(self.show_frames.value), axes_length=length,
+                                        axes_radius=length / 22, origin_radius=length / 10)
+                self._frames.append(frame)
             self._make_labels()
             for k, mesh in enumerate(model.visuals):
                 node = scene.add_mesh_simple(
@@ -444,6 +451,8 @@ class Session:
 
     # -- display toggles ---------------------------------------------------------------------
     def _apply_visibility(self) -> None:
+        if self._building:
+            return
         with self._lock, self.client.atomic():
             if self.show_names.value and not self._labels:
                 self._make_labels()
