@@ -73,8 +73,6 @@ class Session:
         self._framed = False  # the camera is placed for this browser's canvas once it says its size
         self._sent: np.ndarray | None = None  # the link poses the browser has, to send only changes
         self._plain_light: Any = None  # the ambient light of a heavy robot (None: viser's lighting)
-        self._building = False  # a model being drawn: the display boxes' callbacks wait
-        self._tf_chosen = False  # "TF frames" and "Frame names" set for the first model; later models keep them
         self._build_panel()
         self.show_model(viewer.model)
         client.camera.on_update(self._camera_reported)
@@ -119,9 +117,10 @@ class Session:
             geometry = self.viewer.geometry
             self.show_visual = gui.add_checkbox(s(M("Visual geometry")), geometry in ("visual", "both"))
             self.show_collision = gui.add_checkbox(s(M("Collision geometry")), geometry in ("collision", "both"))
-            self.show_frames = gui.add_checkbox(s(M("TF frames (axes)")), True)
+            few = len(self.viewer.model.tree.links) <= MANY_LINKS  # later models keep the learner's choice
+            self.show_frames = gui.add_checkbox(s(M("TF frames (axes)")), few)
             self.legend = gui.add_html(axes_legend(self.lang))
-            self.show_names = gui.add_checkbox(s(M("Frame names")), True)
+            self.show_names = gui.add_checkbox(s(M("Frame names")), few)
             self.show_grid = gui.add_checkbox(s(M("Grid")), True)
             self.fixed = gui.add_dropdown(s(M("Fixed Frame")), ("-",), initial_value="-")
         for handle in (self.show_visual, self.show_collision, self.show_frames, self.show_names, self.show_grid):
@@ -181,16 +180,6 @@ class Session:
             self.grid = scene.add_grid(f"{ROOT}/grid", width=4 * model.scale, height=4 * model.scale,
                                        cell_size=_nice(model.scale / 5), section_size=_nice(model.scale))
             self._model_gui.append(self.grid)
-            if not self._tf_chosen:
-                self._tf_chosen = True
-                few = len(model.tree.links) <= MANY_LINKS
-                self._building = True  # the boxes' callbacks wait for the frames, made below
-                try:
-                    for box in (self.show_frames, self.show_names):
-                        if bool(box.value) != few:
-                            box.value = few
-                finally:
-                    self._building = False
             for index in range(len(model.tree.links)):
                 frame = scene.add_frame(f"{ROOT}/link{index}", bool(self.show_frames.value), axes_length=length,
                                         axes_radius=length / 22, origin_radius=length / 10)
@@ -451,13 +440,10 @@ class Session:
 
     # -- display toggles ---------------------------------------------------------------------
     def _apply_visibility(self) -> None:
-        if self._building:
-            return
         with self._lock, self.client.atomic():
             if self.show_names.value and not self._labels:
                 self._make_labels()
-                self._sent = None  # the new names get their places in the update below
-                self.update()
+                self.update()  # places the new names
             for node in self._visual_nodes:
                 node.visible = bool(self.show_visual.value)
             for node in self._collision_nodes:
