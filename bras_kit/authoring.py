@@ -196,11 +196,12 @@ _BANNER = re.compile(r"<!-- =+ -->\s*<!-- \|.*?\| -->\s*<!-- \|.*?\| -->\s*<!-- 
 
 def arm_urdf(*, wrist: bool = False, inertials: bool = False, params: Mapping[str, object] | None = None,
              collisions: bool = False, root_inertial: bool = True, lang: str | None = None,
-             header: str | None = None) -> str:
+             header: str | None = None, world_anchor: bool = False) -> str:
     """URDF text of the tutorial arm, optionally with the wrist, inertials, collision shapes and changed parameters.
 
     ``inertials`` brings the collision shapes too (physics needs both); ``root_inertial=False``
-    leaves the root link without one, as robot_state_publisher's KDL parser prefers. The
+    leaves the base without one, as robot_state_publisher's KDL parser prefers for the root;
+    ``world_anchor`` makes a ``world`` link the root, with the base fixed to it. The
     comments are in ``lang`` (default: the current language); ``header``, if given, replaces
     the first one, which otherwise names the options that made the file.
     """
@@ -209,7 +210,7 @@ def arm_urdf(*, wrist: bool = False, inertials: bool = False, params: Mapping[st
     lang = lang or current_language()
     mappings = normalise_parameters(params or {})
     mappings.update(wrist=str(wrist).lower(), inertials=str(inertials).lower(), collisions=str(collisions).lower(),
-                    base_inertial=str(root_inertial).lower())
+                    base_inertial=str(root_inertial).lower(), world_anchor=str(world_anchor).lower())
     text = localise_comments(_expand_template(mappings), lang)
     if header is None:
         options = [f for f, on in (("wrist", wrist), ("inertials", inertials),

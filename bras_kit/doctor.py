@@ -214,6 +214,37 @@ def check_mesh_cache() -> Check:
     return Check(M("mesh cache"), OK, found)
 
 
+def check_containment() -> Check:
+    """The walls around code bras-kit did not write (:mod:`bras_kit.ros.contain`): a small
+    function run inside them must find itself alone (pid 1) and /tmp read-only."""
+    import errno
+    import tempfile
+
+    from .ros.contain import Containment, available
+    from .sandbox import run_limited
+
+    status = available()
+    if not status.ok:
+        return Check(M("containment"), NOTE, M("none: {found}", found=status.found),
+                     M("{how}; until then 'run' runs your own nodes without walls and 'grade --run-nodes' "
+                       "refuses", how=status.how))
+    with tempfile.TemporaryDirectory(prefix="bras-kit-doctor-") as workdir:
+        pid, refused = run_limited(_inside_walls, contain=Containment(workdir), wall_seconds=20.0)
+    if pid != 1 or refused != errno.EROFS:
+        return Check(M("containment"), FAIL, M("the walls leak: pid {pid}, a write in /tmp gave errno {errno}",
+                                               pid=pid, errno=refused),
+                     M("this is a bug in bras-kit; run again with BRAS_KIT_DEBUG=1 and report it"))
+    return Check(M("containment"), OK, status.found)
+
+
+def _inside_walls() -> tuple[int, int]:
+    try:
+        open("/tmp/bras-kit-doctor-probe", "w").close()
+    except OSError as exc:
+        return os.getpid(), exc.errno or 0
+    return os.getpid(), 0
+
+
 CHECKS: list[Callable[[], Check]] = [
     check_versions,
     check_opengl,
@@ -222,6 +253,7 @@ CHECKS: list[Callable[[], Check]] = [
     check_browser,
     check_cache,
     check_mesh_cache,
+    check_containment,
 ]
 
 

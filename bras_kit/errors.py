@@ -3,6 +3,7 @@
 from __future__ import annotations
 
 import errno
+from collections.abc import Sequence
 
 from .message import M, Mc, Message
 
@@ -58,10 +59,23 @@ class XMLSyntaxError(BrasKitError):
     open and its line, where the reader stopped...), without the "not well-formed XML" words."""
 
     detail: Message | None = None
+    fix: Message | None = None  # what to do, when the cause is known (a character pasted from elsewhere)
 
 
 class ModelError(BrasKitError):
     """The robot description cannot be used as a tree (missing links, cycles, unknown names...)."""
+
+
+class UnusableModelError(ModelError):
+    """The model holds values a command would compute with but the reader could not use (nan, inf,
+    text, a zero axis...). ``findings`` are the validator's own; the command exits 1, as
+    ``bras-kit validate`` does on errors."""
+
+    exit_code = 1
+
+    def __init__(self, message: Message | str, findings: Sequence[object], **where: object) -> None:
+        super().__init__(message, **where)  # type: ignore[arg-type]
+        self.findings = findings
 
 
 class XacroError(BrasKitError):

@@ -127,8 +127,14 @@ def say_error(error: Any, lang: str | None = None, *, with_hint: bool = True) ->
     if getattr(error, "element", None):
         text += " " + say(M("(in <{element}>)", element=error.element), lang)
     if with_hint and getattr(error, "hint", None):
-        text += f"\n  {say(M('hint'), lang)}: {say(error.hint, lang)}"
+        text += "\n  " + labelled(M("hint"), say(error.hint, lang), lang)
     return text
+
+
+def labelled(label: Message | str, text: str, lang: str | None = None) -> str:
+    """``label: text`` (``warning: ...``, ``hint: ...``): the colon is a word of the catalog, so
+    French puts its space before it."""
+    return say(M("{label}: {text}", label=label, text=text), lang or current_language())
 
 
 def domains() -> list[str]:

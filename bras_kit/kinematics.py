@@ -200,10 +200,12 @@ class TFTree:
 
 
 def _unit(axis: Sequence[float]) -> np.ndarray:
+    """The axis as a unit vector; NaN for a zero, unreadable or non-finite axis (never a default
+    direction in place of the one written: a command refuses such a model first, BK204-BK207)."""
     vector = np.asarray(axis, dtype=float)
-    norm = float(np.linalg.norm(vector))
+    norm = math.hypot(*vector.tolist())  # no overflow for 1e308, no underflow for denormals
     if norm == 0.0 or not math.isfinite(norm):
-        return np.array([1.0, 0.0, 0.0])
+        return np.full(3, math.nan)
     return vector / norm
 
 

@@ -39,6 +39,8 @@ DOMAINS: tuple[tuple[str, str], ...] = (
     ("bras_kit.scaffold", "package"),
     ("bras_kit.run", "run"),
     ("bras_kit.bags", "bags"),
+    ("bras_kit.ros", "ros"),
+    ("bras_kit.exercises", "exercises"),
 )
 DEFAULT_DOMAIN = "cli"
 MAX_LISTED = 8  # names shown in a list before "... (+N)"

@@ -1,9 +1,12 @@
 """The robot as data: links, joints, origins, limits, inertials and materials, each with its source line.
 
-Parsing is lenient on purpose: a malformed attribute becomes ``None`` plus an :class:`Issue`
-on the robot, so that the validator can report every problem at once and nothing crashes.
-Code that needs a usable tree (kinematics, rendering) calls :func:`bras_kit.kinematics.tf_tree`,
-which raises a clear :class:`~bras_kit.errors.ModelError` instead.
+Parsing is lenient on purpose: a number that cannot be used (text, a decimal comma, nan, inf,
+the wrong count) is kept as NaN -- never replaced by a default -- and recorded as an
+:class:`Issue` (its line, element, attribute, text and what it is for), so that the validator can
+report every problem at once and nothing crashes. A missing attribute is ``None`` (or the URDF's
+default where URDF has one). Commands that compute with the model refuse it first with the
+validator's own finding (:mod:`bras_kit.validate.usable`); code that needs a usable tree calls
+:func:`bras_kit.kinematics.tf_tree`, which raises a clear :class:`~bras_kit.errors.ModelError`.
 """
 
 from __future__ import annotations
@@ -20,6 +23,13 @@ JOINT_TYPES = ("revolute", "continuous", "prismatic", "fixed", "floating", "plan
 MOVABLE_TYPES = ("revolute", "continuous", "prismatic")
 GEOMETRY_KINDS = ("box", "cylinder", "sphere", "mesh")
 XACRO_NAMESPACE_PREFIX = "xacro:"
+# What a value is for: ``kinematics`` (a joint's origin, axis, mimic), ``limits`` (<limit>),
+# ``dynamics`` (<dynamics>), ``visual`` (a visual's origin, shape, colour; named materials),
+# ``collision``, ``inertial``, ``safety`` (<safety_controller>).
+PARTS = ("kinematics", "limits", "dynamics", "visual", "collision", "inertial", "safety")
+# A number written but unusable (text, a decimal comma, nan, inf) is kept as NaN, never replaced by
+# a default: whatever is computed from it is NaN too, and the robot's issues say where it was.
+UNREADABLE = math.nan
 
 
 @dataclass
@@ -28,6 +38,8 @@ class Issue:
 
     kind: ``missing_attribute``, ``bad_number``, ``non_finite``, ``unexpanded_xacro``,
     ``unknown_geometry``, ``root_not_robot``, ``late_xml_declaration``.
+    ``part`` says what the value is for, so that a command can tell whether it needs it (see
+    :data:`PARTS`); "" for issues about the file or the robot as a whole.
     """
 
     kind: str
@@ -36,6 +48,7 @@ class Issue:
     name: str | None
     attribute: str | None = None
     value: str | None = None
+    part: str = ""
 
 
 @dataclass
@@ -89,7 +102,8 @@ class Inertial:
     line: int | None = None
 
     def matrix(self) -> list[list[float]]:
-        i = {k: (v if v is not None else 0.0) for k, v in self.inertia.items()}
+        """The inertia tensor; a value missing from <inertia> (which urdfdom refuses) is NaN."""
+        i = {k: (v if v is not None else UNREADABLE) for k, v in self.inertia.items()}
         return [
             [i["ixx"], i["ixy"], i["ixz"]],
             [i["ixy"], i["iyy"], i["iyz"]],
@@ -147,7 +161,7 @@ class Joint:
     parent: str | None
     child: str | None
     origin: Origin = field(default_factory=Origin)
-    axis: Vec3 | None = None  # None: not written (URDF default is 1 0 0)
+    axis: Vec3 | None = None  # None: not written (URDF default is 1 0 0); NaN: written, unusable
     limit: Limit | None = None
     mimic: Mimic | None = None
     line: int | None = None
@@ -161,10 +175,17 @@ class Joint:
 
     @property
     def axis_or_default(self) -> Vec3:
-        return self.axis if self.axis is not None else (1.0, 0.0, 0.0)
+        """The axis as written, URDF's 1 0 0 when there is no <axis>; NaN when an <axis> is written
+        without a usable xyz (never a default in place of what the learner wrote)."""
+        if self.axis is not None:
+            return self.axis
+        if self.axis_line is not None:
+            return (UNREADABLE, UNREADABLE, UNREADABLE)
+        return (1.0, 0.0, 0.0)
 
     def bounds(self) -> tuple[float, float]:
-        """Position bounds; unbounded for continuous joints and missing limits."""
+        """Position bounds; unbounded for continuous joints and missing limits; a bound not written
+        is URDF's 0; a bound written but unusable is NaN (so nothing is ever "within" it)."""
         if self.type == "continuous" or self.limit is None:
             return (-math.inf, math.inf)
         lower = self.limit.lower if self.limit.lower is not None else 0.0
@@ -245,10 +266,11 @@ class _Reader:
 
     def __init__(self, robot: Robot) -> None:
         self.robot = robot
+        self.part = ""  # what the values being read are for (see PARTS)
 
     def issue(self, kind: str, node: Node, name: str | None, attribute: str | None = None,
               value: str | None = None) -> None:
-        self.robot.issues.append(Issue(kind, node.line, node.tag, name, attribute, value))
+        self.robot.issues.append(Issue(kind, node.line, node.tag, name, attribute, value, self.part))
 
     def text(self, node: Node, attribute: str, owner: str | None, required: bool = True) -> str | None:
         value = node.get(attribute)
@@ -264,12 +286,9 @@ class _Reader:
                 self.issue("missing_attribute", node, owner, attribute)
             return None
         values = parse_numbers(raw)
-        if values is None:
+        if values is None or len(values) != count:
             self.issue("bad_number", node, owner, attribute, raw)
-            return None
-        if len(values) != count:
-            self.issue("bad_number", node, owner, attribute, raw)
-            return None
+            return (UNREADABLE,) * count
         if not all(math.isfinite(v) for v in values):
             self.issue("non_finite", node, owner, attribute, raw)
         return values
@@ -282,7 +301,7 @@ class _Reader:
     def origin(self, node: Node | None, owner: str | None) -> Origin:
         if node is None:
             return Origin()
-        xyz = self.floats(node, "xyz", 3, owner) or (0.0, 0.0, 0.0)
+        xyz = self.floats(node, "xyz", 3, owner) or (0.0, 0.0, 0.0)  # the URDF default when not written
         rpy = self.floats(node, "rpy", 3, owner) or (0.0, 0.0, 0.0)
         return Origin(xyz, rpy, node.line)  # type: ignore[arg-type]
 
@@ -341,6 +360,7 @@ class _Reader:
         name = self.text(node, "name", None)
         link = Link(name, line=node.line)
         for v in node.findall("visual"):
+            self.part = "visual"
             link.visuals.append(Visual(
                 self.origin(v.find("origin"), name),
                 self.geometry(v.find("geometry"), name),
@@ -349,16 +369,20 @@ class _Reader:
                 v.line,
             ))
         for c in node.findall("collision"):
+            self.part = "collision"
             link.collisions.append(Collision(
                 self.origin(c.find("origin"), name),
                 self.geometry(c.find("geometry"), name),
                 c.get("name"),
                 c.line,
             ))
+        self.part = "inertial"
         link.inertial = self.inertial(node.find("inertial"), name)
+        self.part = ""
         return link
 
     def joint(self, node: Node) -> Joint:
+        self.part = "kinematics"
         name = self.text(node, "name", None)
         joint_type = self.text(node, "type", name)
         parent_node, child_node = node.find("parent"), node.find("child")
@@ -376,6 +400,7 @@ class _Reader:
             joint.axis_line = axis_node.line
         limit_node = node.find("limit")
         if limit_node is not None:
+            self.part = "limits"
             joint.limit = Limit(
                 self.number(limit_node, "lower", name),
                 self.number(limit_node, "upper", name),
@@ -385,6 +410,7 @@ class _Reader:
             )
         mimic_node = node.find("mimic")
         if mimic_node is not None:
+            self.part = "kinematics"
             multiplier = self.number(mimic_node, "multiplier", name)
             offset = self.number(mimic_node, "offset", name)
             joint.mimic = Mimic(
@@ -395,11 +421,13 @@ class _Reader:
             )
         dynamics_node = node.find("dynamics")
         if dynamics_node is not None:
+            self.part = "dynamics"
             joint.dynamics = Dynamics(self.number(dynamics_node, "damping", name),
                                       self.number(dynamics_node, "friction", name), dynamics_node.line)
         safety_node = node.find("safety_controller")
         if safety_node is not None:
             joint.safety = SafetyController(dict(safety_node.attrib), safety_node.line)
+        self.part = ""
         return joint
 
 
@@ -409,7 +437,8 @@ def robot_from_xml(root: Node, path: str | None = None, source_text: str | None 
                   source_text=source_text)
     reader = _Reader(robot)
     if root.late_declaration is not None:
-        robot.issues.append(Issue("late_xml_declaration", root.late_declaration, "?xml", None, None, None))
+        robot.issues.append(Issue("late_xml_declaration", root.late_declaration, "?xml", None, None,
+                                  root.late_declaration_after))
     if root.tag != "robot":
         reader.issue("root_not_robot", root, None, None, root.tag)
         return robot
@@ -419,11 +448,13 @@ def robot_from_xml(root: Node, path: str | None = None, source_text: str | None 
         ):
             reader.issue("unexpanded_xacro", node, node.get("name"), None, node.tag)
     for node in root.children:
+        reader.part = ""
         if node.tag == "link":
             robot.links.append(reader.link(node))
         elif node.tag == "joint":
             robot.joints.append(reader.joint(node))
         elif node.tag == "material":
+            reader.part = "visual"
             material = reader.material(node, node.get("name"))
             if material is not None:
                 robot.materials.append(material)

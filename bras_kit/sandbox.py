@@ -18,13 +18,15 @@ On platforms without ``fork`` the function runs in-process (with no second wall)
 
 from __future__ import annotations
 
+import contextlib
 import os
 import pickle
 import select
 import signal
 import sys
+import threading
 import time
-from collections.abc import Callable
+from collections.abc import Callable, Iterator
 from typing import Any, TypeVar
 
 from .errors import BrasKitError
@@ -43,6 +45,10 @@ class ResourceLimitError(BrasKitError):
     "memory", "size" (a result too large) or "signal" (the child was killed otherwise)."""
 
     kind = "limit"
+
+
+class Stopped(BrasKitError):
+    """The caller asked the child to stop (``run_limited(..., stop=event)``): it was killed."""
 
 
 def _limit_error(kind: str, message: Message, **where: Any) -> ResourceLimitError:
@@ -75,16 +81,20 @@ def _tighten(which: int, soft: int, hard: int) -> None:
 
 
 def _child(write_fd: int, function: Callable[..., Any], args: tuple[Any, ...], kwargs: dict[str, Any],
-           cpu_seconds: int, memory_bytes: int) -> None:
+           cpu_seconds: int, memory_bytes: int, contain: Any) -> None:
     import resource
 
     status = 0
+    me = os.getpid()
     try:
         _tighten(resource.RLIMIT_CPU, cpu_seconds, cpu_seconds + 1)
         limit = _mapped_bytes() + memory_bytes
         _tighten(resource.RLIMIT_AS, limit, limit)
         resource.setrlimit(resource.RLIMIT_CORE, (0, 0))
         try:
+            if contain is not None:
+                contain.enter(keep=(write_fd, *contain.keep))  # from here on, in the contained process
+            me = os.getpid()
             payload = ("ok", function(*args, **kwargs))
         except BrasKitError as exc:
             payload = ("error", _error_fields(exc))
@@ -94,6 +104,8 @@ def _child(write_fd: int, function: Callable[..., Any], args: tuple[Any, ...], k
             payload = ("limit", "recursion")
         except BaseException as exc:  # noqa: BLE001 - anything else is reported, not raised
             payload = ("crash", f"{type(exc).__name__}: {exc}"[:500])
+        if os.getpid() != me:  # a process the function forked came back here: only the child answers
+            os._exit(0)
         try:
             data = pickle.dumps(payload, protocol=pickle.HIGHEST_PROTOCOL)
         except Exception as exc:  # noqa: BLE001
@@ -122,6 +134,8 @@ def _rebuild_error(module: str, name: str, fields: dict[str, Any]) -> BrasKitErr
 
     cls: Any = BrasKitError
     try:
+        if module.split(".")[0] != "bras_kit":  # never import what a child names, beyond bras-kit
+            raise ImportError(module)
         found = importlib.import_module(module)
         for part in name.split("."):
             found = getattr(found, part)
@@ -141,12 +155,29 @@ def _rebuild_error(module: str, name: str, fields: dict[str, Any]) -> BrasKitErr
 
 def run_limited(function: Callable[..., T], *args: Any, cpu_seconds: int = DEFAULT_CPU_SECONDS,
                 memory_bytes: int = DEFAULT_MEMORY_BYTES, wall_seconds: float = DEFAULT_WALL_SECONDS,
-                what: Message | str | None = None, **kwargs: Any) -> T:
+                what: Message | str | None = None, contain: Any = None, stop: Any = None, **kwargs: Any) -> T:
     """``function(*args, **kwargs)`` in a child process under limits; its result or its error.
 
     ``what`` names the work in messages (``M("expanding {path}", path=...)``; "this file" unless told).
+    ``contain`` (a :class:`bras_kit.ros.contain.Containment`) walls the child in before the
+    function runs: its result is then read as data from a stranger (:class:`_DataUnpickler`).
+    ``stop`` (a :class:`threading.Event`): once set, the child is killed and :class:`Stopped` raised.
+    Inside :func:`children_from_a_server`, the child is forked by that server when the call can be
+    sent to it (no ``stop``, no keyword arguments for the function).
     """
+    server = _server
+    if server is not None and stop is None and not kwargs and os.getpid() == server.owner:
+        return server.run(function, *args, cpu_seconds=cpu_seconds, memory_bytes=memory_bytes,
+                          wall_seconds=wall_seconds, what=what, contain=contain)
+    return _fork_here(function, args, kwargs, cpu_seconds, memory_bytes, wall_seconds, what, contain, stop)
+
+
+def _fork_here(function: Callable[..., T], args: tuple[Any, ...], kwargs: dict[str, Any], cpu_seconds: int,
+               memory_bytes: int, wall_seconds: float, what: Message | str | None, contain: Any, stop: Any) -> T:
+    """:func:`run_limited`, the child forked by this process."""
     if not available():
+        if contain is not None:
+            raise BrasKitError(M("this system cannot fork a contained child process"))
         return function(*args, **kwargs)
     what = M("this file") if what is None else what
     read_fd, write_fd = os.pipe()
@@ -155,19 +186,22 @@ def run_limited(function: Callable[..., T], *args: Any, cpu_seconds: int = DEFAU
     pid = os.fork()
     if pid == 0:  # the child
         os.close(read_fd)
-        _child(write_fd, function, args, kwargs, cpu_seconds, memory_bytes)
+        _child(write_fd, function, args, kwargs, cpu_seconds, memory_bytes, contain)
     os.close(write_fd)
     chunks: list[bytes] = []
     size = 0
     deadline = time.monotonic() + wall_seconds
-    timed_out = too_big = False
+    timed_out = too_big = stopped = False
     try:
         while True:
             left = deadline - time.monotonic()
             if left <= 0:
                 timed_out = True
                 break
-            ready, _, _ = select.select([read_fd], [], [], min(left, 1.0))
+            if stop is not None and stop.is_set():
+                stopped = True
+                break
+            ready, _, _ = select.select([read_fd], [], [], min(left, 0.2 if stop is not None else 1.0))
             if not ready:
                 continue
             chunk = os.read(read_fd, 1 << 20)
@@ -180,9 +214,11 @@ def run_limited(function: Callable[..., T], *args: Any, cpu_seconds: int = DEFAU
             chunks.append(chunk)
     finally:
         os.close(read_fd)
-        if timed_out or too_big:
+        if timed_out or too_big or stopped:
             _kill(pid)
         _, status = os.waitpid(pid, 0)
+    if stopped:
+        raise Stopped(M("{what} was stopped", what=what))
     if timed_out:
         raise _limit_error("wall", M("{what} took more than {seconds:g} s and was stopped", what=what,
                                      seconds=wall_seconds),
@@ -201,7 +237,10 @@ def run_limited(function: Callable[..., T], *args: Any, cpu_seconds: int = DEFAU
     if not chunks:
         raise _limit_error("memory", M("{what} ran out of memory and was stopped", what=what),
                            hint=M("the limit is {most} MiB above the program's own size", most=memory_bytes >> 20))
-    kind, value = pickle.loads(b"".join(chunks))  # noqa: S301 - our own child's bytes
+    try:
+        kind, value = _load(b"".join(chunks), trusted=contain is None)
+    except Exception as exc:  # noqa: BLE001 - a contained child's bytes are a stranger's
+        raise BrasKitError(M("{what} failed: {reason}", what=what, reason=f"unreadable result ({exc})"[:500])) from None
     if kind == "ok":
         return value  # type: ignore[no-any-return]
     if kind == "error":
@@ -211,6 +250,43 @@ def run_limited(function: Callable[..., T], *args: Any, cpu_seconds: int = DEFAU
             M("{what} needed more recursion than allowed and was stopped", what=what)
         raise _limit_error("memory", needed, hint=M("simplify the file (no huge values, no deep recursion)"))
     raise BrasKitError(M("{what} failed: {reason}", what=what, reason=value))
+
+
+SAFE_BUILTINS = frozenset({"set", "frozenset", "complex", "range", "slice", "bytearray"})
+
+
+class _DataUnpickler(pickle.Unpickler):
+    """Reads what a contained child sent: plain data and bras-kit's data classes, nothing that
+    runs code when built (no function, no class outside bras-kit, no class with behaviour).
+    The child's process is the learner's: its bytes may be forged."""
+
+    def find_class(self, module: str, name: str) -> Any:
+        import dataclasses
+        import enum
+        import importlib
+
+        if module == "builtins" and name in SAFE_BUILTINS:
+            return getattr(__import__("builtins"), name)
+        if module.split(".")[0] == "bras_kit" and "." not in name and module in sys.modules:
+            found = getattr(importlib.import_module(module), name, None)
+            if isinstance(found, type) and (dataclasses.is_dataclass(found) or issubclass(found, enum.Enum)):
+                return found
+        raise pickle.UnpicklingError(f"{module}.{name} is not data")
+
+
+def _load(data: bytes, trusted: bool) -> Any:
+    if trusted:
+        return pickle.loads(data)  # noqa: S301 - our own child's bytes
+    import io
+
+    value = _DataUnpickler(io.BytesIO(data)).load()
+    if not (isinstance(value, tuple) and len(value) == 2 and isinstance(value[0], str)):
+        raise pickle.UnpicklingError("not a result")
+    if value[0] == "error" and not (isinstance(value[1], tuple) and len(value[1]) == 3
+                                    and str(value[1][0]).split(".")[0] == "bras_kit"
+                                    and isinstance(value[1][2], dict)):
+        raise pickle.UnpicklingError("not an error of bras-kit")
+    return value
 
 
 def _kill(pid: int) -> None:
@@ -235,6 +311,7 @@ class ForkServer:
 
     def __init__(self) -> None:
         self._pid = self._owner = 0
+        self._lock = threading.Lock()
         self._requests = self._replies = -1
         if not available():
             return
@@ -260,14 +337,16 @@ class ForkServer:
 
     def run(self, function: Callable[..., T], *args: Any, cpu_seconds: int = DEFAULT_CPU_SECONDS,
             memory_bytes: int = DEFAULT_MEMORY_BYTES, wall_seconds: float = DEFAULT_WALL_SECONDS,
-            what: Message | str | None = None) -> T:
+            what: Message | str | None = None, contain: Any = None) -> T:
         """:func:`run_limited` with the child forked by the server."""
         limits: dict[str, Any] = {"cpu_seconds": cpu_seconds, "memory_bytes": memory_bytes,
-                                  "wall_seconds": wall_seconds, "what": what}
-        if self._pid and os.getpid() == self._owner:
+                                  "wall_seconds": wall_seconds, "what": what, "contain": contain}
+        request = _pickled((function, args, limits)) if self._pid and os.getpid() == self._owner else None
+        if request is not None:  # None: no server, or a call that cannot be sent (forked from here)
             try:
-                _send(self._requests, (function, args, limits))
-                reply = _receive(self._replies, wall_seconds + 10.0)
+                with self._lock:  # one request at a time on the pipes
+                    _write(self._requests, request)
+                    reply = _receive(self._replies, wall_seconds + 10.0)
             except (OSError, EOFError, TimeoutError, pickle.PickleError):
                 reply = None
             if reply is not None:
@@ -276,7 +355,12 @@ class ForkServer:
                     return value  # type: ignore[no-any-return]
                 raise _rebuild_error(*value)
             self.close()  # gone or stuck: fork from here from now on
-        return run_limited(function, *args, **limits)
+        return _fork_here(function, args, {}, cpu_seconds, memory_bytes, wall_seconds, what, contain, None)
+
+    @property
+    def owner(self) -> int:
+        """The process that started the server (0 once closed): only it can send to it."""
+        return self._owner if self._pid else 0
 
     def close(self) -> None:
         """End the server: it finishes the check under way, if any, and goes (killed after a second)."""
@@ -300,6 +384,28 @@ class ForkServer:
             pass
 
 
+_server: ForkServer | None = None  # the server of children_from_a_server, while inside it
+
+
+@contextlib.contextmanager
+def children_from_a_server() -> Iterator[None]:
+    """While inside, the children of :func:`run_limited` are forked by a :class:`ForkServer`
+    started on entry, not by this process. For a process about to start threads that import
+    modules: a child forked while another thread is importing a module waits forever for that
+    module's import lock (its holder is a thread the child does not have). The server is forked
+    before those threads exist, so its children have none."""
+    global _server
+    if _server is not None or not available():
+        yield
+        return
+    _server = ForkServer()
+    try:
+        yield
+    finally:
+        server, _server = _server, None
+        server.close()
+
+
 def _serve(requests: int, replies: int) -> None:
     """The server's loop: each request run by :func:`run_limited`, its result or error sent back."""
     while True:
@@ -308,7 +414,7 @@ def _serve(requests: int, replies: int) -> None:
         except EOFError:
             return  # closed by the owner, or the owner died
         try:
-            reply: tuple[str, Any] = ("ok", run_limited(function, *args, **limits))
+            reply: tuple[str, Any] = ("ok", _fork_here(function, args, {}, stop=None, **limits))
         except BrasKitError as exc:
             reply = ("error", _error_fields(exc))
         except Exception as exc:  # noqa: BLE001 - reported to the owner as run_limited reports a crash
@@ -318,8 +424,19 @@ def _serve(requests: int, replies: int) -> None:
         _send(replies, reply)
 
 
+def _pickled(value: Any) -> bytes | None:
+    """``value`` as bytes for the pipe, or None when pickle refuses it (a lambda, a lock, an mmap)."""
+    try:
+        return pickle.dumps(value, protocol=pickle.HIGHEST_PROTOCOL)
+    except (pickle.PickleError, TypeError, AttributeError):
+        return None
+
+
 def _send(fd: int, value: Any) -> None:
-    data = pickle.dumps(value, protocol=pickle.HIGHEST_PROTOCOL)
+    _write(fd, pickle.dumps(value, protocol=pickle.HIGHEST_PROTOCOL))
+
+
+def _write(fd: int, data: bytes) -> None:
     view = memoryview(len(data).to_bytes(8, "little") + data)
     while view:
         view = view[os.write(fd, view[:1 << 20]):]

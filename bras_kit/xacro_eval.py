@@ -25,6 +25,7 @@ import math
 import operator
 import re
 import string
+import sys
 import time
 from collections.abc import Callable, ItemsView, Iterator, KeysView, Mapping, Sequence, ValuesView
 from dataclasses import dataclass, field
@@ -87,6 +88,20 @@ class Method:
         return _call_method(self, list(args), kwargs)
 
 
+# Python 3.12 inlined list, set and dict comprehensions into the code around them (PEP 709):
+# from then on their names are looked up as the expression's own, eval's locals included, where
+# up to 3.11 a comprehension was a function of its own that saw only the globals. Generator
+# expressions and lambdas stay functions. The real xacro runs eval() on the user's Python, so
+# bras-kit follows the Python it runs on.
+INLINED_COMPREHENSIONS = sys.version_info >= (3, 12)
+
+
+class FunctionScope(dict):  # type: ignore[type-arg]
+    """The names bound in a scope that is a function in Python (a lambda's parameters, a
+    generator expression's variables, any comprehension's before 3.12): names looked up from
+    inside it do not see ``$(eval)``'s locals."""
+
+
 class Lambda:
     """A ``lambda`` written in an expression: its body is interpreted by the same evaluator.
 
@@ -112,7 +127,7 @@ class Lambda:
             raise UnsafeXacroExpression(M("lambdas call each other more than {count} deep", count=MAX_CALLS),
                                         hint=M("a property probably calls itself without end"))
         saved = evaluator.scopes
-        evaluator.scopes = [*self.scopes, dict(zip(names, args))]
+        evaluator.scopes = [*self.scopes, FunctionScope(zip(names, args))]
         evaluator.calls += 1
         try:
             return evaluator.eval(self.node.body, self.depth)
@@ -470,8 +485,9 @@ class Evaluator:
     asked for ``value.name`` when ``value`` is not a str/list/dict/number (namespaces, YAML
     dictionaries); ``callables`` maps the identity of every function a value may hold to
     the safe function to call instead. ``inner_lookup``, when given, is what names inside a
-    comprehension see instead of ``lookup`` (``$(eval ...)`` runs with its arguments as
-    Python *locals*, which a comprehension's own scope does not see).
+    function scope see instead of ``lookup`` (``$(eval ...)`` runs with its arguments as
+    Python *locals*, which a lambda, a generator expression and, before Python 3.12, any
+    comprehension do not see: :data:`INLINED_COMPREHENSIONS`).
     """
 
     def __init__(self, lookup: Callable[[str], Any], attribute: Callable[[Any, str], Any] | None,
@@ -513,7 +529,8 @@ class Evaluator:
         for scope in reversed(self.scopes):
             if node.id in scope:
                 return scope[node.id]
-        lookup = self.inner_lookup if self.scopes and self.inner_lookup is not None else self.lookup
+        in_function = any(isinstance(scope, FunctionScope) for scope in self.scopes)
+        lookup = self.inner_lookup if in_function and self.inner_lookup is not None else self.lookup
         try:
             return lookup(node.id)
         except KeyError:
@@ -676,7 +693,8 @@ class Evaluator:
     def _generate(self, node: Any, depth: int, pair: bool = False) -> list[Any]:
         results: list[Any] = []
         first = self._iterable(node.generators[0], depth)  # Python evaluates it in the enclosing scope
-        scope: dict[str, Any] = {}
+        inlined = INLINED_COMPREHENSIONS and not isinstance(node, ast.GeneratorExp)
+        scope: dict[str, Any] = {} if inlined else FunctionScope()
         self.scopes.append(scope)
         try:
             self._loop(node, node.generators, 0, scope, results, depth, pair, first)

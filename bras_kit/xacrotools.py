@@ -467,21 +467,64 @@ def _expand(path: str, mappings: Mapping[str, str], package_paths: tuple[str, ..
 
     hooks = _Hooks(xacro, subst, path, package_roots(package_paths))
     stderr = io.StringIO()
+    arguments = _Arguments(mappings)
     with _lock:
         hooks.install()
         try:
             with contextlib.redirect_stderr(stderr):
-                doc = xacro.process_file(path, mappings=dict(mappings), verbosity=0)
+                doc = xacro.process_file(path, mappings=arguments, verbosity=0)
+                arguments.check(path)
                 text = doc.toprettyxml(indent="  ")
             if len(text) > MAX_OUTPUT_CHARS:
                 raise XacroError(M("the expanded URDF has {count} characters, more than {limit} Mi allowed",
                                    count=len(text), limit=MAX_OUTPUT_CHARS >> 20), path=path)
             return str(text)
+        except BrasKitError:
+            raise
         except Exception as exc:  # xacro raises many kinds; all become one clean error
             raise _clean_error(xacro, path, exc, hooks.files) from None
         finally:
             hooks.uninstall()
             xacro.init_stacks(None)
+
+
+class _Arguments(dict[str, str]):
+    """The ``name:=value`` arguments as xacro reads them, remembering which names the files ask
+    about: ``<xacro:arg name=...>`` tests ``name in args`` and ``$(arg name)`` reads
+    ``args[name]`` (xacro/__init__.py, ``eval_all`` and ``substitution_args_context``). A name
+    given on the command line that no file asks about is a typo: xacro ignores it without a word,
+    and the learner wonders why the arm did not change."""
+
+    def __init__(self, given: Mapping[str, str]) -> None:
+        super().__init__(given)
+        self.given = tuple(given)
+        self.asked: set[str] = set()
+
+    def __contains__(self, name: object) -> bool:
+        if isinstance(name, str):
+            self.asked.add(name)
+        return super().__contains__(name)
+
+    def __getitem__(self, name: str) -> str:
+        self.asked.add(name)
+        return super().__getitem__(name)
+
+    def check(self, path: str) -> None:
+        import difflib
+
+        from .errors import ParameterError
+
+        for name in self.given:
+            if name in self.asked:
+                continue
+            declared = sorted(n for n in self.asked if n not in self.given or n == name)
+            close = difflib.get_close_matches(name, declared, n=1, cutoff=0.6)
+            valid = (M("the arguments it declares: {names}", names=", ".join(declared)) if declared
+                     else M("this file declares no <xacro:arg>"))
+            raise ParameterError(
+                M("unknown xacro argument '{name}': {path} declares no <xacro:arg name=\"{name}\">", name=name,
+                  path=path),
+                hint=M("did you mean {close}? {valid}", close=close[0], valid=valid) if close else valid)
 
 
 _EVALUATING = re.compile(r"when evaluating expression '(.*)'\s*$", re.S)

@@ -37,6 +37,7 @@ class Node:
     children: list[Node] = field(default_factory=list)
     text: str = ""
     late_declaration: int | None = None  # root only: line of an <?xml ?> that did not come first
+    late_declaration_after: str | None = None  # what came before it: "tab", "space" or "line"
 
     def find(self, tag: str) -> Node | None:
         for child in self.children:
@@ -73,6 +74,7 @@ def parse_xml(data: bytes | str, path: str | None = None) -> Node:
     """
     if isinstance(data, str):
         data = data.encode("utf-8")
+    late_after = _before_declaration(data)
     data, late_declaration = _blank_late_declaration(data)
     parser = xml.parsers.expat.ParserCreate()
     parser.buffer_text = True  # one text callback per run of text, not one per line
@@ -135,14 +137,21 @@ def parse_xml(data: bytes | str, path: str | None = None) -> Node:
             )
             refused.kind = "undefined"
             raise refused from None
-        detail, line = _syntax_detail(exc, reason, stack, data)
-        error = XMLSyntaxError(M("not well-formed XML: {detail}", detail=detail), path=path, line=line,
-                               hint=M("check the tag on this line is closed and its quotes match"))
+        pasted = _pasted_character(data, exc.lineno)
+        if pasted is not None:
+            detail, hint = pasted
+            line = exc.lineno
+        else:
+            detail, line = _syntax_detail(exc, reason, stack, data)
+            hint = M("check the tag on this line is closed and its quotes match")
+        error = XMLSyntaxError(M("not well-formed XML: {detail}", detail=detail), path=path, line=line, hint=hint)
         error.detail = detail
+        error.fix = hint if pasted is not None else None
         raise error from None
     if not root_holder:
         raise XMLSyntaxError(M("the file holds no XML element"), path=path, line=1)
     root_holder[0].late_declaration = late_declaration
+    root_holder[0].late_declaration_after = late_after if late_declaration is not None else None
     return root_holder[0]
 
 
@@ -200,7 +209,63 @@ def _syntax_detail(exc: xml.parsers.expat.ExpatError, reason: str, stack: list[N
     return M("{what} (line {line}, column {column})", what=words, line=stopped, column=column), stopped
 
 
+# Characters a word processor, a chat or a web page pastes where XML wants plain ASCII punctuation:
+# expat stops on them with "invalid token", which says nothing of the character itself.
+_CURLY_QUOTES = "\u201c\u201d\u201e\u201f\u2018\u2019\u201a\u201b\u00ab\u00bb\u2039\u203a\u2033"
+_ODD_SPACES = "\u00a0\u202f\u2007\u2009\u2002\u2003\u3000"
+_INVISIBLE = "\ufeff\u200b\u200c\u200d\u2060"
+
+
+def _pasted_character(data: bytes, line: int) -> tuple[Message, Message] | None:
+    """When the line where the XML reader stopped holds a curly quote, a non-breaking space or an
+    invisible mark (a byte order mark, a zero-width space): what it is, where, and the fix."""
+    lines = data.split(b"\n")
+    if not 0 < line <= len(lines):
+        return None
+    text = lines[line - 1].decode("utf-8", "replace")
+    for column, char in enumerate(text, start=1):
+        if char not in _CURLY_QUOTES + _ODD_SPACES + _INVISIBLE:
+            continue
+        code = f"U+{ord(char):04X}"  # the Unicode name is English: the message says what it is
+        if char in _CURLY_QUOTES:
+            straight = "'" if char in "\u2018\u2019\u201a\u201b\u2039\u203a" else '"'
+            curly = " ".join(dict.fromkeys(c for c in text if c in _CURLY_QUOTES))
+            return (M("the typographic quote {char} ({code}) at column {column}, as a word processor or a chat "
+                      "pastes it: XML only takes straight quotes around a value", char=char, code=code, column=column),
+                    M("replace {curly} on this line with {straight}, and paste code into a code editor, "
+                      "not a word processor", curly=curly, straight=straight))
+        if char in _ODD_SPACES:
+            return (M("a non-breaking space ({code}) at column {column}: it looks like a space, but XML does not "
+                      "take it between a tag's name and its attributes", code=code, column=column),
+                    M("delete the space at column {column} and type an ordinary one", column=column))
+        if char == "\ufeff":
+            what = M("a byte order mark ({code}) at column {column}: an invisible mark that only the very start "
+                     "of a file may hold, left here by a copy and paste", code=code, column=column)
+        else:
+            what = M("an invisible character ({code}) at column {column}, left by a copy and paste", code=code,
+                     column=column)
+        return (what,
+                M("delete the invisible character just before '{after}' (in most editors: put the cursor before "
+                  "'{after}', then press Backspace)", after=_token(text[column:])))
+    return None
+
+
+def _token(text: str) -> str:
+    found = re.match(r"\s*([^\s\"'=>]{1,12})", text)
+    return found.group(1) if found else text[:1]
+
+
 _LATE_DECLARATION = re.compile(rb"\A(\xef\xbb\xbf)?(\s+)(<\?xml\b[^>]*\?>)")
+
+
+def _before_declaration(data: bytes) -> str | None:
+    """What stands before a late ``<?xml ...?>``: ``"tab"`` (pasted from an indented listing),
+    ``"line"`` (blank lines) or ``"space"``; None when the declaration comes first."""
+    match = _LATE_DECLARATION.match(data[:4096])
+    if match is None:
+        return None
+    blank = match.group(2)
+    return "tab" if b"\t" in blank else "line" if b"\n" in blank else "space"
 
 
 def _blank_late_declaration(data: bytes) -> tuple[bytes, int | None]:

@@ -78,14 +78,15 @@ def test_arm_urdf_text_is_what_load_reads(tmp_path):
 
 # --- the wrist (the tutorial's exercise) -------------------------------------------------------------
 
-def test_wrist_adds_poignet_link_and_joint(wrist_robot):
-    assert wrist_robot.link_names == ["base", "bras", "avant_bras", "poignet"]
+def test_wrist_adds_the_joint_poignet_moving_the_link_main(wrist_robot):
+    # one name for a link and a joint is refused by Gazebo (BK700): the hand the wrist moves is "main"
+    assert wrist_robot.link_names == ["base", "bras", "avant_bras", "main"]
     joint = wrist_robot.joint("poignet")
-    assert (joint.type, joint.parent, joint.child, joint.axis) == ("revolute", "avant_bras", "poignet",
+    assert (joint.type, joint.parent, joint.child, joint.axis) == ("revolute", "avant_bras", "main",
                                                                    (0.0, 1.0, 0.0))
     assert joint.origin.xyz == (0.0, 0.0, 0.5)
     assert (joint.limit.lower, joint.limit.upper) == (-1.57, 1.57)
-    v = visual(wrist_robot, "poignet")
+    v = visual(wrist_robot, "main")
     assert v.geometry.size == (0.04, 0.04, 0.15) and v.origin.xyz == (0.0, 0.0, 0.075)
 
 
@@ -100,7 +101,7 @@ def test_wrist_joint_sits_at_forearm_tip(forearm):
     frames = fk(tf_tree(robot), {"epaule": shoulder, "coude": elbow, "poignet": 0.3})
     tip = np.array([0.6 * math.sin(shoulder) + forearm * math.sin(shoulder + elbow), 0.0,
                     0.05 + 0.6 * math.cos(shoulder) + forearm * math.cos(shoulder + elbow)])
-    np.testing.assert_allclose(frames["poignet"][:3, 3], tip, atol=1e-12)
+    np.testing.assert_allclose(frames["main"][:3, 3], tip, atol=1e-12)
 
 
 # --- inertials: solid-primitive formulas about the centre of the shape ------------------------------
@@ -119,7 +120,7 @@ def cylinder_inertia(m, r, h):
     ("base", 2.0, cylinder_inertia(2.0, 0.15, 0.1), 0.0),
     ("bras", 1.0, box_inertia(1.0, 0.08, 0.08, 0.6), 0.3),
     ("avant_bras", 0.5, box_inertia(0.5, 0.06, 0.06, 0.5), 0.25),
-    ("poignet", 0.2, box_inertia(0.2, 0.04, 0.04, 0.15), 0.075),
+    ("main", 0.2, box_inertia(0.2, 0.04, 0.04, 0.15), 0.075),
 ])
 def test_inertials_match_solid_formulas(link, mass, expected, centre):
     inertial = arm(wrist=True, inertials=True).link(link).inertial
@@ -301,7 +302,7 @@ def test_a_size_takes_the_french_decimal_comma():
 def test_range_errors_are_french_with_lang_fr(run_cli):
     code, _, err = run_cli("--lang", "fr", "urdf", "--param", "bras_length=0")
     assert code == 2
-    assert "bras_length=0: une longueur doit être comprise entre 0.001 et 10 m" in err
+    assert "bras_length=0 : une longueur doit être comprise entre 0.001 et 10 m" in err
     assert "les dimensions sont en mètres" in err
 
 
@@ -399,7 +400,7 @@ def test_every_comment_of_the_template_has_french_words():
         french = {m.id: m.string for m in read_po(handle) if m.id}
     template = robot_template().read_text(encoding="utf-8")
     comments = [comment_id(found.group(1)) for found in _COMMENT.finditer(template)]
-    assert len(comments) == 14
+    assert len(comments) == 17
     missing = [c for c in comments if not french.get(c)]
     assert missing == []
     translated = localise_comments(template, "fr")

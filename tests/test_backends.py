@@ -90,8 +90,8 @@ def test_the_french_error_is_worded_from_the_catalog(tmp_path):
     result = _run(MISSING.format(names=["mujoco"]), ["simulate", "--inertials", "--duration", "0.1", "--lang", "fr"], tmp_path)
     assert result.returncode == 2
     lines = _error_lines(result)
-    assert lines[0].startswith("bras-kit simulate: erreur: MuJoCo ne peut pas être chargé (")
-    assert lines[1] == "  conseil: installez-le : pip install mujoco"
+    assert lines[0].startswith("bras-kit simulate : erreur : MuJoCo ne peut pas être chargé (")
+    assert lines[1] == "  conseil : installez-le : pip install mujoco"
 
 
 def test_the_cli_starts_without_importing_any_backend():

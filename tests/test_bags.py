@@ -509,7 +509,7 @@ def test_bag_errors_and_findings_speak_french(tmp_path, run_cli):
                         [(t, ["epaule", "coude", "pince"], [0.1, 0.2, 0.3]) for t in (0.0, 0.05, 0.1)])
     code, _, err = run_cli("--lang", "fr", "motion", "--motion", bag)
     assert code == 0, err
-    assert "l'enregistrement nomme des articulations que ce robot ne peut pas bouger: 'pince'" in err
+    assert "l'enregistrement nomme des articulations que ce robot ne peut pas bouger : 'pince'" in err
     code, _, err = run_cli("--lang", "fr", "motion", "--motion", bag, "--topic", "/autre")
     assert code == 2 and "le bag n'a pas de sujet /autre" in err and "choisissez-en un avec --topic" in err
 

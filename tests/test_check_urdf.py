@@ -45,7 +45,7 @@ def test_generated_urdf_passes_check_urdf(tmp_path, options):
     assert "Successfully Parsed XML" in result.stdout
     assert "robot name is: bras" in result.stdout
     assert "root Link: base has 1 child(ren)" in result.stdout
-    chain = ["bras", "avant_bras"] + (["poignet"] if options.get("wrist") else [])
+    chain = ["bras", "avant_bras"] + (["main"] if options.get("wrist") else [])
     children = [line.split()[-1] for line in result.stdout.splitlines() if "child(1):" in line]
     assert children == chain
 
@@ -80,7 +80,7 @@ def test_scaffolded_package_urdf_passes_check_urdf(tmp_path, wrist):
     path.write_text(render_package(wrist=wrist, params={"bras_length": 0.7})["urdf/bras.urdf"])
     result = check_urdf(path)
     assert result.returncode == 0, result.stdout + result.stderr
-    assert ("child(1):  poignet" in result.stdout) == wrist
+    assert ("child(1):  main" in result.stdout) == wrist
 
 
 REFUSED_BY_URDFDOM = {

@@ -110,7 +110,7 @@ def test_tree_text_indents_each_joint_by_three_columns_per_depth(wrist_robot):
         joint = wrist_robot.child_joint(link)
         line = next(line for line in lines if line.endswith(f"→ {link}"))
         assert line.index(f"{joint.name} (") == 3 * tree.depth(link)
-    assert lines[3] == "      └─ poignet (revolute, axis 0 1 0, -1.57..1.57) → poignet"
+    assert lines[3] == "      └─ poignet (revolute, axis 0 1 0, -1.57..1.57) → main"
 
 
 def test_tree_text_draws_branches_and_fixed_tool_frame(branching_robot):
@@ -255,8 +255,8 @@ def test_dot_parser_rejects_broken_dot():
 
 def test_frames_dot_declares_every_link_and_labels_every_joint(wrist_robot):
     nodes, edges = parse_dot(frames_dot(wrist_robot))
-    assert set(nodes) == {"base", "bras", "avant_bras", "poignet"}
-    assert [(s, t) for s, t, _ in edges] == [("base", "bras"), ("bras", "avant_bras"), ("avant_bras", "poignet")]
+    assert set(nodes) == {"base", "bras", "avant_bras", "main"}
+    assert [(s, t) for s, t, _ in edges] == [("base", "bras"), ("bras", "avant_bras"), ("avant_bras", "main")]
     labels = {attrs["label"].split("\n")[0]: attrs["label"] for _, _, attrs in edges}
     assert set(labels) == {"epaule", "coude", "poignet"}
     assert labels["epaule"].split("\n") == [
@@ -450,7 +450,7 @@ def test_tip_of_tutorial_arm_is_the_far_end_of_the_forearm(tutorial_robot, wrist
     assert link == "avant_bras"
     np.testing.assert_allclose(offset, [0.0, 0.0, 0.5], atol=1e-15)
     link, offset = tip_point(wrist_robot)
-    assert link == "poignet"
+    assert link == "main"
     np.testing.assert_allclose(offset, [0.0, 0.0, 0.15], atol=1e-15)
 
 

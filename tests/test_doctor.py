@@ -29,7 +29,7 @@ def _doctor(tmp_path, *args: str, hide: tuple[str, ...] = (), browser: str | Non
 
 
 def _line(output: str, name: str) -> str:
-    (line,) = [line for line in output.splitlines() if re.match(rf"^\S+\s+{re.escape(name)}: ", line)]
+    (line,) = [line for line in output.splitlines() if re.match(rf"^\S+\s+{re.escape(name)} ?: ", line)]
     return line
 
 
@@ -77,12 +77,12 @@ def test_a_missing_mujoco_and_no_browser_in_french(tmp_path):
     assert result.returncode == 1
     lines = result.stdout.splitlines()
     mujoco = _line(result.stdout, "MuJoCo")
-    assert mujoco.startswith("échec     MuJoCo: MuJoCo ne peut pas être chargé (ModuleNotFoundError")
-    assert lines[lines.index(mujoco) + 1] == "          correctif: installez-le : pip install mujoco"
+    assert mujoco.startswith("échec     MuJoCo : MuJoCo ne peut pas être chargé (ModuleNotFoundError")
+    assert lines[lines.index(mujoco) + 1] == "          correctif : installez-le : pip install mujoco"
     browser = _line(result.stdout, "navigateur web")
-    assert browser.startswith("remarque  navigateur web: aucun")  # no display, no $BROWSER: a note, not a failure
+    assert browser.startswith("remarque  navigateur web : aucun")  # no display, no $BROWSER: a note, not a failure
     assert lines[-1] == "1 problème à corriger : voir « correctif » ci-dessus"
-    assert _line(result.stdout, "OpenGL").startswith("ok        OpenGL: EGL, rendu logiciel, sans GPU")
+    assert _line(result.stdout, "OpenGL").startswith("ok        OpenGL : EGL, rendu logiciel, sans GPU")
 
 
 def test_a_check_that_crashes_is_a_failed_line_and_the_others_still_run():

@@ -110,7 +110,7 @@ def test_default_tip_is_the_far_end_of_the_forearm(tutorial_tree, wrist_tree):
     assert link == "avant_bras"
     np.testing.assert_allclose(offset, [0.0, 0.0, 0.5], atol=1e-15)
     link, offset = resolve_tip(wrist_tree)
-    assert link == "poignet"
+    assert link == "main"
     np.testing.assert_allclose(offset, [0.0, 0.0, 0.15], atol=1e-15)
 
 
@@ -313,19 +313,19 @@ def test_non_finite_targets_are_refused(tutorial_tree, wrist_tree, bad):
 def test_numeric_round_trip_for_the_wrist_arm(wrist_tree):
     lower, upper = np.array([-1.57, -2.0, -1.57]), np.array([1.57, 2.0, 1.57])
     configs = random_configs(wrist_tree, 200, seed=11)
-    targets = tip_by_fk(wrist_tree, configs, "poignet", (0, 0, 0.15))
+    targets = tip_by_fk(wrist_tree, configs, "main", (0, 0, 0.15))
     for target in targets:
         result = solve_ik(wrist_tree, target)
         assert result.reachable and result.method == "numeric", str(result.message)
         q = np.array([result.joints[n] for n in wrist_tree.dof])
         assert np.all(q >= lower) and np.all(q <= upper)
-        assert np.linalg.norm(tip_by_fk(wrist_tree, q, "poignet", (0, 0, 0.15))[0] - target) < 1e-9
+        assert np.linalg.norm(tip_by_fk(wrist_tree, q, "main", (0, 0, 0.15))[0] - target) < 1e-9
 
 
 def test_numeric_solver_starts_from_the_start_pose(wrist_tree):
     # the start already reaches the target: nothing to do
     start = {"epaule": 0.4, "coude": -0.7, "poignet": 0.2}
-    target = tip_by_fk(wrist_tree, np.array([0.4, -0.7, 0.2]), "poignet", (0, 0, 0.15))[0]
+    target = tip_by_fk(wrist_tree, np.array([0.4, -0.7, 0.2]), "main", (0, 0, 0.15))[0]
     result = solve_ik(wrist_tree, target, start=start)
     assert result.iterations == 0 and result.joints == pytest.approx(start)
 

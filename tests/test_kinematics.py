@@ -65,7 +65,7 @@ def test_zero_pose_stacks_segments_vertically(tutorial_tree):
 def test_wrist_joint_sits_at_forearm_tip(wrist_robot):
     tree = tf_tree(wrist_robot)
     a, b, c = 0.3, -0.4, 0.9
-    wrist = fk(tree, {"epaule": a, "coude": b, "poignet": c})["poignet"]
+    wrist = fk(tree, {"epaule": a, "coude": b, "poignet": c})["main"]
     expected = [0.6 * math.sin(a) + 0.5 * math.sin(a + b), 0.0,
                 0.05 + 0.6 * math.cos(a) + 0.5 * math.cos(a + b)]
     np.testing.assert_allclose(wrist[:3, 3], expected, atol=1e-12)

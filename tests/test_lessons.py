@@ -15,7 +15,8 @@ from pathlib import Path
 import nbformat
 import pytest
 
-LESSONS = Path(__file__).resolve().parent.parent / "lessons"
+ROOT = Path(__file__).resolve().parent.parent
+LESSONS = ROOT / "lessons"
 LANGS = ("fr", "en")
 
 
@@ -86,15 +87,16 @@ def test_notebooks_match_their_build_script() -> None:
 
 @functools.cache
 def _executed(path: Path) -> nbformat.NotebookNode:
-    """The notebook run top to bottom in a fresh kernel, in a temporary folder (run once per session)."""
-    from nbclient import NotebookClient
+    """The notebook run top to bottom in a fresh kernel, in a temporary folder, as the site's build
+    runs it (docs/hooks/lessons.py): once per session, whichever of the two asks first.
+    Raises CellExecutionError, with the failing cell and its traceback, on any error."""
+    import importlib.util
 
-    nb = nbformat.read(path, as_version=4)
-    folder = tempfile.mkdtemp(prefix="lesson-")
-    client = NotebookClient(nb, timeout=120, kernel_name="python3", resources={"metadata": {"path": folder}})
-    client.execute()  # raises CellExecutionError, with the failing cell and traceback, on any error
-    shutil.rmtree(folder, ignore_errors=True)
-    return nb
+    spec = importlib.util.spec_from_file_location("lessons_hook", ROOT / "docs" / "hooks" / "lessons.py")
+    assert spec is not None and spec.loader is not None
+    hook = importlib.util.module_from_spec(spec)
+    spec.loader.exec_module(hook)
+    return nbformat.reads(hook.execute(str(path)), as_version=4)
 
 
 @pytest.mark.slow

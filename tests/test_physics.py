@@ -237,7 +237,7 @@ def test_every_variant_builds_with_one_body_per_link_and_one_motor_per_joint(opt
     links = [link.name for link in robot.links]
     assert [mujoco.mj_id2name(model, mujoco.mjtObj.mjOBJ_BODY, b) for b in range(1, model.nbody)] == links
     assert model.nu == len(links) - 1
-    masses = {"base": 2.0, "bras": 1.0, "avant_bras": 0.5, "poignet": 0.2}
+    masses = {"base": 2.0, "bras": 1.0, "avant_bras": 0.5, "main": 0.2}
     masses.update({k.removesuffix("_mass"): float(v) for k, v in options.get("params", {}).items() if k.endswith("_mass")})
     assert list(model.body_mass[1:]) == pytest.approx([masses[n] for n in links])
     assert model.actuator_forcerange[:, 1] == pytest.approx([EFFORT, EFFORT, 5.0][:model.nu])

@@ -54,7 +54,7 @@ def test_wrist_arm_uses_the_numeric_solver(run_cli):
     code, data, _ = reach_json(run_cli, "--wrist", "0.3", "0", "0.8")
     assert code == 0 and data["method"] == "numeric"
     assert set(data["joints"]) == {"epaule", "coude", "poignet"}
-    assert data["residual"] < 1e-9 and data["tip_link"] == "poignet"
+    assert data["residual"] < 1e-9 and data["tip_link"] == "main"
 
 
 def test_orientation_target_with_rpy(run_cli):

@@ -238,8 +238,12 @@ def _scene_of_every_kind(pyrender):
     normals = box / np.linalg.norm(box, axis=1, keepdims=True)
     scene.add(pyrender.Mesh([pyrender.Primitive(positions=box, normals=normals.astype(np.float32), indices=faces,
                                                 material=metal([0.2, 0.3, 0.9, 1.0]))]), pose=at(1.2, 0.6))
-    texture = pyrender.Texture(source=np.array([[[255, 0, 0], [0, 255, 0]], [[0, 0, 255], [255, 255, 255]]],
-                                               dtype=np.uint8), source_channels="RGB")
+    # RGBA: a row of two RGB texels is 6 bytes, and OpenGL reads rows 4-byte aligned
+    # (GL_UNPACK_ALIGNMENT, which pyrender leaves at 4): it read 2 bytes past the end of the
+    # array, whatever memory held there, and the cube's colours changed from run to run
+    texture = pyrender.Texture(source=np.array([[[255, 0, 0, 255], [0, 255, 0, 255]],
+                                                [[0, 0, 255, 255], [255, 255, 255, 255]]], dtype=np.uint8),
+                               source_channels="RGBA")
     uv = (box[:, :2] + 0.5).astype(np.float32)
     scene.add(pyrender.Mesh([pyrender.Primitive(positions=box, texcoord_0=uv, indices=faces,
                                                 material=metal([1.0, 1.0, 1.0, 1.0], baseColorTexture=texture))]),
@@ -308,3 +312,55 @@ def test_nodes_at_the_same_distance_are_drawn_in_the_order_of_their_names_not_of
         scene.add(pyrender.Mesh([triangle]), name=name)
     ordered = [node.name for node, _ in _nodes_in_order(scene, np.array([0.0, 0.0, 5.0]))]
     assert ordered == sorted(names)
+
+
+def test_patch_byref_type_is_registered_under_the_name_this_python_gives_it():
+    """PyOpenGL 3.1.0 registers ``ctypes.byref``'s type by name; Python 3.12 renamed it
+    (``builtins.CArgObject`` -> ``_ctypes.CArgObject``). The patch must add this Python's name."""
+    import ctypes
+
+    from OpenGL import plugins
+
+    _pyrender()
+    byref_type = type(ctypes.byref(ctypes.c_int()))
+    handler = plugins.FormatHandler.by_name("ctypesparameter")
+    assert handler is not None, "PyOpenGL no longer has the ctypesparameter handler: drop register_byref_type"
+    assert f"{byref_type.__module__}.{byref_type.__name__}" in handler.check
+    assert plugins.FormatHandler.match(byref_type) is handler
+
+
+def test_a_textured_primitive_draws_its_texture_on_this_python():
+    """glGenTextures passes its output by reference: a quad textured half red, half blue, seen
+    from the front in white ambient light, shows red on its left half and blue on its right,
+    whatever the Python."""
+    import numpy as np
+
+    from bras_kit.render._compat import delete_renderer, disown_renderer
+
+    pyrender = _pyrender()
+    image = np.zeros((8, 8, 3), dtype=np.uint8)
+    image[:, :4] = (255, 0, 0)
+    image[:, 4:] = (0, 0, 255)
+    texture = pyrender.Texture(source=image, source_channels="RGB",
+                               sampler=pyrender.Sampler(magFilter=9728, minFilter=9728))  # GL_NEAREST
+    material = pyrender.MetallicRoughnessMaterial(baseColorTexture=texture, baseColorFactor=(1, 1, 1, 1),
+                                                  metallicFactor=0.0, roughnessFactor=1.0)
+    positions = np.array([[-1, -1, 0], [1, -1, 0], [1, 1, 0], [-1, 1, 0]], dtype=np.float32)
+    uv = np.array([[0, 0], [1, 0], [1, 1], [0, 1]], dtype=np.float32)
+    primitive = pyrender.Primitive(positions=positions, texcoord_0=uv, indices=np.array([[0, 1, 2], [0, 2, 3]]),
+                                   material=material)
+    scene = pyrender.Scene(ambient_light=(1.0, 1.0, 1.0), bg_color=(0, 0, 0))
+    scene.add(pyrender.Mesh([primitive]))
+    camera_pose = np.eye(4)
+    camera_pose[2, 3] = 2.0
+    scene.add(pyrender.OrthographicCamera(xmag=1.0, ymag=1.0), pose=camera_pose)
+    renderer = pyrender.OffscreenRenderer(64, 64)
+    try:
+        color, _ = renderer.render(scene)
+    finally:
+        delete_renderer(renderer)
+        disown_renderer(renderer)
+    left, right = color[32, 8].astype(int), color[32, 56].astype(int)
+    # pyrender's ambient term dims the colour; the texture's halves must still come out pure
+    assert left[0] > 10 and left[1] == left[2] == 0, left
+    assert right[2] > 10 and right[0] == right[1] == 0, right

@@ -136,7 +136,7 @@ def test_render_node_and_view_export_use_the_same_recording(run_cli, tmp_path):
     assert "20 frames at 20 fps" in err
     code, _, err = run_cli("view", "--node", str(TUTORIAL), "--duration", "1", "--export", str(page), "--lang", "en")
     assert code == 0, err
-    assert "21 frames of animation.csv" in err
+    assert "21 frames of animation.py" in err  # what the node published, taken directly (no CSV)
 
 
 def test_validate_run_adds_what_the_node_did_to_the_static_findings(run_cli, tmp_path):

@@ -30,7 +30,7 @@ EXPECTED_FILES = {
     "package.xml", "setup.py", "setup.cfg", "README.md", f"resource/{PKG}",
     f"{PKG}/__init__.py", f"{PKG}/motion.py", f"{PKG}/animation.py",
     "launch/affichage.launch.py", f"rviz/{PKG}.rviz", "test/test_motion.py",
-    "urdf/bras.urdf.xacro", "urdf/bras.urdf",
+    "urdf/bras.urdf",
 }
 EXEC_DEPENDS = {"robot_state_publisher", "joint_state_publisher_gui", "rviz2", "xacro", "rclpy",
                 "sensor_msgs", "launch_ros"}
@@ -142,20 +142,41 @@ def test_rviz_camera_looks_at_the_middle_of_the_arm(packages):
     assert view["Distance"] == pytest.approx(2.53)
 
 
+def test_package_holds_one_robot_description_the_tutorial_urdf_or_with_xacro_the_template(tmp_path):
+    plain = {p.relative_to(tmp_path / "a").as_posix() for p in scaffold_package(tmp_path / "a")}
+    templated = {p.relative_to(tmp_path / "b").as_posix() for p in scaffold_package(tmp_path / "b", xacro=True)}
+    assert plain - templated == {"urdf/bras.urdf"}
+    assert templated - plain == {"urdf/bras.urdf.xacro"}
+
+
 @pytest.mark.parametrize("variant", VARIANTS)
-def test_urdf_is_the_expansion_of_the_packaged_xacro(packages, variant):
+def test_xacro_package_expands_to_the_plain_package_urdf(packages, tmp_path, variant):
+    options = VARIANTS[variant]
+    scaffold_package(tmp_path / PKG, xacro=True, **options)
     urdf = (packages[variant] / "urdf" / "bras.urdf").read_text()
-    expanded = expand_xacro(packages[variant] / "urdf" / "bras.urdf.xacro")
+    expanded = expand_xacro(tmp_path / PKG / "urdf" / "bras.urdf.xacro")
     assert without_comments(expanded) == without_comments(urdf)
 
 
-def test_packaged_xacro_defaults_to_the_chosen_variant(packages):
-    text = (packages["narrow"] / "urdf" / "bras.urdf.xacro").read_text()
+def test_packaged_xacro_defaults_to_the_chosen_variant(tmp_path):
+    scaffold_package(tmp_path / "narrow", xacro=True, **VARIANTS["narrow"])
+    text = (tmp_path / "narrow" / "urdf" / "bras.urdf.xacro").read_text()
     assert '<xacro:arg name="wrist" default="true"/>' in text
     assert '<xacro:arg name="inertials" default="false"/>' in text
     assert '<xacro:arg name="coude_upper" default="0.5"/>' in text
-    default = (packages["default"] / "urdf" / "bras.urdf.xacro").read_text()
+    scaffold_package(tmp_path / "default", xacro=True)
+    default = (tmp_path / "default" / "urdf" / "bras.urdf.xacro").read_text()
     assert '<xacro:arg name="wrist" default="false"/>' in default
+
+
+def test_xacro_package_launch_file_runs_xacro_and_launches_clean(tmp_path):
+    from bras_kit.validate.package.launch_rules import launch_package
+
+    scaffold_package(tmp_path / PKG, xacro=True)
+    result = launch_package(str(tmp_path / PKG), str(tmp_path / "install"))
+    assert result.plan is not None and result.plan.failure is None and result.problems == []
+    assert result.description is not None
+    assert '<joint name="coude" type="revolute">' in result.description
 
 
 def test_urdf_follows_the_variant(packages):
@@ -404,7 +425,6 @@ def test_package_installs_like_colcon_build(tmp_path, name, wrist):
     assert {
         f"share/{name}/package.xml",
         f"share/{name}/urdf/bras.urdf",
-        f"share/{name}/urdf/bras.urdf.xacro",
         f"share/{name}/launch/affichage.launch.py",
         f"share/{name}/rviz/{name}.rviz",
         f"share/ament_index/resource_index/packages/{name}",

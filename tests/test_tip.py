@@ -15,7 +15,7 @@ def test_tutorial_tip_is_the_far_end_of_the_forearm(tutorial_tree, wrist_robot):
     assert link == "avant_bras"
     np.testing.assert_allclose(offset, [0, 0, 0.5], atol=1e-15)
     link, offset = tool_tip(tf_tree(wrist_robot))
-    assert link == "poignet"
+    assert link == "main"
     np.testing.assert_allclose(offset, [0, 0, 0.15], atol=1e-15)
 
 

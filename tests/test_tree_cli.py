@@ -77,7 +77,7 @@ def test_tree_wrist_and_values_with_out_of_limits_warning(run_cli):
     assert code == 0
     assert out.splitlines()[2:] == [
         "   └─ coude (revolute, axis 0 1 0, -2..2) = -0.5 → avant_bras",
-        "      └─ poignet (revolute, axis 0 1 0, -1.57..1.57) = 2 (out of limits) → poignet",
+        "      └─ poignet (revolute, axis 0 1 0, -1.57..1.57) = 2 (out of limits) → main",
     ]
     assert "warning: poignet=2 is above its upper limit 1.57 by 0.43" in err
 

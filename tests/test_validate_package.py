@@ -74,11 +74,14 @@ def test_every_scaffolded_variant_is_clean(tmp_path, variant):
 def test_scaffolded_package_passes_the_whole_validator_from_the_command_line(tmp_path):
     dest = tmp_path / PKG
     scaffold_package(dest, wrist=True, inertials=True)
-    done = run_cli("validate", str(dest), "--format", "json", "--strict")
+    done = run_cli("validate", str(dest), "--format", "json")
     assert done.returncode == 0, done.stdout + done.stderr
     files = {Path(f["path"]).relative_to(dest).as_posix(): f for f in json.loads(done.stdout)["files"]}
     assert {"setup.py", "package.xml", "urdf/bras.urdf"} <= set(files)
-    assert all(not f["findings"] or all(x["severity"] == "info" for x in f["findings"]) for f in files.values())
+    # nothing above info: the base carries its <inertial> and is fixed to a bare 'world' root (no
+    # inertia on the root for robot_state_publisher's KDL, no root dropped by Gazebo, no arm falling over)
+    others = [(path, x["code"]) for path, f in files.items() for x in f["findings"] if x["severity"] != "info"]
+    assert others == []
 
 
 def test_scaffolded_package_passes_catkin_pkg(tmp_path):
@@ -183,8 +186,8 @@ def check_defect(name: str, tmp_path: Path) -> list:
 
 def test_urdf_folder_not_installed(tmp_path):
     (finding,) = check_defect("urdf_folder_not_installed", tmp_path)
-    assert "urdf/" in finding.text("en") and "'urdf/bras.urdf', 'urdf/bras.urdf.xacro'" in finding.text("en")
-    assert "(os.path.join('share', package_name, 'urdf'), glob('urdf/*'))" in finding.hint_text("en")
+    assert "urdf/" in finding.text("en") and "('urdf/bras.urdf')" in finding.text("en")
+    assert "(os.path.join('share', package_name, 'urdf'), glob('urdf/*.urdf'))" in finding.hint_text("en")
 
 
 def test_launch_folder_not_installed(tmp_path):
@@ -316,6 +319,12 @@ def test_tutorial_node_motion_beyond_limits(tmp_path):
     assert "2.5 * sin(0.7 * t)" in findings[0].text("en")
 
 
+def test_timer_period_in_hertz(tmp_path):
+    (finding,) = check_defect("timer_period_in_hertz", tmp_path)
+    assert finding.text("en") == "create_timer(20, ...) fires every 20 s, not 20 times a second"
+    assert "create_timer(1 / 20, ...) = 0.05 s for 20 Hz" in finding.hint_text("en")
+
+
 def test_setup_py_syntax_error(tmp_path):
     (finding,) = check_defect("setup_py_syntax_error", tmp_path)
     source = (tmp_path / "broken" / PKG / "setup.py").read_text(encoding="utf-8")
@@ -340,6 +349,7 @@ def test_every_package_rule_is_triggered_by_a_defect():
                 for item in yaml.safe_load(path.read_text(encoding="utf-8"))["expect"]}
     expected |= {"BK605", "BK613"}  # also by the tutorial's own package
     expected |= {"BK607", "BK614", "BK624", "BK625", "BK626"}  # tests/test_validate_tutorial.py, on the tutorial's files
+    expected |= {"BK630", "BK631", "BK632", "BK633"}  # tests/test_ros_launch.py, on tests/data/launch/<case>/
     # BK640-BK659 read a run of the node: tests/test_run.py triggers each one
     assert {code for code in RULES if code.startswith("BK6") and code < "BK64"} == expected
 

@@ -196,7 +196,9 @@ def test_link_and_joint_may_share_a_name(check):
         '<joint name="poignet" type="revolute"><parent link="avant_bras"/><child link="poignet"/>'
         '<origin xyz="0 0 0.5"/><axis xyz="0 1 0"/>'
         '<limit lower="-1.57" upper="1.57" effort="5" velocity="1.5"/></joint>')
-    assert codes(check(wrist)) == {"BK505"}
+    findings = check(wrist)
+    assert codes(findings) == {"BK505", "BK700"}  # BK700: fine for RViz, refused by Gazebo
+    assert {f.severity for f in findings if f.code == "BK700"} == {"warning"}
 
 
 def test_duplicate_joint_name(check):
@@ -366,7 +368,14 @@ def test_number_unreadable(check):
 
 def test_single_number_unreadable(check):
     f = only(check(edited(('upper="2.0" effort', 'upper="2,0" effort'))), "BK123")
-    assert (f.text("en"), f.line) == ('<limit> upper="2,0" is not a number', LINE_COUDE_LIMIT)
+    assert (f.text("en"), f.line) == ('<limit> upper="2,0" writes 2,0 with a decimal comma: URDF numbers take a point',
+                                      LINE_COUDE_LIMIT)
+    assert f.hint_text("en") == 'write upper="2.0"'
+
+
+def test_single_number_with_a_unit_unreadable(check):
+    f = only(check(edited(('upper="2.0" effort', 'upper="2rad" effort'))), "BK123")
+    assert (f.text("en"), f.line) == ('<limit> upper="2rad" is not a number', LINE_COUDE_LIMIT)
     assert f.hint_text("en") == "write one number with a decimal point, e.g. 0.6 (not 0,6 and no unit)"
 
 
@@ -1035,30 +1044,60 @@ def test_limit_in_degrees_spares_multi_turn_joints(check, lower, upper, flagged)
     assert ("BK211" in codes(check(text))) is flagged
 
 
-def test_package_urdf_beside_its_xacro_is_checked_once_and_compared(run_cli, tmp_path):
+def test_urdf_beside_its_xacro_is_checked_once_and_compared(run_cli, tmp_path):
     from bras_kit.scaffold import scaffold_package
 
-    package = tmp_path / "bras_description"
-    scaffold_package(str(package))
-    code, out, _ = run_cli("validate", str(package), "--ignore", "BK505")
+    scaffold_package(str(tmp_path / "plain"))
+    scaffold_package(str(tmp_path / "templated"), xacro=True)
+    folder = tmp_path / "description"  # a folder of robot files, not a package
+    folder.mkdir()
+    urdf, xacro = folder / "bras.urdf", folder / "bras.urdf.xacro"
+    urdf.write_text((tmp_path / "plain" / "urdf" / "bras.urdf").read_text(encoding="utf-8"), encoding="utf-8")
+    xacro.write_text((tmp_path / "templated" / "urdf" / "bras.urdf.xacro").read_text(encoding="utf-8"),
+                     encoding="utf-8")
+    code, out, _ = run_cli("validate", str(folder), "--ignore", "BK505")
     assert code == 0
-    urdf, xacro = package / "urdf" / "bras.urdf", package / "urdf" / "bras.urdf.xacro"
     from bras_kit.validate import compare_generated
 
     assert [f.code for f in compare_generated(str(urdf), str(xacro))] == ["BK126"]
     assert f"{urdf}: BK126 info this URDF was generated from {xacro}, which is checked instead" in out
     # no finding is reported twice: each line names one file, the xacro's findings only once
     assert out.count(" BK") == len({line for line in out.splitlines() if " BK" in line})
-    # edited by hand: out of date
+    # edited by hand: out of date, and the fix never overwrites the edited file
     urdf.write_text(urdf.read_text(encoding="utf-8").replace('size="0.08 0.08 0.6"', 'size="0.08 0.08 0.7"', 1),
                     encoding="utf-8")
-    code, out, _ = run_cli("validate", str(package), "--ignore", "BK505")
+    code, out, _ = run_cli("validate", str(folder), "--ignore", "BK505")
     assert f"{urdf}: BK127 warning this URDF differs from what {xacro} gives now" in out
-    assert 'size="0.08 0.08 0.7" instead of "0.08 0.08 0.6"' in out
+    assert 'size="0.08 0.08 0.7" where the xacro file gives "0.08 0.08 0.6"' in out
+    assert "--force" not in out
     assert [(f.code, f.severity) for f in compare_generated(str(urdf), str(xacro))] == [("BK127", "warning")]
-    assert run_cli("validate", str(package), "--ignore", "BK505", "--strict")[0] == 1
+    assert run_cli("validate", str(folder), "--ignore", "BK505", "--strict")[0] == 1
     # named explicitly, the URDF is checked as itself
     assert "BK126" not in run_cli("validate", str(urdf))[1]
+
+
+def test_package_urdf_edited_the_tutorials_way_is_checked_as_written(run_cli, tmp_path):
+    """A package made by bras-kit new, a xacro copied beside its URDF, then the tutorial's pitfall
+    (coude at z=0.3): the URDF the package installs is what the launch file loads, so it is checked
+    itself and the misplaced joint is reported there, with no advice to overwrite it."""
+    from bras_kit.scaffold import scaffold_package
+
+    package = tmp_path / "bras_description"
+    scaffold_package(str(package))
+    scaffold_package(str(tmp_path / "templated"), xacro=True)
+    urdf, xacro = package / "urdf" / "bras.urdf", package / "urdf" / "bras.urdf.xacro"
+    xacro.write_text((tmp_path / "templated" / "urdf" / "bras.urdf.xacro").read_text(encoding="utf-8"),
+                     encoding="utf-8")
+    text = urdf.read_text(encoding="utf-8")
+    coude = text.index('<joint name="coude"')
+    urdf.write_text(text[:coude] + text[coude:].replace('xyz="0 0 0.6"', 'xyz="0 0 0.3"', 1), encoding="utf-8")
+    alone = run_cli("validate", str(urdf), "--ignore", "BK505")[1]
+    out = run_cli("validate", str(package), "--ignore", "BK505")[1]
+    assert f"{urdf}:51: BK301 warning <joint name=\"coude\"> joint 'coude' is at z=0.3" in out
+    alone_codes = {line.split()[1] for line in alone.splitlines() if line.startswith(str(urdf) + ":")}
+    assert alone_codes and alone_codes <= {line.split()[1] for line in out.splitlines()
+                                           if line.startswith(str(urdf) + ":")}
+    assert "BK127" not in out and "BK126" not in out and "--force" not in out
 
 
 SAFETY = '<safety_controller soft_lower_limit="-1.9" soft_upper_limit="1.9" k_position="100" k_velocity="10"/>'
@@ -1102,3 +1141,13 @@ def test_negative_moment_of_a_massless_appendage_fused_into_a_valid_body_is_a_wa
     findings = validate_path(str(PITFALLS / "antenne_fusionnee.urdf"))
     (f,) = [f for f in findings if f.code in ("BK501", "BK508")]
     assert (f.code, f.severity, f.name, f.data["body"]) == ("BK508", "warning", "antenne", "avant_bras")
+
+
+@pytest.mark.parametrize("code,case", [("BK630", "missing_source"), ("BK631", "wrong_package"),
+                                       ("BK632", "path_parameter"), ("BK633", "folders_in_module")])
+def test_package_built_and_launched_finds_the_learner_case(code, case):
+    """The full catalogue of cases (file, line, ROS's words) is in test_ros_launch.py."""
+    from bras_kit.validate.package import validate_package
+
+    folder = Path(__file__).parent / "data" / "launch" / case / "bras_description"
+    assert code in [f.code for r in validate_package(str(folder), select=[code], launch=True) for f in r.findings]

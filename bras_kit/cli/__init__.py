@@ -10,6 +10,7 @@ from __future__ import annotations
 import argparse
 import gc
 import importlib
+import logging
 import os
 import sys
 import warnings
@@ -20,22 +21,24 @@ from ..errors import BrasKitError, UnknownJointError, os_reason
 from ..i18n import (
     LANGUAGES,
     current_language,
+    labelled,
     ntranslator,
     say,
     say_error,
     set_language,
     translator,
 )
-from ..message import M
+from ..message import M, Message
 
 # name -> one-line help. The module is bras_kit.cli.<name> (``xacro`` lives in ``xacro_cmd``).
 COMMANDS: dict[str, str] = {
     "demo": "make everything for the tutorial arm: package, checks, pictures, GIF, diagrams",
-    "urdf": "print or write the tutorial arm's URDF (--wrist, --inertials, --set NAME=VALUE)",
+    "urdf": "print or write the tutorial arm's URDF (--wrist, --inertials, --param NAME=VALUE)",
     "xacro": "expand any xacro file to URDF without ROS ($(find) from --package-path)",
     "new": "scaffold the tutorial's ROS 2 package (package.xml, setup.py, launch, RViz, node)",
     "validate": "check URDF/xacro files for the tutorial's pitfalls and URDF defects",
     "explain": "print the long explanation of a validator rule (e.g. BK301)",
+    "gazebo": "what Gazebo will load: links kept, merged or dropped, frames lost, why a model is refused",
     "tree": "print the TF tree: links, joint names and types",
     "fk": "forward kinematics: each link's pose (xyz, quaternion, rpy), like tf2_echo",
     "motion": "turn a motion program into a joint-state sequence (CSV/JSON), checked against limits",
@@ -48,11 +51,47 @@ COMMANDS: dict[str, str] = {
     "mjcf": "write the MuJoCo model (MJCF) bras-kit builds from the URDF",
     "view": "the arm live in the browser: sliders, TF frames, motion playback, reload on save",
     "run": "run your own ROS 2 node without ROS (like ros2 run), record and check what it publishes",
+    "exercises": "the tutorial as a track of exercises on your own files: watch, hints, progress",
+    "build": "build ament_python packages as colcon build does: the install tree, with colcon's errors",
+    "launch": "run a package's launch file as ros2 launch does: which nodes start, what they publish, findings",
     "grade": "for teachers: check, draw and score a class's submissions (process pool or Dask)",
     "doctor": "what this install can do (OpenGL, MuJoCo, viewer, browser, cache) and how to fix the rest",
 }
 
+# The groups of ``bras-kit --help``, in the order a learner meets them along the tutorial: describe
+# the arm, check it, see it, package/build/launch it, move it and run a node, physics and reach,
+# then teaching. A command joins a group by its name here (a name not yet in COMMANDS is skipped);
+# a command in no group is listed last, under "other commands".
+GROUPS: tuple[tuple[Message, tuple[str, ...]], ...] = (
+    (M("start here"), ("demo", "doctor")),
+    (M("describe the arm"), ("urdf", "xacro")),
+    (M("check it"), ("validate", "explain")),
+    (M("see it"), ("tree", "fk", "view", "render", "frames")),
+    (M("package, build and launch it"), ("new", "build", "launch")),
+    (M("move it and run your node"), ("motion", "run", "plot")),
+    (M("physics and reach"), ("simulate", "reach", "workspace", "mjcf", "gazebo")),
+    (M("teach and grade"), ("exercises", "grade")),
+)
+OTHER_GROUP = M("other commands")
+
+
+def command_groups() -> list[tuple[Message, list[str]]]:
+    """The commands of ``bras-kit --help`` by group, each command once, the unknown ones last."""
+    placed: set[str] = set()
+    groups = []
+    for title, names in GROUPS:
+        present = [name for name in names if name in COMMANDS and name not in placed]
+        placed.update(present)
+        if present:
+            groups.append((title, present))
+    rest = [name for name in COMMANDS if name not in placed]
+    if rest:
+        groups.append((OTHER_GROUP, rest))
+    return groups
+
+
 _MODULES = {"xacro": "xacro_cmd"}
+_QUIET = logging.NullHandler()
 _SUBPARSERS: dict[str, argparse.ArgumentParser] = {}
 
 
@@ -74,10 +113,40 @@ class _Formatter(argparse.RawDescriptionHelpFormatter):
         return super()._format_text(_word(text))
 
     def start_section(self, heading: str | None) -> None:
-        super().start_section(_word(heading) if heading else heading)
+        if heading:
+            # argparse glues its colon to the heading; French typography wants a space before it
+            heading = _word(heading) + (" " if current_language() == "fr" else "")
+        super().start_section(heading)
 
     def _get_help_string(self, action: argparse.Action) -> str | None:
         return _word(action.help) if action.help else action.help
+
+
+class _TopParser(argparse.ArgumentParser):
+    """``bras-kit --help`` lists the commands by group (:func:`command_groups`), not in one block."""
+
+    def format_help(self) -> str:
+        formatter = self._get_formatter()
+        formatter.add_usage(self.usage, self._actions, self._mutually_exclusive_groups)
+        formatter.add_text(self.description)
+        commands: dict[str, argparse.Action] = {}
+        for group in self._action_groups:
+            if any(isinstance(a, argparse._SubParsersAction) for a in group._group_actions):
+                for action in group._group_actions:
+                    if isinstance(action, argparse._SubParsersAction):
+                        commands.update((a.dest, a) for a in action._get_subactions())
+                continue
+            formatter.start_section(group.title)
+            formatter.add_text(group.description)
+            formatter.add_arguments(group._group_actions)
+            formatter.end_section()
+        lang = current_language()
+        for title, names in command_groups():
+            formatter.start_section(say(title, lang))
+            formatter.add_arguments([commands[name] for name in names if name in commands])
+            formatter.end_section()
+        formatter.add_text(self.epilog)
+        return formatter.format_help()
 
 
 def _localise_argparse() -> None:
@@ -95,7 +164,7 @@ def _add_language(parser: argparse.ArgumentParser) -> None:
 
 def build_parser(selected: str | None) -> argparse.ArgumentParser:
     _localise_argparse()
-    parser = argparse.ArgumentParser(
+    parser = _TopParser(
         prog="bras-kit",
         description="Describe, check, move and show a robot arm without ROS "
         "(the arm of the tutorial 'Simuler un bras robotisé avec ROS 2').",
@@ -106,7 +175,7 @@ def build_parser(selected: str | None) -> argparse.ArgumentParser:
     parser.add_argument("--version", action="version", version=f"bras-kit {__version__}",
                         help="show the version and exit")
     _add_language(parser)
-    sub = parser.add_subparsers(dest="command", metavar="COMMAND", title="commands")
+    sub = parser.add_subparsers(dest="command", metavar="COMMAND")
     for name, summary in COMMANDS.items():
         command_parser = sub.add_parser(name, help=summary, description=summary[0].upper() + summary[1:] + ".",
                                         formatter_class=_Formatter)
@@ -148,17 +217,22 @@ def _language_in(argv: Sequence[str]) -> str | None:
 def main(argv: Sequence[str] | None = None) -> int:
     argv = list(sys.argv[1:] if argv is None else argv)
     if not os.environ.get("BRAS_KIT_DEBUG"):
-        # numpy's "overflow encountered in ..." with a source path is no message for a user: the
-        # commands check the numbers they print (non-finite origins, diverging simulations)
-        warnings.simplefilter("ignore", RuntimeWarning)
+        warnings.showwarning = _show_warning
+        # a library's log record (matplotlib's "posx and posy should be finite values") would go to
+        # stderr through logging's last-resort handler: bras-kit logs nothing itself
+        logging.getLogger().addHandler(_QUIET)
     try:
         lang = set_language(_language_in(argv))
     except BrasKitError as exc:  # BRAS_KIT_LANG holds an unknown language
-        print(f"bras-kit: {say(M('error'), 'en')}: {say_error(exc, 'en')}", file=sys.stderr)
+        print(f"bras-kit: {labelled(M('error'), say_error(exc, 'en'), 'en')}", file=sys.stderr)
         return 2
     selected = _selected_command(argv)
     parser = build_parser(selected)
     args, extra = parser.parse_known_args(argv)
+    keeps = getattr(args, "keeps_assignments", None)  # NAME:=VALUE after options (ros2 launch's order)
+    if extra and keeps:
+        setattr(args, keeps, [*getattr(args, keeps), *(e for e in extra if ":=" in e)])
+        extra = [e for e in extra if ":=" not in e]
     if extra:  # the command's own usage, not the top-level one
         target = _SUBPARSERS.get(args.command or "", parser)
         target.error(_word("unrecognized arguments: %s") % " ".join(extra))
@@ -181,6 +255,7 @@ def main(argv: Sequence[str] | None = None) -> int:
         _fail(command, say_error(exc, lang), lang)
     except BrasKitError as exc:
         _fail(command, say_error(exc, lang), lang)
+        return getattr(exc, "exit_code", 2)
     except KeyboardInterrupt:
         print(say(M("interrupted"), lang), file=sys.stderr)
         return 130
@@ -194,15 +269,32 @@ def main(argv: Sequence[str] | None = None) -> int:
     except Exception as exc:  # a bug: say so in one line; BRAS_KIT_DEBUG=1 shows the traceback
         if os.environ.get("BRAS_KIT_DEBUG"):
             raise
-        print(f"bras-kit {command}: {say(M('internal error'), lang)}: {type(exc).__name__}: {exc}\n  "
-              f"{say(M('hint'), lang)}: "
-              + say(M("this is a bug in bras-kit; run again with BRAS_KIT_DEBUG=1 and report the traceback"), lang),
+        print(labelled(f"bras-kit {command}", labelled(M("internal error"), f"{type(exc).__name__}: {exc}", lang), lang)
+              + "\n  "
+              + labelled(M("hint"), say(M("this is a bug in bras-kit; run again with BRAS_KIT_DEBUG=1 and report "
+                                          "the traceback"), lang), lang),
               file=sys.stderr)
     return 2
 
 
+def _show_warning(message: Warning | str, category: type[Warning], filename: str, lineno: int,
+                  file: object = None, line: str | None = None) -> None:
+    """Python's warnings as the command line shows them (BRAS_KIT_DEBUG=1 shows them as Python does).
+
+    A third-party library's warning (numpy's "overflow encountered in ...", matplotlib's missing
+    glyph for a tab in a joint name...) names the installation's source files and speaks to a
+    programmer: it never reaches the terminal. The commands check what they print themselves
+    (non-finite numbers, diverging simulations) and say it with :func:`~bras_kit.cli._common.warn`.
+    A warning of bras-kit's own category (one defined in bras_kit) is shown as ours, without paths.
+    """
+    if not category.__module__.startswith("bras_kit"):
+        return
+    text = say(message.args[0]) if isinstance(message, Warning) and message.args else say(message)
+    print(labelled(M("warning"), text), file=sys.stderr)
+
+
 def _fail(command: str, text: str, lang: str) -> None:
-    print(f"bras-kit {command}: {say(M('error'), lang)}: {text}", file=sys.stderr)
+    print(labelled(f"bras-kit {command}", labelled(M("error"), text, lang), lang), file=sys.stderr)
 
 
 def run() -> None:

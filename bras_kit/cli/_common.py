@@ -9,7 +9,7 @@ from collections.abc import Callable, Iterable, Mapping
 from typing import Any
 
 from ..errors import BrasKitError, ParameterError, TimeInJointValueError
-from ..message import M, Message
+from ..message import M, Message, Mn
 
 # A finding's or a note's severity, as it is shown
 SEVERITY_WORDS = {"error": M("error"), "warning": M("warning"), "info": M("info")}
@@ -53,18 +53,92 @@ def xacro_mappings(items: Iterable[str]) -> dict[str, str]:
 
 
 def load_model(args: argparse.Namespace):  # type: ignore[no-untyped-def]
-    """The robot named by the model arguments (the tutorial arm when FILE is absent)."""
+    """The robot named by the model arguments (the tutorial arm when FILE is absent), refused with
+    the validator's findings when it holds a value the command would compute with but the reader
+    could not use (see :func:`check_usable`)."""
     from ..authoring import arm, load, parse_assignments
 
     if args.file is None:
-        return arm(wrist=getattr(args, "wrist", False), inertials=getattr(args, "inertials", False),
-                   params=parse_assignments(getattr(args, "param", [])),
-                   collisions=getattr(args, "collisions", False))
-    if getattr(args, "wrist", False) or getattr(args, "inertials", False) or getattr(args, "param", []) \
+        robot = arm(wrist=getattr(args, "wrist", False), inertials=getattr(args, "inertials", False),
+                    params=parse_assignments(getattr(args, "param", [])),
+                    collisions=getattr(args, "collisions", False))
+    elif getattr(args, "wrist", False) or getattr(args, "inertials", False) or getattr(args, "param", []) \
             or getattr(args, "collisions", False):
         raise ParameterError(M("--wrist, --inertials, --collisions and --param apply to the built-in arm only"),
                              hint=M("drop FILE to use the built-in arm, or edit your file"))
-    return load(args.file, mappings=xacro_mappings(args.xacro_arg), package_paths=args.package_path)
+    else:
+        robot = load(args.file, mappings=xacro_mappings(args.xacro_arg), package_paths=args.package_path)
+    check_usable(robot, args)
+    return robot
+
+
+# What each command computes with (bras_kit.model.PARTS): a validator error about any other part
+# (a NaN inertia for fk, a text colour for motion) does not stop it.
+_KINEMATICS, _LIMITS = "kinematics", "limits"
+USES: dict[str, tuple[str, ...]] = {
+    "fk": (_KINEMATICS,),
+    "frames": (_KINEMATICS, _LIMITS),  # the joint labels show the limits
+    "motion": (_LIMITS,),
+    "render": (_KINEMATICS, _LIMITS, "visual"),  # the camera is framed over the joints' range
+    "plot": (_KINEMATICS, _LIMITS),
+    "reach": (_KINEMATICS, _LIMITS),
+    "workspace": (_KINEMATICS, _LIMITS),
+    "view": (_KINEMATICS, _LIMITS, "visual", "collision"),
+    "mjcf": (_KINEMATICS, _LIMITS, "dynamics", "visual", "collision", "inertial"),
+    "simulate": (_KINEMATICS, _LIMITS, "dynamics", "visual", "collision", "inertial"),
+    "grade": (_KINEMATICS, "visual"),  # the picture of each arm
+}
+MAX_SHOWN_FINDINGS = 10
+
+
+def parts_used(args: argparse.Namespace) -> tuple[str, ...]:
+    """The parts of the model the command of ``args`` computes with."""
+    parts = USES.get(getattr(args, "command", None) or "", ())
+    if getattr(args, "geometry", "visual") in ("collision", "both") and "collision" not in parts:
+        parts = (*parts, "collision")
+    return parts
+
+
+def check_usable(robot: Any, args: argparse.Namespace) -> None:
+    """Refuse ``robot`` when the validator reports an error about a value the command uses (a NaN
+    axis for fk, an unreadable limit for motion...): the command would compute with a value the
+    reader could not use. The error lists the validator's findings as ``bras-kit validate`` prints
+    them; the command exits 1."""
+    parts = parts_used(args)
+    if not parts:
+        return
+    from ..errors import UnusableModelError
+    from ..validate.usable import blocking_findings
+
+    findings = blocking_findings(robot, parts, getattr(args, "package_path", ()))
+    if findings:
+        command = getattr(args, "command", None) or "bras-kit"
+        raise UnusableModelError(
+            Mn("the robot holds {n} value that {command} needs but cannot use as written "
+               "(bras-kit validate reports the same):\n{findings}",
+               "the robot holds {n} values that {command} needs but cannot use as written "
+               "(bras-kit validate reports the same):\n{findings}",
+               len(findings), command=command, findings=_findings_text(robot.path or "<robot>", findings)),
+            findings)
+
+
+def _findings_text(path: str, findings: list[Any]) -> Message:
+    """The findings as ``bras-kit validate`` prints them, one message worded where it is shown."""
+    from ..validate.report import element_text
+
+    lines: list[Message] = []
+    for finding in findings[:MAX_SHOWN_FINDINGS]:
+        where = f"{path}:{finding.line}:" if finding.line else f"{path}:"
+        head = M("{where} {code} {severity} {element} {message}", where=where, code=finding.code,
+                 severity=SEVERITY_WORDS[finding.severity], element=element_text(finding), message=finding.message)
+        lines.append(head if finding.hint is None else M("{head}\n  hint: {hint}", head=head, hint=finding.hint))
+    if len(findings) > MAX_SHOWN_FINDINGS:
+        lines.append(M("... and {count} more (bras-kit validate {path} lists them all)",
+                       count=len(findings) - MAX_SHOWN_FINDINGS, path=path))
+    text = lines[-1]
+    for line in reversed(lines[:-1]):
+        text = M("{first}\n{rest}", first=line, rest=text)
+    return text
 
 
 def joint_values(items: Iterable[str]) -> dict[str, float]:
@@ -126,9 +200,9 @@ def save_with(path: str, force: bool, writer: Callable[[str], Any], **options: A
 
 def warn(message: Message | BrasKitError, lang: str | None = None) -> None:
     """``warning: ...`` on stderr, worded in the command's language."""
-    from ..i18n import say
+    from ..i18n import labelled, say
 
-    print(f"{say(M('warning'), lang)}: {say(message, lang)}", file=sys.stderr)
+    print(labelled(M("warning"), say(message, lang), lang), file=sys.stderr)
 
 
 def warn_out_of_limits(tree: Any, config: Mapping[str, float], consequence: Message | None = None,
@@ -196,16 +270,12 @@ def add_node_argument(parser: argparse.ArgumentParser) -> None:
 
 
 def apply_node(args: argparse.Namespace, duration: float | None) -> None:
-    """``--node PKG_DIR[:EXE]``: run the node (as ``bras-kit run`` does), write what it published on
-    /joint_states as a joint-state file in a temporary folder, and make that file the motion;
+    """``--node PKG_DIR[:EXE]``: run the node (as ``bras-kit run`` does) and make what it published
+    on /joint_states the motion (``args.recorded``, taken directly by the motion sources);
     FILE defaults to the package's robot description."""
-    import atexit
-    import shutil
-    import tempfile
-
     from ..message import M
-    from ..motion.states_io import states_to_csv
 
+    args.recorded = None
     spec = getattr(args, "node", None)
     if not spec:
         return
@@ -219,8 +289,8 @@ def apply_node(args: argparse.Namespace, duration: float | None) -> None:
         if source is not None:
             args.file = os.path.join(where, source)
             args.package_path = [*args.package_path, os.path.dirname(os.path.abspath(where))]
+    from ..ros.recording import states_for
     from ..run import run_node
-    from ..run.recording import states_for
 
     recording = run_node(where, executable, duration=duration or 10.0)
     robot = load_model(args)
@@ -230,12 +300,7 @@ def apply_node(args: argparse.Namespace, duration: float | None) -> None:
     if not len(states):
         raise ParameterError(M("the node published nothing on /joint_states in {time} s", time=recording.end),
                              hint=M("run it with 'bras-kit run {spec}' to see what it did", spec=spec))
-    folder = tempfile.mkdtemp(prefix="bras-kit-node-")
-    atexit.register(shutil.rmtree, folder, True)
-    path = os.path.join(folder, f"{os.path.splitext(os.path.basename(recording.source))[0]}.csv")
-    with open(path, "w", encoding="utf-8") as handle:
-        handle.write(states_to_csv(states))
-    args.motion = [path]
+    args.recorded = (os.path.basename(recording.source), states)
 
 
 def _node_spec(spec: str) -> tuple[str, str | None]:

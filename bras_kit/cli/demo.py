@@ -7,7 +7,7 @@ import os
 import sys
 import time
 
-from ..i18n import say
+from ..i18n import labelled, say
 from ..message import M
 from ._common import SEVERITY_WORDS, add_force_argument, warn
 
@@ -98,7 +98,7 @@ def run(args: argparse.Namespace) -> int:
             leaves = M("{joint} leaves its velocity limit at t={time:.2f} s", joint=violation.joint,
                        time=violation.time) if violation.kind == "velocity" else \
                 M("{joint} leaves its position limit at t={time:.2f} s", joint=violation.joint, time=violation.time)
-            print("    " + say(M("warning"), args.lang) + ": " + say(leaves, args.lang))
+            print("    " + labelled(M("warning"), say(leaves, args.lang), args.lang))
 
         start = _step(say(M("drawing the frame tree"), args.lang))
         frames_pdf = save("frames.pdf", diagrams.writer("frames.pdf"))
@@ -109,13 +109,27 @@ def run(args: argparse.Namespace) -> int:
         plot_png = save("motion.png", diagrams.writer("motion.png"))
         _done(start, plot_png)
 
-        print(say(M("done. Open {gif} to see the arm move; build {package} with colcon on a ROS 2 machine.", gif=gif,
-                    package=package_dir), args.lang))
+        print(say(M("done. Open {gif} to see the arm move; {package} is ready for colcon build on a ROS 2 machine.",
+                    gif=gif, package=package_dir), args.lang))
+        print(_next_steps(args.lang))
         sys.stdout.flush()
         return 1 if any(f.severity == "error" for f in findings) else 0
 
 
 DIAGRAMS = ("frames.pdf", "frames.png", "motion.png")
+
+
+def _next_steps(lang: str) -> str:
+    """The three things to try after the demo: the live viewer, the lessons, the exercises."""
+    steps = (
+        ("bras-kit view", M("the arm live in your browser, a slider for each joint")),
+        (f"jupyter lab lessons/{lang}", M("the lessons, one notebook per step of the tutorial")),
+        ("bras-kit exercises init", M("the tutorial's exercises (the wrist, the masses), checked as you go")),
+    )
+    width = max(len(command) for command, _ in steps)
+    lines = [say(M("next, try:"), lang)]
+    lines += [f"  {command.ljust(width)}   {say(what, lang)}" for command, what in steps]
+    return "\n".join(lines)
 
 
 def _draw_diagrams(robot, states, folder: str, lang: str | None) -> None:  # type: ignore[no-untyped-def]

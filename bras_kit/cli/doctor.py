@@ -12,7 +12,7 @@ def configure(parser: argparse.ArgumentParser) -> None:
 
 def run(args: argparse.Namespace) -> int:
     from ..doctor import CHECKS, healthy, run_checks
-    from ..i18n import say
+    from ..i18n import labelled, say
     from ..message import M, Mn
 
     lang = args.lang
@@ -29,11 +29,11 @@ def run(args: argparse.Namespace) -> int:
     for check in CHECKS:  # one at a time: each line shows as soon as its check is done
         (result,) = run_checks([check])
         results.append(result)
-        print(f"{status_words[result.status]:<{width}}  {say(result.name, lang)}: {say(result.found, lang)}",
+        print(f"{status_words[result.status]:<{width}}  " + labelled(result.name, say(result.found, lang), lang),
               flush=True)
         if result.fix is not None:
-            label = say(M("fix") if result.status == "fail" else M("hint"), lang)
-            print(f"{'':<{width}}  {label}: {say(result.fix, lang)}", flush=True)
+            label = M("fix") if result.status == "fail" else M("hint")
+            print(f"{'':<{width}}  " + labelled(label, say(result.fix, lang), lang), flush=True)
     failed = sum(result.status == "fail" for result in results)
     if healthy(results):
         print(say(M("everything bras-kit needs works here"), lang))

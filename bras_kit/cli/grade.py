@@ -43,9 +43,14 @@ def configure(parser: argparse.ArgumentParser) -> None:
                         help="also draw each arm moving (the tutorial's motion) as pictures/LEARNER.gif")
     parser.add_argument("--run-nodes", action="store_true",
                         help="also run each package's nodes with bras-kit run's stand-in for rclpy and check what "
-                        "they publish (BK640-BK659). This EXECUTES the learners' code: each node runs in a "
-                        "child process limited in CPU time, memory and wall-clock time, in a temporary folder; "
-                        "off by default")
+                        "they publish (BK640-BK659). This EXECUTES the learners' code: each node runs contained "
+                        "(it writes only in its own temporary folder, reads only its package and Python, has no "
+                        "network, reaches no other process: see docs/security.md) and limited in CPU time, "
+                        "memory and wall-clock time; refused where this machine cannot contain it (bras-kit "
+                        "doctor says why); off by default")
+    parser.add_argument("--unsafe-run-nodes", action="store_true",
+                        help="--run-nodes even where the nodes cannot be contained: they then run with your "
+                        "rights (your files, your network); only for code you trust")
     add_force_argument(parser)
 
 
@@ -81,10 +86,19 @@ def run(args: argparse.Namespace) -> int:
     pictures = None if args.no_pictures else os.path.abspath(os.path.join(output, "pictures"))
     if pictures:
         os.makedirs(pictures, exist_ok=True)
+    run_nodes = args.run_nodes or args.unsafe_run_nodes
+    if run_nodes:
+        from ..grade import node_containment
+
+        warning = node_containment(unsafe=args.unsafe_run_nodes)  # raises where refused
+        if warning is not None:
+            print(say(warning, args.lang), file=sys.stderr)
     previous = previous_results(output) if args.resume else None
     start = time.monotonic()
     results, finished = grade_all(submissions, rubric, Options(lang=args.lang, pictures=pictures, gif=args.gif,
-                                                                   run_nodes=args.run_nodes),
+                                                                   run_nodes=run_nodes,
+                                                                   contain="auto" if args.unsafe_run_nodes
+                                                                   else "require"),
                                   jobs=args.jobs, scheduler=args.scheduler, previous=previous)
     write_reports(output, results, rubric, args.lang, gradescope=args.gradescope, finished=finished)
     elapsed = time.monotonic() - start

@@ -11,7 +11,7 @@ import os
 import sys
 
 from ..errors import BrasKitError, os_reason
-from ..i18n import say
+from ..i18n import labelled, say
 from ..message import M, Mn
 from ._common import add_force_argument, add_model_arguments, check_writable, write_text
 
@@ -49,7 +49,7 @@ def run(args: argparse.Namespace) -> int:
     kd = mjcf.DEFAULT_KD if args.kd is None else float(gain_vector(args.kd, ["all"], mjcf.DEFAULT_KD, "kd")[0])
     built = mjcf.build_mjcf(robot, package_paths=args.package_path, kp=kp, kd=kd, control=args.control)
     for note in physics_notes(robot, built, lang, args.package_path):
-        print(f"{say(LEVELS[note.level], lang)}: {note.worded(lang)}", file=sys.stderr)
+        print(labelled(LEVELS[note.level], note.worded(lang), lang), file=sys.stderr)
     if not args.output or args.output == "-":
         if built.assets:
             print(say(M("note: the meshes are not printed; write with -o FILE to get them in FILE_meshes/"), lang),

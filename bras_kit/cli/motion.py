@@ -10,10 +10,11 @@ Samples are taken at k / rate for k = 0 .. floor(duration * rate): 10 s at 20 Hz
 from __future__ import annotations
 
 import argparse
+import math
 import sys
 
 from ..errors import ParameterError
-from ..i18n import say
+from ..i18n import labelled, say
 from ..message import M, Mn
 from ._common import (
     add_force_argument,
@@ -121,7 +122,8 @@ def run(args: argparse.Namespace) -> int:
         check_states_output(args.output, args.force, fmt)
     apply_node(args, args.duration)
     robot = load_model(args)
-    motion = motion_from_specs(robot, args.motion, joint_values(args.set_values), args.interpolation, args.topic)
+    motion = motion_from_specs(robot, args.motion, joint_values(args.set_values), args.interpolation, args.topic,
+                               recorded=args.recorded)
     warn_motion_notes(motion)
     if args.interpolation and not any(t.waypoints is not None for t in motion.tracks):
         warn(M("--interpolation only applies to waypoint files"), args.lang)
@@ -147,9 +149,8 @@ def run(args: argparse.Namespace) -> int:
             continue  # already named segment by segment
         warn(describe_violation(v), lang)
     if any(v.kind == "position" for v in violations):
-        print(f"  {say(M('hint'), lang)}: "
-              + say(M("pass --clamp to keep positions inside the limits, or lower the amplitude"), lang),
-              file=sys.stderr)
+        print("  " + labelled(M("hint"), say(M("pass --clamp to keep positions inside the limits, or lower the "
+                                                "amplitude"), lang), lang), file=sys.stderr)
     if fmt is None:
         print(_summary(robot, motion, states, violations, clamped, rate, lang))
     else:
@@ -173,6 +174,7 @@ def _summary(robot, motion, states, violations, clamped, rate: float, lang: str)
     header = tuple(say(word, lang) for word in (M("joint"), "min", "max", M("lower"), M("upper"), "max|vel|",
                                                  M("vel.limit"), M("limits"), M("source")))
     rows = [header]
+    unusable = 0
     sources = motion.sources()
     for k, name in enumerate(states.names):
         joint = robot.joint(name)
@@ -184,6 +186,11 @@ def _summary(robot, motion, states, violations, clamped, rate: float, lang: str)
                        else M("past lower"), lang)
                    for v in violations if v.joint == name]
         unit = joint_unit(joint)
+        numbers = (states.positions[:, k].min(), states.positions[:, k].max(), lower, upper,
+                   abs(states.velocities[:, k]).max(), speed if speed is not None else 0.0)
+        if any(math.isnan(v) for v in numbers):  # nothing is "ok" beside a value that is not a number
+            status.append(say(M("not a number"), lang))
+            unusable += 1
         rows.append((
             name,
             f"{states.positions[:, k].min():.3f}",
@@ -200,6 +207,11 @@ def _summary(robot, motion, states, violations, clamped, rate: float, lang: str)
                  for i, (cell, width) in enumerate(zip(row, widths))]
         lines.append("  ".join(cells).rstrip())
     problems = len(violations)
+    if unusable:
+        lines.append(say(Mn("{n} joint has a value that is not a number: no limit check holds for it",
+                            "{n} joints have a value that is not a number: no limit check holds for them",
+                            unusable), lang))
+        return "\n".join(lines)
     lines.append(say(M("all within limits") if not problems else
                      Mn("{n} limit violation (see the warnings above)", "{n} limit violations (see the warnings above)",
                         problems), lang))

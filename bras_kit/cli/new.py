@@ -17,6 +17,9 @@ def configure(parser: argparse.ArgumentParser) -> None:
                         help="ROS package name: lowercase letters, digits, _ (default: bras_description)")
     parser.add_argument("--wrist", action="store_true", help="add the wrist link and joint 'poignet'")
     parser.add_argument("--inertials", action="store_true", help="add mass and inertia to every link")
+    parser.add_argument("--xacro", action="store_true",
+                        help="describe the arm in urdf/bras.urdf.xacro, expanded by the launch file (instead of the "
+                        "tutorial's hand-written urdf/bras.urdf)")
     parser.add_argument("--param", dest="params", action="append", default=[], metavar="NAME=VALUE",
                         help="change a template parameter (repeatable); 'bras-kit urdf --list-params' "
                         "shows them")
@@ -36,7 +39,7 @@ def run(args: argparse.Namespace) -> int:
     dest = args.dir if args.dir is not None else os.path.join(".", args.name)
     made = scaffold_package(dest, args.name, wrist=args.wrist, inertials=args.inertials,
                             params=parse_assignments(params), force=args.force,
-                            maintainer=args.maintainer, email=args.email, lang=args.lang)
+                            maintainer=args.maintainer, email=args.email, lang=args.lang, xacro=args.xacro)
     print(say(M("created the ROS 2 package '{name}' in {folder}:", name=args.name, folder=dest), args.lang))
     for path in made:
         print(f"  {os.path.relpath(path, dest)}")

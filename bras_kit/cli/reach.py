@@ -12,7 +12,7 @@ import re
 import sys
 import textwrap
 
-from ..i18n import say
+from ..i18n import labelled, say
 from ..message import M, Mn
 from ._common import add_force_argument, add_model_arguments, check_writable, joint_values, warn
 
@@ -164,7 +164,7 @@ def run(args: argparse.Namespace) -> int:
         print(json.dumps(data, indent=2))
         return code
 
-    print(f"{say(M('target'), lang):10s} {_point_text(result.target)}  ({say(M('tip'), lang)}: {tip_text})")
+    print(f"{say(M('target'), lang):10s} {_point_text(result.target)}  ({labelled(M('tip'), tip_text, lang)})")
     how = say(_WORDS[result.method], lang) + (", " + say(M("elbow {side}", side=_WORDS[result.elbow]), lang)
                                               if result.elbow else "")
     if result.method == "numeric":
@@ -185,7 +185,7 @@ def run(args: argparse.Namespace) -> int:
         if result.reachable and solution.elbow == result.elbow:
             continue
         state = say(M("within the limits"), lang) if solution.within_limits else \
-            say(M("past the limits"), lang) + ": " + "; ".join(say(v.describe(), lang) for v in solution.violations)
+            labelled(M("past the limits"), "; ".join(say(v.describe(), lang) for v in solution.violations), lang)
         values = ", ".join(f"{n}={solution.joints[n]:+.4f}" for n in tree.dof)
         print(say(M("elbow {side}", side=f"{say(_WORDS[solution.elbow], lang):4s}"), lang) + f" {values} ({state})")
     if motion is not None:
@@ -199,7 +199,7 @@ def run(args: argparse.Namespace) -> int:
                                                       duration=motion.duration, start=format_config(start),
                                                       peaks=", ".join(peaks)), lang))
         if violations:
-            print(" " * 11 + say(M("leaves the limits"), lang) + ": " + "; ".join(say(v.describe(), lang) for v in violations))
+            print(" " * 11 + labelled(M("leaves the limits"), "; ".join(say(v.describe(), lang) for v in violations), lang))
         else:
             print(" " * 11 + say(M("within the position and velocity limits"), lang))
         if args.gif:

@@ -172,7 +172,7 @@ def run(args: argparse.Namespace) -> int:
     animated = args.gif is not None or args.mp4 is not None or args.frames_dir is not None
     defaulted = []
     if not animated and args.output is None:
-        if args.motion or args.record:  # a motion (or its recording) asks for an animation
+        if args.motion or args.record or args.recorded:  # a motion (or a recording, a node's) asks for an animation
             args.gif = ""
             animated = True
         else:
@@ -215,7 +215,8 @@ def run(args: argparse.Namespace) -> int:
     from ..motion import motion_from_specs, sample_loop
     from ..motion.sources import motion_title
 
-    motion = motion_from_specs(robot, args.motion, set_values or None, topic=args.topic)
+    motion = motion_from_specs(robot, args.motion, set_values or None, topic=args.topic,
+                               recorded=getattr(args, "recorded", None))
     warn_motion_notes(motion)
     states = sample_loop(motion, args.duration, args.fps)
     _warn_limits(robot, states, args.lang)

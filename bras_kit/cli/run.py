@@ -49,7 +49,7 @@ def configure(parser: argparse.ArgumentParser) -> None:
 def run(args: argparse.Namespace) -> int:
     from ..i18n import current_language, say
     from ..motion.states_io import check_states_output
-    from ..run import parse_parameters, run_node
+    from ..run import parse_parameters, run_node, uncontained_note
     from ..run.report import failure_lines, summary
     from ..validate.report import exit_code, format_json, format_text
 
@@ -60,8 +60,17 @@ def run(args: argparse.Namespace) -> int:
         check_writable(args.gif, args.force, option="--gif")
     parameters = parse_parameters(args.params)
     robot = _robot(args)  # a wrong --urdf fails before the node runs
+    note = uncontained_note()
+    if note is not None:
+        print(say(note, lang), file=sys.stderr)
+    from ..ros.bus import listening
+
+    live = listening()  # a bras-kit launch runs on this machine: publish into it, on the wall clock
+    if live:
+        print(say(M("publishing /joint_states to the running bras-kit launch, on the wall clock"), lang),
+              file=sys.stderr, flush=True)
     recording = run_node(args.target, args.executable, duration=args.duration, echo=not args.quiet,
-                         parameters=parameters)
+                         parameters=parameters, live=live)
     for message in summary(recording):
         print(say(message, lang), file=sys.stderr)
     for text in failure_lines(recording):
@@ -112,8 +121,8 @@ def _write_states(recording, robot, args) -> None:  # type: ignore[no-untyped-de
     from ..errors import BrasKitError
     from ..i18n import say
     from ..motion.states_io import states_format, write_states
+    from ..ros.recording import states_for
     from ..run import joint_states
-    from ..run.recording import states_for
 
     if states_format(args.output) == "bag":
         from ..kinematics import tf_tree
@@ -141,7 +150,7 @@ def _write_gif(recording, robot, args) -> None:  # type: ignore[no-untyped-def]
     from ..outputs import staged
     from ..render import render_motion
     from ..render.sequence import save_gif
-    from ..run.recording import states_for
+    from ..ros.recording import states_for
 
     states = states_for(recording, tf_tree(robot).dof)
     if not len(states):  # one picture of the arm at rest, as RViz shows it with nothing on /joint_states

@@ -11,7 +11,7 @@ import argparse
 import sys
 
 from ..errors import BrasKitError, ParameterError, os_reason
-from ..i18n import say
+from ..i18n import labelled, say
 from ..message import M
 from ._common import (
     add_force_argument,
@@ -130,12 +130,12 @@ def run(args: argparse.Namespace) -> int:
                       integrator=args.integrator or mjcf.DEFAULT_INTEGRATOR,
                       damping=args.damping, package_paths=args.package_path)
     for note in physics_notes(robot, states.model, lang, args.package_path):  # type: ignore[arg-type]
-        print(f"{say(LEVELS[note.level], lang)}: {note.worded(lang)}", file=sys.stderr)
+        print(labelled(LEVELS[note.level], note.worded(lang), lang), file=sys.stderr)
     print(report_text(robot, states, lang))
     diverged = divergence_message(states)
     if diverged is not None:  # a failure: no file is written from numbers that stopped being numbers
-        print(f"bras-kit simulate: {say(M('error'), lang)}: {say(diverged, lang)}\n"
-              f"  {say(M('hint'), lang)}: {say(DIVERGENCE_HINT, lang)}", file=sys.stderr)
+        print("bras-kit simulate: " + labelled(M("error"), say(diverged, lang), lang) + "\n  "
+              + labelled(M("hint"), say(DIVERGENCE_HINT, lang), lang), file=sys.stderr)
         return 1
     try:
         if fmt is not None:

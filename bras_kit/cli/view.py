@@ -22,6 +22,8 @@ EPILOG = """\
 examples:
   bras-kit view                              the tutorial arm, sliders for epaule and coude
   bras-kit view urdf/bras.urdf.xacro         your file; save it and the page reloads
+  bras-kit view bras_description             the package's robot, as its launch file loads it
+  bras-kit view --node bras_description      the package's node moves the arm (it starts playing)
   bras-kit view --motion tutorial            play the tutorial's motion (play/pause/speed)
   bras-kit view --export bras.html           one HTML file replaying the motion, no server
 """
@@ -57,6 +59,7 @@ def run(args: argparse.Namespace) -> int:
     if not 0 <= args.port <= 65535:
         raise ParameterError(M("--port {port} is out of range", port=args.port),
                              hint=M("give a port between 1024 and 65535, e.g. 8080"))
+    _package_description(args)
     apply_node(args, args.duration)
     if args.file is not None and (args.wrist or args.inertials or args.param or args.collisions):
         raise ParameterError(M("--wrist, --inertials, --collisions and --param apply to the built-in arm only"),
@@ -69,9 +72,30 @@ def run(args: argparse.Namespace) -> int:
     else:
         source = Source(path=args.file, mappings=xacro_mappings(args.xacro_arg),
                         package_paths=tuple(args.package_path))
+    from ._common import check_usable
+
+    check_usable(source.load(), args)  # type: ignore[attr-defined]
     if args.export:
         return _export(args, source)
     return _serve(args, source)
+
+
+def _package_description(args: argparse.Namespace) -> None:
+    """FILE a package folder: the robot description its launch file loads (as bras-kit launch
+    would show it), watched like any file; the package's parent folder resolves package://."""
+    from ..errors import ParameterError
+
+    folder = args.file
+    if folder is None or not os.path.isdir(folder) or not os.path.isfile(os.path.join(folder, "package.xml")):
+        return
+    from ..validate.package.sources import Package
+
+    source = Package(folder).description_source()
+    if source is None:
+        raise ParameterError(M("the package {folder} has no robot description (urdf/*.urdf or *.xacro)", folder=folder),
+                             hint=M("put the URDF in {folder}/urdf/, as the tutorial does", folder=folder))
+    args.file = os.path.join(folder, source)
+    args.package_path = [*args.package_path, os.path.dirname(os.path.abspath(folder))]
 
 
 def _export(args: argparse.Namespace, source: object) -> int:
@@ -87,7 +111,7 @@ def _export(args: argparse.Namespace, source: object) -> int:
                              hint=M("give frames per second between 1 and 120, e.g. 20"))
     check_writable(args.export, args.force, option="--export")
     robot = source.load()  # type: ignore[attr-defined]
-    motion = motion_from_specs(robot, args.motion, topic=args.topic)
+    motion = motion_from_specs(robot, args.motion, topic=args.topic, recorded=args.recorded)
     warn_motion_notes(motion)
     states = sample(motion, args.duration if args.duration is not None else (motion.duration or 10.0), args.fps)
     page = export_html(robot, states, package_paths=source.package_paths)  # type: ignore[attr-defined]
@@ -103,8 +127,12 @@ def _serve(args: argparse.Namespace, source: object) -> int:
     if args.host not in ("127.0.0.1", "localhost", "::1"):
         warn(M("listening on {host}: anyone who can reach this computer can see and move the arm", host=args.host),
              args.lang)
+    from ._common import check_usable
+
     viewer = Viewer(source, host=args.host, port=args.port, lang=args.lang, motion_specs=args.motion,  # type: ignore[arg-type]
-                    motion_topic=args.topic, geometry=args.geometry)
+                    motion_topic=args.topic, geometry=args.geometry, recorded=args.recorded,
+                    autoplay=args.recorded is not None,
+                    refuse=lambda robot: check_usable(robot, args))
     try:
         print(say(M("bras-kit view: {url} (Ctrl-C to stop)", url=viewer.url), args.lang), flush=True)
         if source.path:  # type: ignore[attr-defined]

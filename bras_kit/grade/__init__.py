@@ -7,7 +7,7 @@ from .report import write_reports
 from .rubric import DEFAULT_RUBRIC, Item, Rubric, load_rubric
 from .runner import executor, grade_all
 from .submissions import Submission, find_submissions, unpack
-from .worker import Options, grade, passes
+from .worker import Options, grade, node_containment, passes
 
 __all__ = ["DEFAULT_RUBRIC", "Item", "Options", "Rubric", "Submission", "executor", "find_submissions", "grade",
-           "grade_all", "load_rubric", "passes", "unpack", "write_reports"]
+           "grade_all", "load_rubric", "node_containment", "passes", "unpack", "write_reports"]

@@ -19,14 +19,17 @@ REPORT_MARK = ".bras-kit-grade"  # a folder holding this file is a report bras-k
 
 
 def grades_csv(results: Sequence[dict[str, Any]], rubric: Rubric) -> str:
-    """identifier, score, max, one column per rubric item, the first error message."""
+    """identifier, score, max, one column per rubric item, the first error message; and the
+    exercises passed when a learner handed in a ``bras-kit exercises`` track."""
     buffer = io.StringIO()
     writer = csv.writer(buffer, lineterminator="\n")
-    writer.writerow(["identifier", "score", "max", *[item.id for item in rubric.items], "first_error"])
+    track = any(result.get("exercises") for result in results)
+    writer.writerow(["identifier", "score", "max", *[item.id for item in rubric.items], "first_error",
+                     *(["exercises"] if track else [])])
     for result in results:
         writer.writerow([result["learner"], _number(result["score"]), _number(result["max"]),
                          *[_number(result["items"].get(item.id, 0.0)) for item in rubric.items],
-                         result.get("first_error", "")])
+                         result.get("first_error", ""), *([result.get("exercises", "")] if track else [])])
     return buffer.getvalue()
 
 
@@ -119,11 +122,21 @@ def histogram_svg(scores: Sequence[float], total: float, width: int = 480, heigh
     return "".join(parts)
 
 
+def first_problem(result: dict[str, Any]) -> str:
+    """The first error of a learner's findings, else the first warning (a learner who lost points
+    on warnings alone must see why in the class table); else what stopped the grading, if anything."""
+    for severity in ("error", "warning"):
+        for found in result.get("findings", []):
+            if found.get("severity") == severity:
+                return f"{found['code']} {found['message']}"
+    return str(result.get("first_error", ""))
+
+
 def index_page(results: Sequence[dict[str, Any]], rubric: Rubric, t: Callable[[Message | str], str], lang: str,
                finished: bool) -> str:
     rows = "".join(
         f"<tr><td><a href='learners/{html.escape(_file_name(r['learner']))}'>{html.escape(r['learner'])}</a></td>"
-        f"<td>{_number(r['score'])} / {_number(r['max'])}</td><td>{html.escape(r.get('first_error', ''))}</td></tr>"
+        f"<td>{_number(r['score'])} / {_number(r['max'])}</td><td>{html.escape(first_problem(r))}</td></tr>"
         for r in results)
     hits = Counter(f["code"] for r in results for f in {(x["code"]): x for x in r["findings"]}.values())
     rules = "".join(f"<tr><td>{html.escape(code)}</td><td>{count}</td></tr>" for code, count in sorted(hits.items()))
@@ -132,7 +145,7 @@ def index_page(results: Sequence[dict[str, Any]], rubric: Rubric, t: Callable[[M
             + f"<p>{html.escape(t(Mn('{n} learner', '{n} learners', len(results))))}</p>"
             + f"<h2>{html.escape(t(M('Scores')))}</h2>" + histogram_svg([r["score"] for r in results], rubric.total)
             + f"<table><tr><th>{html.escape(t(M('learner')))}</th><th>{html.escape(t(M('score')))}</th>"
-              f"<th>{html.escape(t(M('first error')))}</th></tr>{rows}</table>"
+              f"<th>{html.escape(t(M('first problem')))}</th></tr>{rows}</table>"
             + f"<h2>{html.escape(t(M('Learners hitting each rule')))}</h2>"
             + (f"<table><tr><th>{html.escape(t(M('rule')))}</th><th>{html.escape(t(M('learners')))}</th></tr>{rules}</table>"
                if rules else f"<p>{html.escape(t(M('No finding')))}</p>"))

@@ -21,7 +21,8 @@ import numpy as np
 
 from ..errors import BrasKitError
 from ..i18n import say, say_error
-from ..message import M
+from ..message import M, Message
+from .exercises import exercises_passed
 from .rubric import SEVERITIES, Item, Rubric
 from .submissions import MAX_SUBMISSION_BYTES, Submission, SubmissionError, content_hash, unpack
 
@@ -45,6 +46,7 @@ class Options:
     pictures: str | None = None  # folder for the PNGs, None: no pictures
     gif: bool = False
     run_nodes: bool = False  # also run each package's nodes (bras-kit run): executes the learner's code
+    contain: str = "require"  # how: "require" (contained, else refused), "auto" (--unsafe-run-nodes)
 
 
 def grade(submission: Submission, rubric: Rubric, options: Options) -> dict[str, Any]:
@@ -57,10 +59,11 @@ def grade(submission: Submission, rubric: Rubric, options: Options) -> dict[str,
     workdir = tempfile.mkdtemp(prefix="bras-kit-grade-")
     try:
         root = _materialise(submission, workdir)
+        result["exercises"] = exercises_passed(root)
         inspected = _inspect_limited(root, options.lang)
         result.update(findings=inspected["findings"], main_file=inspected["main"], package=inspected["package"])
         if options.run_nodes and inspected["package"]:
-            result["findings"] = result["findings"] + _run_nodes(root, options.lang)
+            result["findings"] = result["findings"] + _run_nodes(root, options.lang, options.contain)
         robot = inspected["robot"]
         if robot is None:
             result["status"] = "unreadable"
@@ -113,16 +116,49 @@ def _size(path: str) -> int:
     return total
 
 
-def _run_nodes(root: str, lang: str) -> list[dict[str, Any]]:
-    """What the package's nodes did when run (rules BK640-BK659). Each node runs in its own
-    child process under the sandbox's CPU, memory and wall-clock limits (bras_kit.run)."""
+def node_containment(unsafe: bool = False) -> Message | None:
+    """Before ``--run-nodes``: None when the nodes will run contained; else raises
+    :class:`~bras_kit.ros.contain.ContainmentUnavailable` (what is missing, how to get it), or
+    with ``unsafe`` (``--unsafe-run-nodes``) returns the warning to show."""
+    from ..ros.contain import available, containment_required
+
+    status = available()
+    if status.ok:
+        return None
+    if not unsafe:
+        try:
+            containment_required()
+        except BrasKitError as exc:
+            exc.hint = M("{how}; or, for code you trust, --unsafe-run-nodes runs it with your rights",
+                         how=exc.hint or "-")
+            raise
+    return M("warning: the nodes run NOT contained (this machine lacks {missing}): they have your rights",
+             missing=status.missing)
+
+
+def _run_nodes(root: str, lang: str, contain: str = "require") -> list[dict[str, Any]]:
+    """What the package's launch files and nodes did when run (rules BK630-BK633, BK640-BK659),
+    as ``bras-kit validate PKG`` and ``bras-kit run`` find it. Each node runs in its own
+    child process under the sandbox's CPU, memory and wall-clock limits (bras_kit.run), contained
+    (bras_kit.ros.contain); with ``contain="require"``, a machine that cannot contain them
+    raises :class:`~bras_kit.ros.contain.ContainmentUnavailable` (that learner is not graded)."""
+    from ..ros.contain import containment_required
     from ..run.findings import package_run_results
     from ..validate.package import find_packages
 
+    if contain == "require":
+        containment_required()
+    from ..validate.package import validate_package
+    from ..validate.package.launch_rules import LAUNCH_CHECKS
+
     findings: list[dict[str, Any]] = []
     for package in find_packages([root]):
+        # built as colcon builds it and launched as ros2 launch does (BK630-BK633): the learner's
+        # setup.py and launch files run too, contained as the nodes are
+        for result in validate_package(package, select=LAUNCH_CHECKS, launch=True):
+            findings += [_as_dict(f, _relative(result.path, root), lang) for f in result.findings]
         for result in package_run_results(package, lang=lang, duration=RUN_SECONDS, cpu_seconds=RUN_CPU_SECONDS,
-                                          wall_seconds=RUN_WALL_SECONDS):
+                                          wall_seconds=RUN_WALL_SECONDS, contain=contain):
             findings += [_as_dict(f, _relative(result.path, root), lang) for f in result.findings]
     return findings
 
@@ -286,6 +322,10 @@ def _drawable(robot: Any) -> bool:
     and no mesh named by an absolute path or one climbing out of the submission (``..``),
     which would make the teacher's machine read, and picture, files of its own."""
     if len(robot.links) > MAX_DRAWN_LINKS:
+        return False
+    from ..validate.usable import blocking_findings
+
+    if blocking_findings(robot, ("kinematics", "visual")):  # already in the report: never drawn from NaN
         return False
     for link in robot.links:
         for visual in link.visuals:

@@ -18,7 +18,7 @@ from ..expr import compile_expression
 from ..kinematics import TFTree, tf_tree
 from ..message import M, Message, number
 from ..model import Joint, Robot
-from .core import Motion, Track, check_joint
+from .core import JointStates, Motion, Track, check_joint
 from .interpolation import interpolator
 from .limits import joint_unit, speed_limit
 from .waypoints import WAYPOINT_SUFFIXES, read_waypoints
@@ -216,6 +216,19 @@ def _bag_layer(tree: TFTree, path: str, topic: str | None) -> _Layer:
     return _Layer(tracks, duration, label, notes)
 
 
+def _recorded_layer(tree: TFTree, states: JointStates, label: str) -> _Layer:
+    """Joint states as a node published them (``--node``), linear between messages."""
+    times = np.asarray(states.times, dtype=float)
+    times, first = np.unique(times, return_index=True)
+    times = times - times[0] if len(times) else times  # the motion starts with the first message
+    tracks = {}
+    for k, joint in enumerate(states.names):
+        check_joint(tree, joint)
+        values = np.asarray(states.positions, dtype=float)[first, k]
+        tracks[joint] = Track(joint, interpolator(times, values, "linear"), label)
+    return _Layer(tracks, float(times[-1]) if len(times) else 0.0, label)
+
+
 def spec_kind(spec: str) -> str:
     """"tutorial", "file" (a waypoint file), "bag" (a ROS 2 bag) or "formula"; else a ParameterError."""
     text = spec.strip()
@@ -234,7 +247,8 @@ def spec_kind(spec: str) -> str:
 
 
 def motion_from_specs(robot: Robot, specs: Sequence[str], set_values: Mapping[str, float] | None = None,
-                      interpolation: str | None = None, topic: str | None = None) -> Motion:
+                      interpolation: str | None = None, topic: str | None = None,
+                      recorded: tuple[str, JointStates] | None = None) -> Motion:
     """Combine motion specs: "tutorial", "JOINT=FORMULA", waypoint files and bags, plus fixed values.
 
     A ROS 2 bag (a folder with metadata.yaml, or its .mcap/.db3 file) drives the joints its
@@ -242,14 +256,17 @@ def motion_from_specs(robot: Robot, specs: Sequence[str], set_values: Mapping[st
 
     Formulas and files drive the joints they name (two specs for one joint are an error);
     ``set_values`` hold joints still; "tutorial" drives every joint left over. With no specs and
-    no values this is the tutorial motion; with values only, a fixed pose.
+    no values this is the tutorial motion; with values only, a fixed pose. ``recorded`` is
+    ``(label, JointStates)``: what a node published, taken directly (``--node``).
     """
     tree = tf_tree(robot)
     specs = list(specs)
     set_values = dict(set_values or {})
-    if not specs and not set_values:
+    if not specs and not set_values and recorded is None:
         return tutorial_motion(robot)
     layers: list[_Layer] = []
+    if recorded is not None:
+        layers.append(_recorded_layer(tree, recorded[1], recorded[0]))
     formulas: list[str] = []
     background: _Layer | None = None
     for spec in specs:

@@ -168,10 +168,12 @@ def report_text(robot: Robot, states, lang: str | None = None) -> str:  # type: 
     if summary is not None:
         lines.append(say(summary, lang))
     if states.control == "none":
-        rows = [_header(lang, M("joint"), M("rest position"), M("lower"), M("upper"), M("past range"), M("where"))]
+        rows = [_header(lang, M("joint"), M("rest position"), M("lower limit"), M("upper limit"),
+                        M("beyond the limit"), M("where"))]
         for r in states.report:
             tol = 0.02 * max(1.0, abs(r.upper - r.lower)) if math.isfinite(r.upper - r.lower) else 0.0
-            where = M("on its lower limit") if r.final_position <= r.lower + tol else \
+            where = M("not a number") if math.isnan(r.final_position) else \
+                M("on its lower limit") if r.final_position <= r.lower + tol else \
                 M("on its upper limit") if r.final_position >= r.upper - tol else M("between its limits")
             rows.append((r.joint, f"{r.final_position:.3f}", f"{r.lower:g}", f"{r.upper:g}", f"{r.overshoot:.4f}",
                          say(where, lang)))
@@ -179,12 +181,21 @@ def report_text(robot: Robot, states, lang: str | None = None) -> str:  # type: 
                         lang)] if states.contacts else []
         fell = say(M("motors off: the arm fell under gravity from its start pose"), lang)
         return "\n".join([fell, *lines, *_table(rows), *touching])
-    rows = [_header(lang, M("joint"), M("err.mean"), M("err.max"), M("peak torque"), M("effort"), M("at limit"),
-                    M("needed"), M("verdict"))]
+    # the headers in words a learner reads without a legend (the errors are in rad, m for a prismatic joint)
+    rows = [_header(lang, M("joint"), M("mean error"), M("largest error"), M("peak torque"), M("effort limit"),
+                    M("time at limit"), M("torque needed"), M("verdict"))]
+    unjudged = False
     for r in states.report:
         unit = "N" if _linear(robot, r.joint) else "N·m"
         effort = f"{r.effort:g} {unit}" if math.isfinite(r.effort) else "-"
-        verdict = M("too weak") if r.weak else M("saturates") if r.saturated else M("ok")
+        numbers = (r.error_mean, r.error_max, r.peak_torque, r.needed_peak, r.share_at_limit)
+        if any(math.isnan(v) for v in numbers):  # never "ok" beside a value that is not a number
+            verdict = M("not a number")
+            unjudged = True
+        elif states.diverged is not None:  # rows computed up to a divergence judge nothing
+            verdict = M("no verdict: the simulation diverged")
+        else:
+            verdict = M("too weak") if r.weak else M("saturates") if r.saturated else M("ok")
         rows.append((r.joint, f"{r.error_mean:.4f}", f"{r.error_max:.4f}", f"{r.peak_torque:.3g} {unit}", effort,
                      f"{r.share_at_limit:.0%}", f"{r.needed_peak:.3g} {unit}", say(verdict, lang)))
     lines += _table(rows)
@@ -208,7 +219,7 @@ def report_text(robot: Robot, states, lang: str | None = None) -> str:  # type: 
                             "{joints} sat at their torque limits and fell behind although the motion needs less "
                             "than their effort: the gains (--kp, --kd) or the time step make the motors overshoot; "
                             "lower them or use --integrator implicitfast", len(saturated), joints=saturated), lang))
-    if not weak and not saturated and states.diverged is None:
+    if not weak and not saturated and states.diverged is None and not unjudged:
         lines.append(say(M("every motor kept up: no joint needed more than its effort"), lang))
     return "\n".join(lines)
 

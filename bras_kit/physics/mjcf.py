@@ -318,6 +318,20 @@ def _joint_xml(joint: Joint, kp_effort: float, gravity_compensation: bool, dampi
     return f"<joint {attrs}/>"
 
 
+def _refuse_unusable(robot: Robot) -> None:
+    """MuJoCo is never handed a default (no damping, an unlimited motor, the x axis...) in place of a
+    value the reader could not use: the validator's first error about such a value, at its line
+    (the command line refuses these models before, listing every finding)."""
+    from ..validate.usable import EVERY_PART, blocking_findings
+
+    findings = blocking_findings(robot, EVERY_PART)
+    if findings:
+        first = findings[0]
+        raise ModelError(M("{code} {finding}: MuJoCo is given no default in its place (bras-kit validate lists "
+                           "every such value)", code=first.code, finding=first.message),
+                         path=robot.path, line=first.line, hint=first.hint)
+
+
 def _unit(axis: Sequence[float]) -> tuple[float, float, float]:
     norm = math.sqrt(sum(v * v for v in axis))
     if not norm or not math.isfinite(norm):
@@ -358,6 +372,7 @@ def build_mjcf(robot: Robot, *, package_paths: Sequence[str] = (), kp: float | M
     from .controllers import check_control
 
     gravity_compensation = check_control(control) == "pd+gravity"
+    _refuse_unusable(robot)
     root, children = _tree(robot)
     meshes = _Meshes(robot, package_paths)
     actuated: list[Actuated] = []

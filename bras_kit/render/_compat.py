@@ -20,6 +20,9 @@ the patch, when the installed pyrender or PyOpenGL no longer has what the patch 
   once a frame instead of once a primitive, the same calls and pixels otherwise;
 * :func:`_delete` / :func:`_release` / :func:`_disown` - renderers freed without pyrender's
   finalizers (which end the EGL display every context shares);
+* :func:`register_byref_type` - the ``ctypes.byref`` argument type under the name Python 3.12
+  gives it (``_ctypes.CArgObject``; PyOpenGL 3.1.0 knows it only as ``builtins.CArgObject``, so
+  every call that passes an output argument by reference, ``glGenTextures`` among them, failed);
 * :func:`loaded_platform` - which platform ``OpenGL.platform`` committed to.
 """
 
@@ -53,6 +56,27 @@ def pyopengl_version() -> tuple[int, ...]:
     return tuple(int(p) for p in OpenGL.__version__.split(".")[:3] if p.isdigit())
 
 
+def register_byref_type() -> None:
+    """Make PyOpenGL 3.1.0 find its handler for ``ctypes.byref(...)`` arguments on every Python.
+
+    PyOpenGL picks an array handler by the argument type's ``module.name``. 3.1.0 registers
+    ``ctypes.byref``'s type as ``builtins.CArgObject`` (``OpenGL/__init__.py``, the
+    ``ctypesparameter`` FormatHandler), which it is up to Python 3.11; Python 3.12 moved it to
+    ``_ctypes.CArgObject``, and ``glGenTextures(1)`` (any textured primitive) failed with "No
+    array-type handler for type _ctypes.type". PyOpenGL 3.1.7 added that name to the same list;
+    this adds it to 3.1.0's (pyrender pins 3.1.0), on every Python alike.
+    """
+    from OpenGL import plugins
+
+    byref_type = type(ctypes.byref(ctypes.c_int()))
+    name = f"{byref_type.__module__}.{byref_type.__name__}"
+    handler = plugins.FormatHandler.by_name("ctypesparameter")
+    if handler is None or handler.check is None:
+        raise RuntimeError("PyOpenGL no longer registers a 'ctypesparameter' array handler")
+    if name not in handler.check:
+        handler.check.append(name)
+
+
 def import_pyrender():  # type: ignore[no-untyped-def]
     """pyrender, importable under numpy 2 (it still uses ``np.infty``), in a third of its usual time.
 
@@ -74,6 +98,7 @@ def import_pyrender():  # type: ignore[no-untyped-def]
     finally:
         for name, module in stand_ins.items():
             _forget(name, module)
+    register_byref_type()
     _keep_uniform_locations(pyrender.shader_program.ShaderProgram)
     draw_front_to_back(pyrender.renderer.Renderer)
     return pyrender

@@ -2,7 +2,7 @@
 
 The counterpart of ``ros2 run PKG EXE``: the executable is found in ``setup.py``
 (:mod:`.locate`), its ``main()`` runs in a child process under the sandbox's limits against a
-stand-in for the part of rclpy beginner nodes use (``_standin/``, injected in that child
+stand-in for the part of rclpy beginner nodes use (``bras_kit/ros/standin/``, injected in that child
 only), on a simulated clock, and every message it publishes is recorded (:mod:`.recording`).
 :mod:`.findings` turns the recording into validator findings (BK640-BK659).
 
@@ -18,18 +18,27 @@ only), on a simulated clock, and every message it publishes is recorded (:mod:`.
 from __future__ import annotations
 
 import mmap
+import os
 import struct
 import tempfile
 from typing import Any
 
 from ..errors import BrasKitError
 from ..message import M
+from ..ros.contain import containment, uncontained_note
+from ..ros.locate import Target, locate
+from ..ros.recording import (
+    JOINT_STATES,
+    NodeFailure,
+    Published,
+    Recording,
+    joint_states,
+    stamp_seconds,
+)
 from .findings import robot_of, run_findings
-from .locate import Target, locate
-from .recording import JOINT_STATES, NodeFailure, Published, Recording, joint_states, stamp_seconds
 
 __all__ = ["JOINT_STATES", "NodeFailure", "NodeRunError", "Published", "Recording", "Target",
-           "joint_states", "locate", "robot_of", "run_findings", "run_node", "stamp_seconds"]
+           "joint_states", "locate", "robot_of", "run_findings", "run_node", "stamp_seconds", "uncontained_note"]
 
 DEFAULT_DURATION = 10.0
 MAX_DURATION = 3600.0
@@ -49,13 +58,109 @@ class NodeRunError(BrasKitError):
 
 
 def _child(target: Target, duration: float, echo: bool, workdir: str, shared: mmap.mmap,  # type: ignore[no-untyped-def]
-           parameters: dict[str, Any]):
-    from .child import run_node_here
+           parameters: dict[str, Any], walls: Any = None, robot: Any = None, prefixes: list[str] | None = None,
+           live: int | None = None, keep: bool = True):
+    from ..ros.child import run_node_here
+
+    if prefixes:  # as after `source install/setup.bash`: get_package_share_directory finds the package
+        os.environ["AMENT_PREFIX_PATH"] = os.pathsep.join(prefixes)
+    forward = _live_forwarder(live, keep) if live is not None else None
 
     def watch(t_ns: int) -> None:
         shared[:8] = struct.pack("<q", t_ns)
+        if forward is not None:
+            forward(t_ns)
 
-    return run_node_here(target, duration, echo, workdir, watch, parameters)
+    watcher = None
+    if walls is not None:  # contained: what the walls stopped, with the learner's lines
+        from ..ros.attempts import Watcher
+
+        read, write = walls.granted()
+        watcher = Watcher(target.root, tuple(write), tuple(read))
+        watcher.install()
+    recording = run_node_here(target, duration, echo, workdir, watch, parameters, robot)
+    if forward is not None:
+        forward(0)  # what was published at the last instant
+    if watcher is not None:
+        recording.blocked = watcher.finish()
+    return recording
+
+
+def _live_forwarder(fd: int, keep: bool = True):  # type: ignore[no-untyped-def]
+    """In the child, live beside ``bras-kit launch``: the simulated clock is held to the wall clock
+    (the real time functions, taken before the stand-in patches them) and each JointState on
+    /joint_states is written to ``fd`` as it is published, one JSON line (the parent puts it on
+    the bus: Zenoh's threads are never used across a fork). Unless ``keep``, what was sent is not
+    kept in the recording (nor the logs, already shown): a node live for hours stays the same size."""
+    import json
+    import time
+
+    from ..ros.recording import JOINT_STATE_TYPE, JOINT_STATES, stamp_seconds
+
+    sleep, clock = time.sleep, time.perf_counter
+    start = clock()
+    sent = 0
+
+    def forward(t_ns: int) -> None:
+        nonlocal sent
+        import _bras_sim
+
+        messages = _bras_sim.STATE.messages
+        while sent < len(messages):
+            _, _, topic, kind, fields = messages[sent]
+            sent += 1
+            if topic == JOINT_STATES and kind == JOINT_STATE_TYPE:
+                line = json.dumps({"name": [str(n) for n in fields.get("name", [])],
+                                   "position": [float(p) for p in fields.get("position", [])],
+                                   "stamp": stamp_seconds(fields) or 0.0}) + "\n"
+                os.write(fd, line.encode())
+        if not keep:
+            del messages[:sent], _bras_sim.STATE.logs[:]
+            sent = 0
+        ahead = t_ns / 1e9 - (clock() - start)
+        if ahead > 0:
+            sleep(ahead)
+
+    return forward
+
+
+def _relay(fd: int, deliver: Any = None) -> Any:
+    """In the parent: JSON lines from the child onto the bus (or to ``deliver``, called with each
+    :class:`~bras_kit.ros.bus.BusJointState`), in a thread, until the child is done."""
+    import json
+    import threading
+
+    from ..ros.bus import Bus, BusJointState
+
+    bus: Any = None
+    if deliver is None:
+        try:
+            bus = Bus.connect()
+        except BrasKitError:  # no Zenoh here: the node still runs, nothing reaches the launch
+            bus = None
+        if bus is not None:
+            deliver = bus.publish_joint_state
+
+    def pump() -> None:
+        with open(fd, "rb", buffering=0) as stream:
+            for line in iter(stream.readline, b""):
+                if deliver is None:
+                    continue  # drained all the same: the child never blocks on a full pipe
+                try:
+                    data = json.loads(line)
+                    state = BusJointState(data["name"], data["position"], data["stamp"])
+                except (ValueError, KeyError, TypeError):
+                    continue
+                try:
+                    deliver(state)
+                except Exception:  # noqa: BLE001 - a browser that left mid-frame: the next state goes on
+                    continue
+        if bus is not None:
+            bus.close()
+
+    thread = threading.Thread(target=pump, daemon=True, name="bras-kit-relay")
+    thread.start()
+    return thread
 
 
 def parse_parameters(items: list[str]) -> dict[str, Any]:
@@ -81,14 +186,23 @@ def parse_parameters(items: list[str]) -> dict[str, Any]:
 
 def run_node(where: str, executable: str | None = None, *, duration: float = DEFAULT_DURATION,
              echo: bool = False, parameters: dict[str, Any] | None = None, cpu_seconds: int = CPU_SECONDS,
-             memory_bytes: int = MEMORY_BYTES, wall_seconds: float = WALL_SECONDS) -> Recording:
+             memory_bytes: int = MEMORY_BYTES, wall_seconds: float = WALL_SECONDS,
+             contain: str = "auto", live: bool = False, on_joint_state: Any = None, keep: bool = True,
+             stop: Any = None) -> Recording:
     """Run the node ``where`` names (a package folder and an executable of its console_scripts,
     or a ``.py`` file) for ``duration`` simulated seconds and return its recording.
 
     ``echo`` shows the node's logs and prints live (as ``ros2 run`` does); otherwise they are
     kept in the recording. ``parameters`` are the values ``--ros-args -p NAME:=VALUE`` would
     give the node's declared parameters. The node runs in a child process with a CPU, memory and wall-clock
-    limit, in a temporary working folder.
+    limit, in a temporary working folder, contained (:mod:`bras_kit.ros.contain`): ``contain``
+    is "auto" (contained where this machine can, else not), "require" (a
+    :class:`~bras_kit.ros.contain.ContainmentUnavailable` where it cannot) or "off". ``live``
+    paces the simulated clock to the wall clock and publishes each /joint_states message on the
+    bus (:mod:`bras_kit.ros.bus`) to a running ``bras-kit launch`` (or, given ``on_joint_state``,
+    calls it with each :class:`~bras_kit.ros.bus.BusJointState` instead); unless ``keep``, a live
+    run keeps no recording of what it sent, so its memory stays flat. ``stop`` (a
+    :class:`threading.Event`) ends the run early: :class:`bras_kit.sandbox.Stopped` is raised.
     """
     from ..sandbox import ResourceLimitError, run_limited
 
@@ -96,19 +210,79 @@ def run_node(where: str, executable: str | None = None, *, duration: float = DEF
         raise BrasKitError(M("the duration must be between 0 and {max} s of simulated time", max=MAX_DURATION),
                            hint=M("for example --duration 10"))
     target = locate(where, executable)
+    _preload()
     shared = mmap.mmap(-1, 8)
     try:
         with tempfile.TemporaryDirectory(prefix="bras-kit-run-") as workdir:
+            prefixes = _build(target, workdir)
+            walls = containment(contain, workdir, (target.root, target.package or target.root))
+            robot = _robot_joints(where)
+            write_end: int | None = None
+            relay, wall = None, wall_seconds
+            if live:  # the node's JointStates go out through a pipe to the relay, on the wall clock
+                import dataclasses
+
+                read_end, write_end = os.pipe()
+                relay = _relay(read_end, on_joint_state)
+                wall = max(wall_seconds, duration + 30.0)
+                cpu_seconds = max(cpu_seconds, int(duration / 10))  # a node live for an hour may use 6 min
+                if walls is not None:  # the pipe to the relay is the one way out the contained node keeps
+                    walls = dataclasses.replace(walls, keep=(write_end,))
             try:
                 return run_limited(_child, target, duration, echo, workdir, shared, dict(parameters or {}),
-                                   cpu_seconds=cpu_seconds,
-                                   memory_bytes=memory_bytes, wall_seconds=wall_seconds,
-                                   what=f"the node {target.shown}")
+                                   walls, robot, prefixes, write_end, keep, cpu_seconds=cpu_seconds, contain=walls,
+                                   stop=stop,
+                                   memory_bytes=memory_bytes, wall_seconds=wall, what=f"the node {target.shown}")
             except ResourceLimitError as exc:
                 reached = struct.unpack("<q", shared[:8])[0] / 1e9
-                raise _limit_error(exc.kind, target, reached, cpu_seconds, wall_seconds, memory_bytes) from None
+                raise _limit_error(exc.kind, target, reached, cpu_seconds, wall, memory_bytes) from None
+            finally:
+                if relay is not None and write_end is not None:
+                    os.close(write_end)
+                    relay.join(10)
     finally:
         shared.close()
+
+
+def _robot_joints(where: str) -> Any:
+    """The joints of the robot the node drives (tf2_ros's Buffer in the child moves them), or None."""
+    from ..ros.child import robot_joints
+
+    try:
+        return robot_joints(robot_of(where))
+    except Exception:  # noqa: BLE001 - no robot to read: tf2 then knows only what was broadcast
+        return None
+
+
+def _preload() -> None:
+    """Jazzy's message definitions, read once in this process so that every child forked for a
+    run finds them loaded (the stand-in makes its message classes from them)."""
+    from rosbags.typesys import Stores, get_typestore
+
+    get_typestore(Stores.ROS2_JAZZY)
+
+
+def _build(target: Target, workdir: str) -> list[str]:
+    """The package built as colcon builds it (``ros2 run`` runs the installed package): the
+    install prefixes to put in AMENT_PREFIX_PATH. A build that stops is an error, in colcon's words."""
+    if target.package is None:
+        return []
+    from ..ros.build import build_package
+
+    record = build_package(target.package, os.path.join(workdir, "install"))
+    if record.failure is not None:
+        from ..validate.findings import finding
+        from ..validate.package.launch_rules import build_hits
+        from ..validate.registry import RULES
+
+        for hit in build_hits(record, target.package):
+            found = finding(RULES["BK630"], hit)
+            raise BrasKitError(found.message, hint=found.hint,
+                               path=os.path.join(target.package, str(hit.params.get("file", ""))), line=hit.line)
+        return []  # BK600's cases (no setup.py): locate() already said what it needs
+    from ..ros.launching import simulated_ros_prefix
+
+    return [record.prefix, simulated_ros_prefix(workdir)]
 
 
 def _limit_error(kind: str, target: Target, reached: float, cpu: int, wall: float, memory: int) -> NodeRunError:

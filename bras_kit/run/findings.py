@@ -13,7 +13,7 @@ import os
 from collections.abc import Iterable
 from typing import Any
 
-from .recording import Recording
+from ..ros.recording import Recording
 
 
 def robot_of(where: str, urdf: str | None = None) -> Any:
@@ -61,10 +61,11 @@ def package_run_results(path: str, *, lang: str | None = None, select: Iterable[
     A node stopped by a limit of the sandbox (CPU, memory, wall clock) is reported as BK640.
     """
     from ..errors import BrasKitError
+    from ..ros.contain import ContainmentError
+    from ..ros.recording import NodeFailure
     from ..validate.findings import FileResult
     from ..validate.package.sources import Package
     from . import NodeRunError, locate, run_node
-    from .recording import NodeFailure
 
     package = Package(path)
     scripts = package.setup.scripts if package.setup is not None else None
@@ -81,6 +82,8 @@ def package_run_results(path: str, *, lang: str | None = None, select: Iterable[
             recording = Recording(target=target.shown, source=source, function=target.function, duration=duration,
                                   end=exc.time, ended="error",
                                   failure=NodeFailure("NodeRunError", say(exc.message, lang), [], exc.time))
+        except ContainmentError:  # the walls failed here: never skipped in silence
+            raise
         except BrasKitError:  # an entry that cannot be started: BK622 reports it
             continue
         for finding in run_findings(recording, robot, lang=lang, select=select, ignore=ignore):

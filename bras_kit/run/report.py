@@ -3,7 +3,7 @@
 from __future__ import annotations
 
 from ..message import M, Message, Mn
-from .recording import Recording
+from ..ros.recording import Recording
 
 
 def ending(recording: Recording) -> Message:

@@ -27,9 +27,22 @@ from typing import Any
 
 from ..errors import BrasKitError, ParameterError, XacroError, XMLSafetyError, XMLSyntaxError
 from ..i18n import LANGUAGES, resolve_language
-from ..message import M
+from ..message import M, Message, Mn
 from ..model import Robot
-from . import geometry, inertia, joints, package, pitfalls, structure, texts  # noqa: F401  (importing registers the rules)
+from ..wording import quoted
+from . import (  # noqa: F401  (importing registers the rules)
+    gazebo,
+    gazebo_texts,
+    geometry,
+    inertia,
+    joints,
+    package,
+    pitfalls,
+    slips,
+    slips_texts,
+    structure,
+    texts,
+)
 from .context import Context
 from .findings import UNREADABLE_CODES, FileResult, Finding, finding, sort_key
 from .registry import ERROR, INFO, RULES, WARNING, Hit, Rule, run_rules, select_rules
@@ -57,23 +70,37 @@ def validate(
     package_paths: Sequence[str] = (),
     select: Iterable[str] = (),
     ignore: Iterable[str] = (),
+    target: str | None = None,
 ) -> list[Finding]:
     """Check a robot model; return its findings sorted by line.
 
     ``pose`` (joint -> value) is checked against the limits (BK303); ``states`` (a
     :class:`bras_kit.motion.JointStates`) against limits and velocities (BK304, BK305).
     A pose or states naming a joint the robot cannot move is a :class:`ParameterError`.
-    ``select``/``ignore`` are code prefixes (``BK3``, ``BK301``). Findings hold no words: show
+    ``select``/``ignore`` are code prefixes (``BK3``, ``BK301``). ``target="gazebo"`` says the robot
+    is heading for Gazebo: the BK7xx rules take their severities from
+    :data:`bras_kit.validate.gazebo.TARGET_SEVERITY` (refusals and lost parts become errors).
+    Findings hold no words: show
     them with :meth:`Finding.text` / :meth:`Finding.hint_text` in the language of the place
     (``lang`` is accepted for older callers and has no effect).
     """
-    context = Context(robot, pose=pose, states=states, package_paths=tuple(package_paths))
+    context = Context(robot, pose=pose, states=states, package_paths=tuple(package_paths), target=target)
     _check_joint_names(context, pose, "--pose")
     if states is not None:
         _check_joint_names(context, dict.fromkeys(states.names, 0.0), "the motion")
     rules = _rules(select, ignore)
     findings = [finding(r, found) for r, found in run_rules(rules, context)]
+    if target is not None:
+        findings = _for_target(findings, target)
     return sorted(findings, key=sort_key)
+
+
+def _for_target(findings: list[Finding], target: str) -> list[Finding]:
+    if target not in gazebo.TARGET_SEVERITY:
+        raise ParameterError(M("unknown target '{target}'", target=target),
+                             hint=M("the targets are: {targets}", targets=", ".join(gazebo.TARGETS)))
+    severities = gazebo.TARGET_SEVERITY[target]
+    return [dataclasses.replace(f, severity=severities.get(f.code, f.severity)) for f in findings]
 
 
 def validate_path(
@@ -87,8 +114,9 @@ def validate_path(
     mappings: Mapping[str, str] | None = None,
     select: Iterable[str] = (),
     ignore: Iterable[str] = (),
+    target: str | None = None,
 ) -> list[Finding]:
-    """Load a ``.urdf`` or ``.xacro`` file and check it.
+    """Load a ``.urdf`` or ``.xacro`` file and check it (``target``: see :func:`validate`).
 
     A file that cannot be read at all (missing, not well-formed, unsafe XML, xacro failure)
     gives a single finding BK100-BK103 instead of raising; ``bras-kit validate`` exits 2 on
@@ -108,7 +136,7 @@ def validate_path(
             return [_loader_finding("BK124", Hit("robot", robot.name, None))] if chosen else []
         states = motion_states(robot, motion, duration) if motion else None
         findings = validate(robot, pose=pose, states=states, package_paths=package_paths,
-                            select=select, ignore=ignore)
+                            select=select, ignore=ignore, target=target)
     if path.endswith(".xacro"):
         findings = _lines_in_xacro_source(path, findings)
     return findings
@@ -194,18 +222,22 @@ def compare_generated(urdf: str, xacro: str, *, mappings: Mapping[str, str] | No
     return [finding(RULES[code], Hit("file", None, None, params))] if code in chosen else []
 
 
-def _tree_difference(a: Any, b: Any, where: str = "") -> str | None:
+def _tree_difference(a: Any, b: Any, where: str = "") -> Message | None:
     """The first difference between two XML trees (tags, attributes, numbers to 1e-9), or None."""
     here = f"{where}/{a.tag}" + (f"[@name='{a.get('name')}']" if a.get("name") else "")
     if a.tag != b.tag:
-        return f"{here}: <{a.tag}> instead of <{b.tag}>"
+        return M("{where}: <{tag}> where the xacro file gives <{expected}>", where=here, tag=a.tag, expected=b.tag)
     if set(a.attrib) != set(b.attrib):
-        return f"{here}: attributes {sorted(a.attrib)} instead of {sorted(b.attrib)}"
+        return M("{where}: attributes {names} where the xacro file gives {expected}", where=here,
+                 names=" ".join(sorted(a.attrib)) or "-", expected=" ".join(sorted(b.attrib)) or "-")
     for key, value in a.attrib.items():
         if not _same_value(value, b.attrib[key]):
-            return f"{here} {key}=\"{value}\" instead of \"{b.attrib[key]}\""
+            return M("{where} {key}=\"{value}\" where the xacro file gives \"{expected}\"", where=here, key=key,
+                     value=value, expected=b.attrib[key])
     if len(a.children) != len(b.children):
-        return f"{here}: {len(a.children)} child elements instead of {len(b.children)}"
+        return Mn("{where}: {n} child element where the xacro file gives {expected}",
+                  "{where}: {n} child elements where the xacro file gives {expected}", len(a.children),
+                  where=here, expected=len(b.children))
     for x, y in zip(a.children, b.children):
         found = _tree_difference(x, y, here)
         if found:
@@ -273,14 +305,42 @@ def _unreadable(path: str, exc: BrasKitError) -> Finding:
             at, byte, guess = encoding
             return _loader_finding("BK100", Hit("file", None, at, {"at": at, "byte": byte, "guess": guess},
                                                 "encoding"))
+        swallowed = _swallowing_comment(exc.path or path, exc.line)
+        if swallowed is not None:
+            return _loader_finding("BK100", Hit("file", None, int(swallowed["line"]), swallowed, "comment"))
         detail: Any = exc.detail if exc.detail is not None else exc.message
         if where:
             detail = M("{where}{detail}", where=where, detail=detail)
+        if exc.fix is not None:  # a character pasted from elsewhere: named, with its own fix
+            return _loader_finding("BK100", Hit("file", None, line, {"detail": detail, "fix": exc.fix}, "pasted"))
         return _loader_finding("BK100", Hit("file", None, line, {"detail": detail}))
     if isinstance(exc, XacroError):
-        detail = str(exc.message).removeprefix("xacro failed: ")
-        return _loader_finding("BK102", Hit("file", None, line, {"detail": where + detail}, _xacro_kind(detail)))
+        english = str(exc.message).removeprefix("xacro failed: ")
+        # the words stay a message (worded in the finding's language); xacro's own English, when
+        # that is all there is, is quoted after the rule's sentence
+        said: Any = exc.message
+        if isinstance(said, Message) and said.id == "xacro failed: {error}":
+            said = quoted(str(said.params.get("error", english)))
+        if where:
+            said = M("{where}{detail}", where=where, detail=said)
+        return _loader_finding("BK102", Hit("file", None, line, {"detail": said}, _xacro_kind(english)))
     return _loader_finding("BK103", Hit("file", None, line, {"path": path, "detail": exc.message}))
+
+
+def _swallowing_comment(path: str, error_line: int | None) -> dict[str, Any] | None:
+    """A comment closed with '->' that runs on past the line where the XML reader gave up."""
+    from .slips import swallowing_comment
+
+    try:
+        with open(path, encoding="utf-8", errors="replace") as handle:
+            text = handle.read(64 << 20)
+    except OSError:
+        return None
+    found = swallowing_comment(text)
+    if found is None or error_line is None:
+        return None
+    end = int(found["end_line"]) or error_line
+    return found if int(found["line"]) <= error_line <= end else None
 
 
 def _encoding_problem(path: str) -> tuple[int, str, str] | None:
@@ -392,4 +452,4 @@ def _rules(select: Iterable[str], ignore: Iterable[str]) -> list[Rule]:
         return select_rules(select, ignore)
     except ValueError as exc:
         raise ParameterError(M("no rule code starts with '{prefix}'", prefix=str(exc)),
-                             hint=M("codes look like BK301; families are BK1 to BK6 (bras-kit explain lists them)")) from None
+                             hint=M("codes look like BK301; families are BK1 to BK7 (bras-kit explain lists them)")) from None

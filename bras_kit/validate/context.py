@@ -40,6 +40,7 @@ class Context:
     pose: Mapping[str, float] | None = None
     states: Any = None  # bras_kit.motion.JointStates (times, names, positions, velocities)
     package_paths: Sequence[str] = ()
+    target: str | None = None  # where the robot is heading ("gazebo"): notes for it are given only then
     _bounds: dict[int, Bounds | None] = field(default_factory=dict, init=False, repr=False)
     _derived: dict[str, Any] = field(default_factory=dict, init=False, repr=False)
 

@@ -81,8 +81,16 @@ def finding(rule: Rule, found: Hit) -> Finding:
     return Finding(rule.code, rule.severity, found.element, found.name, found.line, found.variant, dict(found.params))
 
 
-def sort_key(finding: Finding) -> tuple[int, int, str]:
-    return (finding.line or 0, SEVERITY_ORDER.get(finding.severity, 3), finding.code)
+# How a node's run ended (it raised, it used what the stand-in does not simulate, it published in a
+# loop with no time passing): the cause of every later finding about what it published, so it is
+# listed first, whatever its line (BK640 at the line that raised, before BK644 at the publisher's).
+CAUSES = frozenset({"BK640", "BK641", "BK642"})
+
+
+def sort_key(finding: Finding) -> tuple[int, int, int, str]:
+    """A file's findings in reading order, causes first: by line, then severity, then code."""
+    return (0 if finding.code in CAUSES else 1, finding.line or 0, SEVERITY_ORDER.get(finding.severity, 3),
+            finding.code)
 
 
 @dataclass

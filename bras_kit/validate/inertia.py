@@ -7,6 +7,7 @@ values come from the link's one primitive shape taken as a uniform solid of the 
 from __future__ import annotations
 
 import math
+import sys
 from collections.abc import Iterator
 from dataclasses import dataclass
 
@@ -206,7 +207,7 @@ def expected_inertia(ctx: Context, link: Link) -> np.ndarray | None:
     if inertial is None or shape is None or shape[0].geometry is None:
         return None
     mass = inertial.mass
-    if mass is None or not math.isfinite(mass) or mass <= 0:
+    if mass is None or not math.isfinite(mass) or mass <= 0 or not finite(*inertial.origin.rpy):
         return None
     element = shape[0]
     moments = solid_moments(element.geometry, mass)  # type: ignore[arg-type]
@@ -217,6 +218,14 @@ def expected_inertia(ctx: Context, link: Link) -> np.ndarray | None:
         return solid
     to_inertial = rotation(inertial.origin).T @ rotation(element.origin)
     return to_inertial @ solid @ to_inertial.T  # type: ignore[no-any-return]
+
+
+def _spread(given: float, wanted: float) -> float:
+    """How many times one moment is the other (both positive); infinite when the ratio overflows or
+    one of them underflowed to 0."""
+    if given <= 0 or wanted <= 0:
+        return math.inf
+    return max(given / wanted, wanted / given)
 
 
 def _inertia_xml(tensor: np.ndarray) -> str:
@@ -247,13 +256,15 @@ def inertia_mismatch(ctx: Context) -> Iterator[Hit]:
         # both diagonals are positive: both tensors are positive definite
         given, wanted = tensor.diagonal().tolist(), expected.diagonal().tolist()
         largest = max(wanted)
+        if not (math.isfinite(largest) and largest >= sys.float_info.min):
+            continue  # the solid's inertia underflows (a 1e-160 m box, a denormal mass): no ratio holds
         spreads = [
-            max(given[i] / wanted[i], wanted[i] / given[i]) if wanted[i] >= 0.01 * largest else 1.0
+            _spread(given[i], wanted[i]) if wanted[i] >= 0.01 * largest else 1.0
             for i in range(3)  # a near-zero moment (thin rod about its length) has no meaningful ratio
         ]
         axis = max(range(3), key=lambda i: spreads[i])
-        if spreads[axis] <= MISMATCH_FACTOR:
-            continue
+        if spreads[axis] <= MISMATCH_FACTOR or not math.isfinite(spreads[axis]):
+            continue  # an overflowing ratio (1e308 against 1e-10) says nothing a learner can use
         kind = ctx.shape(link)[0].geometry.kind  # type: ignore[index, union-attr]
         yield hit("link", link.name, inertial.line, "more" if given[axis] > wanted[axis] else "less",
                   link=link.name, key=("ixx", "iyy", "izz")[axis], given=given[axis],

@@ -9,6 +9,7 @@ from ..model import MOVABLE_TYPES, Joint
 from .context import Context
 from .registry import ERROR, INFO, WARNING, Hit, hit, rule
 from .solids import finite, number
+from .structure import comma_fix
 
 LIMITED_TYPES = ("revolute", "prismatic")
 AXIS_TYPES = ("revolute", "continuous", "prismatic", "planar")
@@ -69,7 +70,7 @@ def limit_range_empty(ctx: Context) -> Iterator[Hit]:
 def _axis_joints(ctx: Context) -> Iterator[tuple[Joint, tuple[float, float, float], float]]:
     for joint in ctx.robot.joints:
         if joint.type in AXIS_TYPES and joint.axis is not None and finite(*joint.axis):
-            yield joint, joint.axis, math.sqrt(sum(v * v for v in joint.axis))
+            yield joint, joint.axis, math.hypot(*joint.axis)  # no overflow at 1e308, no underflow to 0
 
 
 @rule("BK204", "axis-zero", ERROR)
@@ -93,15 +94,17 @@ def axis_unreadable(ctx: Context) -> Iterator[Hit]:
     for kind in ("missing_attribute", "bad_number"):
         for issue in ctx.issues(kind):
             if issue.element == "axis":
-                yield hit("joint", issue.name, issue.line, "missing" if kind == "missing_attribute" else "",
-                          joint=issue.name, value=issue.value)
+                variant, fixed, comma = comma_fix(issue.value or "", 3)
+                yield hit("joint", issue.name, issue.line, "missing" if kind == "missing_attribute" else variant,
+                          joint=issue.name, value=issue.value, fixed=fixed, comma=comma, part=issue.part)
 
 
 @rule("BK207", "number-not-finite", ERROR)
 def number_not_finite(ctx: Context) -> Iterator[Hit]:
     for issue in ctx.issues("non_finite"):
         element, name = ctx.owner(issue)
-        yield hit(element, name, issue.line, tag=issue.element, attribute=issue.attribute, value=issue.value)
+        yield hit(element, name, issue.line, tag=issue.element, attribute=issue.attribute, value=issue.value,
+                  part=issue.part)
 
 
 @rule("BK208", "continuous-with-bounds", WARNING)

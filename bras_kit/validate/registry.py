@@ -8,7 +8,8 @@ gettext catalog ``locale/fr/LC_MESSAGES/validate.po`` with the rule code as ``ms
 is worded where it is shown (:mod:`bras_kit.validate.findings`).
 
 Codes by family: BK1xx structure, BK2xx joints, BK3xx the tutorial's pitfalls, BK4xx geometry,
-BK5xx inertia, BK6xx the whole ROS 2 package. Codes never change meaning; a retired code is not reused.
+BK5xx inertia, BK6xx the whole ROS 2 package,
+BK7xx what Gazebo will make of the robot. Codes never change meaning; a retired code is not reused.
 """
 
 from __future__ import annotations
@@ -32,6 +33,7 @@ FAMILIES = {
     "BK4": "geometry",
     "BK5": "inertia",
     "BK6": "package",
+    "BK7": "gazebo",
 }
 FAMILY_TITLES: dict[str, Message] = {
     "structure": M("structure (is this a robot, and one tree?)"),
@@ -40,6 +42,7 @@ FAMILY_TITLES: dict[str, Message] = {
     "geometry": M("geometry (shapes, meshes, colours)"),
     "inertia": M("inertia (mass and inertia for simulation)"),
     "package": M("the ROS 2 package (setup.py, launch file, RViz configuration, nodes)"),
+    "gazebo": M("Gazebo (what libsdformat's URDF reader keeps, merges, drops or refuses)"),
 }
 SEVERITY_WORDS: dict[str, Message] = {ERROR: M("error"), WARNING: M("warning"), INFO: M("info")}
 

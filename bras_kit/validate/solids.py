@@ -104,7 +104,8 @@ def half_extents(geometry: Geometry | None) -> tuple[float, float, float] | None
 
 
 def rotation(origin: Origin) -> np.ndarray:
-    if origin.rpy == (0.0, 0.0, 0.0) or not finite(*origin.rpy):
+    """The origin's rotation; NaN for a non-finite rpy (callers check :func:`finite` first)."""
+    if origin.rpy == (0.0, 0.0, 0.0):
         return np.eye(3)
     return rpy_to_matrix(origin.rpy)
 
@@ -112,7 +113,7 @@ def rotation(origin: Origin) -> np.ndarray:
 def shape_bounds(origin: Origin, geometry: Geometry | None) -> Bounds | None:
     """Axis-aligned bounds of a primitive placed at ``origin`` (exact for quarter-turn rotations)."""
     half = half_extents(geometry)
-    if half is None or not finite(*origin.xyz):
+    if half is None or not finite(*origin.xyz, *origin.rpy):
         return None
     if origin.rpy == (0.0, 0.0, 0.0):  # the common case, without numpy: many links, tiny vectors
         reach = half

@@ -3,9 +3,10 @@
 from __future__ import annotations
 
 import difflib
+import re
 from collections.abc import Iterable, Iterator
 
-from ..model import JOINT_TYPES, Joint
+from ..model import JOINT_TYPES, Joint, parse_numbers
 from .context import Context, find_loops
 from .registry import ERROR, INFO, WARNING, Hit, hit, loader_rule, rule
 
@@ -72,8 +73,8 @@ def robot_name_missing(ctx: Context) -> Iterator[Hit]:
 
 @rule("BK125", "xml-declaration-not-first", WARNING)
 def xml_declaration_not_first(ctx: Context) -> Iterator[Hit]:
-    for issue in ctx.issues("late_xml_declaration"):
-        yield hit("file", None, issue.line, at=issue.line)
+    for issue in ctx.issues("late_xml_declaration"):  # a tab is named: it is invisible in most editors
+        yield hit("file", None, issue.line, "tab" if issue.value == "tab" else "", at=issue.line)
 
 
 @rule("BK106", "no-links", ERROR)
@@ -261,7 +262,7 @@ def attribute_missing(ctx: Context) -> Iterator[Hit]:
         key = (issue.element, issue.attribute or "")
         yield hit(element, name, issue.line, "element" if key in MISSING_ELEMENTS else "",
                   tag=issue.element, attribute=issue.attribute, owner=name,
-                  example=EXAMPLES.get(key, f'{issue.attribute}="..."'))
+                  example=EXAMPLES.get(key, f'{issue.attribute}="..."'), part=issue.part)
 
 
 @rule("BK123", "number-unreadable", ERROR)
@@ -271,7 +272,31 @@ def number_unreadable(ctx: Context) -> Iterator[Hit]:
             continue  # BK206
         element, name = ctx.owner(issue)
         count = VECTOR_SIZES.get(issue.attribute or "", 1)
-        yield hit(element, name, issue.line, "one" if count == 1 else "",
+        variant, fixed, comma = comma_fix(issue.value or "", count)
+        yield hit(element, name, issue.line, variant or ("one" if count == 1 else ""),
                   tag=issue.element, attribute=issue.attribute, value=issue.value, count=count,
                   example=EXAMPLES.get((issue.element, issue.attribute or ""))
-                  or f'{issue.attribute}="{" ".join(["0"] * count)}"')
+                  or f'{issue.attribute}="{" ".join(["0"] * count)}"', fixed=fixed, comma=comma, part=issue.part)
+
+
+_DECIMAL_COMMA = re.compile(r"(?<=[0-9]),(?=[0-9])")
+
+
+def comma_fix(value: str, count: int) -> tuple[str, str, str]:
+    """("comma", the value with decimal points, the first number written with a comma) for
+    ``0 0 0,6``; ("commas", the value with spaces, "") for ``0,0,0.6``; ("", "", "") otherwise."""
+    if "," not in value:
+        return "", "", ""
+    decimal = _DECIMAL_COMMA.sub(".", value)
+    numbers = parse_numbers(decimal)
+    if numbers is not None and len(numbers) == count:
+        comma = next((part for part in value.split() if _DECIMAL_COMMA.search(part)), value)
+        return "comma", " ".join(decimal.split()), comma
+    tokens = value.split()
+    if not (len(tokens) == 1 or all(token.endswith(",") for token in tokens[:-1])):
+        return "", "", ""  # commas and spaces mixed ("0 0,6"): no guess at what was meant
+    spaced = " ".join(value.replace(",", " ").split())
+    numbers = parse_numbers(spaced)
+    if numbers is not None and len(numbers) == count:
+        return "commas", spaced, ""
+    return "", "", ""

@@ -14,10 +14,14 @@ describe(
     message={
         "": "not well-formed XML: {detail}",
         "encoding": "the file is not UTF-8 text: byte {byte} on line {at} would be '{guess}' in Latin-1, so the file was probably saved as Latin-1 or Windows-1252",
+        "comment": "the comment opened on line {line} ends with '->' on line {arrow_line}, not '-->': it runs on to the '-->' of line {end_line} and hides {hidden}, which check_urdf reports missing",
+        "pasted": "not well-formed XML: {detail}",
     },
     hint={
         "": "look at this line: a tag left open, a missing '/>' or a stray quote are the usual causes",
+        "pasted": "{fix}, then check the file again",
         "encoding": 're-save the file as UTF-8 in your editor (or declare its encoding: <?xml version="1.0" encoding="ISO-8859-1"?>)',
+        "comment": "close the comment on line {arrow_line} with '-->' (two dashes)",
     },
     explanation="""\
 The file could not be read as XML, so nothing else in it was checked. The line given is where
@@ -97,8 +101,14 @@ exits with status 2 so that scripts notice.""",
 describe(
     "BK125",
     title="the <?xml ?> declaration is not at the very start of the file",
-    message="the <?xml ...?> declaration is on line {at}, after blank lines or spaces: strict XML readers refuse the file",
-    hint="delete the blank lines and spaces before <?xml",
+    message={
+        "": "the <?xml ...?> declaration is on line {at}, after blank lines or spaces: strict XML readers refuse the file",
+        "tab": "the <?xml ...?> declaration on line {at} comes after a tab (U+0009), pasted with an indented listing: strict XML readers refuse the file",
+    },
+    hint={
+        "": "delete the blank lines and spaces before <?xml",
+        "tab": "delete the tab at the start of line {at}: <?xml must be the file's very first characters",
+    },
     explanation="""\
 XML allows nothing, not even a blank line, before the `<?xml version="1.0"?>` declaration.
 urdfdom (`check_urdf`, robot_state_publisher) and pybullet read such a file anyway, so bras-kit
@@ -119,7 +129,8 @@ describe(
     "BK127",
     title="a generated URDF no longer matches its xacro file",
     message="this URDF differs from what {xacro} gives now ({difference}): it is out of date",
-    hint="regenerate it: bras-kit xacro {xacro} -o {urdf} --force",
+    hint="keep one source: edit the file your launch file loads, or have the launch file run xacro on {xacro} "
+         "(Command(['xacro ', path])) and stop installing {urdf}",
     explanation="""\
 When a folder holds `bras.urdf.xacro` and `bras.urdf`, the URDF is taken as generated from the
 xacro file. If the two disagree, the package installs and launches whichever file its launch
@@ -347,10 +358,14 @@ describe(
     "BK123",
     title="a value is not a number",
     message={
+        "comma": '<{tag}> {attribute}="{value}" writes {comma} with a decimal comma: URDF numbers take a point',
+        "commas": '<{tag}> {attribute}="{value}" separates its numbers with commas: URDF separates them with spaces',
         "one": '<{tag}> {attribute}="{value}" is not a number',
         "": '<{tag}> {attribute}="{value}" is not {count} numbers',
     },
     hint={
+        "comma": 'write {attribute}="{fixed}"',
+        "commas": 'write {attribute}="{fixed}"',
         "one": "write one number with a decimal point, e.g. 0.6 (not 0,6 and no unit)",
         "": "write {count} numbers separated by spaces, e.g. {example}",
     },
@@ -440,12 +455,19 @@ describe(
     title="the joint axis cannot be read",
     message={
         "missing": "joint '{joint}': <axis> has no xyz attribute",
+        "comma": 'joint \'{joint}\': <axis xyz="{value}"> writes {comma} with a decimal comma: URDF numbers take a point',
+        "commas": 'joint \'{joint}\': <axis xyz="{value}"> separates its numbers with commas: URDF separates them with spaces',
         "": 'joint \'{joint}\': <axis xyz="{value}"> is not three numbers',
     },
-    hint='write three numbers, e.g. <axis xyz="0 1 0"/> (the tutorial\'s joints turn about y)',
+    hint={
+        "comma": 'write <axis xyz="{fixed}"/>',
+        "commas": 'write <axis xyz="{fixed}"/>',
+        "": 'write three numbers, e.g. <axis xyz="0 1 0"/> (the tutorial\'s joints turn about y)',
+    },
     explanation="""\
-`<axis xyz="x y z">` needs exactly three numbers separated by spaces. An unreadable axis makes
-the joint turn about a default direction (x) that is probably not the one intended.""",
+`<axis xyz="x y z">` needs exactly three numbers separated by spaces. ROS's parser refuses a
+file whose axis it cannot read, and bras-kit's commands refuse to move such a joint rather than
+pick a direction for it (the default x is probably not the one intended).""",
 )
 describe(
     "BK207",

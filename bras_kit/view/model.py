@@ -95,6 +95,21 @@ class ViewModel:
             points.append(corners @ poses[link][:3, :3].T + poses[link][:3, 3])
         return np.vstack(points)
 
+    def swept_points(self, configs: Sequence[Mapping[str, float]], fixed_frame: int = 0) -> np.ndarray:
+        """:meth:`box_points` for many poses at once (one batched forward kinematics)."""
+        if not configs:
+            return np.zeros((0, 3))
+        world = fk_batch(self.tree, np.array([self.config_vector(c) for c in configs]))  # (N, L, 4, 4)
+        if fixed_frame:
+            world = np.linalg.inv(world[:, fixed_frame])[:, None] @ world
+        points = [world[:, :, :3, 3].reshape(-1, 3)]
+        for low, high, link in self._boxes:
+            corners = np.array([[x, y, z] for x in (low[0], high[0]) for y in (low[1], high[1])
+                                for z in (low[2], high[2])])
+            rotations, origins = world[:, link, :3, :3], world[:, link, :3, 3]
+            points.append((np.einsum("nij,kj->nki", rotations, corners) + origins[:, None]).reshape(-1, 3))
+        return np.vstack(points)
+
     def tip(self, poses: np.ndarray) -> np.ndarray:
         pose = poses[self.tip_link]
         return pose[:3, :3] @ self.tip_offset + pose[:3, 3]

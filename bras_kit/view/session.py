@@ -15,6 +15,7 @@ import numpy as np
 
 from ..i18n import say
 from ..message import M, Message
+from ..motion.sources import motion_title
 from .model import ViewModel, wxyz
 from .panel import (
     ERROR_RED,
@@ -43,6 +44,113 @@ DEFAULT_HDRI = "city"  # the environment map viser's page shows when none is con
 # 90deg: hidden; the joint's text box below its slider reads typed values with the CLI's parser
 _HIDE_SLIDER_BOXES = "<style>.mantine-Slider-root + .mantine-NumberInput-root{display:none}</style>"
 
+# viser's client (1.1.1) has its own words, in English: notices (client/src/BrowserWarning.tsx),
+# tooltips and labels of its panels (client/src/dock/, ControlPanel/). In any other language a
+# small script, sent through viser's own RunJavascriptMessage, rewords them where they appear
+# (text, tooltip, title, aria-label, placeholder), without touching viser's client. Keys are
+# viser's exact English; values the catalog's message.
+_CLIENT_WORDS: dict[str, Message] = {
+    "Software WebGL rendering detected": M("Software WebGL rendering detected"),
+    "WebGL is running in software mode, not on your GPU. Performance may be degraded. If this is unexpected, "
+    "check that hardware acceleration is enabled in your browser settings.": M(
+        "WebGL runs in software, not on your graphics card: the page may be slower. If that is unexpected, "
+        "check that hardware acceleration is on in your browser's settings."),
+    "WebGL unavailable": M("WebGL unavailable"),
+    "WebGL is unavailable. This may be caused by hardware acceleration being disabled \u2014 check your browser "
+    "settings.": M("WebGL is unavailable: hardware acceleration may be off in your browser's settings."),
+    "Connected": M("Connected"),
+    "Minimize": M("Minimize"),
+    "Expand": M("Expand"),
+    "Collapse": M("Collapse"),
+    "Minimize panel": M("Minimize the panel"),
+    "Expand panel": M("Expand the panel"),
+    "Minimize panels": M("Minimize the panels"),
+    "Expand panels": M("Expand the panels"),
+    "Collapse panel area": M("Fold the panel area"),
+    "Collapse column": M("Fold the column"),
+    "Expand column": M("Unfold the column"),
+    "Disconnect": M("Disconnect"),
+    "Server": M("Server"),
+    "Server URL": M("Server address"),
+    "Share": M("Share"),
+    "Share (needs connection)": M("Share (needs a connection)"),
+    "Dev Settings": M("Developer settings"),
+    "Configuration & diagnostics": M("Settings and diagnostics"),
+    "Orbit Origin Tool": M("Orbit centre tool"),
+    "Scene tree": M("Scene tree"),
+    "Playback speed": M("Playback speed"),
+    "Adaptive": M("Adaptive"),
+    "Dark Mode": M("Dark mode"),
+    "WebGL Stats": M("WebGL statistics"),
+    "Show Viser Logo": M("Show the Viser logo"),
+    "Log Camera to Console": M("Log the camera to the console"),
+    "Show Orbit Crosshair": M("Show the orbit crosshair"),
+    "Device Pixel Ratio": M("Device pixel ratio"),
+    "Discard any panel rearrangement and restore the layout the server set.": M(
+        "Discard any change to the panels' layout and restore the one the page started with."),
+    "Clear visibility override": M("Clear the visibility override"),
+    "Toggle visibility override": M("Override the visibility"),
+    "Expand image": M("Enlarge the image"),
+    "Expand plot": M("Enlarge the plot"),
+    "Contains unsubmitted changes.": M("Holds changes not sent yet."),
+    "Return to GUI": M("Back to the panel"),
+    "Open navigation": M("Open the navigation"),
+    "Close navigation": M("Close the navigation"),
+    "Close props": M("Close the properties"),
+    "About Viser": M("About Viser"),
+    "Auto-created anchor for client-local children": M("Anchor made for this browser's own nodes"),
+    "Client-local: only this client sees this node": M("This browser's own: only it shows this node"),
+}
+# the same, where viser adds a name after them (``Edit props for /bras``)
+_CLIENT_PREFIXES: dict[str, Message] = {
+    "Edit props for ": M("Edit the properties of "),
+    "Collapse panel ": M("Fold the panel "),
+    "Expand panel ": M("Unfold the panel "),
+}
+_CLIENT_SCRIPT = """(() => {
+  const words = %s, prefixes = %s;
+  const word = (text) => {
+    if (text == null) return null;
+    const key = text.trim();
+    if (Object.prototype.hasOwnProperty.call(words, key)) return text.replace(key, words[key]);
+    for (const [english, local] of prefixes) if (text.startsWith(english)) return local + text.slice(english.length);
+    return null;
+  };
+  const attributes = ["title", "aria-label", "placeholder"];
+  const fix = (node) => {
+    if (node.nodeType === 3) {
+      const local = word(node.nodeValue);
+      if (local !== null && local !== node.nodeValue) node.nodeValue = local;
+      return;
+    }
+    if (node.nodeType !== 1) return;
+    for (const name of attributes) {
+      const local = word(node.getAttribute(name));
+      if (local !== null && local !== node.getAttribute(name)) node.setAttribute(name, local);
+    }
+    for (const child of node.childNodes) fix(child);
+  };
+  fix(document.body);
+  new MutationObserver((changes) => {
+    for (const change of changes) {
+      if (change.type === "childList") change.addedNodes.forEach(fix);
+      else fix(change.target);
+    }
+  }).observe(document.body, {subtree: true, childList: true, characterData: true, attributes: true,
+                             attributeFilter: attributes});
+})();"""
+
+
+def client_words_script(lang: str) -> str:
+    """The script that words viser's own client in ``lang`` (empty in English)."""
+    import json
+
+    if lang == "en":
+        return ""
+    words = {english: say(message, lang) for english, message in _CLIENT_WORDS.items()}
+    prefixes = [[english, say(message, lang)] for english, message in _CLIENT_PREFIXES.items()]
+    return _CLIENT_SCRIPT % (json.dumps(words, ensure_ascii=False), json.dumps(prefixes, ensure_ascii=False))
+
 
 class Session:
     """The scene nodes and GUI of one client, rebuilt when the model changes."""
@@ -53,7 +161,7 @@ class Session:
         self.lang = lang
         self.values: dict[str, float] = {}
         self.fixed_frame = 0
-        self.fixed_name: str | None = None  # the Fixed Frame chosen by name, kept across reloads
+        self.fixed_name: str | None = getattr(viewer, "fixed_frame", None)  # chosen by name, kept across reloads
         self.playing = False
         self.play_time = 0.0
         self.speed = 1.0
@@ -77,7 +185,7 @@ class Session:
         self.show_model(viewer.model)
         client.camera.on_update(self._camera_reported)
 
-    def w(self, message: Message) -> str:
+    def w(self, message: Message | str) -> str:
         """``message`` worded in this browser's language, escaped for the panel's HTML."""
         return html.escape(say(message, self.lang))
 
@@ -93,14 +201,15 @@ class Session:
 
     def frame_camera(self) -> None:
         """Put this browser's camera on the robot, sized for its canvas, clear of the panel."""
-        from .framing import place_camera
+        from .framing import SWEPT_MARGIN, place_camera, reach_points
 
         camera = self.client.camera
         try:
             width, height = int(camera.image_width), int(camera.image_height)
         except (AssertionError, AttributeError):  # the browser has not said its size yet
             return
-        placement = place_camera(self.model.box_points(self.values, self.fixed_frame), width, height)
+        points = reach_points(self.model, self.values, self.viewer.motion, self.fixed_frame)
+        placement = place_camera(points, width, height, margin=SWEPT_MARGIN)
         with self.client.atomic():
             camera.fov = placement.fov
             camera.near = placement.near
@@ -111,6 +220,13 @@ class Session:
     # -- the panel that does not depend on the model ------------------------------------------
     def _build_panel(self) -> None:
         gui, s = self.client.gui, self.s
+        # the panel's title: viser says "Connected" there, in English, unless given a label
+        gui.set_panel_label(f"bras-kit · {self.viewer.model.robot.name or 'robot'}")
+        script = client_words_script(self.lang)
+        if script:  # viser's own words, in the page's language (its API's message, as plotly is set up)
+            from viser import _messages
+
+            self.client.gui._websock_interface.queue_message(_messages.RunJavascriptMessage(source=script))
         self.banner = gui.add_html("", order=0)
         self.status = gui.add_html("", order=0.5)
         with gui.add_folder(s(M("Display")), order=1):
@@ -136,13 +252,16 @@ class Session:
             buttons.on_click(lambda event: self._button(event.target.value))
         motion = self.viewer.motion
         with gui.add_folder(s(M("Motion")), order=3):
-            self.play = gui.add_checkbox(s(M("Play")), False, disabled=motion is None)
+            self.play = gui.add_checkbox(s(M("Play")), bool(self.viewer.autoplay and motion is not None),
+                                         disabled=motion is None)
             self.speed_slider = gui.add_slider(s(M("Speed")), 0.1, 3.0, 0.1, 1.0, disabled=motion is None)
             self.scrubber = gui.add_slider(s(M("Time (s)")), 0.0, self._period() or 1.0, 0.01, 0.0,
                                            disabled=motion is None,
                                            hint=s(M("drag to show the motion at that time (pauses it)")))
             self.motion_text = gui.add_html("")
         self.play.on_update(lambda _event: self._toggle_play())
+        if self.play.value:  # started playing (view --node): the node moves the arm by itself
+            self._toggle_play()
         self.speed_slider.on_update(lambda _event: setattr(self, "speed", float(self.speed_slider.value)))
         self.scrubber.on_update(lambda event: self._scrubbed(event))
         with gui.add_folder(s(M("Readouts")), order=4):
@@ -151,7 +270,7 @@ class Session:
         with gui.add_folder(s(M("Checks")), order=5):
             self.findings = gui.add_html("")
         if motion is not None:
-            self.motion_text.content = f"<small>{html.escape(motion.label or '')}</small>"
+            self.motion_text.content = f"<small>{self.w(motion_title(motion.label))}</small>"
 
     def _period(self) -> float:
         motion = self.viewer.motion
@@ -309,8 +428,9 @@ class Session:
         model = self.model
         outside = model.out_of_limits(self.values)
         tip = model.tip(poses)
-        rows = [f"<p style='margin:2px 0'><b>{self.w(M('Tip'))}</b> ({html.escape(model.tree.links[model.tip_link])}): "
-                f"x={tip[0]:.3f} y={tip[1]:.3f} z={tip[2]:.3f} m</p>"]
+        rows = [f"<p style='margin:2px 0'><b>{self.w(M('Tip'))}</b> "
+                + self.w(M("({link}): x={x} y={y} z={z} m", link=model.tree.links[model.tip_link], x=f"{tip[0]:.3f}",
+                           y=f"{tip[1]:.3f}", z=f"{tip[2]:.3f}")) + "</p>"]
         for slider in model.sliders:
             value = self.values.get(slider.joint, 0.0)
             rows.append(self._row(slider.joint, value, slider.unit, slider.joint in outside, ""))
@@ -421,6 +541,17 @@ class Session:
             self.play_time = float(self.scrubber.value)
             self._show_time(self.play_time)
 
+    def take_joint_state(self, values: dict[str, float]) -> None:
+        """A node's JointState: shown as published (unknown joints are left out, as
+        robot_state_publisher leaves them); a playing motion pauses."""
+        with self._lock:
+            if self.playing:
+                self.play.value = False
+                self.playing = False
+            known = {name: value for name, value in values.items() if name in self.values}
+            if known:
+                self.set_values(known)
+
     def advance(self, seconds: float) -> None:
         """Playback: move the motion on by ``seconds`` of wall time (times the speed)."""
         with self._lock:
@@ -436,7 +567,7 @@ class Session:
         positions = motion.positions(np.array([when]))[0]
         self.set_values(dict(zip(motion.names, (float(v) for v in positions))))
         self.scrubber.value = min(when, float(self.scrubber.max))
-        self.motion_text.content = f"<small>{html.escape(motion.label or '')} · t = {when:.2f} s</small>"
+        self.motion_text.content = f"<small>{self.w(motion_title(motion.label))} · t = {when:.2f} s</small>"
 
     # -- display toggles ---------------------------------------------------------------------
     def _apply_visibility(self) -> None:
@@ -472,5 +603,5 @@ def _clip(value: float, slider: Any) -> float:
 
 def _nice(length: float) -> float:
     """A round grid step near ``length``: 1, 2 or 5 times a power of ten."""
-    power = 10 ** math.floor(math.log10(max(length, 1e-6)))
+    power = 10.0 ** math.floor(math.log10(max(length, 1e-6)))  # a float: 10 * 1e308 is inf, not an OverflowError
     return min((m * power for m in (1, 2, 5, 10)), key=lambda v: abs(v - length))

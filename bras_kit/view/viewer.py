@@ -7,6 +7,7 @@ import contextlib
 import os
 import threading
 import time
+import warnings
 from collections.abc import Callable, Iterator, Sequence
 from dataclasses import dataclass, field
 from typing import Any
@@ -54,7 +55,9 @@ class Viewer:
 
     def __init__(self, source: Source, *, host: str = LOCAL_HOST, port: int = 8080, lang: str = "en",
                  motion_specs: Sequence[str] = (), loop_seconds: float = 10.0, watch: bool = True,
-                 geometry: str = "visual", motion_topic: str | None = None) -> None:
+                 geometry: str = "visual", motion_topic: str | None = None, recorded: Any = None,
+                 autoplay: bool = False, fixed_frame: str | None = None,
+                 refuse: Callable[[Robot], None] | None = None) -> None:
         viser = backends.viser()
 
         from .session import GEOMETRIES
@@ -65,10 +68,14 @@ class Viewer:
             raise ParameterError(M("geometry '{value}' is not one of {choices}", value=geometry, choices=list(GEOMETRIES)),
                                  hint=M("visual (the default), collision or both, as RViz's Visual/Collision Enabled"))
         self.source = source
+        self.refuse = refuse  # raises for a model holding a value the viewer cannot use (on every reload)
         self.lang = lang
         self.geometry = geometry
         self.motion_specs = list(motion_specs)
         self.motion_topic = motion_topic  # the JointState topic of a bag given as a motion
+        self.recorded = recorded  # (label, JointStates) a node published (--node), taken as the motion
+        self.autoplay = autoplay  # pages start playing (the tutorial's node moves the arm by itself)
+        self.fixed_frame = fixed_frame  # the Fixed Frame pages start with (rviz2 -d's Global Options)
         self.loop_seconds = loop_seconds
         self.error: BaseException | None = None  # why the saved file does not read, while it does not
         self.findings: list[Any] = []
@@ -77,13 +84,17 @@ class Viewer:
         self.model: ViewModel = self._build(source.load())  # a first model that cannot load is an error
         self.source_label = source.path or M("built-in tutorial arm")
         self._check(self.model.robot)
+        # a tab closed during playback: the frame being sent to it is dropped, and viser says so
+        # with a UserWarning on the terminal; for bras-kit a browser leaving is no event
+        warnings.filterwarnings("ignore", message=r"Queued a \w+ on a closed connection", category=UserWarning)
         self.sessions: dict[int, Session] = {}
         self._lock = threading.RLock()
         self._stopping = threading.Event()
         with quiet():
             self.server = viser.ViserServer(host=host, port=port, verbose=False)
         never_share(self.server)
-        self.server.gui.configure_theme(control_width="large", show_share_button=False)
+        # viser's logo opens its own "About" text, in English only: shown in English pages alone
+        self.server.gui.configure_theme(control_width="large", show_share_button=False, show_logo=lang == "en")
         self._frame_camera(self.model)
         self.server.on_client_connect(self._connect)
         self.server.on_client_disconnect(self._disconnect)
@@ -102,7 +113,20 @@ class Viewer:
     def _motion(self, robot: Robot) -> Any:
         from ..motion import motion_from_specs
 
-        return motion_from_specs(robot, self.motion_specs, topic=self.motion_topic) if self.motion_specs else None
+        if not self.motion_specs and self.recorded is None:
+            return None
+        return motion_from_specs(robot, self.motion_specs, topic=self.motion_topic, recorded=self.recorded)
+
+    def show_joint_state(self, names: Sequence[str], positions: Sequence[float]) -> None:
+        """A JointState published by a node (``bras-kit run`` beside ``bras-kit launch``): every
+        page shows it at once, as robot_state_publisher turns it into TF for RViz; playback pauses
+        (the node drives the arm now)."""
+        values = {n: float(p) for n, p in zip(names, positions)}
+        with self._lock:
+            sessions = list(self.sessions.values())
+        for session in sessions:
+            with contextlib.suppress(Exception):  # a browser that left mid-frame
+                session.take_joint_state(values)
 
     def _check(self, robot: Robot) -> None:
         from ..validate import validate
@@ -114,6 +138,8 @@ class Viewer:
         last good one and show why. Returns whether the new model is shown."""
         try:
             robot = self.source.load()
+            if self.refuse is not None:
+                self.refuse(robot)
             model = self._build(robot)
             self._check(robot)
         except Exception as exc:  # noqa: BLE001 - whatever the file does, the viewer keeps running
@@ -140,9 +166,9 @@ class Viewer:
     def _frame_camera(self, model: ViewModel) -> None:
         """Where a new browser's camera starts (and "Reset View" returns): on the robot's bounding
         box, left of the control panel, from the pictures' iso direction."""
-        from .framing import place_camera
+        from .framing import SWEPT_MARGIN, place_camera, reach_points
 
-        placement = place_camera(model.box_points())
+        placement = place_camera(reach_points(model, motion=self.motion), margin=SWEPT_MARGIN)
         camera = self.server.initial_camera
         camera.fov = placement.fov
         camera.near = placement.near

@@ -51,17 +51,43 @@ def title(path: Path) -> str:
     return path.stem
 
 
+def kernel_environment() -> dict[str, str]:
+    """The kernels' environment: this one, with Jupyter's inline plots (a headless
+    MPLBACKEND=Agg, as CI sets, would make plt.show() draw nothing and the pages lose their figures)."""
+    return {**os.environ, "MPLBACKEND": "module://matplotlib_inline.backend_inline"}
+
+
+def executed_copy(path: str) -> Path | None:
+    """Where a run of this notebook is kept for the rest of a test session (the folder named by
+    BRAS_KIT_LESSONS_EXECUTED, which tests/conftest.py sets; None outside the tests), by the
+    digest of its bytes: the site's build and tests/test_lessons.py run each lesson once."""
+    import hashlib
+
+    folder = os.environ.get("BRAS_KIT_LESSONS_EXECUTED")
+    if not folder:
+        return None
+    return Path(folder) / (hashlib.sha256(Path(path).read_bytes()).hexdigest() + ".ipynb")
+
+
 def execute(path: str) -> str:
     """Run one notebook in a fresh kernel and a temporary folder; return it as JSON text."""
     import nbformat
     from nbclient import NotebookClient
 
+    kept = executed_copy(path)
+    if kept is not None and kept.is_file():
+        return kept.read_text(encoding="utf-8")
     notebook = nbformat.read(path, as_version=4)
     with tempfile.TemporaryDirectory() as folder:
         NotebookClient(notebook, timeout=180, kernel_name="python3",
                        extra_arguments=["--IPKernelApp.log_level=ERROR"],  # quiet kernel start-up notes
-                       resources={"metadata": {"path": folder}}).execute()
-    return nbformat.writes(notebook)
+                       resources={"metadata": {"path": folder}}).execute(env=kernel_environment())
+    text = nbformat.writes(notebook)
+    if kept is not None:
+        temporary = kept.with_suffix(f".{os.getpid()}.{id(notebook)}.tmp")
+        temporary.write_text(text, encoding="utf-8")
+        os.replace(temporary, kept)
+    return text
 
 
 def _text(value: Any) -> str:
@@ -124,9 +150,6 @@ def on_files(files: Any, config: Any) -> Any:
     from mkdocs.structure.files import File
 
     found = notebooks()
-    # The kernels inherit the environment: a headless MPLBACKEND=Agg (as CI sets) would make
-    # plt.show() draw nothing, so the pages would lose their figures. Use Jupyter's inline one.
-    os.environ["MPLBACKEND"] = "module://matplotlib_inline.backend_inline"
     with ThreadPoolExecutor(max_workers=2) as pool:
         executed = list(pool.map(execute, [str(path) for _, path in found]))
     for (lang, path), text in zip(found, executed):

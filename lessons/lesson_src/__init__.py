@@ -5,6 +5,7 @@ from __future__ import annotations
 import importlib
 
 from ._cells import Lesson
+from ._track import track_cell
 
 _MODULES = [
     "l01_describe",
@@ -25,6 +26,9 @@ def _collect() -> list[Lesson]:
     lessons = []
     for name in _MODULES:
         module = importlib.import_module(f"{__name__}.{name}")
+        cell = track_cell(module.LESSON)
+        if cell is not None and cell not in module.LESSON.cells:
+            module.LESSON.cells.append(cell)  # the lesson points to the exercises that practise it
         lessons.append(module.LESSON)
         if hasattr(module, "SOLUTION"):
             lessons.append(module.SOLUTION)

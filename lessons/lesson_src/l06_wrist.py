@@ -40,11 +40,11 @@ SETUP = code(
     def check_wrist(robot):
         # Chaque attente de l'exercice, cochée ou non.
         joint = robot.joint("poignet")
-        link = robot.link("poignet")
+        link = robot.link("main")
         tests = {
-            "un segment 'poignet'": link is not None,
+            "un segment 'main'": link is not None,
             "une articulation 'poignet' revolute": joint is not None and joint.type == "revolute",
-            "parent avant_bras, enfant poignet": joint is not None and (joint.parent, joint.child) == ("avant_bras", "poignet"),
+            "parent avant_bras, enfant main": joint is not None and (joint.parent, joint.child) == ("avant_bras", "main"),
             "origine au bout de l'avant-bras (z = 0.5)": joint is not None and np.allclose(joint.origin.xyz, (0, 0, 0.5)),
             "axe y": joint is not None and joint.axis is not None and np.allclose(joint.axis, (0, 1, 0)),
             "des butées": joint is not None and joint.limit is not None and joint.limit.upper is not None,
@@ -75,11 +75,11 @@ SETUP = code(
     def check_wrist(robot):
         # Each expectation of the exercise, ticked or not.
         joint = robot.joint("poignet")
-        link = robot.link("poignet")
+        link = robot.link("main")
         tests = {
-            "a link 'poignet'": link is not None,
+            "a link 'main'": link is not None,
             "a revolute joint 'poignet'": joint is not None and joint.type == "revolute",
-            "parent avant_bras, child poignet": joint is not None and (joint.parent, joint.child) == ("avant_bras", "poignet"),
+            "parent avant_bras, child main": joint is not None and (joint.parent, joint.child) == ("avant_bras", "main"),
             "origin at the forearm's tip (z = 0.5)": joint is not None and np.allclose(joint.origin.xyz, (0, 0, 0.5)),
             "y axis": joint is not None and joint.axis is not None and np.allclose(joint.axis, (0, 1, 0)),
             "limits": joint is not None and joint.limit is not None and joint.limit.upper is not None,
@@ -130,11 +130,20 @@ LESSON.cells = [
 
         Écrivez dans la cellule suivante, en XML, ce qui manque pour le poignet :
 
-        * un `<link name="poignet">` : un pavé plus court que l'avant-bras (0,15 m de long,
+        * un `<link name="main">` : la main, un pavé plus court que l'avant-bras (0,15 m de long,
           0,04 m de côté), dont la forme commence à l'origine du segment ;
-        * un `<joint name="poignet" type="revolute">` : parent `avant_bras`, enfant `poignet`,
+        * un `<joint name="poignet" type="revolute">` : parent `avant_bras`, enfant `main`,
           une `origin` **au bout de l'avant-bras**, le même `axis` que les autres articulations, et des
           `limit` (par exemple ±1,57 rad, effort 5, vitesse 1,5).
+
+        Pourquoi `main` et pas `poignet`, comme l'écrit la piste du tutoriel ? Le tutoriel nomme
+        les segments d'après le corps (`bras`, `avant_bras`) et les articulations d'après ce qui
+        plie (`epaule` fait bouger `bras`, `coude` fait bouger `avant_bras`) : le poignet fait
+        bouger la main. Et surtout, RViz accepte un segment et une articulation du même nom, mais
+        **Gazebo le refuse** : il convertit l'URDF en SDF, où segments et articulations partagent un
+        seul espace de noms, et rejette tout le modèle (`Joint with non-unique name [poignet]`).
+        L'articulation garde le nom `poignet`, celui que votre nœud publie dans `msg.name`. La fin
+        de la leçon le montre.
 
         La cellule d'après colle votre texte avant `</robot>`, charge le fichier et coche ce qui
         est juste. Tant que la cellule est vide, tout est décoché : c'est normal.
@@ -144,11 +153,19 @@ LESSON.cells = [
 
         Write in the next cell, in XML, what the wrist needs:
 
-        * a `<link name="poignet">`: a box shorter than the forearm (0.15 m long, 0.04 m wide),
-          whose shape starts at the link's origin;
-        * a `<joint name="poignet" type="revolute">`: parent `avant_bras`, child `poignet`, an
+        * a `<link name="main">`: the hand, a box shorter than the forearm (0.15 m long, 0.04 m
+          wide), whose shape starts at the link's origin;
+        * a `<joint name="poignet" type="revolute">`: parent `avant_bras`, child `main`, an
           `origin` **at the forearm's tip**, the same `axis` as the other joints, and `limit`s
           (for example ±1.57 rad, effort 5, velocity 1.5).
+
+        Why `main` and not `poignet`, as the tutorial's hint writes it? The tutorial names the
+        links after the body (`bras`, `avant_bras`) and the joints after what bends (`epaule`
+        moves `bras`, `coude` moves `avant_bras`): the wrist moves the hand, `main`. Above all,
+        RViz accepts a link and a joint with one name, but **Gazebo refuses it**: it converts the
+        URDF to SDF, where links and joints share one namespace, and rejects the whole model
+        ("Joint with non-unique name [poignet]"). The joint keeps the name `poignet`, the one your
+        node publishes in `msg.name`. The end of the lesson shows it.
 
         The cell after pastes your text before `</robot>`, loads the file and ticks what is right.
         While the cell is empty everything is unticked: that is expected.
@@ -157,12 +174,12 @@ LESSON.cells = [
     code(
         """
         wrist_xml = \"\"\"
-          <!-- votre segment <link name="poignet"> et votre articulation <joint name="poignet"> ici -->
+          <!-- votre segment <link name="main"> et votre articulation <joint name="poignet"> ici -->
         \"\"\"
         """,
         """
         wrist_xml = \"\"\"
-          <!-- your link "poignet" and joint "poignet" here -->
+          <!-- your link "main" and joint "poignet" here -->
         \"\"\"
         """,
     ),
@@ -188,8 +205,8 @@ LESSON.cells = [
         show(validate(robot, lang="@LANG@"))
         tree = bras_kit.tf_tree(robot)
         print(tree.links, tree.dof)
-        tip = bras_kit.fk(tree)["poignet"] @ [0, 0, 0.15, 1]
-        print("bout du poignet, bras droit :", tip[:3])
+        tip = bras_kit.fk(tree)["main"] @ [0, 0, 0.15, 1]
+        print("bout de la main, bras droit :", tip[:3])
         """,
         """
         robot = bras_kit.arm(wrist=True)
@@ -197,8 +214,8 @@ LESSON.cells = [
         show(validate(robot, lang="@LANG@"))
         tree = bras_kit.tf_tree(robot)
         print(tree.links, tree.dof)
-        tip = bras_kit.fk(tree)["poignet"] @ [0, 0, 0.15, 1]
-        print("wrist tip, arm straight:", tip[:3])
+        tip = bras_kit.fk(tree)["main"] @ [0, 0, 0.15, 1]
+        print("hand tip, arm straight:", tip[:3])
         """,
     ),
     md(
@@ -240,6 +257,48 @@ LESSON.cells = [
     ),
     md(
         """
+        ## 4. Et Gazebo ?
+
+        Écrivons le poignet comme la piste du tutoriel, segment et articulation tous deux
+        `poignet`. RViz l'affiche sans broncher ; le validateur prévient (BK700), et avec
+        `target="gazebo"` (ou `bras-kit validate --target gazebo`), c'est une erreur, comme pour
+        Gazebo :
+        """,
+        """
+        ## 4. And Gazebo?
+
+        Let us write the wrist as the tutorial's hint does, link and joint both `poignet`. RViz
+        shows it without a murmur; the validator warns (BK700), and with `target="gazebo"` (or
+        `bras-kit validate --target gazebo`) it is an error, as it is for Gazebo:
+        """,
+    ),
+    code(
+        """
+        piste = bras_kit.arm_urdf(wrist=True, inertials=True).replace('"main"', '"poignet"')
+        Path("bras_piste.urdf").write_text(piste, encoding="utf-8")
+        hint = bras_kit.load("bras_piste.urdf")
+        for cible in (None, "gazebo"):
+            for f in validate(hint, select=["BK700"], target=cible):
+                print(f.code, SEVERITE[f.severity], "->", f.hint_text("fr"))
+        gazebo = validate(bras_kit.arm(wrist=True, inertials=True), select=["BK700", "BK701", "BK702"], target="gazebo")
+        print("avec main :", [f.code for f in gazebo] or "rien à redire")
+        """,
+        """
+        hint_text = bras_kit.arm_urdf(wrist=True, inertials=True).replace('"main"', '"poignet"')
+        Path("bras_piste.urdf").write_text(hint_text, encoding="utf-8")
+        hint = bras_kit.load("bras_piste.urdf")
+        for target in (None, "gazebo"):
+            for f in validate(hint, select=["BK700"], target=target):
+                print(f.code, f.severity, "->", f.hint_text("en"))
+        gazebo = validate(bras_kit.arm(wrist=True, inertials=True), select=["BK700", "BK701", "BK702"], target="gazebo")
+        print("with main:", [f.code for f in gazebo] or "nothing to say")
+        """,
+    ),
+    md(
+        """
+        Avec `main`, Gazebo garde les quatre segments (`bras-kit gazebo --wrist --inertials` le
+        montre). Sans `<inertial>`, il n'en garderait aucun : c'est la leçon 7.
+
         ## Pour aller plus loin
 
         * Donnez au poignet un axe `0 0 1` (rotation autour de l'avant-bras) : que voit-on ?
@@ -247,6 +306,9 @@ LESSON.cells = [
           validateur en dit.)
         """,
         """
+        With `main`, Gazebo keeps all four links (`bras-kit gazebo --wrist --inertials` shows it).
+        Without `<inertial>` it would keep none: that is lesson 7.
+
         ## Going further
 
         * Give the wrist the axis `0 0 1` (turning about the forearm): what do you see?
@@ -270,7 +332,7 @@ SOLUTION.cells = [
     code(
         """
         wrist_xml = \"\"\"
-          <link name="poignet">
+          <link name="main">
             <visual>
               <origin xyz="0 0 0.075"/>
               <geometry><box size="0.04 0.04 0.15"/></geometry>
@@ -279,7 +341,7 @@ SOLUTION.cells = [
           </link>
           <joint name="poignet" type="revolute">
             <parent link="avant_bras"/>
-            <child link="poignet"/>
+            <child link="main"/>
             <origin xyz="0 0 0.5"/>
             <axis xyz="0 1 0"/>
             <limit lower="-1.57" upper="1.57" effort="5" velocity="1.5"/>
@@ -291,12 +353,12 @@ SOLUTION.cells = [
     md(
         """
         Tout est coché, et le validateur ne trouve ni erreur ni avertissement (seulement une
-        information : pas d'inerties, c'est la leçon 7). Le résultat est le même, articulation par
+        information : pas d'inerties, c'est la leçon 7 ; sans elles, Gazebo ne chargerait rien). Le résultat est le même, articulation par
         articulation, que celui du modèle avec `wrist=True` :
         """,
         """
         Everything is ticked, and the validator finds no error and no warning (only a note: no
-        inertials, that is lesson 7). The result is the same, joint for joint, as the template's
+        inertials, that is lesson 7; without them Gazebo would load nothing). The result is the same, joint for joint, as the template's
         with `wrist=True`:
         """,
     ),
@@ -307,7 +369,7 @@ SOLUTION.cells = [
         pose = {"epaule": 0.4, "coude": -0.9, "poignet": 1.1}
         ours = bras_kit.fk(bras_kit.tf_tree(mine), pose)
         theirs = bras_kit.fk(bras_kit.tf_tree(reference), pose)
-        for link in ("bras", "avant_bras", "poignet"):
+        for link in ("bras", "avant_bras", "main"):
             assert np.allclose(ours[link], theirs[link])
             print(link, ours[link][:3, 3].round(4))
         """

@@ -18,12 +18,17 @@ from collections.abc import Iterable
 
 from ..findings import FileResult, Finding, finding, sort_key
 from ..registry import select_rules
-from . import texts  # noqa: F401  (the rules' words)
+from . import (
+    node_mistakes,  # noqa: F401  (BK627, registered on import)
+    run_reach,  # noqa: F401  (BK659: what the containment stopped)
+    texts,  # noqa: F401  (the rules' words)
+)
+from .launch_rules import LAUNCH_CHECKS, installed_descriptions, launch_package, launched  # noqa: F401  (BK630-BK633: built and launched)
 from .rules import PACKAGE_CHECKS  # importing registers the rules
 from .run_rules import RUN_CHECKS  # the rules over a run of the node (BK640-BK659)
 from .sources import PACKAGE_XML, SETUP_PY, Package
 
-__all__ = ["Package", "find_packages", "is_package", "validate_package"]
+__all__ = ["Package", "find_packages", "installed_descriptions", "is_package", "launch_package", "validate_package"]
 
 
 def is_package(path: str) -> bool:
@@ -46,20 +51,25 @@ def find_packages(paths: Iterable[str]) -> list[str]:
 
 
 def validate_package(path: str, *, lang: str | None = None, select: Iterable[str] = (),
-                     ignore: Iterable[str] = ()) -> list[FileResult]:
+                     ignore: Iterable[str] = (), package: Package | None = None,
+                     launch: bool = False) -> list[FileResult]:
     """The package rules' findings, one :class:`FileResult` per file read or with a finding
     (in name order; a file the rules read and found clean has an empty result).
 
     ``select``/``ignore`` are code prefixes as for :func:`bras_kit.validate.validate`; URDF
     rule codes among them are simply not package rules. Unknown prefixes raise ValueError.
     Findings are data, worded where shown (``lang`` is accepted for older callers, unused).
+    ``launch`` also builds the package and evaluates its launch files (BK630-BK633): that runs the
+    learner's setup.py and launch files in the sandbox child, as colcon and ros2 launch would.
     """
-    package = Package(path)
+    package = Package(path) if package is None else package
     by_file: dict[str, list[Finding]] = {}
     for chosen in select_rules(select, ignore):
         check = PACKAGE_CHECKS.get(chosen.code)
         if chosen.code in RUN_CHECKS:
             continue  # only with a recording: run_findings
+        if chosen.code in LAUNCH_CHECKS and not launch:
+            continue  # only when asked to run the learner's setup.py and launch files
         if check is None:
             continue
         for found in check(package):

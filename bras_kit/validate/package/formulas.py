@@ -2,7 +2,8 @@
 
 ``0.8 * math.sin(self.t)`` becomes ``0.8 * sin(t)``: ``math.``/``np.`` prefixes are dropped,
 constants of the module are written as numbers, and the one remaining variable (``self.t``,
-``elapsed``...) is the time. A formula with two variables, a call of another function or
+``elapsed``...) is the time, when it sits inside a function of the formula (``sin``, ``cos``...).
+A bare name (``[q1, q2]``), a formula with two variables, a call of another function or
 anything else is not "literal": it is left out and nothing is said about it. The text is
 checked later by the motion module's own safe parser; nothing here is evaluated.
 """
@@ -18,6 +19,7 @@ from typing import Any
 from ...expr import CONSTANTS, FUNCTIONS
 
 _MODULES = ("math", "np", "numpy")
+_TIME_NAMES = ("t", "time", "temps", "elapsed", "now")  # a ramp of these is a motion in time
 
 
 def substitute(node: ast.expr, values: Mapping[str, float]) -> ast.expr:
@@ -69,9 +71,16 @@ def formula(node: ast.expr, scope: Mapping[str, Any]) -> str | None:
             return ast.copy_location(ast.Name("t", ast.Load()), node)
 
     try:
-        text = ast.unparse(_Rewrite().visit(copy.deepcopy(node)))
+        rewritten = _Rewrite().visit(copy.deepcopy(node))
+        text = ast.unparse(rewritten)
     except (ValueError, RecursionError):
         return None
     if len(free) != 1:
         return None  # a constant (no time at all) or several variables: not a wave we can follow
+    time_named = next(iter(free)).rsplit(".", 1)[-1] in _TIME_NAMES
+    if not time_named and not any(isinstance(call, ast.Call) and any(isinstance(n, ast.Name) and n.id == "t" for n in ast.walk(call))
+               for call in ast.walk(rewritten)):
+        # a bare name or a sum of names (msg.position = [q1, q2], [epaule, coude]) is a value the
+        # reading cannot resolve, not a wave of time: nothing is said about it
+        return None
     return text

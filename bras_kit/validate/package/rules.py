@@ -93,6 +93,14 @@ def folder_not_installed(pkg: Package) -> Iterator[Hit]:
     for folder, suffixes in REQUIRED_FOLDERS:
         files = pkg.files(folder, suffixes)
         left = [f for f in files if f not in sources]
+        elsewhere = next((entry for entry in pkg.setup.data_files or []
+                          if any(f in entry.sources for f in left)), None)
+        if left and elsewhere is not None:  # listed, but into another folder ('share/' + name + 'urdf')
+            slash = os.path.normpath(elsewhere.destination).replace(os.sep, "/") == f"share/{pkg.name}{folder}"
+            yield _at(SETUP_PY, elsewhere.line, "slash" if slash else "elsewhere", folder=folder, files=left, package=pkg.name,
+                      destination=elsewhere.destination, target=f"share/{pkg.name}/{folder}",
+                      entry=_destination_text(pkg, folder))
+            continue
         if left:
             pattern = next((f"*{s}" for s in suffixes if all(f.endswith(s) for f in left)), "*")
             yield _at(SETUP_PY, pkg.setup.data_files_line, "all" if len(left) == len(files) else "some",
@@ -100,16 +108,22 @@ def folder_not_installed(pkg: Package) -> Iterator[Hit]:
                       entry=_data_files_entry(pkg, folder, pattern, left))
 
 
+def _destination_text(pkg: Package, folder: str) -> str:
+    """share/PKG/folder as this setup.py would write it (os.path.join when it imports os)."""
+    assert pkg.setup is not None
+    defined = pkg.setup.defined
+    name = "package_name" if defined.get("package_name") == "value" else repr(pkg.name)
+    if defined.get("os") == "module":
+        return f"os.path.join('share', {name}, '{folder}')"
+    return f"'share/' + {name} + '/{folder}'" if name == "package_name" else f"'share/{pkg.name}/{folder}'"
+
+
 def _data_files_entry(pkg: Package, folder: str, pattern: str, files: list[str]) -> str:
     """A data_files entry that works pasted into this very setup.py: it uses os, glob and
     package_name only when the file defines them (a ``ros2 pkg create`` setup.py imports neither)."""
     assert pkg.setup is not None
     defined = pkg.setup.defined
-    name = "package_name" if defined.get("package_name") == "value" else repr(pkg.name)
-    if defined.get("os") == "module":
-        target = f"os.path.join('share', {name}, '{folder}')"
-    else:
-        target = f"'share/' + {name} + '/{folder}'" if name == "package_name" else f"'share/{pkg.name}/{folder}'"
+    target = _destination_text(pkg, folder)
     if defined.get("glob") == "value":
         sources = f"glob('{folder}/{pattern}')"
     elif defined.get("glob") == "module":
@@ -328,6 +342,23 @@ def rviz_without_configuration(pkg: Package) -> Iterator[Hit]:
 # ---------------------------------------------------------------- "le robot ne bouge pas"
 
 
+def _included(pkg: Package, path: str) -> bool:
+    """Whether another launch file of the package names this one (IncludeLaunchDescription): the
+    nodes it starts are only part of the launch, checked with the file that includes it."""
+    name = os.path.basename(path)
+    for launch in pkg.launch_files:
+        if launch.path == path:
+            continue
+        try:
+            with open(os.path.join(pkg.root, launch.path), encoding="utf-8", errors="replace") as handle:
+                text = handle.read()
+        except OSError:
+            continue
+        if f"'{name}'" in text or f'"{name}"' in text:
+            return True
+    return False
+
+
 def _own_executables(pkg: Package) -> list[tuple[str, NodeCall]]:
     return [(launch.path, node) for launch in pkg.launch_files for node in launch.nodes
             if node.package == pkg.name]
@@ -346,7 +377,7 @@ def no_joint_state_source(pkg: Package) -> Iterator[Hit]:
     for launch in pkg.launch_files:
         nodes = launch.nodes
         starts_rsp = any(n.package == "robot_state_publisher" for n in nodes)
-        if not starts_rsp or launch.includes:
+        if not starts_rsp or launch.includes or _included(pkg, launch.path):
             continue  # another launch file or process may publish the joint states
         if any(n.package in JOINT_STATE_PUBLISHERS or not isinstance(n.package, str) for n in nodes):
             continue
@@ -373,9 +404,11 @@ def joint_state_names_mismatch(pkg: Package) -> Iterator[Hit]:
         missing = [n for n in movable if n not in publisher.names]
         line = publisher.names_line or publisher.line
         if unknown:
-            yield _at(publisher.path, line, "unknown", names=unknown, joints=movable)
+            yield _at(publisher.path, line, "unknown_one" if len(unknown) == 1 else "unknown", names=unknown,
+                      joints=movable)
         if missing:
-            yield _at(publisher.path, line, "missing", names=missing, published=publisher.names or ["-"])
+            yield _at(publisher.path, line, "missing_one" if len(missing) == 1 else "missing", names=missing,
+                      published=publisher.names or ["-"])
 
 
 @package_rule("BK622", "node-entry-point-missing", ERROR)
@@ -385,6 +418,8 @@ def node_entry_point_missing(pkg: Package) -> Iterator[Hit]:
         return
     scripts = {s.name: s for s in setup.scripts}
     for path, node in _own_executables(pkg):
+        if isinstance(node.executable, str) and node.executable.endswith(".py") and node.executable[:-3] in scripts:
+            continue  # BK631: the executable is the console_scripts name, without .py
         if isinstance(node.executable, str) and node.executable not in scripts:
             yield _at(path, node.line, "launch", executable=node.executable, package=pkg.name,
                       entry=_entry_text(node.executable, f"{pkg.name}.{node.executable}"))
@@ -447,6 +482,8 @@ def robot_description_not_given(pkg: Package) -> Iterator[Hit]:
         for node in launch.nodes:
             if node.package != "robot_state_publisher" or node.parameters is None:
                 continue  # parameters built in a way only running the file would tell
+            if node.arguments:
+                continue  # robot_state_publisher reads a file argument (its deprecated fallback): BK632 checks it
             if "robot_description" not in node.parameters:
                 yield _at(launch.path, node.line, "" if node.has_parameters else "none",
                           fix="parameters=[{'robot_description': description}]")

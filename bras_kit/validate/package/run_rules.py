@@ -13,7 +13,7 @@ from collections.abc import Callable, Iterable, Iterator
 from dataclasses import dataclass
 from typing import Any
 
-from ...run.recording import JOINT_STATE_TYPE, JOINT_STATES, Recording, stamp_seconds
+from ...ros.recording import JOINT_STATE_TYPE, JOINT_STATES, Recording, stamp_seconds
 from ..registry import ERROR, WARNING, Hit, hit, rule
 
 RATE_TOLERANCE = 0.2  # a measured rate 20 % away from the timer's is "far"
@@ -66,8 +66,8 @@ def _movable(run: RunContext) -> list[str]:
 @run_rule("BK640", "node-raised", ERROR)
 def node_raised(run: RunContext) -> Iterator[Hit]:
     failure = run.recording.failure
-    if failure is None or run.recording.ended != "error":
-        return
+    if failure is None or run.recording.ended != "error" or beginner_mistake(run.recording) is not None:
+        return  # BK652 explains it
     frame = failure.frames[-1] if failure.frames else None
     yield _at(frame.path if frame else run.recording.source, frame.line if frame else None,
               kind=failure.kind, detail=_first_line(failure.detail),
@@ -113,6 +113,9 @@ def nothing_on_joint_states(run: RunContext) -> Iterator[Hit]:
     r = run.recording
     if r.ended in ("error", "not_simulated") and r.end == 0:
         return  # it never got going: BK640/BK641 say why
+    mistake = beginner_mistake(r)
+    if mistake is not None and mistake[0] not in ("shutdown_twice", "stamp_seconds"):
+        return  # BK652 says why nothing came
     if r.joint_state_messages(JOINT_STATES):
         return
     elsewhere = list(dict.fromkeys(m.topic for m in r.messages if m.type == JOINT_STATE_TYPE))
@@ -157,7 +160,7 @@ def joint_state_unknown_names(run: RunContext) -> Iterator[Hit]:
     unknown = [n for n in named if n not in movable]
     if unknown:
         path, line = _publisher_line(run, JOINT_STATES)
-        yield _at(path, line, names=unknown, joints=movable or ["-"])
+        yield _at(path, line, "one" if len(unknown) == 1 else "", names=unknown, joints=movable or ["-"])
 
 
 @run_rule("BK647", "joint-state-joints-never-named", ERROR)
@@ -169,7 +172,7 @@ def joint_state_joints_never_named(run: RunContext) -> Iterator[Hit]:
     missing = [n for n in _movable(run) if n not in named]
     if missing:
         path, line = _publisher_line(run, JOINT_STATES)
-        yield _at(path, line, names=missing, published=sorted(named) or ["-"])
+        yield _at(path, line, "one" if len(missing) == 1 else "", names=missing, published=sorted(named) or ["-"])
 
 
 @run_rule("BK648", "joint-state-not-finite", ERROR)
@@ -186,7 +189,7 @@ def joint_state_not_finite(run: RunContext) -> Iterator[Hit]:
 @run_rule("BK649", "joint-state-past-limits", ERROR)
 def joint_state_past_limits(run: RunContext) -> Iterator[Hit]:
     from ...motion import check_limits, value_in_degrees
-    from ...run.recording import joint_states
+    from ...ros.recording import joint_states
 
     robot = run.robot
     if robot is None:
@@ -232,6 +235,79 @@ def publish_rate_off_timer(run: RunContext) -> Iterator[Hit]:
     if abs(measured - declared) > RATE_TOLERANCE * declared:
         yield _at(timers[0].path or r.source, timers[0].line or None, rate=round(measured, 2),
                   expected=round(declared, 2), period=timers[0].period, count=len(messages))
+
+
+# ---------------------------------------------------------------- the mistake behind a failure
+
+
+def beginner_mistake(r: Recording) -> tuple[str, str, int | None, dict[str, Any]] | None:
+    """(variant, file, line, parameters) of the beginner's mistake the run shows, if it is one
+    of those rclpy Jazzy stops on with words that do not say the cause."""
+    failure = r.failure
+    context = failure.context if failure is not None else {}
+    last = failure.frames[-1] if failure is not None and failure.frames else None
+    here = (last.path, last.line) if last else (r.source, None)
+    if failure is not None and r.ended == "error":
+        detail = failure.detail
+        if failure.kind == "RCLError" and "rcl_shutdown already called" in detail:
+            return "shutdown_twice", *here, {"detail": detail}
+        if failure.kind == "TypeError" and "does not support the context manager protocol" in detail:
+            name = detail.split("'")[1] if "'" in detail else "Node"
+            return "with_node", *here, {"cls": name}
+        if failure.kind == "AttributeError" and context.get("node_class"):
+            return "super_init", context.get("def_path", here[0]), context.get("def_line", here[1]), {
+                "cls": context["node_class"], "detail": detail}
+        if failure.kind == "Aborted" and context.get("held") == "rclpy.time.Time":
+            return "now_not_msg", *here, {}
+        if failure.kind == "Aborted" and context.get("field"):
+            wanted = {"PyFloat_Check": "float", "PyLong_Check": "int", "PyBool_Check": "bool",
+                      "PyUnicode_Check": "str"}
+            kind = next((w for check, w in wanted.items() if check in detail), "other")
+            return "field_type", *here, {"field": context["field"], "held": context.get("held", "?"), "wanted": kind}
+        callback = context.get("callback", "")
+        if failure.kind == "TypeError" and context.get("callback_kind") == "timer" and "NoneType" in detail:
+            line_text = _source_line(r, context.get("made_path"), context.get("made_line"))
+            short = line_text.split("self.", 2)[-1].split("(")[0] if "self." in line_text else "tick"
+            return "callback_called", context.get("made_path", here[0]), context.get("made_line", here[1]), {
+                "callback": f"self.{short}", "short": short}
+        if (failure.kind == "TypeError" and context.get("bound") and "takes 0 positional arguments" in detail):
+            short = callback.rsplit(".", 1)[-1]
+            return "no_self", context.get("def_path", here[0]), context.get("def_line", here[1]), {
+                "callback": callback, "short": short, "detail": "TypeError"}
+        if failure.kind == "AttributeError" and detail.endswith(f"has no attribute '{r.function}'") \
+                and not failure.frames:
+            return "no_main", r.source, None, {"function": r.function}
+    if r.ended == "returned" and r.end == 0 and r.timers and not r.messages:
+        timer = r.timers[0]
+        return "spin_forgotten", timer.path or r.source, timer.line or None, {}
+    if r.timers and not r.messages and all(t.period >= 2.0 and t.period > r.duration for t in r.timers) \
+            and r.ended in ("duration", "stopped"):
+        timer = r.timers[0]
+        period = int(timer.period) if timer.period == int(timer.period) else timer.period
+        return "timer_period", timer.path or r.source, timer.line or None, {
+            "period": period, "duration": r.duration, "hz": round(1 / timer.period, 4)}
+    stamps = [m.fields.get("header", {}).get("stamp", {}) for m in r.joint_state_messages(JOINT_STATES)]
+    if len(stamps) >= 10 and all(s.get("nanosec") == 0 and s.get("sec") for s in stamps):
+        distinct = len({s["sec"] for s in stamps})
+        if distinct < len(stamps) / 2:
+            path, line = _publisher_line(RunContext(r, None), JOINT_STATES)
+            return "stamp_seconds", path, line, {"distinct": distinct, "count": len(stamps)}
+    return None
+
+
+def _source_line(r: Recording, path: str | None, line: int | None) -> str:
+    for frame in (r.failure.frames if r.failure else []):
+        if frame.path == path and frame.line == line:
+            return frame.text
+    return ""
+
+
+@run_rule("BK652", "node-beginner-mistake", ERROR)
+def node_beginner_mistake(run: RunContext) -> Iterator[Hit]:
+    found = beginner_mistake(run.recording)
+    if found is not None:
+        variant, path, line, params = found
+        yield _at(path, line, variant, **params)
 
 
 def run_hits(recording: Recording, robot: Any, codes: Iterable[str]) -> Iterator[tuple[str, Hit]]:

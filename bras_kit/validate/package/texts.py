@@ -29,9 +29,17 @@ describe(
     message={
         "all": "setup.py does not install {folder}/ ({files}): 'ros2 launch' will say file not found",
         "some": "setup.py does not install {files} from {folder}/: 'ros2 launch' will not find them",
+        "elsewhere": "setup.py installs {files} into {destination}, not {target}: 'ros2 launch' will say file not "
+                     "found",
+        "slash": "setup.py installs {files} into {destination}, not {target}: 'ros2 launch' will say file not found",
         "": "setup.py does not install {files} from {folder}/",
     },
-    hint="add {entry} to data_files, then run colcon build again",
+    hint={
+        "slash": "write this entry's destination as {entry}: a '/' is missing between the package name and "
+                 "'{folder}'; then run colcon build again",
+        "elsewhere": "write this entry's destination as {entry}, then run colcon build again",
+        "": "add {entry} to data_files, then run colcon build again",
+    },
     explanation="""\
 colcon copies into `install/PKG/share/PKG/` only what `data_files` in `setup.py` lists. The
 launch file then looks for the URDF (and itself is found) there, not in the source folder. A
@@ -196,12 +204,16 @@ describe(
     title="a node publishes JointState names that are not the robot's joints",
     message={
         "unknown": "JointState names {names}, which are not movable joints of the robot ({joints})",
+        "unknown_one": "JointState names {names}, which is not a movable joint of the robot ({joints})",
         "missing": "JointState never names {names} (it names {published}): those joints do not move",
+        "missing_one": "JointState never names {names} (it names {published}): that joint does not move",
         "": "JointState names do not match the robot's movable joints",
     },
     hint={
         "unknown": "use the joint names of the URDF: {joints}",
+        "unknown_one": "use the joint names of the URDF: {joints}",
         "missing": "add {names} to the names, with a position for each",
+        "missing_one": "add {names} to the names, with its position",
         "": "name every movable joint of the URDF",
     },
     explanation="""\
@@ -256,11 +268,11 @@ describe(
     message="the node raised {kind} at t = {time} s of simulated time: {detail}",
     hint="the traceback above shows your file and line; ros2 run would stop the node there too",
     explanation="""\
-`bras-kit run` ran the node's `main()` against its stand-in for rclpy, and the node's own code
-raised. The stand-in checks what real rclpy checks: a message field given the wrong type (a
-list of integers for `position`, a float for `name`) fails as the generated message classes
-assert it; a Node made before `rclpy.init()`, or spun after `destroy_node()`, fails like
-rclpy. The traceback keeps your frames only, and the simulated time tells at which tick.""",
+`bras-kit run` ran the node's `main()` against its stand-in for rclpy (Jazzy), and the node's
+own code raised. The stand-in checks what rclpy 7.1 checks: a Node made before `rclpy.init()`,
+or spun after `destroy_node()`, fails like rclpy; message setters check types only with
+`ROS_PYTHON_CHECK_FIELDS=1`, as on Jazzy. The traceback keeps your frames only, and the
+simulated time tells at which tick. The mistakes BK652 recognises are explained there instead.""",
 )
 describe(
     "BK641",
@@ -268,11 +280,11 @@ describe(
     message="the node uses {what} (at t = {time} s), which bras-kit run does not simulate",
     hint="run it with ros2 run on a ROS 2 machine, the real thing; bras-kit run covers rclpy's basics (nodes, publishers, subscriptions, timers, rates, parameters, logs) and common messages",
     explanation="""\
-The stand-in covers what the tutorial's node and beginner nodes use: `rclpy.init/spin/
-spin_once/shutdown`, `Node` with publishers, subscriptions, timers, rates, parameters, clock
-and logger, QoS profiles, and the messages of sensor_msgs (JointState), std_msgs,
-builtin_interfaces and geometry_msgs. Services, actions, tf2, launch and other message
-packages are not simulated: the run stops there rather than pretend.""",
+The stand-in follows rclpy 7.1 (Jazzy) where beginner nodes use it: `rclpy.init/spin/
+spin_once/shutdown/try_shutdown`, `Node` with publishers, subscriptions, timers, rates, the
+parameters API, clock and logger, executors and callback groups, threads, QoS profiles, tf2_ros,
+and every message package of Jazzy's definitions. Services, actions and a few rarer calls are
+not simulated: the run stops there rather than pretend.""",
 )
 describe(
     "BK642",
@@ -330,7 +342,10 @@ move at all, even for the joints that were right.""",
 describe(
     "BK646",
     title="the node names joints the robot does not have",
-    message="the node's JointState names {names}, which are not movable joints of the robot ({joints})",
+    message={
+        "": "the node's JointState names {names}, which are not movable joints of the robot ({joints})",
+        "one": "the node's JointState names {names}, which is not a movable joint of the robot ({joints})",
+    },
     hint="use the joint names of the URDF: {joints}",
     explanation="""\
 robot_state_publisher matches JointState entries to the URDF by name and ignores the others. A
@@ -340,8 +355,14 @@ though the node runs without an error. The run shows the names actually sent."""
 describe(
     "BK647",
     title="movable joints the node never names",
-    message="the node's JointState never names {names} (it names {published}): those joints do not move",
-    hint="add {names} to msg.name, with a position for each",
+    message={
+        "": "the node's JointState never names {names} (it names {published}): those joints do not move",
+        "one": "the node's JointState never names {names} (it names {published}): that joint does not move",
+    },
+    hint={
+        "": "add {names} to msg.name, with a position for each",
+        "one": "add {names} to msg.name, with its position",
+    },
     explanation="""\
 A movable joint that never appears on `/joint_states` has no transform: robot_state_publisher
 cannot place its child link, which RViz then shows at the origin or not at all. The usual cause
@@ -469,4 +490,181 @@ holds the URDF's text (not its path). The tutorial's launch file reads the insta
 node waits for a description that never comes: no `/robot_description`, no TF frames, and
 RViz's RobotModel stays empty. Parameters given as a YAML file or built by substitutions are
 not judged here.""",
+)
+describe(
+    "BK652",
+    title="the node made a beginner's mistake that rclpy (Jazzy) stops on",
+    message={
+        "shutdown_twice": "rclpy.shutdown() after Ctrl-C raised '{detail}': rclpy's Ctrl-C handler had already shut the context down",
+        "with_node": "'with {cls}() as node:' fails: a Node of rclpy 7.1 (Jazzy) is not a context manager",
+        "spin_forgotten": "main() returned at t = 0 s without spinning: the timer created here never fired",
+        "super_init": "{cls}.__init__ never calls super().__init__('node_name'): the Node is not set up ({detail})",
+        "timer_period": "create_timer({period}, ...) fires every {period} s, not {period} times a second: nothing in {duration} s",
+        "now_not_msg": "header.stamp was given an rclpy Time (get_clock().now()) instead of a message: publishing aborted the process",
+        "field_type": "field '{field}' holds a {held} where the message wants another type: publishing aborted the process",
+        "callback_called": "create_timer was given the result of {callback}() (None) instead of the method: the first tick raised",
+        "no_self": "{callback} is defined without 'self': the timer calls it on the node and it raised {detail}",
+        "no_main": "the module has no function {function}(): ros2 run stops with \"module has no attribute '{function}'\"",
+        "stamp_seconds": "header.stamp only counts whole seconds (nanosec left at 0): {distinct} distinct stamps for {count} messages",
+    },
+    hint={
+        "shutdown_twice": "end main() with rclpy.try_shutdown() (or 'if rclpy.ok(): rclpy.shutdown()')",
+        "with_node": "write node = {cls}() then node.destroy_node() at the end (an executor, not a Node, can be used with 'with')",
+        "spin_forgotten": "call rclpy.spin(node) after creating the node: spin is what runs the timers",
+        "super_init": "make super().__init__('node_name') the first line of {cls}.__init__",
+        "timer_period": "give the period in seconds: create_timer(1 / {period}, ...) = {hz} s for {period} Hz",
+        "now_not_msg": "write msg.header.stamp = self.get_clock().now().to_msg()",
+        "field_type": "give the field a {wanted} value (0.0 rather than 0 for a float field)",
+        "callback_called": "pass the method without calling it: create_timer(period, self.{short})",
+        "no_self": "define it as def {short}(self):",
+        "no_main": "add def {function}(): ... to the module, or make setup.py's console_scripts point at the function that starts the node",
+        "stamp_seconds": "write msg.header.stamp = self.get_clock().now().to_msg(): it fills sec and nanosec",
+    },
+    explanation="""\
+These are the mistakes that stop a beginner's node on ROS 2 Jazzy (rclpy 7.1) with a message
+that says little about the cause. bras-kit recognises each from what the run did and points at
+the line to change: the `def`, the `create_timer` call, the class. On Jazzy, message setters no
+longer check types (rosidl_python 0.18+): a wrong type is only found when the message is
+published, by the C conversion, and the process aborts without a Python traceback. After
+Ctrl-C, rclpy has already shut its context down: a second `rclpy.shutdown()` raises.""",
+)
+describe(
+    "BK627",
+    title="a node's source shows a beginner's mistake that rclpy (Jazzy) stops on",
+    message={
+        "super_init": "{cls}.__init__ never calls super().__init__('node_name'): rclpy raises AttributeError at the first create_...",
+        "timer_period": "create_timer({period}, ...) fires every {period} s, not {period} times a second",
+        "callback_called": "create_timer is given self.{short}() (its result, None) instead of the method self.{short}",
+        "no_self": "{short} is defined without 'self': the timer calls it on the node and it raises TypeError",
+        "time_step": "{short} adds {step} to the time at each tick but the timer fires every {period} s: the motion runs {ratio} times its speed",
+        "with_node": "'with {cls}() as node:' fails on Jazzy: a Node of rclpy 7.1 is not a context manager",
+        "now_not_msg": "header.stamp is given get_clock().now() (an rclpy Time) instead of a message: publishing aborts the process",
+        "stamp_seconds": "header.stamp.sec = int(time.time()) leaves nanosec at 0: one distinct stamp a second",
+        "shutdown_twice": "rclpy.shutdown() after catching KeyboardInterrupt raises on Jazzy: Ctrl-C already shut the context down",
+    },
+    hint={
+        "super_init": "make super().__init__('node_name') the first line of {cls}.__init__",
+        "timer_period": "give the period in seconds: create_timer(1 / {period}, ...) = {hz} s for {period} Hz",
+        "callback_called": "pass the method without calling it: create_timer(period, self.{short})",
+        "no_self": "define it as def {short}(self):",
+        "time_step": "add the timer's period ({period}) at each tick, or read the time from self.get_clock().now()",
+        "with_node": "write node = {cls}() then node.destroy_node() at the end",
+        "now_not_msg": "write msg.header.stamp = self.get_clock().now().to_msg()",
+        "stamp_seconds": "write msg.header.stamp = self.get_clock().now().to_msg(): it fills sec and nanosec",
+        "shutdown_twice": "end main() with rclpy.try_shutdown() (or 'if rclpy.ok(): rclpy.shutdown()')",
+    },
+    explanation="""\
+The same mistakes as BK652, seen in the source without running the node: each stops a
+beginner's node on ROS 2 Jazzy (rclpy 7.1) with words that do not say the cause, or makes it
+move wrongly without any error. Only what the source states literally is judged (a number
+written in the call, a method of the same class); a name the reading cannot resolve says
+nothing. `bras-kit run` (or `validate --run`) confirms each by running the node.""",
+)
+
+# ------------------------------------------------------------------ BK630-BK633 built and launched
+
+describe(
+    "BK630",
+    title="colcon build stops on this package",
+    message={
+        "ament_cmake": "package.xml says <build_type>{detail}</build_type>: colcon builds it with CMake and never "
+                       "runs setup.py, so urdf/, launch/ and the console_scripts are not installed",
+        "marker": "colcon build fails: {colcon}",
+        "folder": "colcon build fails: {colcon}",
+        "missing_source": "colcon build fails: {colcon}",
+        "setup_raised": "colcon build fails, setup.py stops with an error: {colcon}",
+        "outside": "data_files installs into {detail}, outside the package's install folder",
+        "": "colcon build fails: {colcon}",
+    },
+    hint={
+        "ament_cmake": "in package.xml write <build_type>ament_python</build_type> and remove "
+                       "<buildtool_depend>ament_cmake</buildtool_depend>, then delete CMakeLists.txt (or recreate "
+                       "the package with ros2 pkg create --build-type ament_python {package})",
+        "marker": "create the empty file resource/{package} (ros2 pkg create makes it; the ament index needs it)",
+        "folder": "{source} is a folder: list its files, e.g. glob('{source}/*')",
+        "missing_source": "create {source}, or remove it from data_files (glob('{folder}/*') installs what exists)",
+        "setup_raised": "fix setup.py at this line; colcon runs it exactly as python would",
+        "outside": "install below share/{package}, e.g. os.path.join('share', package_name, 'urdf')",
+        "": "fix setup.py",
+    },
+    explanation="""\
+`colcon build` runs the package's `setup.py` and copies what `data_files` lists into
+`install/PKG/`. A source that does not exist stops the copy with setuptools' words ("can't
+copy ... doesn't exist or not a regular file"), an exception in `setup.py` stops the build with
+its traceback, and a package whose `package.xml` declares `ament_cmake` is built with CMake:
+its `setup.py` is ignored (a package made with `ros2 pkg create` without
+`--build-type ament_python`, with a `setup.py` pasted in). bras-kit builds the package the same
+way, in the sandbox, and stops at the same place.""",
+)
+describe(
+    "BK631",
+    title="ros2 launch stops with an error",
+    message={
+        "": "ros2 launch stops: {ros}",
+    },
+    hint={
+        "package": "no installed package is called '{missing}': use the name in package.xml ('{known}'), then "
+                   "colcon build and source install/setup.bash",
+        "executable": "the package's executables are its console_scripts names ({names}): use one of them, or add "
+                      "'{executable} = PACKAGE.MODULE:main' to console_scripts and build again",
+        "executable_py": "an executable has no .py: write executable='{fixed}' (the console_scripts name)",
+        "relative": "ros2 launch runs from the folder you type it in, not from the package: build the path from the "
+                    "installed share folder, {fixed}",
+        "not_installed": "{path} exists in the package but setup.py does not install it: add its folder to "
+                         "data_files, then colcon build",
+        "no_file": "no file {path} in the package: check the folder and file name",
+        "yaml": "read as YAML, the URDF text fails: wrap it, ParameterValue(Command(['xacro ', path]), value_type=str) "
+                "(from launch_ros.parameter_descriptions import ParameterValue)",
+        "": "the launch file stops at this line; fix it and launch again",
+    },
+    explanation="""\
+`ros2 launch` loads the launch file, calls `generate_launch_description()` and evaluates every
+action and substitution before starting the nodes. An exception on the way stops the launch with
+"Caught exception in launch": a package that is not installed (`get_package_share_directory`,
+`FindPackageShare`: PackageNotFoundError), a file opened by a path relative to the current
+folder, a file that `setup.py` does not install, an executable that is not a console_scripts
+name, a URDF given to a parameter through a substitution without `ParameterValue(...,
+value_type=str)`. bras-kit evaluates the launch file the same way against a stand-in of
+launch, launch_ros and ament_index_python (Jazzy) and reports the line it stopped at.""",
+)
+describe(
+    "BK632",
+    title="robot_state_publisher cannot load robot_description",
+    message={
+        "empty": "robot_state_publisher stops: {ros}",
+        "file_missing": "robot_state_publisher stops: {ros}",
+        "path": "robot_description is a file's path, not its text: {ros}",
+        "xacro": "robot_description is xacro source that xacro never expanded: {ros}",
+        "not_urdf": "robot_description is not a URDF robot ({detail}): {ros}",
+        "": "robot_state_publisher stops: {ros}",
+    },
+    hint={
+        "empty": "give the URDF text: parameters=[{{'robot_description': description}}] with description read from "
+                 "the installed urdf/ file",
+        "file_missing": "install the URDF (data_files) and pass its text as the robot_description parameter",
+        "path": "pass the file's text: with open(path) as f: description = f.read(), then "
+                "{{'robot_description': description}}",
+        "xacro": "run xacro on it: ParameterValue(Command(['xacro ', path]), value_type=str), or "
+                 "xacro.process_file(path).toxml()",
+        "not_urdf": "check the file the launch file reads: it must be the robot's URDF",
+        "": "give robot_state_publisher the URDF text",
+    },
+    explanation="""\
+robot_state_publisher reads the robot from its `robot_description` parameter, a string holding
+the whole URDF (robot_state_publisher.cpp). An empty string stops it ("robot_description
+parameter must not be empty"), a path or a `.xacro` source fails to parse ("Unable to initialize
+urdf::model from robot description"): no TF, no model, an empty RViz. The text must be the URDF
+itself: read the installed file, or run xacro in the launch file.""",
+)
+describe(
+    "BK633",
+    title="urdf/ or launch/ is inside the Python module folder",
+    message="{package}/{folder}/ is inside the module folder: setup.py's glob('{folder}/*') looks in the package "
+            "folder and installs nothing",
+    hint="move the folder one level up, beside setup.py and package.xml: mv {package}/{folder} {folder}",
+    explanation="""\
+`ros2 pkg create --build-type ament_python PKG` makes `PKG/PKG/` for the Python code; the
+tutorial's `mkdir urdf launch` is typed in the package folder, beside `setup.py`. Made inside
+the module folder, the files are not where `data_files` looks (`glob('urdf/*.urdf')` is relative
+to `setup.py`), nothing is installed, and `ros2 launch` fails with file not found.""",
 )

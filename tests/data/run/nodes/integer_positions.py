@@ -9,5 +9,5 @@ def main():
     pub = node.create_publisher(JointState, 'joint_states', 10)
     msg = JointState()
     msg.name = ['epaule', 'coude']
-    msg.position = [0, 1]  # integers: the generated setter wants floats
+    msg.position = [0, 1]  # integers: Jazzy's setter converts them, array.array('d', [0, 1])
     pub.publish(msg)

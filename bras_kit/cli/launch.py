@@ -1,0 +1,358 @@
+"""bras-kit launch: what ``ros2 launch PKG FILE`` does, on the package built as colcon builds it."""
+
+from __future__ import annotations
+
+import argparse
+import os
+import sys
+
+from ..message import M
+
+_EPILOG = """\
+The package is built (bras-kit build, into a temporary install tree), the launch file (Python,
+XML or YAML) is evaluated as ros2 launch evaluates it, against a stand-in of launch, launch_ros
+and ament_index_python, and each Node it returns is started as its counterpart:
+robot_state_publisher loads its robot_description, joint_state_publisher(_gui) and rviz2 are
+the viewer, and the package's own executables run as 'bras-kit run' runs them.
+
+examples:
+  bras-kit launch bras_description affichage.launch.py --no-browser --duration 5
+  bras-kit launch bras_description affichage.launch.py animation:=true --no-browser
+"""
+
+
+def configure(parser: argparse.ArgumentParser) -> None:
+    parser.formatter_class = argparse.RawDescriptionHelpFormatter
+    parser.epilog = _EPILOG
+    parser.add_argument("target", nargs="?", default=".", metavar="PKG_DIR",
+                        help="the package folder (default: .)")
+    parser.add_argument("items", nargs="*", metavar="FILE.launch.py|NAME:=VALUE",
+                        help="the launch file (default: the package's first) and launch arguments")
+    parser.add_argument("--no-browser", action="store_true",
+                        help="print what started, what each node published and the findings, then exit")
+    parser.add_argument("--duration", type=float, default=10.0, metavar="S",
+                        help="seconds of simulated time the package's own nodes are first run for, for their "
+                             "findings (default: 10); in the browser they then run live")
+    parser.add_argument("--json", action="store_true", help="print the findings as JSON")
+    parser.add_argument("--port", type=int, default=8080,
+                        help="port of the page (default 8080; the next free one if taken)")
+    parser.set_defaults(keeps_assignments="items")
+
+
+def _split(items: list[str]) -> tuple[str | None, dict[str, str]]:
+    from ..errors import ParameterError
+
+    launch_file, arguments = None, {}
+    for item in items:
+        name, sep, value = item.partition(":=")
+        if sep and name:
+            arguments[name] = value
+        elif launch_file is None and not sep:
+            launch_file = item
+        else:
+            raise ParameterError(M("'{item}' is not a launch file nor NAME:=VALUE", item=item),
+                                 hint=M("write launch arguments as NAME:=VALUE, as after ros2 launch PKG FILE"))
+    return launch_file, arguments
+
+
+COUNTERPARTS = {
+    "robot_state_publisher": M("the model and its TF frames"),
+    "joint_state_publisher": M("the viewer's joint sliders"),
+    "joint_state_publisher_gui": M("the viewer's joint sliders"),
+    "rviz2": M("the viewer"),
+}
+
+
+def run(args: argparse.Namespace) -> int:
+    from ..errors import ParameterError
+    from ..i18n import current_language
+
+    lang = args.lang or current_language()
+    if not os.path.isfile(os.path.join(args.target, "package.xml")):
+        raise ParameterError(M("{folder} is not a package folder (no package.xml)", folder=args.target),
+                             hint=M("give the package folder, e.g. bras-kit launch bras_description"))
+    launch_file, arguments = _split(args.items)
+    if args.no_browser:
+        return _report(args, _launch(args, launch_file, arguments, lang), lang)
+    from ..ros.contain import available as containable
+    from ..sandbox import children_from_a_server
+
+    # With a page, threads run beside the package's children (the page's, viser's, Zenoh's): the
+    # children that can be sent to it are forked by a server started now, before any thread exists
+    # (a child forked while a thread imports a module could wait forever for its lock); its probe
+    # too, a throwaway child, runs now.
+    containable()
+    with children_from_a_server():
+        launched = _launch(args, launch_file, arguments, lang, open_page=True)
+        code = _report(args, launched, lang)
+        if launched.description is None:
+            return code
+        if launched.page is None:  # no robot file the page could show
+            return 0
+        return _live(args, launch_file, arguments, lang, launched, *launched.page)
+
+
+def _report(args: argparse.Namespace, launched: _Launched, lang: str) -> int:
+    """The findings printed (text or JSON); the exit code they give."""
+    from ..validate.report import exit_code, format_json, format_text
+
+    if args.json:
+        sys.stdout.write(format_json(launched.results, lang=lang))
+    else:
+        sys.stdout.write(format_text(launched.results, lang))
+    return exit_code(launched.results)
+
+
+class _Launched:
+    """One build and launch of the package: the plan, the findings, the package's own nodes."""
+
+    def __init__(self, package, result, results, nodes, page) -> None:  # type: ignore[no-untyped-def]
+        self.package, self.result, self.results, self.nodes = package, result, results, nodes
+        self.page = page  # (viewer, bus) when a page was asked for and robot_state_publisher got a robot
+        self.plan = result.plan
+        self.description = result.description
+
+
+def _launch(args: argparse.Namespace, launch_file: str | None, arguments: dict[str, str], lang: str,
+            open_page: bool = False) -> _Launched:
+    """Build the package, evaluate its launch file, say what started, run its own nodes in simulated
+    time for their findings; with ``open_page``, the page is opened as soon as the robot is known
+    (before the checks)."""
+    import tempfile
+
+    from ..errors import ParameterError
+    from ..i18n import say
+    from ..validate.package import Package, validate_package
+    from ..validate.package.launch_rules import launch_package
+
+    package = Package(args.target)
+    pending, page = None, None
+    if open_page:  # the page gets ready while the package builds (see run: children_from_a_server)
+        from concurrent.futures import ThreadPoolExecutor
+
+        pool = ThreadPoolExecutor(1, thread_name_prefix="bras-kit-page")
+        pending = pool.submit(_open_page, args, package)
+        pool.shutdown(wait=False)  # the thread ends with its one task
+    with tempfile.TemporaryDirectory(prefix="bras-kit-launch-") as base:
+        result = launch_package(args.target, os.path.join(base, "install"), launch_file, arguments)
+        package._launched = result  # type: ignore[attr-defined]
+        plan = result.plan
+        if result.build.failure is None and launch_file is not None and plan is None:
+            from ..validate.package.launch_rules import _launch_sources
+
+            share = os.path.join(result.build.prefix, "share", result.build.package)
+            raise ParameterError(
+                M("file '{file}' was not found in the share directory of package '{package}' which is at '{share}'",
+                  file=launch_file, package=result.build.package, share=share),
+                hint=M("the installed launch files are {names}; a new one needs colcon build (data_files)",
+                       names=[os.path.basename(f) for f in _launch_sources(result.build)] or "-"))
+        nodes = []
+        if result.build.failure is None and plan is not None:
+            shown = result.launch_file
+            print(say(M("ros2 launch {package} {file}", package=result.build.package,
+                        file=os.path.basename(shown)), lang))
+            for node in plan.nodes:
+                counterpart = COUNTERPARTS.get(node.package or "")
+                if counterpart is not None:
+                    print(say(M("[INFO] started {node} ({what}) -> {counterpart}", node=node.full_name,
+                                what=node.shown, counterpart=say(counterpart, lang)), lang))
+                elif node.package == result.build.package:
+                    print(say(M("[INFO] started {node} ({what}) -> your node, run for {duration} s",
+                                node=node.full_name, what=node.shown, duration=args.duration), lang))
+                    nodes.append(node)
+                else:
+                    print(say(M("[INFO] started {node} ({what}): not simulated, nothing is shown for it",
+                                node=node.full_name, what=node.shown), lang))
+            if plan.failure is not None:
+                print(plan.ros2_launch_error, file=sys.stderr)
+            for _node, problem in result.problems:
+                for line in problem.ros:
+                    print(line, file=sys.stderr)
+        sys.stdout.flush()
+        if pending is not None:  # the page first, the checks after
+            page = _page_for(pending, result.description is not None)
+            if page is not None:
+                page[0].fixed_frame = _rviz_fixed_frame(plan)  # before any browser can connect
+                _announce(args, page[0])
+        results = validate_package(args.target, select=["BK6"], package=package, launch=True)
+        results += _node_results(args, nodes, result)
+    return _Launched(package, result, results, nodes, page)
+
+
+def _node_results(args: argparse.Namespace, nodes: list, result):  # type: ignore[no-untyped-def,type-arg]
+    """Each of the package's own nodes run as bras-kit run runs it, in simulated time: what it
+    published, and its findings."""
+    from ..errors import BrasKitError
+    from ..i18n import current_language, say
+    from ..model import robot_from_xml
+    from ..run import run_findings, run_node
+    from ..run.report import summary
+    from ..validate.findings import FileResult
+    from ..xmlio import parse_xml
+
+    lang = args.lang or current_language()
+    robot = None
+    if result.description is not None:
+        try:
+            robot = robot_from_xml(parse_xml(result.description, "robot_description"), "robot_description",
+                                   result.description)
+        except BrasKitError:
+            robot = None
+    from ..run.live import executables_of
+
+    out = []
+    executables, parameters = executables_of(nodes, result.build.package)
+    for executable in executables:
+        try:
+            recording = run_node(args.target, executable, duration=args.duration, echo=False,
+                                 parameters=parameters[executable])
+        except BrasKitError as exc:
+            print(str(exc), file=sys.stderr)
+            continue
+        for message in summary(recording):
+            print("  " + say(message, lang))
+        by_file: dict[str, list] = {}  # type: ignore[type-arg]
+        for found in run_findings(recording, robot, lang=lang):
+            by_file.setdefault(str(found.data.get("file", "")), []).append(found)
+        out += [FileResult(os.path.join(args.target, file), found) for file, found in by_file.items()]
+    return out
+
+
+def _rviz_fixed_frame(plan) -> str | None:  # type: ignore[no-untyped-def]
+    """The Fixed Frame of the configuration rviz2 is started with (``arguments=['-d', FILE]``)."""
+    import yaml
+
+    for node in plan.nodes if plan is not None else []:
+        if node.package != "rviz2" or "-d" not in node.arguments[:-1]:
+            continue
+        path = node.arguments[node.arguments.index("-d") + 1]
+        try:
+            if os.path.getsize(path) > 1 << 20:
+                return None
+            with open(path, encoding="utf-8") as handle:
+                data = yaml.safe_load(handle)
+            frame = data["Visualization Manager"]["Global Options"]["Fixed Frame"]
+        except (OSError, yaml.YAMLError, KeyError, TypeError):
+            return None
+        return str(frame) if frame else None
+    return None
+
+
+def _open_page(args: argparse.Namespace, package):  # type: ignore[no-untyped-def]
+    """The launch in the browser: robot_state_publisher's robot in the viewer (its sliders stand for
+    joint_state_publisher_gui), and the bus open for 'bras-kit run' beside it. Returns (viewer,
+    bus), or None with no robot file. Nothing is said yet (:func:`_announce`)."""
+    from ..errors import BrasKitError
+    from ..ros.bus import Bus
+    from ..view import Viewer
+
+    source = package.description_source()
+    if source is None:
+        return None
+    viewer = Viewer(_source(args, source), port=args.port, lang=args.lang)
+    try:
+        bus: Bus | None = Bus.listen()
+    except BrasKitError as exc:  # no Zenoh: the launch is shown, bras-kit run cannot publish into it
+        from ._common import warn
+
+        warn(exc, args.lang)
+        bus = None
+    if bus is not None:
+        bus.on_joint_state(lambda state: viewer.show_joint_state(state.name, state.position))
+    return viewer, bus
+
+
+def _page_for(pending, launched: bool):  # type: ignore[no-untyped-def]
+    """The page made while the package built: kept when the launch gives robot_state_publisher its
+    robot (an error making it is then raised), else closed (ROS would show no robot either)."""
+    if launched:
+        return pending.result()
+    try:
+        opened = pending.result()
+    except Exception:  # noqa: BLE001 - the launch's own error is what the learner reads
+        return None
+    if opened is not None:
+        _close(*opened)
+    return None
+
+
+def _close(viewer, bus) -> None:  # type: ignore[no-untyped-def]
+    if bus is not None:
+        bus.close()
+    viewer.stop()
+
+
+def _announce(args: argparse.Namespace, viewer) -> None:  # type: ignore[no-untyped-def]
+    from ..i18n import say
+
+    print(say(M("bras-kit launch: {url} (Ctrl-C to stop)", url=viewer.url), args.lang), flush=True)
+    print(say(M("'bras-kit run {folder}' in another terminal moves this arm, as ros2 run beside ros2 launch",
+                folder=args.target), args.lang), file=sys.stderr, flush=True)
+    from .view import _has_screen
+
+    if _has_screen():
+        import webbrowser
+
+        webbrowser.open(viewer.url)
+
+
+def _source(args: argparse.Namespace, relative: str):  # type: ignore[no-untyped-def]
+    from ..view import Source
+
+    return Source(path=os.path.join(args.target, relative),
+                  package_paths=(os.path.dirname(os.path.abspath(args.target)),))
+
+
+def _live(args: argparse.Namespace, launch_file: str | None, arguments: dict[str, str], lang: str,  # type: ignore[no-untyped-def]
+          launched: _Launched, viewer, bus) -> int:
+    """The package's own nodes live in the page until Ctrl-C; a file of the package saved: built
+    and launched again (checks, nodes and, when the launch file now loads another, the robot)."""
+    from ..errors import BrasKitError
+    from ..i18n import say
+    from ..run.live import LiveNodes, changed_files, executables_of, package_stamps
+    from ..validate.report import format_text
+
+    def start(current: _Launched) -> LiveNodes:
+        names, parameters = executables_of(current.nodes, current.result.build.package) \
+            if current.result.build.failure is None else ([], {})
+        return LiveNodes(args.target, names, viewer.show_joint_state, parameters, lang).start()
+
+    nodes = start(launched)
+    stamps = package_stamps(args.target)
+    saved: list[str] = []
+
+    def changed() -> bool:
+        nonlocal stamps
+        now = package_stamps(args.target)
+        saved[:] = changed_files(stamps, now)
+        stamps = now
+        return bool(saved)
+
+    try:
+        while True:
+            saved.clear()
+            viewer.wait(until=changed)
+            if not saved:  # Ctrl-C
+                break
+            nodes.stop()
+            names = ", ".join(os.path.relpath(p, args.target) for p in saved[:3])
+            print(say(M("{files} saved: the package is built and launched again", files=names), lang),
+                  file=sys.stderr, flush=True)
+            try:
+                relaunched = _launch(args, launch_file, arguments, lang)
+            except BrasKitError as exc:
+                print(say(exc.message, lang), file=sys.stderr, flush=True)
+                nodes = LiveNodes(args.target, [], viewer.show_joint_state)
+                continue
+            sys.stdout.write(format_text(relaunched.results, lang))
+            sys.stdout.flush()
+            source = relaunched.package.description_source()
+            if source is not None and os.path.join(args.target, source) != viewer.source.path:
+                viewer.source = _source(args, source)  # the launch file loads another robot now
+                viewer.reload()
+            nodes = start(relaunched)
+            stamps = package_stamps(args.target)  # what the build and the nodes wrote is not a save
+    finally:
+        nodes.stop()
+        _close(viewer, bus)
+    return 0

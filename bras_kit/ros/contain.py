@@ -1,0 +1,514 @@
+"""The containment around the child that runs code bras-kit did not write (docs/security.md).
+
+The child is a ``fork`` of Python (:func:`bras_kit.sandbox.run_limited`): the function to run
+and its arguments are already in its memory, so nothing is executed afresh. Before the
+learner's code runs, :meth:`Containment.enter` turns that child into a small container made of
+what Linux gives any user, without a daemon, root or a helper program:
+
+- a **user namespace** (the child's own uid and gid mapped onto themselves), so the steps
+  below need no privilege, and root's powers end at the namespace;
+- a **mount namespace** whose root is a fresh read-only tmpfs into which only the granted
+  paths are bound, each at its own path: the Python installation, the system libraries, the
+  learner's package (read-only) and the run's own folder (read-write). Nothing else exists
+  there: not the home folder, not ``~/.ssh``, not ``/tmp``, not ``/proc``, not the sockets of
+  ``/run``. The old root is detached (``pivot_root``), as bubblewrap does;
+- a **network namespace** with no interface up: no TCP, no UDP, and no abstract Unix socket
+  reaches this machine or another, loopback included;
+- a **PID namespace**: the code runs as its init (pid 1), sees and can name no process
+  outside, so it can neither signal nor trace one; when it ends (or is killed by a limit),
+  the kernel kills every process it forked;
+- an environment cut down to what a program needs (``PATH``, ``HOME``, the locale, ``ROS_*``...):
+  tokens and keys in the others do not reach it;
+- its own session and process group (``kill(0, ...)`` would otherwise reach the caller's
+  group, and ``TIOCSTI`` the terminal's shell);
+- then every capability dropped (the bounding set too) and ``no_new_privs`` set;
+  ``RLIMIT_NPROC`` (and, for root whom the kernel does not count, an audit hook) caps the
+  processes it may start.
+
+::
+
+    from bras_kit.ros.contain import Containment, available
+    status = available()                 # what this machine lacks, and how to get it
+    if status.ok:
+        run_limited(function, ..., contain=Containment(workdir, readable=(package_root,)))
+"""
+
+from __future__ import annotations
+
+import ctypes
+import errno
+import functools
+import os
+import platform
+import select
+import signal
+import sys
+import sysconfig
+from collections.abc import Iterable, Sequence
+from dataclasses import dataclass, field
+
+from ..errors import BrasKitError
+from ..message import M, Message
+
+CLONE_NEWNS = 0x00020000
+CLONE_NEWUTS = 0x04000000
+CLONE_NEWIPC = 0x08000000
+CLONE_NEWUSER = 0x10000000
+CLONE_NEWPID = 0x20000000
+CLONE_NEWNET = 0x40000000
+NAMESPACES = CLONE_NEWUSER | CLONE_NEWNS | CLONE_NEWNET | CLONE_NEWPID | CLONE_NEWIPC | CLONE_NEWUTS
+
+MS_RDONLY, MS_NOSUID, MS_NODEV, MS_NOEXEC = 1, 2, 4, 8
+MS_REMOUNT, MS_BIND, MS_REC, MS_PRIVATE = 32, 4096, 16384, 1 << 18
+MS_NOATIME, MS_NODIRATIME, MS_RELATIME = 1024, 2048, 1 << 21
+ST_RELATIME = 4096  # statvfs's flag for MS_RELATIME (the other ST_ flags equal the MS_ ones)
+MNT_DETACH = 2
+PR_SET_PDEATHSIG, PR_CAPBSET_DROP, PR_SET_NO_NEW_PRIVS = 1, 24, 38
+LINUX_CAPABILITY_VERSION_3 = 0x20080522
+PIVOT_ROOT = {"x86_64": 155, "aarch64": 41, "arm64": 41, "riscv64": 41, "ppc64le": 203, "ppc64": 203,
+              "s390x": 217, "armv7l": 218, "i686": 217, "i386": 217}
+MAX_PROCESSES = 32  # the processes the contained code may start in all (a fork bomb stops there)
+MAX_FILE_BYTES = 256 << 20  # the largest file it may write in its folder
+XCPU_EXIT = 128 + signal.SIGXCPU  # how the init says it ran out of CPU time (see _xcpu)
+ROOT_BYTES = 1 << 20  # the tmpfs that holds the mount points (read-only once built)
+
+SYSTEM = ("/usr", "/lib", "/lib64", "/lib32", "/libx32", "/bin", "/sbin")
+SYSTEM_FILES = ("/etc/ld.so.cache", "/etc/localtime")
+DEVICES_READ = ("/dev/zero", "/dev/urandom", "/dev/random")
+DEVICES_WRITE = ("/dev/null", "/dev/full")
+# the environment variables the contained code keeps (tokens and keys in the others stay outside)
+ENVIRONMENT = frozenset({"PATH", "HOME", "USER", "LOGNAME", "LANG", "LANGUAGE", "TZ", "TERM", "PWD",
+                         "PYTHONIOENCODING", "PYTHONUTF8", "NO_COLOR"})
+ENVIRONMENT_PREFIXES = ("LC_", "ROS_", "RMW_", "RCUTILS_", "AMENT_", "COLCON_", "BRAS_KIT_")
+
+
+class ContainmentError(BrasKitError):
+    """The containment could not be set up in the child: the code was not run."""
+
+
+@dataclass(frozen=True)
+class Status:
+    """What :func:`available` found: ``ok``, else what is ``missing`` and ``how`` to get it."""
+
+    ok: bool
+    found: Message
+    missing: Message | None = None
+    how: Message | None = None
+
+
+@dataclass(frozen=True)
+class Containment:
+    """What the contained code is granted: ``workdir`` read-write (its working folder),
+    ``readable`` read-only (the learner's package), on top of :func:`python_paths` and the
+    system libraries. Everything else is absent from its view of the filesystem."""
+
+    workdir: str
+    readable: tuple[str, ...] = ()
+    max_processes: int = MAX_PROCESSES
+    max_file_bytes: int = MAX_FILE_BYTES
+    system: tuple[str, ...] = field(default=SYSTEM)
+    keep: tuple[int, ...] = ()  # file descriptors the contained code keeps (a pipe its caller reads)
+
+    def granted(self) -> tuple[list[str], list[str]]:
+        """(read-only paths, read-write paths): absolute, existing, none inside another."""
+        read = _existing([*self.system, *SYSTEM_FILES, *DEVICES_READ, *python_paths(), *self.readable])
+        write = _existing([self.workdir, *DEVICES_WRITE])
+        return [p for p in read if p not in write], write
+
+    def enter(self, keep: Sequence[int] = ()) -> None:
+        """Contain this (freshly forked, single-threaded) process; return in the contained one.
+
+        Closes every file descriptor but 0, 1, 2 and ``keep``. The process that called this
+        stays outside the new PID namespace: it forks the namespace's init, which returns from
+        here and runs the code, waits for it and ends the way it ended (its exit status or its
+        signal), so the caller of :func:`bras_kit.sandbox.run_limited` sees what it always saw.
+        Raises :class:`ContainmentError` when a step fails (nothing has run then).
+        """
+        _close_fds_except({0, 1, 2, *keep})
+        read, write = self.granted()
+        uid, gid = os.getuid(), os.getgid()
+        last_cap = int(_read("/proc/sys/kernel/cap_last_cap") or 63)
+        staging = os.path.join(self.workdir, ".bras-kit-root")
+        os.mkdir(staging, 0o700)
+        _unshare(NAMESPACES)
+        _map_ids(uid, gid)
+        _build_root(staging, read, write)
+        _pivot(staging)
+        alive_read, alive_write = os.pipe()  # open at its end while the process outside lives
+        pid = os.fork()  # the first child in the new PID namespace is its init
+        if pid:
+            for fd in (*keep, alive_read):
+                os.close(fd)
+            _relay(pid)
+        # the namespace's init: dies with the process outside that waits for it
+        os.close(alive_write)
+        _prctl(PR_SET_PDEATHSIG, signal.SIGKILL)
+        if select.select([alive_read], [], [], 0)[0]:  # it died before the line above
+            os._exit(1)
+        os.close(alive_read)
+        # its own session: kill(0, ...) reaches no process group outside, and the terminal it may
+        # share is no longer its controlling one (no TIOCSTI keystrokes pushed into the shell)
+        os.setsid()
+        # a namespace's init ignores the signals it has no handler for, SIGXCPU included
+        signal.signal(signal.SIGXCPU, _xcpu)
+        os.chdir(self.workdir)
+        _environment(self.workdir)
+        _visible_sys_path()
+        try:
+            os.rmdir(os.path.basename(staging))  # no longer a mount point here: the learner's folder is as made
+        except OSError:
+            pass
+        _drop_privileges(last_cap, self.max_processes, self.max_file_bytes)
+        _count_processes(self.max_processes)
+
+
+def python_paths() -> list[str]:
+    """The Python installation (prefixes, stdlib, site-packages), bras-kit itself, and the
+    folders on ``sys.path`` that belong to an installation (never the current folder)."""
+    here = os.path.dirname(os.path.dirname(os.path.abspath(__file__)))  # bras_kit/
+    paths = {sys.prefix, sys.base_prefix, sys.exec_prefix, sys.base_exec_prefix, here}
+    paths.update(v for k, v in sysconfig.get_paths().items() if k in ("stdlib", "platstdlib", "purelib", "platlib"))
+    paths.update(p for p in sys.path if p and ("site-packages" in p or "dist-packages" in p))
+    home = os.path.abspath(os.path.expanduser("~"))
+    # never "/" nor the home folder (a Python installed as ~ itself): its own folders are granted instead
+    return sorted(p for p in {os.path.abspath(p) for p in paths if p}
+                  if p != "/" and not (home + "/").startswith(p.rstrip("/") + "/"))
+
+
+def _existing(paths: Iterable[str]) -> list[str]:
+    out: list[str] = []
+    for path in paths:
+        real = os.path.abspath(path)
+        if os.path.exists(real) and real not in out:
+            out.append(real)
+    # a path inside another granted one is already there (and would be bound twice)
+    return [p for p in out if not any(p != q and p.startswith(q.rstrip("/") + "/") for q in out)
+            or p in DEVICES_WRITE]
+
+
+# --- the probe -------------------------------------------------------------------------------
+
+@functools.lru_cache(maxsize=1)
+def available() -> Status:
+    """Whether this machine can contain a child, found by trying it in a throwaway child."""
+    if sys.platform != "linux":
+        return Status(False, M("{system} has no Linux namespaces", system=platform.system() or sys.platform),
+                      M("Linux user, mount, network and PID namespaces"),
+                      M("run bras-kit on Linux (a virtual machine, or WSL 2 on Windows)"))
+    if platform.machine() not in PIVOT_ROOT:
+        return Status(False, M("{machine} is not a processor bras-kit knows the system calls of",
+                               machine=platform.machine()),
+                      M("the pivot_root system call number"), M("report it to bras-kit's maintainers"))
+    step, code = _trial()
+    if not step:
+        return Status(True, M("user, mount, network and PID namespaces"))
+    if step == "unshare":
+        return Status(False, M("the kernel refuses new namespaces to this user ({reason})",
+                               reason=os.strerror(code) if code else "?"),
+                      M("unprivileged user namespaces"), _how_to_enable())
+    return Status(False, M("the containment could not be set up: {step} failed ({reason})", step=step,
+                           reason=os.strerror(code) if code else "?"),
+                  M("mounts inside a user namespace"), _how_to_enable())
+
+
+def _trial() -> tuple[str, int]:
+    """The whole containment tried once in a throwaway child: ("", 0), or the step that failed and its errno."""
+    import json
+    import tempfile
+
+    workdir = tempfile.mkdtemp(prefix="bras-kit-contain-")
+    read, write = os.pipe()
+    sys.stdout.flush()
+    sys.stderr.flush()
+    pid = os.fork()
+    if pid == 0:
+        answer = {"step": "", "errno": 0}
+        try:
+            os.close(read)
+            Containment(workdir).enter(keep=(write,))
+        except ContainmentError as exc:
+            answer = {"step": getattr(exc, "step", "?"), "errno": getattr(exc, "errno", 0)}
+        except BaseException as exc:  # noqa: BLE001
+            answer = {"step": type(exc).__name__, "errno": getattr(exc, "errno", 0) or 0}
+        try:
+            os.write(write, json.dumps(answer).encode())
+        finally:
+            os._exit(0)
+    os.close(write)
+    try:
+        chunks = []
+        while chunk := os.read(read, 4096):
+            chunks.append(chunk)
+        os.waitpid(pid, 0)
+        answer = json.loads(b"".join(chunks) or b'{"step": "?", "errno": 0}')
+        return str(answer["step"]), int(answer["errno"] or 0)
+    finally:
+        os.close(read)
+        import shutil
+
+        shutil.rmtree(workdir, ignore_errors=True)
+
+
+def _how_to_enable() -> Message:
+    if os.path.exists("/proc/sys/kernel/apparmor_restrict_unprivileged_userns") and \
+            _read("/proc/sys/kernel/apparmor_restrict_unprivileged_userns") == "1":
+        return M("Ubuntu's AppArmor forbids them: sudo sysctl -w kernel.apparmor_restrict_unprivileged_userns=0 "
+                 "(or an AppArmor profile granting 'userns' to this Python)")
+    if _read("/proc/sys/kernel/unprivileged_userns_clone") == "0":
+        return M("enable them: sudo sysctl -w kernel.unprivileged_userns_clone=1")
+    if _read("/proc/sys/user/max_user_namespaces") == "0":
+        return M("enable them: sudo sysctl -w user.max_user_namespaces=15000")
+    return M("inside a container, run it with user namespaces allowed (e.g. docker run --security-opt "
+             "seccomp=unconfined), or run bras-kit on the host")
+
+
+def _read(path: str) -> str:
+    try:
+        with open(path) as handle:
+            return handle.read().strip()
+    except OSError:
+        return ""
+
+
+# --- the steps, in the child -----------------------------------------------------------------
+
+_libc = ctypes.CDLL(None, use_errno=True)
+
+
+def _check(result: int, step: str) -> None:
+    if result != 0:
+        code = ctypes.get_errno()
+        error = ContainmentError(M("the containment could not be set up: {step} failed ({reason})", step=step,
+                                   reason=os.strerror(code)))
+        error.errno = code  # type: ignore[attr-defined]
+        error.step = step  # type: ignore[attr-defined]
+        raise error
+
+
+def _unshare(flags: int) -> None:
+    _check(_libc.unshare(ctypes.c_int(flags)), "unshare")
+
+
+def _prctl(option: int, value: int) -> None:
+    _check(_libc.prctl(ctypes.c_int(option), ctypes.c_ulong(value), ctypes.c_ulong(0), ctypes.c_ulong(0),
+                       ctypes.c_ulong(0)), "prctl")
+
+
+def _mount(source: str | None, target: str, kind: str | None, flags: int, data: str | None = None) -> None:
+    def b(text: str | None) -> bytes | None:
+        return None if text is None else os.fsencode(text)
+
+    _check(_libc.mount(b(source), b(target), b(kind), ctypes.c_ulong(flags), b(data)), f"mount {target}")
+
+
+def _write(path: str, text: str) -> None:
+    fd = os.open(path, os.O_WRONLY)
+    try:
+        os.write(fd, text.encode())
+    finally:
+        os.close(fd)
+
+
+def _map_ids(uid: int, gid: int) -> None:
+    """The same uid and gid inside as outside: files keep their owners, and nothing else maps."""
+    try:
+        _write("/proc/self/setgroups", "deny")
+        _write("/proc/self/uid_map", f"{uid} {uid} 1\n")
+        _write("/proc/self/gid_map", f"{gid} {gid} 1\n")
+    except OSError as exc:
+        error = ContainmentError(M("the containment could not be set up: {step} failed ({reason})",
+                                   step="uid_map", reason=exc.strerror or str(exc)))
+        error.errno, error.step = exc.errno, "uid_map"  # type: ignore[attr-defined]
+        raise error from None
+
+
+def _locked_flags(path: str) -> int:
+    """The flags a bind mount of ``path`` must keep (a user namespace may not clear them)."""
+    flags = os.statvfs(path).f_flag
+    out = flags & (MS_NOSUID | MS_NODEV | MS_NOEXEC | MS_NOATIME | MS_NODIRATIME)
+    if flags & ST_RELATIME:
+        out |= MS_RELATIME
+    return out
+
+
+def _bind(path: str, staging: str, writable: bool) -> None:
+    target = staging + path
+    if os.path.isdir(path):
+        os.makedirs(target, exist_ok=True)
+    else:
+        os.makedirs(os.path.dirname(target), exist_ok=True)
+        if not os.path.exists(target):
+            os.close(os.open(target, os.O_CREAT | os.O_WRONLY, 0o600))
+    _mount(path, target, None, MS_BIND)
+    _mount(None, target, None, MS_REMOUNT | MS_BIND | _locked_flags(path) | (0 if writable else MS_RDONLY))
+
+
+def _build_root(staging: str, read: list[str], write: list[str]) -> None:
+    _mount(None, "/", None, MS_REC | MS_PRIVATE)  # nothing below propagates back to this machine
+    _mount("tmpfs", staging, "tmpfs", MS_NOSUID | MS_NODEV, f"size={ROOT_BYTES},mode=0755")
+    for path in SYSTEM:  # a merged /usr: /lib -> usr/lib stays a symbolic link
+        if os.path.islink(path):
+            os.symlink(os.readlink(path), staging + path)
+    for path in read:
+        if not os.path.lexists(staging + path):
+            _bind(path, staging, writable=False)
+    for path in write:
+        _bind(path, staging, writable=True)
+
+
+def _pivot(staging: str) -> None:
+    os.chdir(staging)
+    number = PIVOT_ROOT[platform.machine()]
+    _check(_libc.syscall(ctypes.c_long(number), b".", b"."), "pivot_root")
+    _check(_libc.umount2(b".", ctypes.c_int(MNT_DETACH)), "umount")  # the old root, now stacked on the new
+    os.chdir("/")
+    _mount(None, "/", None, MS_REMOUNT | MS_RDONLY | MS_NOSUID | MS_NODEV)
+
+
+def _environment(workdir: str) -> None:
+    """Only the variables a program needs to run and ROS's own are kept; ``tempfile`` and the
+    programs it starts make their temporary files in the run's folder."""
+    import tempfile
+
+    for name in list(os.environ):
+        if name not in ENVIRONMENT and not name.startswith(ENVIRONMENT_PREFIXES):
+            del os.environ[name]  # unsetenv() too: gone for the C library and for programs it starts
+    os.environ["TMPDIR"] = workdir
+    tempfile.tempdir = workdir
+
+
+def _visible_sys_path() -> None:
+    """Folders of ``sys.path`` the walls hide are dropped (the caller's current folder, a test
+    runner's folder...): a library that lists every folder of ``sys.path`` (setuptools looking
+    for entry points) would otherwise be stopped there, at the learner's line, for nothing
+    the learner did."""
+    sys.path[:] = [p for p in sys.path if not p or os.path.isdir(p) or os.path.isfile(p)]
+    sys.path_importer_cache.clear()
+
+
+def _relay(pid: int) -> None:
+    """Outside the PID namespace: wait for its init and end as it ended."""
+    for handled in (signal.SIGINT, signal.SIGTERM):
+        signal.signal(handled, signal.SIG_DFL)
+    status = 1
+    try:
+        while True:
+            try:
+                _, status = os.waitpid(pid, 0)
+                break
+            except InterruptedError:
+                continue
+        number = 0
+        if os.WIFSIGNALED(status):
+            number = os.WTERMSIG(status)
+        elif os.WIFEXITED(status) and os.WEXITSTATUS(status) == XCPU_EXIT:
+            number = signal.SIGXCPU
+        if number:
+            if number != signal.SIGKILL:
+                signal.signal(number, signal.SIG_DFL)
+            os.kill(os.getpid(), number)
+    except BaseException:  # noqa: BLE001
+        os._exit(1)
+    os._exit(os.WEXITSTATUS(status) if os.WIFEXITED(status) else 1)
+
+
+def _xcpu(number: int, frame: object) -> None:
+    os._exit(XCPU_EXIT)
+
+
+class _CapHeader(ctypes.Structure):
+    _fields_ = [("version", ctypes.c_uint32), ("pid", ctypes.c_int)]
+
+
+class _CapData(ctypes.Structure):
+    _fields_ = [("effective", ctypes.c_uint32), ("permitted", ctypes.c_uint32), ("inheritable", ctypes.c_uint32)]
+
+
+def _drop_privileges(last_cap: int, max_processes: int, max_file_bytes: int) -> None:
+    import resource
+
+    for cap in range(last_cap + 1):
+        if _libc.prctl(ctypes.c_int(PR_CAPBSET_DROP), ctypes.c_ulong(cap), 0, 0, 0) != 0 and \
+                ctypes.get_errno() != errno.EINVAL:
+            _check(-1, "PR_CAPBSET_DROP")
+    header = _CapHeader(LINUX_CAPABILITY_VERSION_3, 0)
+    data = (_CapData * 2)()
+    _check(_libc.capset(ctypes.byref(header), data), "capset")
+    _prctl(PR_SET_NO_NEW_PRIVS, 1)
+    resource.setrlimit(resource.RLIMIT_NPROC, (max_processes, max_processes))
+    resource.setrlimit(resource.RLIMIT_FSIZE, (max_file_bytes, max_file_bytes))
+
+
+SPAWNS = frozenset({"os.fork", "os.forkpty", "os.posix_spawn", "os.spawn", "subprocess.Popen", "os.system",
+                    "pty.spawn"})
+
+
+def _count_processes(most: int) -> None:
+    """At most ``most`` processes started in all, by any process of the namespace: a counter in
+    memory they all share, checked by an audit hook before each fork or spawn. ``RLIMIT_NPROC``
+    does the same in the kernel for any user but root, whom the kernel never counts."""
+    import mmap
+    import struct
+
+    counter = mmap.mmap(-1, 8)
+
+    def hook(event: str, args: tuple[object, ...]) -> None:
+        if event in SPAWNS:
+            started = struct.unpack_from("<q", counter)[0] + 1
+            if started > most:
+                raise BlockingIOError(errno.EAGAIN, f"no more processes: {most} were started, the most allowed")
+            struct.pack_into("<q", counter, 0, started)
+
+    sys.addaudithook(hook)
+
+
+def _close_fds_except(keep: set[int]) -> None:
+    highest = 0
+    try:
+        fds = [int(name) for name in os.listdir("/proc/self/fd")]
+    except OSError:
+        fds = list(range(os.sysconf("SC_OPEN_MAX") if hasattr(os, "sysconf") else 1024))
+    for fd in fds:
+        highest = max(highest, fd)
+        if fd not in keep:
+            try:
+                os.close(fd)
+            except OSError:
+                pass
+
+
+class ContainmentUnavailable(ContainmentError):
+    """Containment was required and this machine cannot give it."""
+
+
+CONTAIN_MODES = ("auto", "require", "off")
+
+
+def containment(mode: str, workdir: str, readable: Iterable[str] = ()) -> Containment | None:
+    """The :class:`Containment` for a run in ``workdir`` reading ``readable``, by ``mode``:
+    "auto" (contained where :func:`available`, else None), "require" (raises
+    :class:`ContainmentUnavailable` where not), "off" (None)."""
+    if mode == "off":
+        return None
+    if mode == "require":
+        containment_required()
+    return Containment(workdir, tuple(readable)) if available().ok else None
+
+
+def containment_required() -> None:
+    """Raise :class:`ContainmentUnavailable` (what is missing, how to get it) where :func:`available` is not ok."""
+    status = available()
+    if not status.ok:
+        raise ContainmentUnavailable(M("code bras-kit did not write cannot be contained on this machine ({found}): "
+                                       "it needs {missing}", missing=status.missing, found=status.found),
+                                     hint=status.how)
+
+
+def uncontained_note() -> Message | None:
+    """The one line ``run`` and ``launch`` show where the learner's own code runs uncontained
+    (None where it is contained)."""
+    status = available()
+    if status.ok:
+        return None
+    return M("note: your code runs without walls here (this machine lacks {missing}): it has your rights, "
+             "as under ros2 run", missing=status.missing)

