@@ -82,14 +82,23 @@ def run(args: argparse.Namespace) -> int:
     # (a child forked while a thread imports a module could wait forever for its lock); its probe
     # too, a throwaway child, runs now.
     containable()
+    shown: list = []  # type: ignore[type-arg]  # the page, once its address is printed
     with children_from_a_server():
-        launched = _launch(args, launch_file, arguments, lang, open_page=True)
-        code = _report(args, launched, lang)
-        if launched.description is None:
-            return code
-        if launched.page is None:  # no robot file the page could show
-            return 0
-        return _live(args, launch_file, arguments, lang, launched, *launched.page)
+        try:
+            launched = _launch(args, launch_file, arguments, lang, page_shown=shown)
+            code = _report(args, launched, lang)
+            if launched.description is None:
+                return code
+            if launched.page is None:  # no robot file the page could show
+                return 0
+            return _live(args, launch_file, arguments, lang, launched, launched.page[0])
+        except KeyboardInterrupt:
+            if not shown:
+                raise  # before the address: interrupted, as any command
+            return 0  # Ctrl-C once the address is out (checks or a rebuild under way too): the stop it announced
+        finally:
+            if shown:
+                _close(*shown[0])
 
 
 def _report(args: argparse.Namespace, launched: _Launched, lang: str) -> int:
@@ -114,10 +123,10 @@ class _Launched:
 
 
 def _launch(args: argparse.Namespace, launch_file: str | None, arguments: dict[str, str], lang: str,
-            open_page: bool = False) -> _Launched:
+            page_shown: list | None = None) -> _Launched:  # type: ignore[type-arg]
     """Build the package, evaluate its launch file, say what started, run its own nodes in simulated
-    time for their findings; with ``open_page``, the page is opened as soon as the robot is known
-    (before the checks)."""
+    time for their findings; given ``page_shown``, the page is opened as soon as the robot is known
+    (before the checks), and (viewer, bus) is put in ``page_shown`` when its address is printed."""
     import tempfile
 
     from ..errors import ParameterError
@@ -127,7 +136,7 @@ def _launch(args: argparse.Namespace, launch_file: str | None, arguments: dict[s
 
     package = Package(args.target)
     pending, page = None, None
-    if open_page:  # the page gets ready while the package builds (see run: children_from_a_server)
+    if page_shown is not None:  # the page gets ready while the package builds (see run: children_from_a_server)
         from concurrent.futures import ThreadPoolExecutor
 
         pool = ThreadPoolExecutor(1, thread_name_prefix="bras-kit-page")
@@ -171,9 +180,10 @@ def _launch(args: argparse.Namespace, launch_file: str | None, arguments: dict[s
         sys.stdout.flush()
         if pending is not None:  # the page first, the checks after
             page = _page_for(pending, result.description is not None)
-            if page is not None:
+            if page is not None and page_shown is not None:
                 page[0].fixed_frame = _rviz_fixed_frame(plan)  # before any browser can connect
                 _announce(args, page[0])
+                page_shown.append(page)
         results = validate_package(args.target, select=["BK6"], package=package, launch=True)
         results += _node_results(args, nodes, result)
     return _Launched(package, result, results, nodes, page)
@@ -304,7 +314,7 @@ def _source(args: argparse.Namespace, relative: str):  # type: ignore[no-untyped
 
 
 def _live(args: argparse.Namespace, launch_file: str | None, arguments: dict[str, str], lang: str,  # type: ignore[no-untyped-def]
-          launched: _Launched, viewer, bus) -> int:
+          launched: _Launched, viewer) -> int:
     """The package's own nodes live in the page until Ctrl-C; a file of the package saved: built
     and launched again (checks, nodes and, when the launch file now loads another, the robot)."""
     from ..errors import BrasKitError
@@ -312,12 +322,15 @@ def _live(args: argparse.Namespace, launch_file: str | None, arguments: dict[str
     from ..run.live import LiveNodes, changed_files, executables_of, package_stamps
     from ..validate.report import format_text
 
-    def start(current: _Launched) -> LiveNodes:
+    nodes = LiveNodes(args.target, [], viewer.show_joint_state)
+
+    def start(current: _Launched) -> None:
+        nonlocal nodes
         names, parameters = executables_of(current.nodes, current.result.build.package) \
             if current.result.build.failure is None else ([], {})
-        return LiveNodes(args.target, names, viewer.show_joint_state, parameters, lang).start()
+        nodes = LiveNodes(args.target, names, viewer.show_joint_state, parameters, lang)
+        nodes.start()  # a Ctrl-C while they start still finds them in ``nodes``
 
-    nodes = start(launched)
     stamps = package_stamps(args.target)
     saved: list[str] = []
 
@@ -329,6 +342,7 @@ def _live(args: argparse.Namespace, launch_file: str | None, arguments: dict[str
         return bool(saved)
 
     try:
+        start(launched)
         while True:
             saved.clear()
             viewer.wait(until=changed)
@@ -350,9 +364,10 @@ def _live(args: argparse.Namespace, launch_file: str | None, arguments: dict[str
             if source is not None and os.path.join(args.target, source) != viewer.source.path:
                 viewer.source = _source(args, source)  # the launch file loads another robot now
                 viewer.reload()
-            nodes = start(relaunched)
+            start(relaunched)
             stamps = package_stamps(args.target)  # what the build and the nodes wrote is not a save
+    except KeyboardInterrupt:  # during a rebuild: the same stop as during the wait
+        pass
     finally:
-        nodes.stop()
-        _close(viewer, bus)
+        nodes.stop()  # the page is closed by run
     return 0

@@ -143,6 +143,8 @@ def _serve(args: argparse.Namespace, source: object) -> int:
 
             webbrowser.open(viewer.url)
         viewer.wait()
+    except KeyboardInterrupt:  # Ctrl-C as soon as the address shows (before the wait began) stops it too
+        pass
     finally:
         viewer.stop()
     return 0
