@@ -470,3 +470,63 @@ def test_a_reload_with_an_unusable_axis_keeps_the_last_good_arm_and_says_why(tmp
         assert viewer.model is before
         path.write_text(good)
         assert viewer.reload() and viewer.error is None
+
+
+class _ReportedCamera:
+    """A browser camera whose reports came before its session existed: viser runs the first
+    report's callbacks without waiting for on_client_connect, so ``on_update`` never calls back."""
+
+    def __init__(self, width: int, height: int) -> None:
+        self.image_width, self.image_height = width, height
+        self.fov = self.near = self.far = self.position = self.look_at = None
+
+    def on_update(self, callback) -> None:
+        self.callback = callback
+
+
+def _pixels(camera, points: np.ndarray) -> np.ndarray:
+    """Where ``points`` land on the canvas (column, row from the top-left), by a pinhole camera
+    at ``camera.position`` looking at ``camera.look_at`` with +z up and a vertical ``camera.fov``."""
+    position, target = np.asarray(camera.position), np.asarray(camera.look_at)
+    forward = (target - position) / np.linalg.norm(target - position)
+    right = np.cross(forward, [0.0, 0.0, 1.0])
+    right /= np.linalg.norm(right)
+    up = np.cross(right, forward)
+    relative = points - position
+    depth = relative @ forward
+    focal = (camera.image_height / 2) / math.tan(camera.fov / 2)
+    column = camera.image_width / 2 + focal * (relative @ right) / depth
+    row = camera.image_height / 2 - focal * (relative @ up) / depth
+    return np.stack([column, row], axis=1)
+
+
+def test_a_browser_that_reported_its_canvas_before_its_session_is_framed(tmp_path):
+    """The whole swept arm lands inside the canvas, left of the 410-pixel control panel."""
+    from bras_kit.authoring import arm
+    from bras_kit.view import Source, Viewer
+    from bras_kit.view.framing import reach_points
+    from bras_kit.view.session import Session
+
+    with Viewer(Source(robot=arm()), port=_free_port(), watch=False) as viewer:
+        client = _ServerAsClient(viewer.server)
+        client.camera = _ReportedCamera(1000, 700)
+        Session(client, viewer, viewer.lang)
+        assert client.camera.position is not None, "the camera was never placed"
+        pixels = _pixels(client.camera, reach_points(viewer.model))
+        assert (pixels[:, 0] > 0).all() and (pixels[:, 0] < 1000 - 410).all(), pixels[:, 0]
+        assert (pixels[:, 1] > 0).all() and (pixels[:, 1] < 700).all(), pixels[:, 1]
+
+
+def test_a_canvas_not_laid_out_yet_is_framed_when_it_reports_its_size(tmp_path):
+    from bras_kit.authoring import arm
+    from bras_kit.view import Source, Viewer
+    from bras_kit.view.session import Session
+
+    with Viewer(Source(robot=arm()), port=_free_port(), watch=False) as viewer:
+        client = _ServerAsClient(viewer.server)
+        client.camera = _ReportedCamera(0, 0)
+        Session(client, viewer, viewer.lang)
+        assert client.camera.position is None  # nothing to fit yet
+        client.camera.image_width, client.camera.image_height = 800, 600
+        client.camera.callback(client.camera)
+        assert client.camera.position is not None

@@ -184,6 +184,9 @@ class Session:
         self._build_panel()
         self.show_model(viewer.model)
         client.camera.on_update(self._camera_reported)
+        # viser calls on_client_connect (this session) once the browser's first camera report is
+        # in, and runs that report's callbacks without waiting for it: that report is read here
+        self._camera_reported(client.camera)
 
     def w(self, message: Message | str) -> str:
         """``message`` worded in this browser's language, escaped for the panel's HTML."""
@@ -195,19 +198,21 @@ class Session:
 
     # -- the camera --------------------------------------------------------------------------
     def _camera_reported(self, _camera: Any) -> None:
-        if not self._framed:
-            self._framed = True
-            self.frame_camera()
+        if not self._framed:  # a report without the canvas's size (a busy browser) is not the last chance
+            self._framed = self.frame_camera()
 
-    def frame_camera(self) -> None:
-        """Put this browser's camera on the robot, sized for its canvas, clear of the panel."""
+    def frame_camera(self) -> bool:
+        """Put this browser's camera on the robot, sized for its canvas, clear of the panel;
+        False while the browser has not said its canvas's size."""
         from .framing import SWEPT_MARGIN, place_camera, reach_points
 
         camera = self.client.camera
         try:
             width, height = int(camera.image_width), int(camera.image_height)
         except (AssertionError, AttributeError):  # the browser has not said its size yet
-            return
+            return False
+        if width < 16 or height < 16:  # a canvas not laid out yet
+            return False
         points = reach_points(self.model, self.values, self.viewer.motion, self.fixed_frame)
         placement = place_camera(points, width, height, margin=SWEPT_MARGIN)
         with self.client.atomic():
@@ -216,6 +221,7 @@ class Session:
             camera.far = placement.far
             camera.position = placement.position
             camera.look_at = placement.look_at
+        return True
 
     # -- the panel that does not depend on the model ------------------------------------------
     def _build_panel(self) -> None:
