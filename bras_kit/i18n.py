@@ -5,7 +5,7 @@ place that shows one words it here with :func:`say` in the language it resolved.
 has its own domain (``cli``, ``validate``, ``physics``, ``view``, ``grade``, ``package``, ...;
 see :data:`bras_kit.message.DOMAINS`), whose French catalog is
 ``bras_kit/locale/fr/LC_MESSAGES/<domain>.po``, compiled to the ``.mo`` beside it. Contributors
-refresh the catalogs with ``python -m bras_kit.i18n update`` (Babel extracts every message,
+refresh the catalogs with ``python -m bras_kit.i18n_tools update`` (Babel extracts every message,
 merges it into each ``.po`` and compiles); the run time reads the ``.mo`` with the standard
 library's :mod:`gettext`. A test checks each ``.mo`` is current and no entry is left untranslated.
 
@@ -17,7 +17,6 @@ from __future__ import annotations
 
 import gettext as _gettext
 import os
-import sys
 from collections.abc import Callable, Mapping
 from functools import cache
 from pathlib import Path
@@ -139,41 +138,3 @@ def labelled(label: Message | str, text: str, lang: str | None = None) -> str:
 
 def domains() -> list[str]:
     return sorted(p.stem for p in (LOCALE_DIR / "fr" / "LC_MESSAGES").glob("*.po"))
-
-
-def compile_catalogs() -> list[Path]:
-    """Compile every ``.po`` into its ``.mo`` (needs Babel: ``pip install -e .[dev]``)."""
-    from babel.messages.mofile import write_mo
-    from babel.messages.pofile import read_po
-
-    written = []
-    for po in sorted(LOCALE_DIR.glob("*/LC_MESSAGES/*.po")):
-        with po.open("rb") as handle:
-            messages = read_po(handle)
-        with po.with_suffix(".mo").open("wb") as handle:
-            write_mo(handle, messages, use_fuzzy=False)
-        written.append(po.with_suffix(".mo"))
-    catalog.cache_clear()
-    return written
-
-
-def _main(argv: list[str]) -> int:
-    """``compile``: every .po into its .mo; ``update [--prune]``: extract, merge, compile."""
-    if argv == ["compile"]:
-        for path in compile_catalogs():
-            print(path)
-        return 0
-    if argv[:1] == ["update"] and set(argv[1:]) <= {"--prune"}:
-        from .i18n_tools import update_catalogs
-
-        for domain, missing in update_catalogs(prune="--prune" in argv).items():
-            print(f"{domain}: {len(missing)} entries without French")
-            for word in missing:
-                print("  " + word.replace("\n", "\\n"))
-        return 0
-    print("usage: python -m bras_kit.i18n compile | update [--prune]", file=sys.stderr)
-    return 2
-
-
-if __name__ == "__main__":
-    sys.exit(_main(sys.argv[1:]))

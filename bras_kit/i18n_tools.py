@@ -1,6 +1,6 @@
 """Contributor tools for the catalogs (Babel): extract every message, merge, compile.
 
-``python -m bras_kit.i18n update`` reads every module of bras_kit with :mod:`ast` (through a
+``python -m bras_kit.i18n_tools update`` reads every module of bras_kit with :mod:`ast` (through a
 Babel extraction method, :func:`extract_python`), finds each ``M(...)``, ``Mn(...)`` and
 ``Mc(...)`` call and each text given to a registration call listed in :data:`TEXT_CALLS`
 (the validator's rules), groups them by domain (:func:`bras_kit.message.domain_of` of the
@@ -13,11 +13,13 @@ every ``.mo``. Nothing here runs at a user's run time.
 from __future__ import annotations
 
 import ast
+import sys
 from collections.abc import Iterable, Iterator
 from dataclasses import dataclass
 from pathlib import Path
 from typing import Any
 
+from .i18n import LOCALE_DIR, catalog
 from .message import domain_of
 
 PACKAGE_ROOT = Path(__file__).resolve().parent
@@ -171,8 +173,6 @@ def update_catalogs(prune: bool = False) -> dict[str, list[str]]:
     from babel.messages.catalog import Catalog
     from babel.messages.pofile import read_po, write_po
 
-    from .i18n import LOCALE_DIR, compile_catalogs
-
     domains = by_domain(extract_all())
     extra_cli = _cli_words()
     untranslated: dict[str, list[str]] = {}
@@ -220,3 +220,39 @@ def _cli_words() -> list[str]:
     for word in [*ARGPARSE_WORDS, *parser_words()]:
         seen.setdefault(word, None)
     return list(seen)
+
+
+def compile_catalogs() -> list[Path]:
+    """Compile every ``.po`` into its ``.mo`` (needs Babel: ``pip install -e .[dev]``)."""
+    from babel.messages.mofile import write_mo
+    from babel.messages.pofile import read_po
+
+    written = []
+    for po in sorted(LOCALE_DIR.glob("*/LC_MESSAGES/*.po")):
+        with po.open("rb") as handle:
+            messages = read_po(handle)
+        with po.with_suffix(".mo").open("wb") as handle:
+            write_mo(handle, messages, use_fuzzy=False)
+        written.append(po.with_suffix(".mo"))
+    catalog.cache_clear()  # the running process reads the new .mo
+    return written
+
+
+def _main(argv: list[str]) -> int:
+    """``compile``: every .po into its .mo; ``update [--prune]``: extract, merge, compile."""
+    if argv == ["compile"]:
+        for path in compile_catalogs():
+            print(path)
+        return 0
+    if argv[:1] == ["update"] and set(argv[1:]) <= {"--prune"}:
+        for domain, missing in update_catalogs(prune="--prune" in argv).items():
+            print(f"{domain}: {len(missing)} entries without French")
+            for word in missing:
+                print("  " + word.replace("\n", "\\n"))
+        return 0
+    print("usage: python -m bras_kit.i18n_tools compile | update [--prune]", file=sys.stderr)
+    return 2
+
+
+if __name__ == "__main__":
+    sys.exit(_main(sys.argv[1:]))

@@ -2,7 +2,7 @@
 
 The ids are collected from the code's syntax tree (``M``, ``Mn``, ``Mc`` calls and the texts
 given to registration calls), not from a list kept by hand, so a new message cannot be
-forgotten: it fails here until ``python -m bras_kit.i18n update`` has added it and a French
+forgotten: it fails here until ``python -m bras_kit.i18n_tools update`` has added it and a French
 translation is written.
 """
 

@@ -118,7 +118,7 @@ def test_every_mo_file_is_compiled_from_its_po(po):
     import gettext
 
     mo = po.with_suffix(".mo")
-    assert mo.exists(), f"{mo} is missing: run python -m bras_kit.i18n compile"
+    assert mo.exists(), f"{mo} is missing: run python -m bras_kit.i18n_tools compile"
     with mo.open("rb") as handle:
         compiled = dict(gettext.GNUTranslations(handle)._catalog)  # type: ignore[attr-defined]
     compiled.pop("", None)  # the header
@@ -127,7 +127,7 @@ def test_every_mo_file_is_compiled_from_its_po(po):
     stale = sorted(str(k) for k in compiled.keys() - expected.keys())
     changed = sorted(str(k) for k in expected.keys() & compiled.keys() if expected[k] != compiled[k])
     assert not (missing or stale or changed), (
-        f"{mo} is older than {po.name}: run python -m bras_kit.i18n compile\n"
+        f"{mo} is older than {po.name}: run python -m bras_kit.i18n_tools compile\n"
         f"missing: {missing[:5]}\nno longer in the .po: {stale[:5]}\ntranslated otherwise: {changed[:5]}")
 
 

@@ -104,3 +104,23 @@ def test_errors_and_message_import_nothing_above_them():
     graph = module_graph()
     assert graph["bras_kit.message"] == set()
     assert graph["bras_kit.errors"] <= {"bras_kit.message"}
+
+
+def test_contributor_tools_sit_above_the_runtime():
+    """No module imports bras_kit.i18n_tools (the catalogs' extraction and compilation), not even
+    inside a function: it imports the runtime's i18n, never the other way round."""
+    importers = []
+    for path in ROOT.rglob("*.py"):
+        module = _module_name(path)
+        if module == "bras_kit.i18n_tools":
+            continue
+        for node in ast.walk(ast.parse(path.read_text(encoding="utf-8"))):
+            if isinstance(node, ast.ImportFrom):
+                targets = _resolve(module, path.name == "__init__.py", node)
+            elif isinstance(node, ast.Import):
+                targets = [alias.name for alias in node.names]
+            else:
+                continue
+            if "bras_kit.i18n_tools" in targets:
+                importers.append(f"{module}:{node.lineno}")
+    assert importers == []

@@ -101,7 +101,7 @@ def _command_module(name: str):  # type: ignore[no-untyped-def]
 
 def _word(text: str) -> str:
     """A help text or an argparse word in the chosen language: each is an entry of the ``cli``
-    catalog, looked up as written (``python -m bras_kit.i18n update`` reads them from the parsers)."""
+    catalog, looked up as written (``python -m bras_kit.i18n_tools update`` reads them from the parsers)."""
     return translator(current_language(), "cli")(text)
 
 

@@ -1,7 +1,7 @@
 """The English words of the command line that are not ``M()`` messages, for the ``cli`` catalog.
 
 Two sources: argparse's own words and every command's help (descriptions, epilogs, group
-titles, option help, read from the parsers themselves). ``python -m bras_kit.i18n update``
+titles, option help, read from the parsers themselves). ``python -m bras_kit.i18n_tools update``
 merges them into ``locale/fr/LC_MESSAGES/cli.po`` with the messages of the code; the command
 line looks each up as written (:func:`bras_kit.cli._word`).
 """
