@@ -209,3 +209,44 @@ def test_an_exception_in_a_worker_thread_is_the_nodes_failure_at_its_line():
     assert recording.failure.frames[-1].line == 19
     # threading.Timer waits on the simulated clock too
     assert [(t, text) for t, _level, _node, text in recording.logs] == [(0.25, "timer thread")]
+
+
+def test_logging_filters_are_kept_per_call_site_on_the_node_clock():
+    """rcutils_logger.py (7.1) 54-66: a filter's state belongs to the call site (CallerId), not to
+    the text, so an f-string logged with once=True is said once; 122-148: throttle compares the
+    clock (Clock(), the node's time) with the last time it logged; 172-176 + 325-327: throttle,
+    then skip_first, then once, the first that says no stopping the others (skip_first + once:
+    the second call alone)."""
+    recording = run_node(str(JAZZY / "logging_filters.py"), duration=2.0)  # a lone file: no robot
+    said = [(round(t, 9), level, text) for t, level, _node, text in recording.logs]
+    missing = '"base" passed to lookupTransform argument target_frame does not exist. '
+    assert said == [(0.05, "INFO", "tick 1"), (0.05, "INFO", "every second 1"), (0.05, "WARN", missing),
+                    (0.1, "INFO", "after the first 2"),
+                    (1.05, "INFO", "every second 21"), (1.05, "WARN", missing)]
+
+
+def test_unknown_logging_option_is_rclpy_s_type_error(tmp_path):
+    node = tmp_path / "typo.py"
+    node.write_text((JAZZY / "logging_filters.py").read_text().replace("throttle_duration_sec=1.0)\n        log.info(f'after",
+                                                                       "throttle_duration=1.0)\n        log.info(f'after"))
+    recording = run_node(str(node), duration=0.5)
+    assert recording.failure.kind == "TypeError"
+    assert recording.failure.detail.startswith('parameter "throttle_duration" is not one of the recognized logging '
+                                               'options')
+
+
+def test_run_s_robot_is_the_one_tf2_answers_from():
+    """bras-kit run checks a lone node against --urdf (else the built-in arm): its tf2 Buffer
+    answers from that robot too, as robot_state_publisher would publish it."""
+    import math
+    import subprocess
+    import sys
+
+    for urdf in ([], ["--urdf", str(TUTORIAL / "urdf" / "bras.urdf")]):
+        done = subprocess.run([sys.executable, "-m", "bras_kit", "run", str(JAZZY / "logging_filters.py"),
+                               "--duration", "0.2", *urdf], capture_output=True, text=True, timeout=120)
+        code, err = done.returncode, done.stderr
+        assert code == 0, err
+        # shoulder 0.05 above the base, the upper arm 0.6 long turned 0.5 rad about y: by hand
+        assert f"avant_bras z={0.05 + 0.6 * math.cos(0.5):.6f}" in err
+        assert "does not exist" not in err

@@ -292,8 +292,8 @@ def apply_node(args: argparse.Namespace, duration: float | None) -> None:
     from ..ros.recording import states_for
     from ..run import run_node
 
-    recording = run_node(where, executable, duration=duration or 10.0)
     robot = load_model(args)
+    recording = run_node(where, executable, duration=duration or 10.0, robot=robot)
     from ..kinematics import tf_tree
 
     states = states_for(recording, tf_tree(robot).dof)

@@ -215,7 +215,7 @@ def _node_results(args: argparse.Namespace, nodes: list, result):  # type: ignor
     for executable in executables:
         try:
             recording = run_node(args.target, executable, duration=args.duration, echo=False,
-                                 parameters=parameters[executable])
+                                 parameters=parameters[executable], robot=robot)
         except BrasKitError as exc:
             print(str(exc), file=sys.stderr)
             continue

@@ -46,4 +46,10 @@ def run(args: argparse.Namespace) -> int:
     print("\n" + say(M("next: move it into the src/ folder of a colcon workspace, then"), args.lang))
     print(f"  colcon build --packages-select {args.name} && source install/setup.bash")
     print(f"  ros2 launch {args.name} affichage.launch.py")
+    print(say(M("or here, without ROS:"), args.lang))
+    here = ((f"bras-kit launch {dest}", M("its launch file, live in your browser")),
+            (f"bras-kit run {dest} animation", M("its node, recorded and checked")))
+    width = max(len(command) for command, _ in here)
+    for command, what in here:
+        print(f"  {command:<{width}}   {say(what, args.lang)}")
     return 0

@@ -70,7 +70,7 @@ def run(args: argparse.Namespace) -> int:
         print(say(M("publishing /joint_states to the running bras-kit launch, on the wall clock"), lang),
               file=sys.stderr, flush=True)
     recording = run_node(args.target, args.executable, duration=args.duration, echo=not args.quiet,
-                         parameters=parameters, live=live)
+                         parameters=parameters, live=live, robot=robot)
     for message in summary(recording):
         print(say(message, lang), file=sys.stderr)
     for text in failure_lines(recording):

@@ -188,7 +188,7 @@ def run_node(where: str, executable: str | None = None, *, duration: float = DEF
              echo: bool = False, parameters: dict[str, Any] | None = None, cpu_seconds: int = CPU_SECONDS,
              memory_bytes: int = MEMORY_BYTES, wall_seconds: float = WALL_SECONDS,
              contain: str = "auto", live: bool = False, on_joint_state: Any = None, keep: bool = True,
-             stop: Any = None) -> Recording:
+             stop: Any = None, robot: Any = None) -> Recording:
     """Run the node ``where`` names (a package folder and an executable of its console_scripts,
     or a ``.py`` file) for ``duration`` simulated seconds and return its recording.
 
@@ -203,7 +203,10 @@ def run_node(where: str, executable: str | None = None, *, duration: float = DEF
     calls it with each :class:`~bras_kit.ros.bus.BusJointState` instead); unless ``keep``, a live
     run keeps no recording of what it sent, so its memory stays flat. ``stop`` (a
     :class:`threading.Event`) ends the run early: :class:`bras_kit.sandbox.Stopped` is raised.
+    ``robot`` (a :class:`~bras_kit.model.Robot`) is the one robot_state_publisher would publish
+    for the node's tf2_ros Buffer; by default the package's robot description, if any.
     """
+    from ..ros.child import robot_joints
     from ..sandbox import ResourceLimitError, run_limited
 
     if not 0 < duration <= MAX_DURATION:
@@ -216,7 +219,7 @@ def run_node(where: str, executable: str | None = None, *, duration: float = DEF
         with tempfile.TemporaryDirectory(prefix="bras-kit-run-") as workdir:
             prefixes = _build(target, workdir)
             walls = containment(contain, workdir, (target.root, target.package or target.root))
-            robot = _robot_joints(where)
+            joints = _robot_joints(where) if robot is None else robot_joints(robot)
             write_end: int | None = None
             relay, wall = None, wall_seconds
             if live:  # the node's JointStates go out through a pipe to the relay, on the wall clock
@@ -230,7 +233,7 @@ def run_node(where: str, executable: str | None = None, *, duration: float = DEF
                     walls = dataclasses.replace(walls, keep=(write_end,))
             try:
                 return run_limited(_child, target, duration, echo, workdir, shared, dict(parameters or {}),
-                                   walls, robot, prefixes, write_end, keep, cpu_seconds=cpu_seconds, contain=walls,
+                                   walls, joints, prefixes, write_end, keep, cpu_seconds=cpu_seconds, contain=walls,
                                    stop=stop,
                                    memory_bytes=memory_bytes, wall_seconds=wall, what=f"the node {target.shown}")
             except ResourceLimitError as exc:

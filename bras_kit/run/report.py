@@ -32,8 +32,12 @@ def summary(recording: Recording) -> list[Message]:
     for node in dict.fromkeys(r.nodes):
         publishes = [f"{p.topic} ({p.type.rsplit('/', 1)[-1]})" for p in r.publishers if p.node == node]
         periods = [t.period for t in r.timers if t.node == node]
-        lines.append(M("node '{node}': publishes on {topics}; timers every {periods} s", node=node,
-                       topics=publishes or "-", periods=periods or "-"))
+        topics = publishes or M("no topic")
+        if periods:
+            lines.append(M("node '{node}': publishes on {topics}; timers every {periods} s", node=node,
+                           topics=topics, periods=periods))
+        else:
+            lines.append(M("node '{node}': publishes on {topics}; no timer", node=node, topics=topics))
     counts = r.topics()
     for topic, count in counts.items():
         times = [m.time for m in r.messages if m.topic == topic]
