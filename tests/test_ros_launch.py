@@ -239,3 +239,26 @@ def test_unknown_launch_file_gets_ros2_launchs_words(capsys):
     err = capsys.readouterr().err
     assert "file 'nope.launch.py' was not found in the share directory of package 'bras_description'" in err
     assert "'affichage.launch.py'" in err
+
+
+def test_log_info_is_printed_as_ros2_launch_prints_it(tmp_path, capsys):
+    """launch 3.4 (Jazzy) actions/log_info.py:40,58-62 logs the performed message on the
+    'launch.user' logger at INFO; logging/__init__.py:225-226, the screen's default format
+    '[{levelname}] [{name}]: {msg}'."""
+    import shutil
+
+    from bras_kit.cli import main
+
+    package = tmp_path / "bras_description"
+    shutil.copytree(case("styles"), package)
+    (package / "launch" / "said.launch.py").write_text(
+        "from launch import LaunchDescription\n"
+        "from launch.actions import DeclareLaunchArgument, LogInfo\n"
+        "from launch.substitutions import LaunchConfiguration\n\n\n"
+        "def generate_launch_description():\n"
+        "    return LaunchDescription([DeclareLaunchArgument('bras', default_value='gauche'),\n"
+        "                              LogInfo(msg=['bras: ', LaunchConfiguration('bras')])])\n")
+    code = main(["launch", str(package), "said.launch.py", "bras:=droit", "--no-browser", "--duration", "1"])
+    out = capsys.readouterr().out
+    assert "[INFO] [launch.user]: bras: droit\n" in out, out
+    assert code == 0

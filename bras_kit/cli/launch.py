@@ -160,6 +160,8 @@ def _launch(args: argparse.Namespace, launch_file: str | None, arguments: dict[s
             shown = result.launch_file
             print(say(M("ros2 launch {package} {file}", package=result.build.package,
                         file=os.path.basename(shown)), lang))
+            for _delay, text, *_where in plan.logs:  # LogInfo actions, as ros2 launch prints them
+                print(f"[INFO] [launch.user]: {text}")
             for node in plan.nodes:
                 counterpart = COUNTERPARTS.get(node.package or "")
                 if counterpart is not None:
