@@ -181,12 +181,13 @@ def valid_mass_matrix(inertial: UrdfInertial) -> bool:
     m = np.array([[_printed(v) for v in row] for row in inertial.inertia])
     if not (math.isfinite(mass) and np.isfinite(m).all()):
         return False
-    eps = _epsilon((m[0, 0], m[1, 1], m[2, 2]))
-    near_positive = (mass >= 0 and m[0, 0] + eps >= 0 and m[0, 0] * m[1, 1] - m[0, 1] ** 2 + eps >= 0
-                     and float(np.linalg.det(m)) + eps >= 0)
-    if not near_positive:
-        return False
-    a, b, c = principal_moments(m)
+    with np.errstate(over="ignore", invalid="ignore"):  # gz-math's doubles overflow to inf silently
+        eps = _epsilon((m[0, 0], m[1, 1], m[2, 2]))
+        near_positive = (mass >= 0 and m[0, 0] + eps >= 0 and m[0, 0] * m[1, 1] - m[0, 1] ** 2 + eps >= 0
+                         and float(np.linalg.det(m)) + eps >= 0)
+        if not near_positive:
+            return False
+        a, b, c = principal_moments(m)
     eps = _epsilon((a, b, c))
     return (a + eps >= 0 and b + eps >= 0 and c + eps >= 0 and a + b + eps >= c and b + c + eps >= a
             and c + a + eps >= b)
