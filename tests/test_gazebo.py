@@ -9,6 +9,7 @@ CI installs Debian 12's ``libsdformat12-12``.
 from __future__ import annotations
 
 import json
+import re
 from pathlib import Path
 
 import numpy as np
@@ -264,3 +265,17 @@ def test_gazebo_command_refuses_to_overwrite(run_cli, tmp_path):
     picture.write_bytes(b"mine")
     code, _, err = run_cli("gazebo", "-o", str(picture))
     assert code == 2 and picture.read_bytes() == b"mine"
+
+
+@pytest.mark.parametrize("lang", ["en", "fr"])
+def test_the_report_s_labels_share_one_column_in_each_language(run_cli, tmp_path, lang):
+    """kept, joints, merged, dropped, anchored: the names after them start in one column, whatever
+    the length of the label in the learner's language ('articulations :' is the longest)."""
+    _, out, _ = run_cli("--lang", lang, "gazebo", str(GAZEBO / "tcp_merged.urdf"))
+    _, more, _ = run_cli("--lang", lang, "gazebo", str(GAZEBO / "wrist_without_inertial.urdf"))
+    lines = [line for line in (out + more).splitlines() if line.startswith("  ") and not line.startswith("   ")]
+    labelled = [line for line in lines if re.match(r"  \S[^:]*:\s", line) and "BK" not in line
+                and not line.lstrip().startswith(("hint", "correctif"))]
+    assert len(labelled) >= 5, labelled
+    columns = {re.match(r"  \S[^:]*:\s+", line).end() for line in labelled}
+    assert len(columns) == 1, labelled
