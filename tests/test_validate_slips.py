@@ -55,6 +55,20 @@ def test_comment_closed_with_an_arrow_names_what_it_swallows_at_its_line():
     assert f.hint_text("en") == f"close the comment on line {comment_line} with '-->' (two dashes)"
 
 
+def test_comment_closed_with_an_arrow_and_never_closed_runs_to_the_end_of_the_file(tmp_path):
+    """No '-->' after the arrow: the comment runs to the end of the file (no line to name)."""
+    text = (SLIPS / "comment_arrow.urdf").read_text().replace("  <!-- les articulations -->\n", "")
+    assert text.count("-->") == 0
+    path = tmp_path / "bras.urdf"
+    path.write_text(text)
+    comment_line = text.splitlines().index("  <!-- avant-bras : un pavé de 0,5 m ->") + 1
+    f = _only(validate_path(str(path)), "BK100")
+    assert (f.line, f.variant) == (comment_line, "comment_unclosed")
+    for lang in ("en", "fr"):
+        assert '<joint name="coude">' in f.text(lang) and "line 0" not in f.text(lang) and "ligne 0" not in f.text(lang)
+    assert "end of the file" in f.text("en") and "fin du fichier" in f.text("fr")
+
+
 def test_check_urdf_reports_the_link_the_comment_swallowed():
     """urdfdom (TinyXML2) reads the comment to the next '-->': the forearm is missing for it too."""
     from test_check_urdf import check_urdf

@@ -307,7 +307,8 @@ def _unreadable(path: str, exc: BrasKitError) -> Finding:
                                                 "encoding"))
         swallowed = _swallowing_comment(exc.path or path, exc.line)
         if swallowed is not None:
-            return _loader_finding("BK100", Hit("file", None, int(swallowed["line"]), swallowed, "comment"))
+            variant = "comment" if swallowed["end_line"] else "comment_unclosed"  # no '-->' after it
+            return _loader_finding("BK100", Hit("file", None, int(swallowed["line"]), swallowed, variant))
         detail: Any = exc.detail if exc.detail is not None else exc.message
         if where:
             detail = M("{where}{detail}", where=where, detail=detail)

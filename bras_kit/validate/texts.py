@@ -15,6 +15,7 @@ describe(
         "": "not well-formed XML: {detail}",
         "encoding": "the file is not UTF-8 text: byte {byte} on line {at} would be '{guess}' in Latin-1, so the file was probably saved as Latin-1 or Windows-1252",
         "comment": "the comment opened on line {line} ends with '->' on line {arrow_line}, not '-->': it runs on to the '-->' of line {end_line} and hides {hidden}, which check_urdf reports missing",
+        "comment_unclosed": "the comment opened on line {line} ends with '->' on line {arrow_line}, not '-->': no '-->' follows, so it runs to the end of the file and hides {hidden}",
         "pasted": "not well-formed XML: {detail}",
     },
     hint={
@@ -22,6 +23,7 @@ describe(
         "pasted": "{fix}, then check the file again",
         "encoding": 're-save the file as UTF-8 in your editor (or declare its encoding: <?xml version="1.0" encoding="ISO-8859-1"?>)',
         "comment": "close the comment on line {arrow_line} with '-->' (two dashes)",
+        "comment_unclosed": "close the comment on line {arrow_line} with '-->' (two dashes)",
     },
     explanation="""\
 The file could not be read as XML, so nothing else in it was checked. The line given is where
