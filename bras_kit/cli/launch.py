@@ -82,7 +82,7 @@ def run(args: argparse.Namespace) -> int:
     # (a child forked while a thread imports a module could wait forever for its lock); its probe
     # too, a throwaway child, runs now.
     containable()
-    shown: list = []  # type: ignore[type-arg]  # the page, once its address is printed
+    shown: list[tuple[object, object]] = []  # (viewer, bus), once the page's address is printed
     with children_from_a_server():
         try:
             launched = _launch(args, launch_file, arguments, lang, page_shown=shown)
@@ -123,7 +123,7 @@ class _Launched:
 
 
 def _launch(args: argparse.Namespace, launch_file: str | None, arguments: dict[str, str], lang: str,
-            page_shown: list | None = None) -> _Launched:  # type: ignore[type-arg]
+            page_shown: list[tuple[object, object]] | None = None) -> _Launched:
     """Build the package, evaluate its launch file, say what started, run its own nodes in simulated
     time for their findings; given ``page_shown``, the page is opened as soon as the robot is known
     (before the checks), and (viewer, bus) is put in ``page_shown`` when its address is printed."""
