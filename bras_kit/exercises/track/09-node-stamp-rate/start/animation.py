@@ -1,29 +1,40 @@
+"""Anime le bras : un JointState publié à chaque tic d'un timer."""
+
+import math
+
 import rclpy
 from rclpy.node import Node
 from sensor_msgs.msg import JointState
-import math
 
-class Animation(Node):
+
+class BrasAnime(Node):
+    """Un publisher de JointState et un timer qui le nourrit."""
+
     def __init__(self):
         super().__init__('animation_bras')
         self.pub = self.create_publisher(JointState, 'joint_states', 10)
         self.timer = self.create_timer(0.5, self.tick)
-        self.t = 0.0
+        self.t = 0.0  # secondes depuis le départ, un pas par tic
 
     def tick(self):
         self.t += 0.05
         msg = JointState()
         msg.name = ['epaule', 'coude']
-        # Deux oscillations sinusoïdales déphasées
+        # chaque articulation suit sa propre sinusoïde
         msg.position = [0.8 * math.sin(self.t), 1.2 * math.sin(self.t * 0.7)]
         self.pub.publish(msg)
 
+
 def main(args=None):
     rclpy.init(args=args)
-    noeud = Animation()
-    rclpy.spin(noeud)
-    noeud.destroy_node()
-    rclpy.shutdown()
+    bras = BrasAnime()
+    try:
+        rclpy.spin(bras)
+    except KeyboardInterrupt:
+        pass  # Ctrl-C : rclpy a déjà arrêté son contexte
+    bras.destroy_node()
+    rclpy.try_shutdown()
+
 
 if __name__ == '__main__':
     main()

@@ -1,14 +1,16 @@
+"""Affiche le bras : robot_state_publisher, la fenêtre des curseurs et RViz."""
+
 import os
+
+from ament_index_python.packages import get_package_share_directory
 from launch import LaunchDescription
 from launch_ros.actions import Node
-from ament_index_python.packages import get_package_share_directory
+
 
 def generate_launch_description():
-    chemin = get_package_share_directory('bras_description')
-    fichier_urdf = os.path.join(chemin, 'urdf', 'bras.urdf')
-    with open(fichier_urdf, 'r') as f:
-        description = f.read()
-
+    urdf = os.path.join(get_package_share_directory('bras_description'), 'urdf', 'bras.urdf')
+    with open(urdf, encoding='utf-8') as lu:
+        description = lu.read()  # le texte de l'URDF, pas son chemin
     return LaunchDescription([
         Node(package='robot_state_publisher', executable='robot_state_publisher',
              parameters=[{'robot_description': description}]),
