@@ -1,43 +1,27 @@
-# Copyright 2015 Open Source Robotics Foundation, Inc.
-#
-# Licensed under the Apache License, Version 2.0 (the "License");
-# you may not use this file except in compliance with the License.
-# You may obtain a copy of the License at
-#
-#     http://www.apache.org/licenses/LICENSE-2.0
-#
-# Unless required by applicable law or agreed to in writing, software
-# distributed under the License is distributed on an "AS IS" BASIS,
-# WITHOUT WARRANTIES OR CONDITIONS OF ANY KIND, either express or implied.
-# See the License for the specific language governing permissions and
-# limitations under the License.
+"""ament_index_python as a learner's launch file and node meet it: where an installed package
+lives, found from the ament resource index of the prefixes in AMENT_PREFIX_PATH (the install
+tree bras-kit build lays out). Written for bras-kit after ament/ament_index (branch jazzy,
+ament_index_python 1.8): the same names, results and error words, cited per function."""
 
-from .constants import RESOURCE_INDEX_SUBFOLDER
-from .packages import get_package_prefix
-from .packages import get_package_share_directory
-from .packages import get_package_share_path
-from .packages import get_packages_with_prefixes
-from .packages import PackageNotFoundError
-from .resources import get_resource
-from .resources import get_resource_types
-from .resources import get_resources
-from .resources import has_resource
-from .resources import InvalidResourceNameError
-from .resources import InvalidResourceTypeNameError
+from .constants import AMENT_PREFIX_PATH_ENV_VAR, RESOURCE_INDEX_SUBFOLDER
+from .packages import (
+    PackageNotFoundError,
+    get_package_prefix,
+    get_package_share_directory,
+    get_package_share_path,
+    get_packages_with_prefixes,
+)
+from .resources import (
+    InvalidResourceNameError,
+    InvalidResourceTypeNameError,
+    get_resource,
+    get_resource_types,
+    get_resources,
+    has_resource,
+)
 from .search_paths import get_search_paths
 
-__all__ = [
-    'get_package_prefix',
-    'get_package_share_directory',
-    'get_package_share_path',
-    'get_packages_with_prefixes',
-    'get_resource',
-    'get_resources',
-    'get_search_paths',
-    'get_resource_types',
-    'has_resource',
-    'InvalidResourceTypeNameError',
-    'InvalidResourceNameError',
-    'PackageNotFoundError',
-    'RESOURCE_INDEX_SUBFOLDER',
-]
+__all__ = ['AMENT_PREFIX_PATH_ENV_VAR', 'InvalidResourceNameError', 'InvalidResourceTypeNameError',
+           'PackageNotFoundError', 'RESOURCE_INDEX_SUBFOLDER', 'get_package_prefix',
+           'get_package_share_directory', 'get_package_share_path', 'get_packages_with_prefixes',
+           'get_resource', 'get_resource_types', 'get_resources', 'get_search_paths', 'has_resource']
