@@ -192,6 +192,7 @@ def _fork_here(function: Callable[..., T], args: tuple[Any, ...], kwargs: dict[s
     size = 0
     deadline = time.monotonic() + wall_seconds
     timed_out = too_big = stopped = False
+    interrupted = True  # until the loop ends by itself: a Ctrl-C or SIGTERM of this process leaves it
     try:
         while True:
             left = deadline - time.monotonic()
@@ -212,9 +213,10 @@ def _fork_here(function: Callable[..., T], args: tuple[Any, ...], kwargs: dict[s
                 too_big = True
                 break
             chunks.append(chunk)
+        interrupted = False
     finally:
         os.close(read_fd)
-        if timed_out or too_big or stopped:
+        if timed_out or too_big or stopped or interrupted:  # interrupted: nobody will read its result
             _kill(pid)
         _, status = os.waitpid(pid, 0)
     if stopped:

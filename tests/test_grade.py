@@ -351,8 +351,11 @@ def test_ctrl_c_writes_the_report_of_what_was_finished(tmp_path):
     out = tmp_path / "rapport"
     # SIGINT as a terminal leaves it: a test run started in the background (nohup, `cmd &` in a
     # script) inherits it ignored, and Python then never turns it into KeyboardInterrupt
+    scratch = tmp_path / "tmp"  # the workers' unpacking folders: none is left behind
+    scratch.mkdir()
     process = subprocess.Popen([sys.executable, "-m", "bras_kit", "grade", str(folder), "-o", str(out), "--jobs", "1"],
                                stdout=subprocess.PIPE, stderr=subprocess.PIPE, text=True, start_new_session=True,
+                               env={**os.environ, "TMPDIR": str(scratch)},
                                preexec_fn=lambda: signal.signal(signal.SIGINT, signal.SIG_DFL))
     deadline = time.monotonic() + 120
     # a third picture means the one worker has finished two learners (a picture is drawn before scoring)
@@ -366,6 +369,7 @@ def test_ctrl_c_writes_the_report_of_what_was_finished(tmp_path):
     assert 2 <= len(learners) < len(expected)
     assert all(r["score"] == expected[r["learner"]] for r in learners)  # finished ones, none marked failed
     assert "interrupted" in (out / "index.html").read_text()
+    assert [p.name for p in scratch.iterdir() if p.name.startswith("bras-kit-")] == []
 
 
 def test_scheduler_without_dask_names_the_extra(tmp_path):
@@ -454,3 +458,21 @@ def test_meshes_are_drawn_from_the_archive_and_never_from_outside(tmp_path):
     assert learners["maille"]["picture"] == "pictures/maille.png"  # the mesh found while unpacked
     assert learners["dehors"]["picture"] is None and learners["monte"]["picture"] is None
     assert learners["dehors"]["status"] == learners["monte"]["status"] == "graded"  # still graded
+
+
+def test_a_worker_the_pool_terminates_removes_the_submission_it_was_unpacking(tmp_path):
+    """The pool ends the other workers with SIGTERM when one dies (grade/runner.py): the worker's
+    finally blocks never run (it leaves with os._exit), so its handler removes the folder."""
+    import signal
+
+    unpacking = tmp_path / "bras-kit-grade-x"
+    (unpacking / "unpacked" / "urdf").mkdir(parents=True)
+    code = ("import os, signal, sys\n"
+            "from bras_kit.grade import runner, worker\n"
+            "runner._start_worker()\n"
+            f"worker.workdir_in_use = {str(unpacking)!r}\n"
+            "os.kill(os.getpid(), signal.SIGTERM)\n"
+            "sys.exit(0)\n")
+    done = subprocess.run([sys.executable, "-c", code], capture_output=True, text=True, timeout=120)
+    assert done.returncode == 128 + signal.SIGTERM, done.stderr
+    assert not unpacking.exists()

@@ -87,3 +87,45 @@ def test_ctrl_c_before_the_address_still_says_interrupted(tmp_path: Path) -> Non
     done = _interrupted_at("bras_kit.cli._common", "check_usable", ["view", "--port", str(_free_port())], tmp_path)
     assert done.returncode == 130, done.stderr
     assert "interrupted" in done.stderr and "http://" not in done.stdout
+
+
+def _children_of(pid: int) -> list[int]:
+    found = []
+    for entry in Path("/proc").iterdir():
+        if entry.name.isdigit():
+            try:
+                fields = (entry / "stat").read_text().rsplit(")", 1)[1].split()
+            except OSError:
+                continue
+            if int(fields[1]) == pid:
+                found.append(int(entry.name))
+    return found
+
+
+def test_sigterm_ends_a_run_with_its_node_and_its_folder(tmp_path: Path) -> None:
+    """SIGTERM (``kill``, an editor's stop button) to a ``bras-kit run`` whose node is busy: the
+    command leaves at once with 128 + 15, its child (the node) is gone and so is its temporary
+    folder (bras-kit-run-* in TMPDIR), as after Ctrl-C."""
+    import signal
+    import time
+
+    node = ROOT / "tests" / "data" / "run" / "nodes" / "busy_loop.py"
+    env = {k: v for k, v in os.environ.items() if k not in ("DISPLAY", "WAYLAND_DISPLAY")}
+    env["TMPDIR"] = str(tmp_path)
+    process = subprocess.Popen([sys.executable, "-m", "bras_kit", "run", str(node), "--duration", "5"],
+                               cwd=tmp_path, env=env, stdout=subprocess.PIPE, stderr=subprocess.PIPE, text=True)
+    try:
+        deadline = time.monotonic() + 60
+        while not _children_of(process.pid) and time.monotonic() < deadline:  # the node is running
+            time.sleep(0.05)
+        children = _children_of(process.pid)
+        assert children, "the node never started"
+        assert list(tmp_path.glob("bras-kit-run-*"))
+        process.send_signal(signal.SIGTERM)
+        _, err = process.communicate(timeout=30)
+    finally:
+        process.kill()
+    assert process.returncode == 128 + signal.SIGTERM, err
+    assert "Traceback" not in err
+    assert not [pid for pid in children if Path(f"/proc/{pid}").exists()]
+    assert list(tmp_path.glob("bras-kit-run-*")) == []

@@ -12,6 +12,7 @@ import gc
 import importlib
 import logging
 import os
+import signal
 import sys
 import warnings
 from collections.abc import Sequence
@@ -297,6 +298,12 @@ def _fail(command: str, text: str, lang: str) -> None:
     print(labelled(f"bras-kit {command}", labelled(M("error"), text, lang), lang), file=sys.stderr)
 
 
+def _terminated(signum: int, _frame: object) -> None:
+    """SIGTERM (``kill``, an editor's stop button): the command leaves through the same
+    ``finally`` blocks as after Ctrl-C, so its temporary folders, page and children go with it."""
+    raise SystemExit(128 + signum)
+
+
 def run() -> None:
     """The ``bras-kit`` command: :func:`main`, then leave at once.
 
@@ -311,6 +318,7 @@ def run() -> None:
     (0.05 s of 0.5 s, 111 collections; one with this threshold). Cycles are still freed.
     """
     gc.set_threshold(50_000, 10, 10)
+    signal.signal(signal.SIGTERM, _terminated)
     code = main()
     if "multiprocessing" in sys.modules:
         import multiprocessing

@@ -7,6 +7,7 @@ from __future__ import annotations
 import concurrent.futures as futures
 import contextlib
 import os
+import shutil
 import sys
 import tempfile
 import time
@@ -82,6 +83,10 @@ def _start_worker(rasteriser: str = "") -> None:
         if _marker is not None:
             with contextlib.suppress(OSError):
                 os.unlink(_marker)
+        from . import worker
+
+        if worker.workdir_in_use is not None:  # the submission it was unpacking: nothing left behind
+            shutil.rmtree(worker.workdir_in_use, ignore_errors=True)
         os._exit(128 + signum)
 
     signal.signal(signal.SIGINT, signal.SIG_IGN)

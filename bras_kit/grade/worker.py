@@ -49,14 +49,20 @@ class Options:
     contain: str = "require"  # how: "require" (contained, else refused), "auto" (--unsafe-run-nodes)
 
 
+# the folder a grading under way unpacks into: a worker the pool terminates removes it on its way
+# out (grade.runner), since its finally block never runs
+workdir_in_use: str | None = None
+
+
 def grade(submission: Submission, rubric: Rubric, options: Options) -> dict[str, Any]:
     """Everything the reports need about one learner, as plain data (JSON-ready)."""
     start = time.monotonic()
     result: dict[str, Any] = {"learner": submission.learner, "path": submission.path,
                               "hash": content_hash(submission.path), "status": "graded", "findings": [],
                               "picture": None, "animation": None, "main_file": None, "package": False}
+    global workdir_in_use
     robot = None
-    workdir = tempfile.mkdtemp(prefix="bras-kit-grade-")
+    workdir = workdir_in_use = tempfile.mkdtemp(prefix="bras-kit-grade-")
     try:
         root = _materialise(submission, workdir)
         result["exercises"] = exercises_passed(root)
@@ -78,6 +84,7 @@ def grade(submission: Submission, rubric: Rubric, options: Options) -> dict[str,
                                        say(exc.hint, options.lang) if exc.hint else "", submission.path)]
     finally:
         shutil.rmtree(workdir, ignore_errors=True)
+        workdir_in_use = None
     result["items"] = {item.id: _score(item, robot, result) for item in rubric.items}
     result["score"] = float(sum(result["items"].values()))
     result["max"] = rubric.total
