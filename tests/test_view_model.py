@@ -530,3 +530,59 @@ def test_a_canvas_not_laid_out_yet_is_framed_when_it_reports_its_size(tmp_path):
         client.camera.image_width, client.camera.image_height = 800, 600
         client.camera.callback(client.camera)
         assert client.camera.position is not None
+
+
+def test_a_canvas_reported_before_layout_is_framed_again_at_its_real_size(tmp_path):
+    """A busy browser first reports the canvas HTML gives before layout (300 x 150), then its real
+    size: the arm is framed for the real one (it used to stay framed for 300 x 150, cut at the sides)."""
+    from bras_kit.authoring import arm
+    from bras_kit.view import Source, Viewer
+    from bras_kit.view.framing import reach_points
+    from bras_kit.view.session import Session
+
+    with Viewer(Source(robot=arm()), port=_free_port(), watch=False) as viewer:
+        client = _ServerAsClient(viewer.server)
+        client.camera = _ReportedCamera(300, 150)
+        Session(client, viewer, viewer.lang)
+        client.camera.image_width, client.camera.image_height = 1000, 700
+        client.camera.callback(client.camera)
+        pixels = _pixels(client.camera, reach_points(viewer.model))
+        assert (pixels[:, 0] > 0).all() and (pixels[:, 0] < 1000 - 410).all(), pixels[:, 0]
+        assert (pixels[:, 1] > 0).all() and (pixels[:, 1] < 700).all(), pixels[:, 1]
+
+
+def test_a_camera_the_learner_moved_stays_when_the_window_is_resized(tmp_path):
+    from bras_kit.authoring import arm
+    from bras_kit.view import Source, Viewer
+    from bras_kit.view.session import Session
+
+    with Viewer(Source(robot=arm()), port=_free_port(), watch=False) as viewer:
+        client = _ServerAsClient(viewer.server)
+        client.camera = _ReportedCamera(1000, 700)
+        Session(client, viewer, viewer.lang)
+        moved = (3.0, -2.0, 1.5)
+        client.camera.position = moved  # the learner orbits
+        client.camera.image_width = 1200
+        client.camera.callback(client.camera)
+        assert client.camera.position == moved
+
+
+def test_the_viewer_s_first_camera_landing_after_the_browser_s_own_is_framed_again(tmp_path):
+    """On a busy machine the page can apply the viewer's first camera (one for every browser,
+    sized for no canvas) after the one placed for its canvas: seen in the report, it is placed
+    again (the arm was left cut at the edge of a 1000 x 700 page)."""
+    from bras_kit.authoring import arm
+    from bras_kit.view import Source, Viewer
+    from bras_kit.view.session import Session
+
+    with Viewer(Source(robot=arm()), port=_free_port(), watch=False) as viewer:
+        client = _ServerAsClient(viewer.server)
+        client.camera = _ReportedCamera(1000, 700)
+        Session(client, viewer, viewer.lang)
+        own = (client.camera.position, client.camera.look_at)
+        first = viewer.server.initial_camera
+        assert not np.allclose(own[0], first.position)  # the two placements differ for this canvas
+        client.camera.position, client.camera.look_at = tuple(first.position), tuple(first.look_at)
+        client.camera.callback(client.camera)
+        np.testing.assert_allclose(client.camera.position, own[0])
+        np.testing.assert_allclose(client.camera.look_at, own[1])

@@ -152,6 +152,31 @@ def client_words_script(lang: str) -> str:
     return _CLIENT_SCRIPT % (json.dumps(words, ensure_ascii=False), json.dumps(prefixes, ensure_ascii=False))
 
 
+def _canvas_size(camera: Any) -> tuple[int, int] | None:
+    """The browser's canvas (width, height) in pixels, or None before it has said it (or while
+    it is not laid out)."""
+    try:
+        width, height = int(camera.image_width), int(camera.image_height)
+    except (AssertionError, AttributeError, TypeError, ValueError):  # no report yet
+        return None
+    return (width, height) if width >= 16 and height >= 16 else None
+
+
+
+def _same_place(a: tuple[np.ndarray, np.ndarray], b: tuple[np.ndarray, np.ndarray]) -> bool:
+    """Two cameras (position, look_at) at the same place, to a thousandth of their distance."""
+    tolerance = 1e-3 * max(float(np.linalg.norm(a[0] - a[1])), 1e-6)
+    return bool(np.allclose(a[0], b[0], atol=tolerance) and np.allclose(a[1], b[1], atol=tolerance))
+
+
+def _camera_at(camera: Any, place: tuple[np.ndarray, np.ndarray]) -> bool:
+    """Whether a browser's reported camera is at ``place`` (position, look_at)."""
+    try:
+        reported = (np.asarray(camera.position, float), np.asarray(camera.look_at, float))
+    except (AssertionError, AttributeError, TypeError, ValueError):  # no report yet
+        return False
+    return _same_place(reported, place)
+
 class Session:
     """The scene nodes and GUI of one client, rebuilt when the model changes."""
 
@@ -178,7 +203,8 @@ class Session:
         self._box_notes: dict[str, str] = {}
         self._model_gui: list[Any] = []
         self._setting = False  # values being set from code: slider callbacks do nothing
-        self._framed = False  # the camera is placed for this browser's canvas once it says its size
+        self._framed_for: tuple[int, int] | None = None  # the canvas size the camera was placed for
+        self._placed: tuple[np.ndarray, np.ndarray] | None = None  # where it was put: position, look_at
         self._sent: np.ndarray | None = None  # the link poses the browser has, to send only changes
         self._plain_light: Any = None  # the ambient light of a heavy robot (None: viser's lighting)
         self._build_panel()
@@ -197,9 +223,26 @@ class Session:
         return say(message, self.lang)
 
     # -- the camera --------------------------------------------------------------------------
-    def _camera_reported(self, _camera: Any) -> None:
-        if not self._framed:  # a report without the canvas's size (a busy browser) is not the last chance
-            self._framed = self.frame_camera()
+    def _camera_reported(self, camera: Any) -> None:
+        """The robot is framed for this browser's canvas once the browser says its size, and again:
+        - when that size changes while the camera is still where it was put (a busy browser
+          reports its canvas before the page is laid out, then its real size);
+        - when the page has put the viewer's first camera (the one for every browser, sized for
+          no canvas in particular) over this browser's, as it does when that message comes last,
+          and when the learner asks for it back ("Reset View").
+        A camera the learner moved stays where they put it."""
+        size = _canvas_size(camera)
+        if size is None:
+            return
+        if self._framed_for is None or self._placed is None:
+            self.frame_camera()
+            return
+        initial = self.viewer.server.initial_camera
+        first = (np.asarray(initial.position, float), np.asarray(initial.look_at, float))
+        if _camera_at(camera, first) and not _same_place(self._placed, first):
+            self.frame_camera()
+        elif size != self._framed_for and _camera_at(camera, self._placed):
+            self.frame_camera()
 
     def frame_camera(self) -> bool:
         """Put this browser's camera on the robot, sized for its canvas, clear of the panel;
@@ -207,20 +250,19 @@ class Session:
         from .framing import SWEPT_MARGIN, place_camera, reach_points
 
         camera = self.client.camera
-        try:
-            width, height = int(camera.image_width), int(camera.image_height)
-        except (AssertionError, AttributeError):  # the browser has not said its size yet
-            return False
-        if width < 16 or height < 16:  # a canvas not laid out yet
+        size = _canvas_size(camera)
+        if size is None:
             return False
         points = reach_points(self.model, self.values, self.viewer.motion, self.fixed_frame)
-        placement = place_camera(points, width, height, margin=SWEPT_MARGIN)
+        placement = place_camera(points, size[0], size[1], margin=SWEPT_MARGIN)
         with self.client.atomic():
             camera.fov = placement.fov
             camera.near = placement.near
             camera.far = placement.far
             camera.position = placement.position
             camera.look_at = placement.look_at
+        self._framed_for = size
+        self._placed = (np.asarray(placement.position, float), np.asarray(placement.look_at, float))
         return True
 
     # -- the panel that does not depend on the model ------------------------------------------
