@@ -116,11 +116,12 @@ def test_sigterm_ends_a_run_with_its_node_and_its_folder(tmp_path: Path) -> None
                                cwd=tmp_path, env=env, stdout=subprocess.PIPE, stderr=subprocess.PIPE, text=True)
     try:
         deadline = time.monotonic() + 60
-        while not _children_of(process.pid) and time.monotonic() < deadline:  # the node is running
+        # the node runs: its folder is made and a child is forked (a containment probe may come first)
+        while time.monotonic() < deadline and not (list(tmp_path.glob("bras-kit-run-*")) and _children_of(process.pid)):
             time.sleep(0.05)
+        time.sleep(0.5)  # the node's own child, forked once its folder is laid out
         children = _children_of(process.pid)
-        assert children, "the node never started"
-        assert list(tmp_path.glob("bras-kit-run-*"))
+        assert children and list(tmp_path.glob("bras-kit-run-*")), "the node never started"
         process.send_signal(signal.SIGTERM)
         _, err = process.communicate(timeout=30)
     finally:
