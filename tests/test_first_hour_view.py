@@ -117,9 +117,11 @@ def test_the_arm_stays_in_view_and_clear_of_the_panel_at_an_extreme_pose(browser
         page.close()
 
 
-def test_the_swept_box_holds_every_pose_within_the_limits() -> None:
+def test_the_framed_box_holds_every_pose_within_the_limits() -> None:
+    """The camera fits the arm's swept box (sampled poses) grown by SWEPT_MARGIN about its centre:
+    every pose within the limits lies inside, the worst ones worked out by hand included."""
     from bras_kit.authoring import arm
-    from bras_kit.view.framing import reach_points
+    from bras_kit.view.framing import SWEPT_MARGIN, reach_points
     from bras_kit.view.model import view_model
 
     model = view_model(arm(), ())
@@ -129,10 +131,15 @@ def test_the_swept_box_holds_every_pose_within_the_limits() -> None:
     assert high[0] == pytest.approx(0.6 * math.sin(1.57) + 0.5 * math.sin(1.57) + 0.03 * math.cos(1.57), abs=0.01)
     assert low[0] == pytest.approx(-high[0], abs=1e-9)
     assert high[2] == pytest.approx(1.15, abs=1e-9)
-    for _ in range(20):
-        values = {"epaule": np.random.uniform(-1.57, 1.57), "coude": np.random.uniform(-2, 2)}
+    centre, half = (low + high) / 2, (high - low) / 2 * SWEPT_MARGIN
+    # the lowest the forearm reaches, by hand: the upper arm flat (|epaule| = 1.57) and the forearm
+    # straight down (epaule + coude = -+pi): its tip at z = 0.05 + 0.6 cos 1.57 - 0.5
+    worst = [{"epaule": -1.57, "coude": 1.57 - math.pi}, {"epaule": 1.57, "coude": math.pi - 1.57}]
+    rng = np.random.default_rng(2026)
+    sampled = [{"epaule": e, "coude": c} for e, c in rng.uniform([-1.57, -2.0], [1.57, 2.0], size=(2000, 2))]
+    for values in worst + sampled:
         points = model.box_points(values)
-        assert (points >= low - 1e-9).all() and (points <= high + 1e-9).all(), values
+        assert (points >= centre - half - 1e-9).all() and (points <= centre + half + 1e-9).all(), values
 
 
 def test_closing_the_tab_during_playback_leaves_the_terminal_quiet(browser, arm_file, recwarn) -> None:  # noqa: F811
