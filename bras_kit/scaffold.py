@@ -253,11 +253,7 @@ def render_package(
     tree_links = tf_tree(robot).links
     root_link = tree_links[1] if inertials else tree_links[0]  # the base: 'world' is a bare anchor
     focal_z, distance = _view(robot)
-    if maintainer is None:
-        try:
-            maintainer = getpass.getuser()
-        except (KeyError, OSError):
-            maintainer = "maintainer"
+    maintainer = _default_maintainer() if maintainer is None else maintainer
     check_maintainer(maintainer)
     email = default_email(maintainer) if email is None else email
     check_email(email)
@@ -317,6 +313,81 @@ def template_environment(lang: str):  # type: ignore[no-untyped-def]
     return environment
 
 
+# ros2 pkg create --build-type ament_python (ros2cli 0.32.2, Jazzy): ros2pkg/api/create.py,
+# create_package_environment and populate_ament_python; template (under templates/empty/) -> file
+_EMPTY_FILES: tuple[tuple[str, str], ...] = (
+    ("package.xml.j2", "package.xml"),
+    ("setup.py.j2", "setup.py"),
+    ("setup.cfg.j2", "setup.cfg"),
+    ("resource/marker.j2", "resource/{name}"),
+    ("pkg/__init__.py.j2", "{name}/__init__.py"),
+    ("test/test_copyright.py.j2", "test/test_copyright.py"),
+    ("test/test_flake8.py.j2", "test/test_flake8.py"),
+    ("test/test_pep257.py.j2", "test/test_pep257.py"),
+)
+# ros2pkg/verb/create.py: the defaults of --description and --license
+EMPTY_DESCRIPTION = "TODO: Package description"
+DEFAULT_LICENSE = "TODO: License declaration"
+
+
+def check_license(license_name: str) -> None:
+    """Raise :class:`ParameterError` for a license that would break setup.py or package.xml as written."""
+    bad = sorted({c for c in license_name if c in "'\"\\<>&" or not c.isprintable()})
+    if bad or not license_name.strip():
+        shown = " ".join(repr(c) for c in bad) if bad else M("an empty name")
+        raise ParameterError(M("license '{name}': {shown} cannot be written into setup.py and package.xml",
+                               name=license_name, shown=shown),
+                             hint=M("give --license an SPDX identifier, e.g. Apache-2.0"))
+
+
+def render_empty_package(name: str = DEFAULT_PACKAGE, *, maintainer: str | None = None, email: str | None = None,
+                         license_name: str = DEFAULT_LICENSE) -> dict[str, str]:
+    """What ``ros2 pkg create --build-type ament_python NAME`` writes, as ``{relative path: text}``.
+
+    The same bytes in every language: ros2 pkg create writes English whatever the locale. With
+    ``license_name`` Apache-2.0 the ``LICENSE`` file is written too, as ros2 pkg create copies
+    ament_copyright's text for a license it knows (``ros2pkg/verb/create.py``, end of ``main``).
+    """
+    import jinja2
+
+    check_package_name(name)
+    if name == "test":  # ros2pkg/verb/create.py: the module folder would be the tests' folder
+        raise ParameterError(M("an ament_python package cannot be named 'test'"),
+                             hint=M("choose another name, e.g. bras_description"))
+    maintainer = _default_maintainer() if maintainer is None else maintainer
+    check_maintainer(maintainer)
+    email = default_email(maintainer) if email is None else email
+    check_email(email)
+    check_license(license_name)
+    environment = jinja2.Environment(loader=jinja2.FileSystemLoader(str(templates_dir() / "empty")),
+                                     undefined=jinja2.StrictUndefined, keep_trailing_newline=True,
+                                     autoescape=False)
+    context = {"name": name, "maintainer": maintainer, "email": email, "license": license_name,
+               "description": EMPTY_DESCRIPTION}
+    files = {target.format(name=name): environment.get_template(template).render(context)
+             for template, target in _EMPTY_FILES}
+    licence_text = templates_dir() / "empty" / "licenses" / f"{license_name}.txt"
+    if "/" not in license_name and licence_text.is_file():
+        files["LICENSE"] = licence_text.read_text(encoding="utf-8")
+    return files
+
+
+def scaffold_empty_package(dest: str | os.PathLike[str], name: str = DEFAULT_PACKAGE, force: bool = False, *,
+                           maintainer: str | None = None, email: str | None = None,
+                           license_name: str = DEFAULT_LICENSE) -> list[Path]:
+    """Write what ``ros2 pkg create --build-type ament_python`` writes into ``dest``; return the files made."""
+    dest = Path(dest)
+    _check_destination(dest, force)
+    return _write(dest, render_empty_package(name, maintainer=maintainer, email=email, license_name=license_name))
+
+
+def _default_maintainer() -> str:
+    try:
+        return getpass.getuser()
+    except (KeyError, OSError):
+        return "maintainer"
+
+
 def _check_destination(dest: Path, force: bool) -> None:
     if dest.exists() and not dest.is_dir():
         raise OutputExistsError(M("{path} exists and is not a folder", path=str(dest)),
@@ -351,6 +422,10 @@ def scaffold_package(
     _check_destination(dest, force)
     files = render_package(name, wrist=wrist, inertials=inertials, params=params,
                            maintainer=maintainer, email=email, lang=lang, xacro=xacro)
+    return _write(dest, files)
+
+
+def _write(dest: Path, files: Mapping[str, str]) -> list[Path]:
     for relative in files:
         if (dest / relative).is_symlink():  # never write through a link planted in the folder
             raise OutputExistsError(M("{path} is a symbolic link: refused", path=str(dest / relative)),

@@ -110,7 +110,7 @@ def _free_port() -> int:
 
 
 def _serve_then_interrupt(argv: list[str], folder: Path, where: str) -> None:
-    """Start a serving ``bras-kit view``, fetch its page, press Ctrl-C: it must exit 0."""
+    """Start a serving ``bras-kit view`` or ``launch``, fetch its page, press Ctrl-C: it must exit 0."""
     env = dict(os.environ, BRAS_KIT_LANG="", LANG="C.UTF-8")
     process = subprocess.Popen([sys.executable, "-m", "bras_kit", *argv, "--port", str(_free_port())], cwd=folder,
                                stdout=subprocess.PIPE, stderr=subprocess.PIPE, text=True, env=env)
@@ -151,7 +151,8 @@ def test_every_command_of_the_page_runs(lang: str, tmp_path: Path, monkeypatch: 
         if step.argv is None:
             (tmp_path / step.name).write_text(step.text, encoding="utf-8")
             continue
-        if step.argv[0] == "view" and "--export" not in step.argv:
+        serving = step.argv[0] == "view" and "--export" not in step.argv
+        if serving or (step.argv[0] == "launch" and "--duration" not in step.argv):  # until Ctrl-C, as typed
             _serve_then_interrupt(step.argv, tmp_path, where)
             continue
         code, out, err = run_cli(*step.argv)

@@ -98,7 +98,8 @@ def test_run_in_a_second_terminal_moves_the_launched_arm(browser, tmp_path):
         first = _orange(page).mean(axis=0)
         time.sleep(1.0)
         assert np.abs(_orange(page).mean(axis=0) - first).max() < 2, "nothing publishes yet: the arm stays still"
-        node = subprocess.Popen([sys.executable, "-m", "bras_kit", "run", str(package), "animation", "--duration", "15",
+        # live (no -o, --json, --gif nor --duration): it joins the launch, until it is stopped
+        node = subprocess.Popen([sys.executable, "-m", "bras_kit", "run", str(package), "animation",
                                  "--quiet"], stdout=subprocess.DEVNULL, stderr=subprocess.DEVNULL, env=env)
         try:
             moved = []

@@ -6,7 +6,9 @@ from __future__ import annotations
 
 import math
 import os
+import shutil
 import stat
+import tempfile
 import threading
 import time
 from pathlib import Path
@@ -17,11 +19,14 @@ TUTORIAL = Path(__file__).parent / "data" / "launch" / "tutorial" / "bras_descri
 
 
 @pytest.fixture()
-def private_runtime(tmp_path, monkeypatch):
-    runtime = tmp_path / "runtime"
-    runtime.mkdir(mode=0o700)
+def private_runtime(monkeypatch):
+    """A runtime folder of this test's own, short (a Unix socket's path holds at most 107 bytes)."""
+    runtime = Path(tempfile.mkdtemp(prefix="bk-", dir="/tmp"))
+    runtime.chmod(0o700)
     monkeypatch.setenv("XDG_RUNTIME_DIR", str(runtime))
-    return runtime
+    monkeypatch.delenv("ROS_DOMAIN_ID", raising=False)
+    yield runtime
+    shutil.rmtree(runtime, ignore_errors=True)
 
 
 def test_no_launch_no_bus(private_runtime):
@@ -32,14 +37,15 @@ def test_no_launch_no_bus(private_runtime):
 
 
 def test_the_socket_is_private_and_removed_at_the_end(private_runtime):
-    from bras_kit.ros.bus import Bus, listening, socket_path
+    from bras_kit.ros.bus import Bus, bus_folder, listening
 
-    with Bus.listen():
+    with Bus.listen() as bus:
         assert listening()
-        folder = os.path.dirname(socket_path())
-        assert stat.S_IMODE(os.stat(folder).st_mode) == 0o700
-        assert stat.S_ISSOCK(os.stat(socket_path()).st_mode)
-    assert not os.path.exists(socket_path()) and not listening()
+        assert os.path.dirname(bus.path) == bus_folder() == str(private_runtime / "bras-kit" / "domain-0")
+        for folder in (bus_folder(), os.path.dirname(bus_folder())):
+            assert stat.S_IMODE(os.stat(folder).st_mode) == 0o700
+        assert stat.S_ISSOCK(os.stat(bus.path).st_mode)
+    assert not os.path.exists(bus.path) and not listening()
 
 
 def test_run_beside_launch_publishes_each_joint_state_on_the_wall_clock(private_runtime):

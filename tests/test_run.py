@@ -98,8 +98,9 @@ BEGINNER_NODES = [
     ("integer_positions.py", "returned", None, ["BK650"]),
     # rclpy/node.py: raise NotInitializedException('cannot create node')
     ("node_before_init.py", "error", "NotInitializedException", ["BK640"]),
-    # rclpy/src/rclpy/destroyable.cpp: InvalidHandle("cannot use Destroyable because destruction was requested")
-    ("spin_destroyed.py", "error", "InvalidHandle", ["BK640"]),
+    # rclpy 7.1.6 executors.py:600-606: a destroyed node has no entities left; spin waits until
+    # Ctrl-C (the real rclpy does so: tests/test_rclpy_oracle.py)
+    ("spin_destroyed.py", "duration", None, ["BK644"]),
     # rmw/src/validate_node_name.c: only alphanumerics and '_' (rclpy/validate_node_name.py raises)
     ("bad_node_name.py", "error", "InvalidNodeNameException", ["BK640"]),
     ("stamp_zero_wrong_names.py", "duration", None, ["BK646", "BK647", "BK650"]),

@@ -14,7 +14,7 @@ from bras_kit.validate.registry import FAMILIES, SEVERITIES, TEXTS, select_rules
 ROOT = Path(__file__).parent.parent
 RULE_TESTS = "".join(path.read_text(encoding="utf-8") for path in
                      [Path(__file__).parent / "test_validate_rules.py", *Path(__file__).parent.glob("test_gazebo*.py"),
-                      Path(__file__).parent / "test_validate_slips.py"])
+                      Path(__file__).parent / "test_validate_slips.py", *Path(__file__).parent.glob("test_live_*.py")])
 
 
 def test_docs_rules_md_is_current():
@@ -24,11 +24,12 @@ def test_docs_rules_md_is_current():
 
 def test_codes_are_well_formed_and_names_unique():
     assert len([code for code in RULES if code < "BK6"]) == 69  # URDF and xacro rules
-    assert len([code for code in RULES if "BK6" <= code < "BK64"]) == 25  # package rules (BK630-BK633: built, launched)
+    assert len([code for code in RULES if "BK6" <= code < "BK64"]) == 29  # package rules (BK630-BK635: built, launched)
     assert len([code for code in RULES if "BK64" <= code < "BK7"]) == 14  # rules over a run of the node (bras-kit run)
-    assert len([code for code in RULES if code >= "BK7"]) == 12  # what Gazebo makes of the robot
+    assert len([code for code in RULES if "BK7" <= code < "BK8"]) == 12  # what Gazebo makes of the robot
+    assert len([code for code in RULES if code >= "BK8"]) == 17  # the live ROS 2 graph (doctor --ros)
     for code, rule in RULES.items():
-        assert re.fullmatch(r"BK[1-7]\d\d", code) and rule.code == code
+        assert re.fullmatch(r"BK[1-8]\d\d", code) and rule.code == code
         assert rule.severity in SEVERITIES
         assert re.fullmatch(r"[a-z0-9]+(-[a-z0-9]+)*", rule.name)
     assert len({r.name for r in RULES.values()}) == len(RULES)

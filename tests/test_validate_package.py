@@ -291,6 +291,14 @@ def test_entry_point_module_misspelled(tmp_path):
     assert any("points to bras_description.animaton, which does not exist" in f.text("en") for f in findings)
 
 
+def test_node_not_written_yet(tmp_path):
+    """Step 5 of the tutorial with step 7's entry typed ahead: the next step (info), no BK622 error."""
+    (finding,) = check_defect("node_not_written_yet", tmp_path)
+    assert finding.severity == "info"
+    assert "bras_description/animation.py, not written yet" in finding.text("en")
+    assert "pas encore écrit" in finding.text("fr")
+
+
 def _elbow_peaks(findings) -> dict[str, tuple[float, float]]:
     return {"upper" if f.data["bound"] > 0 else "lower": (f.data["value"], f.data["time"]) for f in findings}
 
@@ -350,6 +358,8 @@ def test_every_package_rule_is_triggered_by_a_defect():
     expected |= {"BK605", "BK613"}  # also by the tutorial's own package
     expected |= {"BK607", "BK614", "BK624", "BK625", "BK626"}  # tests/test_validate_tutorial.py, on the tutorial's files
     expected |= {"BK630", "BK631", "BK632", "BK633"}  # tests/test_ros_launch.py, on tests/data/launch/<case>/
+    expected |= {"BK639"}  # tests/test_trust_hostile_packages.py, on tests/data/hostile_packages/<case>/
+    expected |= {"BK634", "BK635"}  # tests/test_launch_fidelity.py, on tests/data/launch/fidelity/
     # BK640-BK659 read a run of the node: tests/test_run.py triggers each one
     assert {code for code in RULES if code.startswith("BK6") and code < "BK64"} == expected
 

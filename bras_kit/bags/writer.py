@@ -157,7 +157,7 @@ def _relative(world: np.ndarray, tree: Any, links: list[int]) -> np.ndarray:
 
 
 def write_bag(robot: Robot, states: JointStates, path: str, *, force: bool = False,
-              option: str = "-o") -> BagSummary:
+              option: str = "-o", sent: list[dict] | None = None) -> BagSummary:
     """Write ``states`` of ``robot`` as a ROS 2 bag at ``path`` (see the module's topics).
 
     ``path`` ending in ``.mcap`` (or ``/``) gives an MCAP bag, ``.db3`` an SQLite 3 bag (the
@@ -226,10 +226,22 @@ def write_bag(robot: Robot, states: JointStates, path: str, *, force: bool = Fal
                     message = _transforms(store, stamp, frames, relative[k])
                     writer.write(tf, ns, store.serialize_cdr(message, "tf2_msgs/msg/TFMessage"))
                     counts["/tf"] += 1
+                if sent is not None:
+                    continue  # /joint_states holds what the node sent (below)
                 state = joint_state(header=header(stamp=stamp, frame_id=""), name=names,
                                     position=np.ascontiguousarray(q[k]), velocity=np.ascontiguousarray(velocities[k]),
                                     effort=effort_rows[k] if effort_rows is not None else empty)
                 writer.write(joints, ns, store.serialize_cdr(state, "sensor_msgs/msg/JointState"))
+                counts["/joint_states"] += 1
+            for message in sent or []:  # bras-kit run -o: the node's own messages, stamps as it stamped them
+                stamp = types["builtin_interfaces/msg/Time"](sec=message["stamp"]["sec"],
+                                                             nanosec=message["stamp"]["nanosec"])
+                state = joint_state(header=header(stamp=stamp, frame_id=message["frame_id"]), name=message["name"],
+                                    position=np.array(message["position"], dtype=float),
+                                    velocity=np.array(message["velocity"], dtype=float),
+                                    effort=np.array(message["effort"], dtype=float))
+                writer.write(joints, int(round(message["time"] * 1e9)),
+                             store.serialize_cdr(state, "sensor_msgs/msg/JointState"))
                 counts["/joint_states"] += 1
             writer.close()
         except WriterError as exc:

@@ -241,6 +241,7 @@ def main(argv: Sequence[str] | None = None) -> int:
         parser.print_help()
         return 0
     args.lang = lang
+    args.lang_given = _language_in(argv) is not None  # --lang on this command line
     command = args.command
     if getattr(args, "no_cache", False):
         from ..meshes import set_disk_cache
@@ -295,7 +296,10 @@ def _show_warning(message: Warning | str, category: type[Warning], filename: str
 
 
 def _fail(command: str, text: str, lang: str) -> None:
-    print(labelled(f"bras-kit {command}", labelled(M("error"), text, lang), lang), file=sys.stderr)
+    from ..inert import for_terminal
+
+    # an error may quote a learner's text: its control characters are shown, not obeyed
+    print(labelled(f"bras-kit {command}", labelled(M("error"), for_terminal(text), lang), lang), file=sys.stderr)
 
 
 def _terminated(signum: int, _frame: object) -> None:

@@ -4,6 +4,7 @@ from __future__ import annotations
 
 import argparse
 import os
+import stat
 import sys
 
 from ..message import M
@@ -13,63 +14,149 @@ Each package's setup.py runs (in the sandbox, setup() recorded rather than insta
 install tree is laid out as colcon lays it out: install/PKG/share/PKG/... from data_files, the
 ament index marker, one script per console_scripts entry in install/PKG/lib/PKG/.
 
+Typed in a colcon workspace (the folder holding src/, e.g. ~/ros2_cellule_ws) or any folder below
+it, every package of the workspace is built into its install/, in the order of their
+dependencies, as 'colcon build' typed at its root; folders holding COLCON_IGNORE are skipped.
+
 examples:
-  bras-kit build ~/ros2_cellule_ws          every package under src/, into ~/ros2_cellule_ws/install
-  bras-kit build bras_description           one package folder, into ./install
+  bras-kit build                                    the workspace you are in, into its install/
+  bras-kit build ~/ros2_cellule_ws                  every package under src/, into ~/ros2_cellule_ws/install
+  bras-kit build src/bras_description               that package alone (colcon build --packages-select)
 """
 
 
 def configure(parser: argparse.ArgumentParser) -> None:
     parser.formatter_class = argparse.RawDescriptionHelpFormatter
     parser.epilog = _EPILOG
-    parser.add_argument("where", nargs="?", default=".", metavar="WS|PKG_DIR",
-                        help="a colcon workspace (with src/) or a package folder (default: .)")
+    parser.add_argument("where", nargs="?", default=None, metavar="WS|PKG_DIR",
+                        help="a colcon workspace (with src/) or a package folder (default: the workspace of the "
+                             "current folder, else the packages below it)")
     parser.add_argument("--install-base", metavar="DIR",
                         help="where to lay out the install tree (default: WS/install, or ./install)")
 
 
 def install_base(where: str) -> str:
-    """colcon's install/ for ``where``: the workspace's, else the current folder's."""
+    """colcon's install/ for ``where``: its workspace's, else the current folder's."""
+    from ..ros.workspace import find_workspace
+
+    workspace = find_workspace(where)
+    if workspace is not None:
+        return workspace.install
     full = os.path.abspath(where)
     if os.path.isdir(os.path.join(full, "src")):
         return os.path.join(full, "install")
-    parts = full.split(os.sep)
-    if "src" in parts[:-1]:
-        at = len(parts) - 1 - parts[::-1].index("src")
-        return os.sep.join(parts[:at] + ["install"])
     return os.path.abspath("install")
 
 
-def run(args: argparse.Namespace) -> int:
+def packages_to_build(where: str | None) -> tuple[list[str], str]:
+    """The package folders ``bras-kit build [WHERE]`` builds, in order, and the install/ they go to."""
     from ..errors import ParameterError
-    from ..i18n import current_language, say
-    from ..ros.build import build_package
-    from ..validate.findings import FileResult, finding
+    from ..ros.workspace import find_workspace, is_package_folder
     from ..validate.package import find_packages
+
+    folder = "." if where is None else where
+    if not os.path.isdir(folder):
+        raise ParameterError(M("no such folder"), path=folder,
+                             hint=M("give a colcon workspace or a package folder"))
+    workspace = find_workspace(folder)
+    if where is not None and is_package_folder(where):
+        return [where], install_base(where)
+    if workspace is not None:
+        return [p.folder for p in workspace.packages], workspace.install
+    packages = find_packages([folder])
+    if not packages:
+        raise ParameterError(M("no package found in {folder}", folder=os.path.abspath(folder)),
+                             hint=M("a colcon workspace holds its packages in src/; a package folder holds "
+                                    "package.xml and setup.py"))
+    return packages, install_base(folder)
+
+
+def run(args: argparse.Namespace) -> int:
+    from ..i18n import current_language, say
+    from ..inert import for_terminal
+    from ..ros.build import build_package
+    from ..ros.workspace import package_name
+    from ..validate.findings import FileResult, finding
+    from ..validate.package.build_reach import setup_blocked_hits
     from ..validate.package.launch_rules import build_hits
     from ..validate.registry import RULES
     from ..validate.report import format_text
 
     lang = args.lang or current_language()
-    if not os.path.isdir(args.where):
-        raise ParameterError(M("no such folder"), path=args.where,
-                             hint=M("give a colcon workspace or a package folder"))
-    packages = find_packages([args.where]) or ([args.where] if os.path.isfile(
-        os.path.join(args.where, "package.xml")) else [])
-    if not packages:
-        raise ParameterError(M("no package found in {folder}", folder=args.where),
-                             hint=M("a package folder holds package.xml and setup.py"))
-    base = args.install_base or install_base(args.where)
-    failed = 0
+    packages, base = packages_to_build(args.where)
+    base = os.path.abspath(args.install_base) if args.install_base else base
+    failed: list[str] = []
+    finished = 0
     for folder in packages:
+        print(f"Starting >>> {for_terminal(package_name(folder))}", flush=True)  # the learner's text, inert
         record = build_package(folder, base)
-        print(f"Starting >>> {record.package}")
+        blocked = [FileResult(os.path.join(folder, str(hit.params["file"])), [finding(RULES["BK639"], hit)])
+                   for hit in setup_blocked_hits(record)]
+        if blocked:  # what setup.py tried that its walls stopped, at its lines (docs/security.md)
+            sys.stdout.write(format_text(blocked, lang))
         if record.failure is None:
-            print(f"Finished <<< {record.package}")
+            print(f"Finished <<< {for_terminal(record.package)}")
+            finished += 1
             continue
-        failed += 1
+        failed.append(record.package)
         results = [FileResult(os.path.join(folder, str(hit.params.get("file", ""))), [finding(RULES["BK630"], hit)])
                    for hit in build_hits(record, folder)]
-        sys.stdout.write(format_text(results, lang))
+        if results:
+            sys.stdout.write(format_text(results, lang))
+        else:  # no setup.py, or no setup() in it: what colcon-ros needs to build an ament_python package
+            print(say(M("{package} was not built: {file} is missing or calls no setup()", package=record.package,
+                        file=os.path.join(folder, record.failure.file or "setup.py")), lang))
+            print(f"Failed   <<< {for_terminal(record.package)}")
+    if finished:
+        _write_setup_files(base)
+    # colcon's closing lines (colcon-output's summary event handler); the install tree only when whole
+    print(f"Summary: {finished} package{'s' if finished != 1 else ''} finished")
+    if failed:
+        print(f"  {len(failed)} package{'s' if len(failed) != 1 else ''} failed: {for_terminal(' '.join(failed))}")
+        return 1
     print(say(M("install tree: {folder}", folder=base), lang))
-    return 1 if failed else 0
+    return 0
+
+
+SETUP_MARK = "# written by bras-kit build"
+SETUP_BASH = SETUP_MARK + """: what colcon's install/setup.bash sets for the packages built here
+# (each package's prefix on AMENT_PREFIX_PATH, the install folder on COLCON_PREFIX_PATH), so that
+# 'source install/setup.bash' works as in the tutorial and bras-kit finds this workspace from anywhere
+_bras_kit_install="$(builtin cd "$(dirname "${{BASH_SOURCE[0]:-$0}}")" > /dev/null && pwd)"
+case ":${{COLCON_PREFIX_PATH:-}}:" in
+  *":$_bras_kit_install:"*) ;;
+  *) export COLCON_PREFIX_PATH="$_bras_kit_install${{COLCON_PREFIX_PATH:+:$COLCON_PREFIX_PATH}}" ;;
+esac
+for _bras_kit_package in {packages}; do
+  case ":${{AMENT_PREFIX_PATH:-}}:" in
+    *":$_bras_kit_install/$_bras_kit_package:"*) ;;
+    *) export AMENT_PREFIX_PATH="$_bras_kit_install/$_bras_kit_package${{AMENT_PREFIX_PATH:+:$AMENT_PREFIX_PATH}}" ;;
+  esac
+done
+unset _bras_kit_install _bras_kit_package
+"""
+
+
+def _write_setup_files(base: str) -> None:
+    """``install/setup.bash`` (and ``local_setup.bash``), as the tutorial sources it
+    after colcon build; a file colcon itself wrote there is left as it is."""
+    import shlex
+
+    packages = sorted(name for name in os.listdir(base)
+                      if os.path.isfile(os.path.join(base, name, "share", "colcon-core", "packages", name)))
+    text = SETUP_BASH.format(packages=" ".join(shlex.quote(p) for p in packages))
+    for name in ("setup.bash", "local_setup.bash"):
+        path = os.path.join(base, name)
+        try:
+            info = os.lstat(path)
+        except FileNotFoundError:
+            info = None
+        if info is not None:
+            if not stat.S_ISREG(info.st_mode):
+                continue  # a link or anything else planted there is never written through
+            with open(path, encoding="utf-8", errors="replace") as handle:
+                if handle.read(len(SETUP_MARK)) != SETUP_MARK:
+                    continue  # colcon's own: the real one
+        descriptor = os.open(path, os.O_WRONLY | os.O_CREAT | os.O_TRUNC | os.O_NOFOLLOW, 0o644)
+        with os.fdopen(descriptor, "w", encoding="utf-8") as handle:
+            handle.write(text)

@@ -1,19 +1,57 @@
-"""bras-kit doctor: what this install can do (OpenGL, MuJoCo, the browser viewer...) and how to fix the rest."""
+"""bras-kit doctor: what this install can do (OpenGL, MuJoCo, the browser viewer...) and how to fix the rest;
+with --ros, what keeps RViz empty or the arm still on the live ROS 2 graph."""
 
 from __future__ import annotations
 
 import argparse
 
+EPILOG = """\
+examples:
+  bras-kit doctor                         what this install can do
+  bras-kit doctor --ros                   join the running ROS 2 graph for 3 s: why RViz stays empty or the arm still
+  bras-kit doctor --ros --format json     the same, for programs
+  bras-kit doctor --ros --save look.json  keep what was seen; 'bras-kit doctor --ros --from look.json' reports it again
+
+exit codes with --ros: 0 nothing keeps RViz from showing the arm moving, 1 something does,
+3 could not look (no rclpy: source ROS 2 or install 'bras-kit[ros]')
+"""
+
 
 def configure(parser: argparse.ArgumentParser) -> None:
+    parser.epilog = EPILOG
     parser.add_argument("--clear-cache", action="store_true",
                         help="remove the decoded meshes kept in the cache folder, then run the checks")
+    parser.add_argument("--ros", action="store_true",
+                        help="join this terminal's ROS 2 graph (ROS_DOMAIN_ID, discovery range and RMW from the "
+                             "environment) and say what keeps RViz empty or the arm still")
+    parser.add_argument("--duration", type=float, default=None, metavar="S",
+                        help="with --ros: seconds to watch the graph (default 3)")
+    parser.add_argument("--format", choices=("text", "json"), default="text",
+                        help="with --ros: text for people (default) or JSON for programs")
+    parser.add_argument("--save", metavar="FILE",
+                        help="with --ros: also write what was seen to FILE (JSON), to look at again with --from "
+                             "or to send to a teacher")
+    parser.add_argument("--from", dest="from_file", metavar="FILE",
+                        help="with --ros: report on a look saved with --save instead of joining the graph")
+    from ._common import add_force_argument
+
+    add_force_argument(parser)
 
 
 def run(args: argparse.Namespace) -> int:
+    if args.ros:
+        from ._doctor_ros import run_ros
+
+        return run_ros(args)
     from ..doctor import CHECKS, healthy, run_checks
     from ..i18n import labelled, say
     from ..message import M, Mn
+
+    if args.duration is not None or args.save or args.from_file or args.format != "text":
+        from ..errors import ParameterError
+
+        raise ParameterError(M("--duration, --format, --save and --from go with --ros"),
+                             hint=M("add --ros to look at the live ROS 2 graph"))
 
     lang = args.lang
     if getattr(args, "clear_cache", False):

@@ -53,6 +53,7 @@ def run(args: argparse.Namespace) -> int:
     action = args.action
     if action == "init":
         return _init(args, lang)
+    lang = _track_language(args, lang)
     if action == "watch":
         if args.target is not None:
             raise BrasKitError(M("watch mode takes no argument"), hint=M("use -C DIR to name the track's folder"))
@@ -66,6 +67,22 @@ def run(args: argparse.Namespace) -> int:
     if action == "hint":
         return _hint(args, lang)
     return _reset(args, lang)
+
+
+def _track_language(args: argparse.Namespace, lang: str) -> str:
+    """The language the track was laid out in, unless --lang names another on this command line:
+    a track made with --lang fr answers in French when started with the command init printed."""
+    from ..exercises.progress import find_track_folder, read_progress
+    from ..i18n import set_language
+
+    if getattr(args, "lang_given", None):
+        return lang
+    folder = _folder(args) or find_track_folder(os.getcwd())
+    try:
+        kept = read_progress(folder).lang if folder is not None else ""
+    except BrasKitError:
+        return lang  # said by the action itself, which opens the track
+    return set_language(kept) if kept else lang
 
 
 def _folder(args: argparse.Namespace):  # type: ignore[no-untyped-def]
@@ -89,7 +106,7 @@ def _init(args: argparse.Namespace, lang: str) -> int:
     from ..i18n import say
 
     folder = args.target or args.dir or "bras-kit-exercises"
-    track = init_track(folder, args.exercise_set)
+    track = init_track(folder, args.exercise_set, lang)
     print(say(M("laid out {n} exercises in {path}", n=len(track.exercises), path=folder), lang))
     print(say(M("next: cd {path} && bras-kit exercises", path=folder), lang))
     return 0

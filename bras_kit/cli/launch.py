@@ -6,6 +6,8 @@ import argparse
 import os
 import sys
 
+from ..evaluation import rviz_fixed_frame
+from ..inert import for_terminal
 from ..message import M
 
 _EPILOG = """\
@@ -15,7 +17,11 @@ and ament_index_python, and each Node it returns is started as its counterpart:
 robot_state_publisher loads its robot_description, joint_state_publisher(_gui) and rviz2 are
 the viewer, and the package's own executables run as 'bras-kit run' runs them.
 
-examples:
+The other packages of the colcon workspace are built beside it (as colcon builds them all), so
+FindPackageShare, get_package_share_directory and launch includes across packages find them.
+
+examples (in ~/ros2_cellule_ws or a folder below it, as after 'source install/setup.bash'):
+  bras-kit launch bras_description affichage.launch.py
   bras-kit launch bras_description affichage.launch.py --no-browser --duration 5
   bras-kit launch bras_description affichage.launch.py animation:=true --no-browser
 """
@@ -24,10 +30,12 @@ examples:
 def configure(parser: argparse.ArgumentParser) -> None:
     parser.formatter_class = argparse.RawDescriptionHelpFormatter
     parser.epilog = _EPILOG
-    parser.add_argument("target", nargs="?", default=".", metavar="PKG_DIR",
-                        help="the package folder (default: .)")
-    parser.add_argument("items", nargs="*", metavar="FILE.launch.py|NAME:=VALUE",
-                        help="the launch file (default: the package's first) and launch arguments")
+    parser.add_argument("target", nargs="?", default=".", metavar="PKG|PKG_DIR",
+                        help="a package of the colcon workspace you are in (its root or below), by name, "
+                             "or a package folder (default: .)")
+    parser.add_argument("items", nargs="*", metavar="FILE|NAME:=VALUE",
+                        help="the launch file, by its name in the package's share folder (default: the "
+                             "package's first), and launch arguments")
     parser.add_argument("--no-browser", action="store_true",
                         help="print what started, what each node published and the findings, then exit")
     parser.add_argument("--duration", type=float, default=10.0, metavar="S",
@@ -64,13 +72,13 @@ COUNTERPARTS = {
 
 
 def run(args: argparse.Namespace) -> int:
-    from ..errors import ParameterError
     from ..i18n import current_language
 
     lang = args.lang or current_language()
-    if not os.path.isfile(os.path.join(args.target, "package.xml")):
-        raise ParameterError(M("{folder} is not a package folder (no package.xml)", folder=args.target),
-                             hint=M("give the package folder, e.g. bras-kit launch bras_description"))
+    from ..ros.workspace import others, resolve_package
+
+    args.typed, (args.target, workspace) = args.target, resolve_package(args.target)  # a folder, or a name in the workspace
+    args.others = others(workspace, args.target)  # built beside it, as colcon builds the whole workspace
     launch_file, arguments = _split(args.items)
     if args.no_browser:
         return _report(args, _launch(args, launch_file, arguments, lang), lang)
@@ -113,43 +121,65 @@ def _report(args: argparse.Namespace, launched: _Launched, lang: str) -> int:
 
 
 class _Launched:
-    """One build and launch of the package: the plan, the findings, the package's own nodes."""
+    """One build and launch of the package: its evaluation (what the terminal prints and the page
+    shows), the package's own nodes, the page."""
 
-    def __init__(self, package, result, results, nodes, page) -> None:  # type: ignore[no-untyped-def]
-        self.package, self.result, self.results, self.nodes = package, result, results, nodes
+    def __init__(self, package, evaluation, nodes, page) -> None:  # type: ignore[no-untyped-def]
+        self.package, self.evaluation, self.nodes = package, evaluation, nodes
+        self.result = evaluation.launched
+        self.results = evaluation.results
         self.page = page  # (viewer, bus) when a page was asked for and robot_state_publisher got a robot
-        self.plan = result.plan
-        self.description = result.description
+        self.plan = self.result.plan
+        self.description = self.result.description
 
 
 def _launch(args: argparse.Namespace, launch_file: str | None, arguments: dict[str, str], lang: str,
-            page_shown: list[tuple[object, object]] | None = None) -> _Launched:
-    """Build the package, evaluate its launch file, say what started, run its own nodes in simulated
-    time for their findings; given ``page_shown``, the page is opened as soon as the robot is known
-    (before the checks), and (viewer, bus) is put in ``page_shown`` when its address is printed."""
+            page_shown: list[tuple[object, object]] | None = None, viewer=None) -> _Launched:  # type: ignore[no-untyped-def]
+    """Build the package, evaluate its launch file once (:mod:`bras_kit.evaluation`), say what
+    started, run its own nodes in simulated time for their findings. The page reads that same
+    evaluation: given ``page_shown``, it is opened as soon as the robot is known (before the
+    checks), and (viewer, bus) is put in ``page_shown`` when its address is printed; given
+    ``viewer`` (a rebuild), the open page shows the new evaluation."""
     import tempfile
 
     from ..errors import ParameterError
+    from ..evaluation import check_launch, evaluate_launch, merge
     from ..i18n import say
-    from ..validate.package import Package, validate_package
-    from ..validate.package.launch_rules import launch_package
+    from ..validate.package import Package
 
     package = Package(args.target)
     pending, page = None, None
-    if page_shown is not None:  # the page gets ready while the package builds (see run: children_from_a_server)
+    if page_shown is not None:  # viser is imported while the package builds (see run: children_from_a_server)
         from concurrent.futures import ThreadPoolExecutor
 
+        from .. import backends
+
         pool = ThreadPoolExecutor(1, thread_name_prefix="bras-kit-page")
-        pending = pool.submit(_open_page, args, package)
+        pending = pool.submit(backends.viser)
         pool.shutdown(wait=False)  # the thread ends with its one task
     with tempfile.TemporaryDirectory(prefix="bras-kit-launch-") as base:
-        result = launch_package(args.target, os.path.join(base, "install"), launch_file, arguments)
-        package._launched = result  # type: ignore[attr-defined]
+        from ..ros.workspace import build_others
+
+        prefixes, unbuilt = build_others(getattr(args, "others", []), os.path.join(base, "install"))
+        for name in unbuilt:
+            from ._common import warn
+
+            warn(M("the package {name} of the workspace does not build: launch files cannot find it "
+                   "(bras-kit build says why)", name=name), lang)
+        evaluation = evaluate_launch(args.target, os.path.join(base, "install"), launch_file, arguments, package,
+                                     prefixes=tuple(prefixes))
+        result = evaluation.launched
         plan = result.plan
         if result.build.failure is None and launch_file is not None and plan is None:
-            from ..validate.package.launch_rules import _launch_sources
+            from ..validate.package.launch_rules import _launch_sources, share_files_named
 
             share = os.path.join(result.build.prefix, "share", result.build.package)
+            found = share_files_named(result.build, launch_file)
+            if len(found) > 1:  # ros2launch's MultipleLaunchFilesError (ros2launch/api/api.py, Jazzy 58-63)
+                raise ParameterError(
+                    M("file '{file}' was found more than once in the share directory of package '{package}': "
+                      "{paths}", file=launch_file, package=result.build.package, paths=found),
+                    hint=M("give each launch file of the package its own name"))
             raise ParameterError(
                 M("file '{file}' was not found in the share directory of package '{package}' which is at '{share}'",
                   file=launch_file, package=result.build.package, share=share),
@@ -161,7 +191,7 @@ def _launch(args: argparse.Namespace, launch_file: str | None, arguments: dict[s
             print(say(M("ros2 launch {package} {file}", package=result.build.package,
                         file=os.path.basename(shown)), lang))
             for _delay, text, *_where in plan.logs:  # LogInfo actions, as ros2 launch prints them
-                print(f"[INFO] [launch.user]: {text}")
+                print(f"[INFO] [launch.user]: {for_terminal(str(text))}")  # the learner's text, made inert
             for node in plan.nodes:
                 counterpart = COUNTERPARTS.get(node.package or "")
                 if counterpart is not None:
@@ -175,51 +205,50 @@ def _launch(args: argparse.Namespace, launch_file: str | None, arguments: dict[s
                     print(say(M("[INFO] started {node} ({what}): not simulated, nothing is shown for it",
                                 node=node.full_name, what=node.shown), lang))
             if plan.failure is not None:
-                print(plan.ros2_launch_error, file=sys.stderr)
+                print(for_terminal(plan.ros2_launch_error), file=sys.stderr)
             for _node, problem in result.problems:
                 for line in problem.ros:
-                    print(line, file=sys.stderr)
+                    print(for_terminal(line), file=sys.stderr)
         sys.stdout.flush()
-        if pending is not None:  # the page first, the checks after
-            page = _page_for(pending, result.description is not None)
-            if page is not None and page_shown is not None:
-                page[0].fixed_frame = _rviz_fixed_frame(plan)  # before any browser can connect
+        # the install tree's share folder: the robot's package:// meshes, as robot_state_publisher's
+        package_paths = (os.path.join(result.build.prefix, "share"), os.path.dirname(os.path.abspath(args.target)))
+        if pending is not None and page_shown is not None:  # the page first, the checks after
+            pending.result()
+            if evaluation.robot is not None:  # else no page: the terminal says why ROS shows no robot
+                page = _open_page(args, evaluation, package_paths)
                 _announce(args, page[0])
                 page_shown.append(page)
-        results = validate_package(args.target, select=["BK6"], package=package, launch=True)
-        results += _node_results(args, nodes, result)
-    return _Launched(package, result, results, nodes, page)
+        elif viewer is not None:
+            viewer.show_launch(evaluation, package_paths)
+        check_launch(evaluation, package, package_paths)
+        evaluation.results = merge(evaluation.results, _node_results(args, nodes, evaluation.robot, evaluation.package))
+        evaluation.checked = True
+        shown_in = page[0] if page is not None else viewer
+        if shown_in is not None:
+            shown_in.show_checks()
+    return _Launched(package, evaluation, nodes, page)
 
 
-def _node_results(args: argparse.Namespace, nodes: list, result):  # type: ignore[no-untyped-def,type-arg]
-    """Each of the package's own nodes run as bras-kit run runs it, in simulated time: what it
-    published, and its findings."""
+def _node_results(args: argparse.Namespace, nodes: list, robot, package: str):  # type: ignore[no-untyped-def,type-arg]
+    """Each of the package's own nodes run as bras-kit run runs it, in simulated time, against the
+    robot robot_state_publisher loads: what it published, and its findings."""
     from ..errors import BrasKitError
     from ..i18n import current_language, say
-    from ..model import robot_from_xml
     from ..run import run_findings, run_node
     from ..run.report import summary
     from ..validate.findings import FileResult
-    from ..xmlio import parse_xml
 
     lang = args.lang or current_language()
-    robot = None
-    if result.description is not None:
-        try:
-            robot = robot_from_xml(parse_xml(result.description, "robot_description"), "robot_description",
-                                   result.description)
-        except BrasKitError:
-            robot = None
     from ..run.live import executables_of
 
     out = []
-    executables, parameters = executables_of(nodes, result.build.package)
+    executables, parameters = executables_of(nodes, package)
     for executable in executables:
         try:
             recording = run_node(args.target, executable, duration=args.duration, echo=False,
-                                 parameters=parameters[executable], robot=robot)
+                                 parameters=parameters[executable], robot=robot, beside=getattr(args, "others", ()))
         except BrasKitError as exc:
-            print(str(exc), file=sys.stderr)
+            print(for_terminal(str(exc)), file=sys.stderr)
             continue
         for message in summary(recording):
             print("  " + say(message, lang))
@@ -230,38 +259,19 @@ def _node_results(args: argparse.Namespace, nodes: list, result):  # type: ignor
     return out
 
 
-def _rviz_fixed_frame(plan) -> str | None:  # type: ignore[no-untyped-def]
-    """The Fixed Frame of the configuration rviz2 is started with (``arguments=['-d', FILE]``)."""
-    import yaml
-
-    for node in plan.nodes if plan is not None else []:
-        if node.package != "rviz2" or "-d" not in node.arguments[:-1]:
-            continue
-        path = node.arguments[node.arguments.index("-d") + 1]
-        try:
-            if os.path.getsize(path) > 1 << 20:
-                return None
-            with open(path, encoding="utf-8") as handle:
-                data = yaml.safe_load(handle)
-            frame = data["Visualization Manager"]["Global Options"]["Fixed Frame"]
-        except (OSError, yaml.YAMLError, KeyError, TypeError):
-            return None
-        return str(frame) if frame else None
-    return None
+_rviz_fixed_frame = rviz_fixed_frame  # the evaluation's reading (kept under its old name)
 
 
-def _open_page(args: argparse.Namespace, package):  # type: ignore[no-untyped-def]
-    """The launch in the browser: robot_state_publisher's robot in the viewer (its sliders stand for
-    joint_state_publisher_gui), and the bus open for 'bras-kit run' beside it. Returns (viewer,
-    bus), or None with no robot file. Nothing is said yet (:func:`_announce`)."""
+def _open_page(args: argparse.Namespace, evaluation, package_paths: tuple[str, ...]):  # type: ignore[no-untyped-def]
+    """The launch in the browser: the evaluation's robot (robot_state_publisher's), findings, Fixed
+    Frame and slider window, and the bus open for 'bras-kit run' beside it. Returns (viewer, bus).
+    Nothing is said yet (:func:`_announce`)."""
     from ..errors import BrasKitError
     from ..ros.bus import Bus
-    from ..view import Viewer
+    from ..view import Source, Viewer
 
-    source = package.description_source()
-    if source is None:
-        return None
-    viewer = Viewer(_source(args, source), port=args.port, lang=args.lang)
+    viewer = Viewer(Source(robot=evaluation.robot, package_paths=package_paths), port=args.port, lang=args.lang,
+                    watch=False, launch=evaluation)
     try:
         bus: Bus | None = Bus.listen()
     except BrasKitError as exc:  # no Zenoh: the launch is shown, bras-kit run cannot publish into it
@@ -270,22 +280,12 @@ def _open_page(args: argparse.Namespace, package):  # type: ignore[no-untyped-de
         warn(exc, args.lang)
         bus = None
     if bus is not None:
+        from ..ros.bus import LaunchRobot
+
         bus.on_joint_state(lambda state: viewer.show_joint_state(state.name, state.position))
+        # a run asks which joints the page moves, and names those it publishes that are not among them
+        bus.offer_robot(lambda: LaunchRobot(evaluation.package, tuple(viewer.model.tree.dof)))
     return viewer, bus
-
-
-def _page_for(pending, launched: bool):  # type: ignore[no-untyped-def]
-    """The page made while the package built: kept when the launch gives robot_state_publisher its
-    robot (an error making it is then raised), else closed (ROS would show no robot either)."""
-    if launched:
-        return pending.result()
-    try:
-        opened = pending.result()
-    except Exception:  # noqa: BLE001 - the launch's own error is what the learner reads
-        return None
-    if opened is not None:
-        _close(*opened)
-    return None
 
 
 def _close(viewer, bus) -> None:  # type: ignore[no-untyped-def]
@@ -299,7 +299,7 @@ def _announce(args: argparse.Namespace, viewer) -> None:  # type: ignore[no-unty
 
     print(say(M("bras-kit launch: {url} (Ctrl-C to stop)", url=viewer.url), args.lang), flush=True)
     print(say(M("'bras-kit run {folder}' in another terminal moves this arm, as ros2 run beside ros2 launch",
-                folder=args.target), args.lang), file=sys.stderr, flush=True)
+                folder=getattr(args, "typed", args.target)), args.lang), file=sys.stderr, flush=True)
     from .view import _has_screen
 
     if _has_screen():
@@ -308,17 +308,10 @@ def _announce(args: argparse.Namespace, viewer) -> None:  # type: ignore[no-unty
         webbrowser.open(viewer.url)
 
 
-def _source(args: argparse.Namespace, relative: str):  # type: ignore[no-untyped-def]
-    from ..view import Source
-
-    return Source(path=os.path.join(args.target, relative),
-                  package_paths=(os.path.dirname(os.path.abspath(args.target)),))
-
-
 def _live(args: argparse.Namespace, launch_file: str | None, arguments: dict[str, str], lang: str,  # type: ignore[no-untyped-def]
           launched: _Launched, viewer) -> int:
     """The package's own nodes live in the page until Ctrl-C; a file of the package saved: built
-    and launched again (checks, nodes and, when the launch file now loads another, the robot)."""
+    and launched again, one evaluation printed and shown (robot, Fixed Frame, sliders, checks, nodes)."""
     from ..errors import BrasKitError
     from ..i18n import say
     from ..run.live import LiveNodes, changed_files, executables_of, package_stamps
@@ -328,9 +321,10 @@ def _live(args: argparse.Namespace, launch_file: str | None, arguments: dict[str
 
     def start(current: _Launched) -> None:
         nonlocal nodes
-        names, parameters = executables_of(current.nodes, current.result.build.package) \
-            if current.result.build.failure is None else ([], {})
-        nodes = LiveNodes(args.target, names, viewer.show_joint_state, parameters, lang)
+        started = current.result.build.failure is None and current.plan is not None and current.plan.failure is None
+        names, parameters = executables_of(current.nodes, current.result.build.package) if started else ([], {})
+        nodes = LiveNodes(args.target, names, viewer.show_joint_state, parameters, lang,
+                          beside=getattr(args, "others", ()))
         nodes.start()  # a Ctrl-C while they start still finds them in ``nodes``
 
     stamps = package_stamps(args.target)
@@ -355,17 +349,13 @@ def _live(args: argparse.Namespace, launch_file: str | None, arguments: dict[str
             print(say(M("{files} saved: the package is built and launched again", files=names), lang),
                   file=sys.stderr, flush=True)
             try:
-                relaunched = _launch(args, launch_file, arguments, lang)
+                relaunched = _launch(args, launch_file, arguments, lang, viewer=viewer)  # the page shows it too
             except BrasKitError as exc:
                 print(say(exc.message, lang), file=sys.stderr, flush=True)
                 nodes = LiveNodes(args.target, [], viewer.show_joint_state)
                 continue
             sys.stdout.write(format_text(relaunched.results, lang))
             sys.stdout.flush()
-            source = relaunched.package.description_source()
-            if source is not None and os.path.join(args.target, source) != viewer.source.path:
-                viewer.source = _source(args, source)  # the launch file loads another robot now
-                viewer.reload()
             start(relaunched)
             stamps = package_stamps(args.target)  # what the build and the nodes wrote is not a save
     except KeyboardInterrupt:  # during a rebuild: the same stop as during the wait

@@ -4,6 +4,7 @@ from __future__ import annotations
 
 import argparse
 import os
+import signal
 import sys
 
 from ..message import M
@@ -17,22 +18,33 @@ take a fraction of a second. Every message it publishes is recorded; what it pub
 runs for real: it is limited in CPU time, memory and wall-clock time, in a temporary folder.
 The real thing is 'ros2 run PKG EXE' on a ROS 2 machine.
 
-examples:
-  bras-kit run bras_description                      the package's only executable, 10 s
+PKG is a package of the colcon workspace the command is typed in (its root, e.g.
+~/ros2_cellule_ws, or any folder below it), by the name in its package.xml; the workspace's other
+packages are built beside it. A package folder or a node's .py file works too.
+
+Beside a 'bras-kit launch' of the same user on the same ROS_DOMAIN_ID (default 0), a run with
+none of -o, --gif, --json and --duration is live: it joins that launch, publishes on the wall
+clock and moves its page until Ctrl-C, as 'ros2 run' beside 'ros2 launch'. Any of them makes it a
+batch run: simulated time, as fast as it can, the page left alone.
+
+examples (in ~/ros2_cellule_ws or a folder below it):
+  bras-kit run bras_description animation            10 s of node time; beside a launch, live until Ctrl-C
   bras-kit run bras_description animation --duration 5 -o states.csv
-  bras-kit run bras_description/bras_description/animation.py --gif arm.gif
+  bras-kit run src/bras_description/bras_description/animation.py --gif arm.gif
 """
 
 
 def configure(parser: argparse.ArgumentParser) -> None:
     parser.formatter_class = argparse.RawDescriptionHelpFormatter
     parser.epilog = _EPILOG
-    parser.add_argument("target", nargs="?", default=".", metavar="PKG_DIR|FILE.py",
-                        help="the package folder (with setup.py), or the node's .py file (default: .)")
+    parser.add_argument("target", nargs="?", default=".", metavar="PKG|PKG_DIR|FILE.py",
+                        help="a package of the colcon workspace you are in, by name, a package folder (with "
+                             "setup.py), or the node's .py file (default: .)")
     parser.add_argument("executable", nargs="?", metavar="EXECUTABLE",
                         help="a name of setup.py's console_scripts (default: the only one)")
-    parser.add_argument("--duration", type=float, default=10.0, metavar="S",
-                        help="seconds of simulated time to run the node for (default: 10)")
+    parser.add_argument("--duration", type=float, default=None, metavar="S",
+                        help="seconds of simulated time to run the node for (default: 10; beside a bras-kit "
+                             "launch, live until Ctrl-C)")
     parser.add_argument("-o", "--output", metavar="FILE",
                         help="write what /joint_states carried (.csv, .json or a ROS 2 bag .mcap, like bras-kit motion)")
     parser.add_argument("--gif", metavar="FILE", help="draw the arm moved by the node as a GIF")
@@ -49,11 +61,13 @@ def configure(parser: argparse.ArgumentParser) -> None:
 def run(args: argparse.Namespace) -> int:
     from ..i18n import current_language, say
     from ..motion.states_io import check_states_output
-    from ..run import parse_parameters, run_node, uncontained_note
+    from ..run import DEFAULT_DURATION, parse_parameters, run_node, uncontained_note
     from ..run.report import failure_lines, summary
     from ..validate.report import exit_code, format_json, format_text
 
     lang = args.lang
+    args.typed = args.target
+    beside = _resolve(args)
     if args.output is not None:
         check_states_output(args.output, args.force)
     if args.gif is not None:
@@ -63,14 +77,15 @@ def run(args: argparse.Namespace) -> int:
     note = uncontained_note()
     if note is not None:
         print(say(note, lang), file=sys.stderr)
-    from ..ros.bus import listening
-
-    live = listening()  # a bras-kit launch runs on this machine: publish into it, on the wall clock
-    if live:
-        print(say(M("publishing /joint_states to the running bras-kit launch, on the wall clock"), lang),
-              file=sys.stderr, flush=True)
-    recording = run_node(args.target, args.executable, duration=args.duration, echo=not args.quiet,
-                         parameters=parameters, live=live, robot=robot)
+    batch = args.output is not None or args.gif is not None or args.json or args.duration is not None
+    bus = None if batch else _join(lang)
+    if bus is not None:
+        return _run_live(args, bus, parameters, robot, beside)
+    if batch:
+        _say_launch_left_alone(lang)
+    duration = DEFAULT_DURATION if args.duration is None else args.duration
+    recording = run_node(args.target, args.executable, duration=duration, echo=not args.quiet,
+                         parameters=parameters, robot=robot, beside=beside)
     for message in summary(recording):
         print(say(message, lang), file=sys.stderr)
     for text in failure_lines(recording):
@@ -85,6 +100,104 @@ def run(args: argparse.Namespace) -> int:
     if args.gif is not None:
         _write_gif(recording, robot, args)
     return exit_code(results)
+
+
+def _resolve(args: argparse.Namespace) -> list[str]:
+    """``args.target`` made the package folder it names (a node's .py file stays as it is): the
+    other package folders of its workspace, built beside it, are returned."""
+    if os.path.isfile(args.target):
+        return []
+    from ..ros.workspace import others, resolve_package
+
+    args.target, workspace = resolve_package(args.target)
+    return others(workspace, args.target)
+
+
+def _join(lang: str | None):  # type: ignore[no-untyped-def]
+    """The bus of the launches of this user on this ROS domain, or None when none is open (or
+    Zenoh is missing: said, and the run is a batch run)."""
+    from ..errors import BrasKitError, ParameterError
+    from ..ros.bus import Bus
+
+    try:
+        return Bus.connect()
+    except ParameterError:
+        raise  # a ROS_DOMAIN_ID rcl refuses too
+    except BrasKitError as exc:
+        warn(exc, lang)
+        return None
+
+
+def _say_launch_left_alone(lang: str | None) -> None:
+    """A batch run beside an open launch: said, so that a page that stays still is no surprise."""
+    from ..errors import BrasKitError
+    from ..i18n import say
+    from ..ros.bus import listening
+
+    try:
+        open_now = listening()
+    except BrasKitError:
+        return  # a bad ROS_DOMAIN_ID does not concern a batch run
+    if open_now:
+        print(say(M("a bras-kit launch is open on this ROS domain: this run, with -o, --gif, --json or --duration, "
+                    "runs in simulated time and leaves its page alone (without them it joins it, live)"), lang),
+              file=sys.stderr, flush=True)
+
+
+def _stop_on_sigterm():  # type: ignore[no-untyped-def]
+    """SIGTERM ends a live run as Ctrl-C does (rclpy's signal handlers take both by default:
+    rclpy/signals.py, SignalHandlerOptions.ALL); the handler it replaces is returned."""
+    def interrupt(_number, _frame):  # type: ignore[no-untyped-def]
+        raise KeyboardInterrupt
+
+    return signal.signal(signal.SIGTERM, interrupt)
+
+
+def _run_live(args: argparse.Namespace, bus, parameters, robot, beside: list[str]) -> int:  # type: ignore[no-untyped-def]
+    """The node live beside the open launches, until Ctrl-C (or until it ends by itself), as
+    ``ros2 run`` beside ``ros2 launch``: each JointState goes onto the bus as it is published; a
+    joint the page's robot does not have is named once."""
+    import time
+
+    from ..i18n import say
+    from ..ros.bus import domain_id, unknown_joints
+    from ..run import MAX_DURATION, run_node
+    from ..run.report import ending, failure_lines
+
+    lang = args.lang
+    robots = bus.robots()
+    print(say(M("joined the running bras-kit launch (ROS domain {domain}): publishing /joint_states on the wall "
+                "clock until Ctrl-C, as ros2 run", domain=domain_id()), lang), file=sys.stderr, flush=True)
+    warned: set[tuple[object, tuple[str, ...]]] = set()
+
+    def deliver(state) -> None:  # type: ignore[no-untyped-def]
+        names = tuple(state.name)
+        for shown in robots:
+            missing = unknown_joints(list(names), shown)
+            if missing and (shown, names) not in warned:
+                warned.add((shown, names))
+                warn(M("the node publishes joints {names} that the robot of the launch of {package} does not have "
+                       "(its joints: {joints}): its page does not move them", names=missing, package=shown.package,
+                       joints=list(shown.joints)), lang)
+        bus.publish_joint_state(state)
+
+    started = time.monotonic()
+    previous = _stop_on_sigterm()
+    try:
+        recording = run_node(args.target, args.executable, duration=MAX_DURATION, echo=not args.quiet,
+                             parameters=parameters, live=True, keep=False, on_joint_state=deliver, robot=robot,
+                             beside=beside)
+    except KeyboardInterrupt:
+        print(say(M("stopped by Ctrl-C after {seconds} s", seconds=round(time.monotonic() - started, 1)), lang),
+              file=sys.stderr, flush=True)
+        return 0
+    finally:
+        signal.signal(signal.SIGTERM, previous)
+        bus.close()
+    print(say(M("the node {ending}", ending=ending(recording)), lang), file=sys.stderr)
+    for text in failure_lines(recording):
+        print(text, file=sys.stderr)
+    return 1 if recording.failure is not None else 0
 
 
 def _robot(args: argparse.Namespace):  # type: ignore[no-untyped-def]
@@ -135,7 +248,10 @@ def _write_states(recording, robot, args) -> None:  # type: ignore[no-untyped-de
     if states_format(args.output) == "bag" and robot is None:
         raise BrasKitError(M("a ROS 2 bag holds the robot (/robot_description, /tf): the package has no urdf/ file"),
                            hint=M("give one with --urdf FILE"))
-    written = write_states(robot, states, args.output, args.force)
+    from ..ros.recording import sent_joint_states
+
+    # the JSON and the bag hold /joint_states as the node sent it (no velocity filled in, its own stamps)
+    written = write_states(robot, states, args.output, args.force, sent=sent_joint_states(recording))
     if written is not None:
         print(say(written, args.lang), file=sys.stderr)
 

@@ -103,6 +103,19 @@ def _run_results(packages: list[str], lang: str, select: list[str], ignore: list
             package_run_results(package, lang=lang, select=select, ignore=ignore, duration=duration or 10.0)]
 
 
+def _node_results(nodes: list[str], lang: str, select: list[str], ignore: list[str],
+                  duration: float | None) -> list:  # type: ignore[type-arg]
+    from ..i18n import say
+    from ..run import uncontained_note
+    from ..run.findings import node_file_results
+
+    note = uncontained_note()
+    if note is not None and nodes:
+        print(say(note, lang), file=sys.stderr)
+    return [result for node in nodes for result in
+            node_file_results(node, lang=lang, select=select, ignore=ignore, duration=duration or 10.0)]
+
+
 def _merge(results: list, extra: list) -> list:  # type: ignore[type-arg]
     """The run's findings join the static ones of the same file."""
     from ..validate.findings import FileResult, sort_key
@@ -144,7 +157,15 @@ def run(args: argparse.Namespace) -> int:
         raise ParameterError(M("--duration {duration:g}: must be a positive number of seconds", duration=args.duration))
     options = dict(pose=pose or None, motion=args.motion or None, duration=args.duration, lang=lang,
                    package_paths=args.package_path, select=select, ignore=ignore, target=args.target)
-    if args.files:
+    nodes = [f for f in args.files if f.endswith(".py") and os.path.isfile(f)]
+    if nodes and not args.run:  # not XML: a node is checked by running it
+        raise ParameterError(M("{path} is a Python file: a node is checked by running it", path=nodes[0]),
+                             hint=M("add --run: bras-kit validate {path} --run", path=nodes[0]))
+    if nodes:  # a lone node file, run as `bras-kit run FILE.py` runs it (not read as XML)
+        args.files = [f for f in args.files if f not in nodes]
+    if nodes and not args.files:
+        results = _node_results(nodes, lang, select, ignore, args.duration)
+    elif args.files:
         if args.wrist or args.inertials or args.param:
             raise ParameterError(M("--wrist, --inertials and --param apply to the built-in arm only"),
                                  hint=M("drop FILE to check the built-in arm, or edit your file"))
@@ -168,6 +189,7 @@ def run(args: argparse.Namespace) -> int:
                                                        select=select, ignore=ignore)
                                if path in generated else validate_path(path, mappings=mappings, **options))
                     for path in paths]
+        results += _node_results(nodes, lang, select, ignore, args.duration)
     else:
         from ..authoring import arm, parse_assignments
 

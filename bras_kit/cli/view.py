@@ -26,6 +26,7 @@ examples:
   bras-kit view --node bras_description      the package's node moves the arm (it starts playing)
   bras-kit view --motion tutorial            play the tutorial's motion (play/pause/speed)
   bras-kit view --export bras.html           one HTML file replaying the motion, no server
+  bras-kit view --ros                        the robot of your running ROS 2 graph, moving with /joint_states
 """
 
 
@@ -48,6 +49,10 @@ def configure(parser: argparse.ArgumentParser) -> None:
     parser.add_argument("--duration", type=float, default=None, metavar="S",
                         help="with --export: seconds of motion (default: the motion's length, else 10)")
     parser.add_argument("--fps", type=float, default=20.0, help="with --export: frames per second (default 20)")
+    parser.add_argument("--ros", action="store_true",
+                        help="show the robot of this terminal's live ROS 2 graph (/robot_description), moving with "
+                             "/joint_states, with what bras-kit doctor --ros finds (needs rclpy: ROS 2 sourced or "
+                             "the 'ros' extra)")
     add_force_argument(parser)
 
 
@@ -55,6 +60,11 @@ def run(args: argparse.Namespace) -> int:
     from ..authoring import arm, parse_assignments
     from ..errors import ParameterError
     from ._common import xacro_mappings
+
+    if args.ros:
+        from ._view_ros import run_ros
+
+        return run_ros(args)
 
     if not 0 <= args.port <= 65535:
         raise ParameterError(M("--port {port} is out of range", port=args.port),
@@ -114,7 +124,10 @@ def _export(args: argparse.Namespace, source: object) -> int:
     motion = motion_from_specs(robot, args.motion, topic=args.topic, recorded=args.recorded)
     warn_motion_notes(motion)
     states = sample(motion, args.duration if args.duration is not None else (motion.duration or 10.0), args.fps)
-    page = export_html(robot, states, package_paths=source.package_paths)  # type: ignore[attr-defined]
+    title = say(M("{robot}: {motion} (bras-kit)", robot=robot.name or "robot",
+                  motion=say(motion_title(motion.label), args.lang)), args.lang)
+    page = export_html(robot, states, package_paths=source.package_paths,  # type: ignore[attr-defined]
+                       lang=args.lang, title=title)
     write_text(args.export, page, args.force, announce=False)
     print(say(M("wrote {path}: {count} frames of {label}, open it in a browser (no server needed)", path=args.export,
                 count=len(states.times), label=motion_title(motion.label)), args.lang), file=sys.stderr)

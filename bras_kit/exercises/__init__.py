@@ -55,9 +55,10 @@ def exercise_files(folder: str | os.PathLike[str], exercise: Exercise) -> list[P
     return [Path(folder) / exercise.id / name for name in exercise.files]
 
 
-def init_track(folder: str | os.PathLike[str], source: str = BUILTIN) -> Track:
+def init_track(folder: str | os.PathLike[str], source: str = BUILTIN, lang: str = "") -> Track:
     """Lay out every exercise's starting files in ``folder`` (made if missing) and a fresh
-    progress file. Refuses a folder that already holds a track or any of the files."""
+    progress file, which keeps ``lang``: the track speaks it wherever it is started from.
+    Refuses a folder that already holds a track or any of the files."""
     track = load_track(source)
     root = Path(folder)
     if root.exists() and not root.is_dir():
@@ -74,7 +75,7 @@ def init_track(folder: str | os.PathLike[str], source: str = BUILTIN) -> Track:
     for exercise in track.exercises:
         copy_files(exercise, root / exercise.id)
     source_text = BUILTIN if str(source) == BUILTIN else str(Path(source).resolve())
-    write_progress(Progress(root, source_text, track.exercises[0].id, {}))
+    write_progress(Progress(root, source_text, track.exercises[0].id, {}, lang))
     return track
 
 

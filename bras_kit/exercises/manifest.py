@@ -97,6 +97,26 @@ class Track:
                                   n=len(self.exercises)))
 
 
+# the built-in track's lessons are the source tree's lessons/ (the manifests name them from there)
+SOURCE_ROOT = Path(__file__).resolve().parents[2]
+
+
+def lesson_link(track: Track, exercise: Exercise, lang: str, start: str | os.PathLike[str]) -> str:
+    """The exercise's lesson as a path that opens from ``start`` (the track's folder): the
+    built-in track's manifests name lessons from the source tree, a set's from its own folder.
+    A lesson that is not there (an install without the source tree) is named as written."""
+    lesson = exercise.lesson_in(lang)
+    if not lesson or "://" in lesson:
+        return lesson
+    full = ((SOURCE_ROOT if track.source == BUILTIN else track.folder) / lesson).resolve()
+    if not full.is_file():
+        return lesson
+    here = Path(start).resolve()
+    if os.path.commonpath([full, here]) == here.anchor:
+        return str(full)  # nothing shared but the root: the full path reads better than ../../..
+    return os.path.relpath(full, here)
+
+
 def _read_manifest(path: Path) -> dict[str, Any]:
     import yaml
 

@@ -4,7 +4,7 @@ it took. Plain JSON a teacher can read, and ``bras-kit grade`` counts.
 
 ::
 
-    {"format": 1, "set": "builtin", "current": "03-elbow-origin",
+    {"format": 1, "set": "builtin", "lang": "fr", "current": "03-elbow-origin",
      "exercises": {"01-links": {"passed": true, "passed_at": "2026-11-26T16:40:02Z",
                                 "checks": 4, "hints": 1}}}
 """
@@ -19,6 +19,7 @@ from pathlib import Path
 from typing import Any
 
 from ..errors import BrasKitError
+from ..i18n import LANGUAGES
 from ..message import M
 
 PROGRESS_FILE = "progress.json"
@@ -32,6 +33,7 @@ class Progress:
     set: str
     current: str
     exercises: dict[str, dict[str, Any]] = field(default_factory=dict)
+    lang: str = ""  # the language the track was laid out in ("" in a track made before it was kept)
 
     def entry(self, exercise_id: str) -> dict[str, Any]:
         return self.exercises.setdefault(exercise_id, {"passed": False, "checks": 0, "hints": 0})
@@ -43,7 +45,8 @@ class Progress:
         return int(self.exercises.get(exercise_id, {}).get("hints", 0))
 
     def as_dict(self) -> dict[str, Any]:
-        return {"format": FORMAT, "set": self.set, "current": self.current, "exercises": self.exercises}
+        kept = {"lang": self.lang} if self.lang else {}
+        return {"format": FORMAT, "set": self.set, **kept, "current": self.current, "exercises": self.exercises}
 
 
 def progress_path(folder: str | os.PathLike[str]) -> Path:
@@ -78,7 +81,9 @@ def read_progress(folder: str | os.PathLike[str]) -> Progress:
     found = data.get("exercises")
     exercises: dict[str, Any] = found if isinstance(found, dict) else {}
     clean = {str(k): dict(v) for k, v in exercises.items() if isinstance(v, dict)}
-    return Progress(Path(folder), data["set"], str(data.get("current", "")), clean)
+    lang = data.get("lang")
+    return Progress(Path(folder), data["set"], str(data.get("current", "")), clean,
+                    lang if lang in LANGUAGES else "")
 
 
 def write_progress(progress: Progress) -> None:

@@ -12,9 +12,10 @@ from collections.abc import Sequence
 from dataclasses import dataclass
 
 from ..i18n import say
+from ..inert import for_terminal
 from ..message import M, Message, Mn
 from .checks import BROKEN, PASSED, Outcome
-from .manifest import Exercise, Track
+from .manifest import Exercise, Track, lesson_link
 from .progress import Progress
 
 MIN_WIDTH, MAX_WIDTH = 40, 100
@@ -95,14 +96,15 @@ def exercise_lines(track: Track, progress: Progress, exercise: Exercise, outcome
     files = ", ".join(os.path.join(exercise.id, name) for name in exercise.files)
     lines += _labelled(say(M("files:"), lang), files, width)
     if exercise.lesson_in(lang):
-        lines += _labelled(say(M("lesson:"), lang), exercise.lesson_in(lang), width)
+        lines += _labelled(say(M("lesson:"), lang), lesson_link(track, exercise, lang, progress.folder), width)
     lines.append(rule)
-    reason = _reason(outcome, lang) if outcome and outcome.reason else ""
+    # the reason and the detail may quote the learner's file (a syntax error's line): text, not commands
+    reason = for_terminal(_reason(outcome, lang)) if outcome and outcome.reason else ""
     dash = " —" if reason else ""
     lines += _labelled(state_word(outcome, Style(), lang) + dash, reason, width, state_word(outcome, style, lang) + dash)
     if outcome is not None and outcome.detail:
         detail = say(outcome.detail, lang) if isinstance(outcome.detail, Message) else str(outcome.detail)
-        lines += _wrap(detail, width, "  ")
+        lines += _wrap(for_terminal(detail), width, "  ")
     if outcome is not None and outcome.state == BROKEN:
         lines += _wrap(say(M("finish writing the file and save it: it is checked again at once"), lang), width, "  ")
     lines += hint_lines(exercise, hints_to_show(outcome, progress.hints_seen(exercise.id)), lang, width, style)

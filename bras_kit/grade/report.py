@@ -12,6 +12,7 @@ from collections import Counter
 from collections.abc import Callable, Sequence
 from typing import Any
 
+from ..inert import for_spreadsheet
 from ..message import M, Message, Mn
 from .rubric import SEVERITIES, Item, Rubric, rubric_words
 
@@ -27,9 +28,11 @@ def grades_csv(results: Sequence[dict[str, Any]], rubric: Rubric) -> str:
     writer.writerow(["identifier", "score", "max", *[item.id for item in rubric.items], "first_error",
                      *(["exercises"] if track else [])])
     for result in results:
-        writer.writerow([result["learner"], _number(result["score"]), _number(result["max"]),
+        # the folder's name and the error are the learner's: text, never a formula (bras_kit.inert)
+        writer.writerow([for_spreadsheet(str(result["learner"])), _number(result["score"]), _number(result["max"]),
                          *[_number(result["items"].get(item.id, 0.0)) for item in rubric.items],
-                         result.get("first_error", ""), *([result.get("exercises", "")] if track else [])])
+                         for_spreadsheet(str(result.get("first_error", ""))),
+                         *([for_spreadsheet(str(result.get("exercises", "")))] if track else [])])
     return buffer.getvalue()
 
 

@@ -99,7 +99,7 @@ def check_states_output(path: str, force: bool, fmt: str | None = None, option: 
 
 
 def write_states(robot: Robot, states: JointStates, path: str, force: bool = False, fmt: str | None = None,
-                 option: str = "-o") -> Message | None:
+                 option: str = "-o", sent: list[dict] | None = None) -> Message | None:
     """Write joint states to ``path`` in the format its name says (or ``fmt``): CSV, JSON or a ROS 2 bag.
 
     Returns what was written, for the command to show (the bag folder and its topics, or the
@@ -109,13 +109,20 @@ def write_states(robot: Robot, states: JointStates, path: str, force: bool = Fal
     if fmt == "bag":
         from ..bags import write_bag
 
-        summary = write_bag(robot, states, path, force=force, option=option)
+        summary = write_bag(robot, states, path, force=force, option=option, sent=sent)
         return M("wrote the ROS 2 bag {folder} ({storage}: {messages} messages on /robot_description, /tf_static, "
                  "/tf, /joint_states; {duration} s): ros2 bag play {folder}", folder=summary.folder,
                  storage=summary.storage_file, messages=summary.messages, duration=summary.duration)
     from ..outputs import write_text
 
-    write_text(path, states_to_json(states) if fmt == "json" else states_to_csv(states), force, announce=False)
+    if fmt == "json" and sent is not None:  # messages as a node sent them (bras-kit run -o)
+        import json
+
+        body = ",\n".join(json.dumps(message) for message in sent)
+        text = "[\n" + body + "\n]\n" if body else "[]\n"
+    else:
+        text = states_to_json(states) if fmt == "json" else states_to_csv(states)
+    write_text(path, text, force, announce=False)
     return None if path == "-" else M("wrote {path}", path=path)
 
 

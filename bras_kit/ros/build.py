@@ -25,24 +25,27 @@ import sys
 from dataclasses import dataclass, field
 from typing import Any
 
+from .recording import Attempt
+from .setup_check import CheckedSetup, Installed, Refusal, check_setup, name_problem
+
+__all__ = ["BuildFailure", "BuildRecord", "Installed", "build_package"]
+
 SETUP_CPU_SECONDS = 10
 SETUP_WALL_SECONDS = 20.0
 SETUP_MEMORY_BYTES = 512 << 20
 INDEX = "share/ament_index/resource_index/packages"
 PYTHON_LIB = f"lib/python{sys.version_info[0]}.{sys.version_info[1]}/site-packages"
-
-
-@dataclass(frozen=True)
-class Installed:
-    target: str  # relative to the package's prefix, e.g. share/bras_description/urdf/bras.urdf
-    source: str  # relative to the package folder
+COLCON_MARKER = "share/colcon-core/packages"  # colcon-core writes share/colcon-core/packages/PKG in every prefix
 
 
 @dataclass(frozen=True)
 class BuildFailure:
     """Why colcon would stop. ``kind``: "ament_cmake", "no_setup", "setup_raised", "no_setup_call",
-    "missing_source" (the marker when ``source`` is resource/PKG), "outside"; ``colcon``: the lines
-    colcon prints (its own words and setuptools'); ``file``/``line`` the learner's place."""
+    "missing_source" (the marker when ``source`` is resource/PKG), "outside"; and what bras-kit
+    refuses to act on (:mod:`.setup_check`): "name", "source_<why>" (a data_files, packages or
+    scripts path outside the package, a link out, a device...), "module", "entry_point", "value",
+    "prefix" (install/PKG is not an install tree), "install"; ``colcon``: the lines colcon prints
+    (its own words and setuptools'); ``file``/``line`` the learner's place."""
 
     kind: str
     colcon: tuple[str, ...]
@@ -62,6 +65,7 @@ class BuildRecord:
     setup_line: int = 0
     data_files_line: int = 0
     failure: BuildFailure | None = None
+    blocked: list[Attempt] = field(default_factory=list)  # what setup.py tried that its walls stopped
 
     def source_of(self, path: str) -> str | None:
         """The package file installed at ``path`` (absolute, in the install tree), if any."""
@@ -92,13 +96,20 @@ def _manifest(root: str) -> tuple[str, str]:
             (build_type.text or "").strip() if build_type is not None else "")
 
 
+def _shown_name(name: str, root: str) -> str:
+    """The name shown in colcon's lines: package.xml's when it is a name, else the folder's."""
+    return name if name and name_problem(name) is None else os.path.basename(root)
+
+
 def build_package(root: str, install_base: str) -> BuildRecord:
     """Build the package at ``root`` into ``install_base/PKG`` (replacing what was there).
-    Learner mistakes come back as ``record.failure``; only the sandbox's own limits raise."""
+    Learner mistakes come back as ``record.failure``; only the sandbox's own limits raise.
+    Nothing ``setup.py`` returns is acted on before :func:`.setup_check.check_setup` passed it."""
     root = os.path.abspath(root)
+    install_base = os.path.abspath(install_base)
     name, build_type = _manifest(root)
-    package = name or os.path.basename(root)
-    record = BuildRecord(package, root, os.path.abspath(os.path.join(install_base, package)))
+    package = _shown_name(name, root)
+    record = BuildRecord(package, root, os.path.join(install_base, package))
     if build_type and build_type != "ament_python":
         lines = [f"CMake Error: The source directory \"{root}\" does not appear to contain CMakeLists.txt."] \
             if not os.path.isfile(os.path.join(root, "CMakeLists.txt")) else []
@@ -109,114 +120,130 @@ def build_package(root: str, install_base: str) -> BuildRecord:
         record.failure = BuildFailure("no_setup", (), "setup.py")
         return record
     called = _run_setup(root)
+    record.blocked = [a for a in called.get("blocked", []) if isinstance(a, Attempt)]
     if "error" in called:
         error = called["error"]
         record.failure = BuildFailure("setup_raised", _failed(package, [error["text"]]), "setup.py",
                                       error["line"], detail=error["text"])
         return record
-    if "setup" not in called:
+    if "setup" not in called or not isinstance(called["setup"], dict):
         record.failure = BuildFailure("no_setup_call", (), "setup.py")
         return record
     setup = called["setup"]
-    record.setup_line = setup.get("_line", 0)
+    record.setup_line = int(setup.get("_line") or 0)
     record.data_files_line = _line_of(root, "setup.py", "data_files") or record.setup_line
-    if isinstance(setup.get("name"), str) and setup["name"]:
-        record.package = setup["name"]
-        record.prefix = os.path.abspath(os.path.join(install_base, record.package))
-    failure = _plan_install(record, setup)
-    if failure is not None:
-        record.failure = failure
+    checked = check_setup(setup, root, manifest_name=name or os.path.basename(root),
+                          setup_source=_setup_source(root), python_lib=PYTHON_LIB)
+    if isinstance(checked, Refusal):
+        record.failure = _refused(record, checked)
         return record
-    _lay_out(record, setup)
+    record.package = checked.name
+    record.prefix = os.path.join(install_base, checked.name)  # one checked name: directly under the base
+    record.installed = list(checked.installed)
+    record.scripts = list(checked.console_scripts)
+    record.failure = _lay_out(record, checked)
     return record
 
 
-def _line_of(root: str, relative: str, text: str) -> int:
+def _setup_source(root: str) -> str:
+    from ..learner_files import read_text
+
     try:
-        with open(os.path.join(root, relative), encoding="utf-8", errors="replace") as handle:
-            for number, line in enumerate(handle, 1):
-                if text in line:
-                    return number
+        return read_text(os.path.join(root, "setup.py"), (root,), errors="replace")
     except OSError:
-        pass
-    return 0
+        return ""
 
 
-def _plan_install(record: BuildRecord, setup: dict[str, Any]) -> BuildFailure | None:
-    """What install_data would copy (setuptools/_distutils/command/install_data.py: a missing
-    source stops it with distutils' own words, from file_util.copy_file)."""
-    for entry in setup.get("data_files") or []:
-        if isinstance(entry, str):
-            folder, files = "", [entry]
-        else:
-            folder, files = entry[0], list(entry[1])
-        target_folder = os.path.normpath(str(folder)).replace(os.sep, "/")
-        if os.path.isabs(target_folder) or target_folder.startswith(".."):
-            return BuildFailure("outside", (), "setup.py", record.data_files_line, detail=str(folder))
-        for source in files:
-            source = str(source)
-            full = os.path.join(record.root, source)
-            if not os.path.isfile(full):
-                message = f"error: can't copy '{source}': doesn't exist or not a regular file"
-                return BuildFailure("missing_source", _failed(record.package, [message]), "setup.py",
-                                    _line_of(record.root, "setup.py", os.path.basename(source).split("'")[0])
-                                    or record.data_files_line, source=source, detail=target_folder)
-            target = os.path.join(target_folder, os.path.basename(source)) if target_folder not in ("", ".") \
-                else os.path.basename(source)
-            record.installed.append(Installed(target.replace(os.sep, "/"),
-                                              os.path.relpath(full, record.root).replace(os.sep, "/")))
-    for line in _console_scripts(setup):
-        left, _, right = line.partition("=")
-        module, _, function = right.strip().partition(":")
-        record.scripts.append((left.strip(), module.strip(), function.strip()))
-    return None
+def _refused(record: BuildRecord, refusal: Refusal) -> BuildFailure:
+    """A refusal of the checked record, as the build's failure at the learner's line."""
+    if refusal.kind == "missing_source":  # setuptools' install_data (file_util.copy_file), in its words
+        message = f"error: can't copy '{refusal.value}': doesn't exist or not a regular file"
+        return BuildFailure("missing_source", _failed(record.package, [message]), refusal.file, refusal.line or
+                            record.data_files_line, source=refusal.value, detail=refusal.target)
+    if refusal.kind == "name":  # catkin_pkg's InvalidPackage, as colcon-ros shows it
+        words = name_problem(refusal.value) or refusal.value
+        if refusal.file == "setup.py":
+            return BuildFailure("name", (words,), refusal.file, refusal.line, detail=refusal.value)
+        where = os.path.join(record.root, "package.xml")
+        return BuildFailure("name", (f"Error(s) in package '{where}':", words), refusal.file,
+                            _line_of(record.root, "package.xml", "<name>"), detail=refusal.value)
+    kind = f"source_{refusal.why}" if refusal.kind == "source" else refusal.kind
+    return BuildFailure(kind, (), refusal.file, refusal.line or record.setup_line, source=refusal.value,
+                        detail=refusal.value)
 
 
-def _console_scripts(setup: dict[str, Any]) -> list[str]:
-    entry_points = setup.get("entry_points") or {}
-    scripts = entry_points.get("console_scripts", []) if isinstance(entry_points, dict) else []
-    if isinstance(scripts, str):
-        scripts = [s for s in scripts.splitlines() if s.strip()]
-    return [str(s) for s in scripts]
+def _line_of(root: str, relative: str, text: str) -> int:
+    from ..learner_files import read_text
+
+    try:
+        lines = read_text(os.path.join(root, relative), (root,), errors="replace").splitlines()
+    except OSError:
+        return 0
+    return next((number for number, line in enumerate(lines, 1) if text in line), 0)
 
 
 SCRIPT = """#!/usr/bin/python3
 # EASY-INSTALL-ENTRY-SCRIPT: '{dist}','console_scripts','{name}'
 # written by bras-kit build: {module}:{function}
 import sys
-from {module} import {function}
+from {module} import {head}
 sys.exit({function}())
 """
 
 
-def _lay_out(record: BuildRecord, setup: dict[str, Any]) -> None:
-    if os.path.isdir(record.prefix):
-        shutil.rmtree(record.prefix)
-    os.makedirs(record.prefix)
-    for item in record.installed:
-        target = os.path.join(record.prefix, item.target)
-        os.makedirs(os.path.dirname(target), exist_ok=True)
-        shutil.copyfile(os.path.join(record.root, item.source), target)
-    for package in setup.get("packages") or []:
-        source = os.path.join(record.root, *str(package).split("."))
-        if not os.path.isdir(source):
-            continue
-        target = os.path.join(record.prefix, PYTHON_LIB, *str(package).split("."))
-        os.makedirs(target, exist_ok=True)
-        for name in os.listdir(source):
-            if name.endswith(".py") and os.path.isfile(os.path.join(source, name)):
-                shutil.copyfile(os.path.join(source, name), os.path.join(target, name))
-    for name, module, function in record.scripts:
-        if not name or "/" in name or name.startswith("."):
-            continue
-        path = os.path.join(record.prefix, "lib", record.package, name)
-        os.makedirs(os.path.dirname(path), exist_ok=True)
-        with open(path, "w", encoding="utf-8") as handle:
-            handle.write(SCRIPT.format(dist=record.package, name=name, module=module, function=function))
-        os.chmod(path, 0o755)
-    colcon = os.path.join(record.prefix, "share", "colcon-core", "packages", record.package)
-    os.makedirs(os.path.dirname(colcon), exist_ok=True)
-    open(colcon, "w").close()
+def _clear_prefix(record: BuildRecord) -> BuildFailure | None:
+    """Remove the previous build of this package, and nothing else: a folder directly under the
+    install base, named by a checked name, holding colcon's marker for that name (or empty)."""
+    prefix = record.prefix
+    if not os.path.lexists(prefix):
+        return None
+    marker = os.path.join(prefix, COLCON_MARKER, record.package)
+    ours = os.path.isdir(prefix) and not os.path.islink(prefix) and (
+        (os.path.isfile(marker) and not os.path.islink(marker)) or not os.listdir(prefix))
+    if not ours:
+        return BuildFailure("prefix", (), "setup.py", record.setup_line, source=prefix, detail=prefix)
+    shutil.rmtree(prefix)
+    return None
+
+
+def _lay_out(record: BuildRecord, checked: CheckedSetup) -> BuildFailure | None:
+    """The install tree from the checked record: every source read through the one reader
+    (:mod:`bras_kit.learner_files`), every target a new file under the fresh prefix."""
+    from ..learner_files import Unreadable, copy_file
+
+    refused = _clear_prefix(record)
+    if refused is not None:
+        return refused
+    roots = (record.root,)
+    try:
+        os.makedirs(record.prefix)
+        # colcon's marker first: a build stopped half-way leaves a prefix the next build may replace
+        colcon = os.path.join(record.prefix, COLCON_MARKER, record.package)
+        os.makedirs(os.path.dirname(colcon))
+        open(colcon, "w").close()
+        for item in (*checked.installed, *checked.modules, *checked.executables):
+            target = os.path.join(record.prefix, item.target)
+            os.makedirs(os.path.dirname(target), exist_ok=True)
+            if os.path.lexists(target):  # two entries install the same file: the last wins, as in setuptools
+                os.remove(target)
+            copy_file(os.path.join(record.root, item.source), roots, target)
+            if item in checked.executables:
+                os.chmod(target, 0o755)
+        for name, module, function in checked.console_scripts:
+            path = os.path.join(record.prefix, "lib", record.package, name)
+            os.makedirs(os.path.dirname(path), exist_ok=True)
+            with open(path, "w", encoding="utf-8") as handle:
+                handle.write(SCRIPT.format(dist=record.package, name=name, module=module,
+                                           head=function.partition(".")[0], function=function))
+            os.chmod(path, 0o755)
+    except Unreadable as exc:  # changed between the check and the copy, or too large
+        return BuildFailure(f"source_{exc.kind}", (), "setup.py", record.data_files_line,
+                            source=os.path.relpath(exc.path, record.root), detail=exc.path)
+    except OSError as exc:  # two entries that make a file and a folder of one name, a full disk...
+        message = f"error: {exc.strerror or exc}: '{os.path.relpath(exc.filename or record.prefix, record.prefix)}'"
+        return BuildFailure("install", _failed(record.package, [message]), "setup.py", record.data_files_line,
+                            detail=message)
+    return None
 
 
 # ---------------------------------------------------------------- the child
@@ -232,7 +259,7 @@ def _run_setup(root: str) -> dict[str, Any]:
         # the learner's setup.py reads its package and writes nowhere (setup() is recorded)
         walls = containment("auto", workdir, (root,))
         try:
-            return run_limited(_run_setup_here, root, cpu_seconds=SETUP_CPU_SECONDS, memory_bytes=SETUP_MEMORY_BYTES,
+            return run_limited(_run_setup_here, root, walls, cpu_seconds=SETUP_CPU_SECONDS, memory_bytes=SETUP_MEMORY_BYTES,
                                wall_seconds=SETUP_WALL_SECONDS, what=f"{root}/setup.py", contain=walls)
         except ResourceLimitError as exc:  # a setup.py that never ends or eats the memory: as data
             return {"error": {"text": f"setup.py was stopped ({exc.kind} limit of the sandbox)", "line": 0}}
@@ -266,13 +293,21 @@ def _plain(value: Any) -> Any:
     return str(value)
 
 
-def _run_setup_here(root: str) -> dict[str, Any]:
-    """In the child: ``python setup.py`` with setup() recorded."""
+def _run_setup_here(root: str, walls: Any = None) -> dict[str, Any]:
+    """In the child: ``python setup.py`` with setup() recorded; contained (``walls``), what its
+    walls stopped comes back as ``blocked``, at setup.py's lines (BK639)."""
     import inspect
     import runpy
     import traceback
     import types
 
+    watcher = None
+    if walls is not None:
+        from .attempts import Watcher
+
+        read, write = walls.granted()
+        watcher = Watcher(root, tuple(write), tuple(read))
+        watcher.install()
     os.chdir(root)
     sys.path.insert(0, root)
     sys.argv = [os.path.join(root, "setup.py"), "build"]
@@ -306,4 +341,6 @@ def _run_setup_here(root: str) -> dict[str, Any]:
         frames = [f for f in traceback.extract_tb(exc.__traceback__) if os.path.abspath(f.filename) == setup_path]
         line = frames[-1].lineno if frames else getattr(exc, "lineno", 0) or 0
         called["error"] = {"text": "".join(traceback.format_exception_only(type(exc), exc)).strip(), "line": line}
+    if watcher is not None:
+        called["blocked"] = watcher.finish()
     return called

@@ -16,10 +16,13 @@ import traceback
 from typing import Any
 
 from .locate import Target
-from .recording import Endpoint, Frame, NodeFailure, Published, Recording, TimerInfo
+from .recording import Endpoint, Frame, NodeFailure, Published, Recording, SplitString, TimerInfo
 
 STANDIN = os.path.join(os.path.dirname(os.path.abspath(__file__)), "standin")
 SIMULATED = ("rclpy", "tf2_ros", "_bras_sim", "_messages")
+# the stand-in's own packages (folders of standin/), none of them a message package
+STANDIN_PACKAGES = frozenset(name for name in os.listdir(STANDIN) if os.path.isdir(os.path.join(STANDIN, name))
+                             and not name.startswith(("_", ".")))
 # other ROS 2 Python packages a node may import: refused with a clear message, never taken
 # from a real install (the stand-in's rclpy cannot drive them)
 ROS_PACKAGES = ("launch", "launch_ros", "ament_index_python", "tf2_py", "tf_transformations",
@@ -47,10 +50,16 @@ class StandinFinder(importlib.abc.MetaPathFinder):
         top = fullname.partition(".")[0]
         if not is_ros_name(top):
             return None
-        if top not in SIMULATED:
+        if top not in SIMULATED and top not in STANDIN_PACKAGES:
+            # only a message package reads Jazzy's definitions (rosbags' whole store, about 0.2 s):
+            # launch, launch_ros, xacro... are the stand-in's own folders
             spec = _message_spec(fullname)
             if spec is not None:
                 return spec
+            if "." in fullname and _message_spec(fullname.rpartition(".")[0]) is not None:
+                # `from std_msgs.msg import JointState` looks for a submodule last (importlib
+                # _handle_fromlist): none, and Python raises the ImportError Jazzy raises
+                return None
         search = [STANDIN] if path is None or "." not in fullname else path
         spec = importlib.machinery.PathFinder.find_spec(fullname, search)
         if spec is None:
@@ -216,6 +225,11 @@ def _context(exc: BaseException, target: Target, sim: Any) -> dict[str, Any]:
     for key in ("field", "held"):
         if hasattr(exc, key):
             out[key] = getattr(exc, key)
+    if isinstance(exc, ImportError) and str(exc).startswith("cannot import name '"):
+        import _messages  # `from std_msgs.msg import JointState`: the modules that do define it
+
+        out["homes"] = _messages.homes_of(str(exc).split("'")[1])
+        out["near"] = _messages.near_names(str(exc).split("'")[1])
     node_class = _uninitialised_node(exc)
     if node_class is not None:
         out["node_class"] = node_class.__name__
@@ -283,9 +297,13 @@ def run_node_here(target: Target, duration: float, echo: bool, workdir: str, wat
     sys.path.insert(0, target.root)
     sys.argv = [target.path]
     output = io.StringIO()
-    saved_stdout = sys.stdout
+    saved_stdout, saved_stderr = sys.stdout, sys.stderr
     if not echo:
         sys.stdout = output
+    else:  # shown live: the learner's prints and logs with their control characters shown, not obeyed
+        from ..inert import TerminalWriter
+
+        sys.stdout, sys.stderr = TerminalWriter(sys.stdout), TerminalWriter(sys.stderr)  # type: ignore[assignment]
     saved = _patch_time(sim)
     saved_threads = _patch_threads(sim)
     ended, failure = "returned", None
@@ -321,7 +339,7 @@ def run_node_here(target: Target, duration: float, echo: bool, workdir: str, wat
     finally:
         _restore_time(saved)
         _restore_threads(saved_threads)
-        sys.stdout = saved_stdout
+        sys.stdout, sys.stderr = saved_stdout, saved_stderr
     if failure is None:
         # an exception in another thread: Python prints it and that thread ends; the first
         # before the end of the run is the node's failure (one at Ctrl-C is only noise)
@@ -341,4 +359,17 @@ def run_node_here(target: Target, duration: float, echo: bool, workdir: str, wat
         timers=[TimerInfo(n, period, *_place(path, line, target)) for n, period, path, line in state.timers],
         nodes=[node.get_name() for node in state.nodes], rate_sleeps=state.rate_sleeps,
         wall_seconds=wall() - started, start_ns=sim.START_NS, output=output.getvalue()[:MAX_OUTPUT],
+        split_strings=_split_strings(state.split_strings, target),
     )
+
+
+def _split_strings(found: list[tuple[str, str, str, str, str, int]], target: Target) -> list[SplitString]:
+    """One per place and field (the first value), with how many messages were sent so."""
+    counts: dict[tuple[str, str, str, str, int], int] = {}
+    values: dict[tuple[str, str, str, str, int], str] = {}
+    for node, topic, field, value, path, line in found:
+        key = (node, topic, field, *_place(path, line, target))
+        counts[key] = counts.get(key, 0) + 1
+        values.setdefault(key, value)
+    return [SplitString(node, topic, field, values[key], path, line, counts[key])
+            for key in counts for node, topic, field, path, line in [key]]

@@ -21,9 +21,18 @@ what Linux gives any user, without a daemon, root or a helper program:
   tokens and keys in the others do not reach it;
 - its own session and process group (``kill(0, ...)`` would otherwise reach the caller's
   group, and ``TIOCSTI`` the terminal's shell);
+- an **unprivileged identity**: the caller's own uid, or for root the overflow user
+  (``nobody``), mapped from outside by a helper that stays there, because the kernel never
+  counts root in ``RLIMIT_NPROC`` (kernel/fork.c, ``copy_process``: ``real_cred->user !=
+  INIT_USER``), whatever its namespace;
 - then every capability dropped (the bounding set too) and ``no_new_privs`` set;
-  ``RLIMIT_NPROC`` (and, for root whom the kernel does not count, an audit hook) caps the
-  processes it may start.
+  ``RLIMIT_NPROC`` caps the processes it may start, ``RLIMIT_FSIZE`` each file it writes;
+- its folder a **bounded tmpfs** (bytes and files) seen only in its mount namespace: what it
+  writes there stays in memory and goes with the run, never on this machine's disk;
+- a **seccomp filter** (libseccomp, through ``pyseccomp``) that refuses new namespaces
+  (``unshare``, ``setns``, ``clone`` with a ``CLONE_NEW*`` flag), mounts (``mount``,
+  ``umount2``, ``pivot_root``, the new mount API) and the kernel keyrings, whatever calls them
+  (``ctypes`` included).
 
 ::
 
@@ -46,6 +55,7 @@ import sys
 import sysconfig
 from collections.abc import Iterable, Sequence
 from dataclasses import dataclass, field
+from typing import Any
 
 from ..errors import BrasKitError
 from ..message import M, Message
@@ -63,12 +73,25 @@ MS_REMOUNT, MS_BIND, MS_REC, MS_PRIVATE = 32, 4096, 16384, 1 << 18
 MS_NOATIME, MS_NODIRATIME, MS_RELATIME = 1024, 2048, 1 << 21
 ST_RELATIME = 4096  # statvfs's flag for MS_RELATIME (the other ST_ flags equal the MS_ ones)
 MNT_DETACH = 2
-PR_SET_PDEATHSIG, PR_CAPBSET_DROP, PR_SET_NO_NEW_PRIVS = 1, 24, 38
+PR_SET_PDEATHSIG, PR_SET_KEEPCAPS, PR_CAPBSET_DROP, PR_SET_NO_NEW_PRIVS = 1, 8, 24, 38
+CAP_DAC_READ_SEARCH = 2
 LINUX_CAPABILITY_VERSION_3 = 0x20080522
 PIVOT_ROOT = {"x86_64": 155, "aarch64": 41, "arm64": 41, "riscv64": 41, "ppc64le": 203, "ppc64": 203,
               "s390x": 217, "armv7l": 218, "i686": 217, "i386": 217}
 MAX_PROCESSES = 32  # the processes the contained code may start in all (a fork bomb stops there)
 MAX_FILE_BYTES = 256 << 20  # the largest file it may write in its folder
+MAX_FOLDER_BYTES = 256 << 20  # all it may write in its folder (a tmpfs: kept in memory, never on disk)
+MAX_FOLDER_FILES = 4096  # the files and folders it may make there (each inode costs kernel memory)
+STAGING = ".bras-kit-root"  # where the new root is built, in the real folder (removed once it is the root)
+# clone()'s flags that make a namespace (CLONE_NEWTIME shares its bit with the exit signal there)
+CLONE_NEWCGROUP = 0x02000000
+NEW_NAMESPACE_FLAGS = (CLONE_NEWNS, CLONE_NEWCGROUP, CLONE_NEWUTS, CLONE_NEWIPC, CLONE_NEWUSER, CLONE_NEWPID,
+                       CLONE_NEWNET)
+# refused to the contained code (EPERM): namespaces and mounts (a nested user namespace would give
+# it every capability there, and a tmpfs it mounts is memory no limit counts), and the kernel's
+# keyrings, which are per user and not namespaced (Docker's default profile refuses the same)
+REFUSED_CALLS = ("unshare", "setns", "mount", "umount", "umount2", "pivot_root", "chroot", "fsopen", "fsconfig",
+                 "fsmount", "fspick", "move_mount", "open_tree", "mount_setattr", "keyctl", "add_key", "request_key")
 XCPU_EXIT = 128 + signal.SIGXCPU  # how the init says it ran out of CPU time (see _xcpu)
 ROOT_BYTES = 1 << 20  # the tmpfs that holds the mount points (read-only once built)
 
@@ -106,6 +129,7 @@ class Containment:
     readable: tuple[str, ...] = ()
     max_processes: int = MAX_PROCESSES
     max_file_bytes: int = MAX_FILE_BYTES
+    max_folder_bytes: int = MAX_FOLDER_BYTES
     system: tuple[str, ...] = field(default=SYSTEM)
     keep: tuple[int, ...] = ()  # file descriptors the contained code keeps (a pipe its caller reads)
 
@@ -125,24 +149,38 @@ class Containment:
         Raises :class:`ContainmentError` when a step fails (nothing has run then).
         """
         _close_fds_except({0, 1, 2, *keep})
+        seccomp = _seccomp()  # loaded while ldconfig can still be asked where libseccomp is
         read, write = self.granted()
         uid, gid = os.getuid(), os.getgid()
+        identity = _identity(uid, gid)
         last_cap = int(_read("/proc/sys/kernel/cap_last_cap") or 63)
-        staging = os.path.join(self.workdir, ".bras-kit-root")
+        staging = os.path.join(self.workdir, STAGING)
         os.mkdir(staging, 0o700)
-        _unshare(NAMESPACES)
-        _map_ids(uid, gid)
-        _build_root(staging, read, write)
+        real_folder = os.open(self.workdir, os.O_RDONLY | os.O_DIRECTORY)  # to remove the staging folder from
+        if identity[0] == uid:
+            _unshare(NAMESPACES)
+            _map_ids(uid, gid)
+        else:
+            _unshare_mapped_from_outside(identity)
+        _build_root(staging, read, write, self.workdir, self.max_folder_bytes, identity)
         _pivot(staging)
         alive_read, alive_write = os.pipe()  # open at its end while the process outside lives
         pid = os.fork()  # the first child in the new PID namespace is its init
         if pid:
             for fd in (*keep, alive_read):
                 os.close(fd)
+            try:  # the real folder as its caller made it (the new root lives on, detached from it)
+                os.rmdir(STAGING, dir_fd=real_folder)
+            except OSError:
+                pass
+            os.close(real_folder)
             _relay(pid)
         # the namespace's init: dies with the process outside that waits for it
         os.close(alive_write)
-        _prctl(PR_SET_PDEATHSIG, signal.SIGKILL)
+        os.close(real_folder)
+        _drop_bounding_set(last_cap)
+        kept = _become(identity)  # root's own uid is never counted in RLIMIT_NPROC: nobody's is
+        _prctl(PR_SET_PDEATHSIG, signal.SIGKILL)  # after _become: a change of uid clears it
         if select.select([alive_read], [], [], 0)[0]:  # it died before the line above
             os._exit(1)
         os.close(alive_read)
@@ -154,11 +192,8 @@ class Containment:
         os.chdir(self.workdir)
         _environment(self.workdir)
         _visible_sys_path()
-        try:
-            os.rmdir(os.path.basename(staging))  # no longer a mount point here: the learner's folder is as made
-        except OSError:
-            pass
-        _drop_privileges(last_cap, self.max_processes, self.max_file_bytes)
+        _drop_privileges(kept, self.max_processes, self.max_file_bytes)
+        _refuse_namespaces_and_mounts(seccomp)
         _count_processes(self.max_processes)
 
 
@@ -191,6 +226,10 @@ def _existing(paths: Iterable[str]) -> list[str]:
 @functools.lru_cache(maxsize=1)
 def available() -> Status:
     """Whether this machine can contain a child, found by trying it in a throwaway child."""
+    try:
+        _seccomp()  # imported here, once: every child forked from this process has it
+    except ContainmentError:
+        pass  # the trial below says so
     if sys.platform != "linux":
         return Status(False, M("{system} has no Linux namespaces", system=platform.system() or sys.platform),
                       M("Linux user, mount, network and PID namespaces"),
@@ -202,6 +241,9 @@ def available() -> Status:
     step, code = _trial()
     if not step:
         return Status(True, M("user, mount, network and PID namespaces"))
+    if step == "libseccomp":
+        return Status(False, M("libseccomp was not found"), M("libseccomp (the seccomp filter library)"),
+                      M("install it: sudo apt install libseccomp2 (Debian, Ubuntu) or sudo dnf install libseccomp"))
     if step == "unshare":
         return Status(False, M("the kernel refuses new namespaces to this user ({reason})",
                                reason=os.strerror(code) if code else "?"),
@@ -343,17 +385,50 @@ def _bind(path: str, staging: str, writable: bool) -> None:
     _mount(None, target, None, MS_REMOUNT | MS_BIND | _locked_flags(path) | (0 if writable else MS_RDONLY))
 
 
-def _build_root(staging: str, read: list[str], write: list[str]) -> None:
+def _build_root(staging: str, read: list[str], write: list[str], workdir: str, folder_bytes: int,
+                owner: tuple[int, int]) -> None:
+    """The new root, built at ``staging``: ``read`` bound read-only, ``write`` read-write but
+    ``workdir``, a bounded tmpfs (:func:`_bounded_folder`)."""
     _mount(None, "/", None, MS_REC | MS_PRIVATE)  # nothing below propagates back to this machine
     _mount("tmpfs", staging, "tmpfs", MS_NOSUID | MS_NODEV, f"size={ROOT_BYTES},mode=0755")
-    for path in SYSTEM:  # a merged /usr: /lib -> usr/lib stays a symbolic link
-        if os.path.islink(path):
-            os.symlink(os.readlink(path), staging + path)
-    for path in read:
-        if not os.path.lexists(staging + path):
+    previous = os.umask(0o022)  # the folders on the way to a granted path: open to the identity the code runs as
+    try:
+        for path in SYSTEM:  # a merged /usr: /lib -> usr/lib stays a symbolic link
+            if os.path.islink(path):
+                os.symlink(os.readlink(path), staging + path)
+        for path in read:
+            if not os.path.lexists(staging + path):
+                _bind(path, staging, writable=False)
+        for path in write:
+            if path == os.path.abspath(workdir):
+                _bounded_folder(path, staging, folder_bytes, owner)
+            else:
+                _bind(path, staging, writable=True)
+    finally:
+        os.umask(previous)
+
+
+def _bounded_folder(workdir: str, staging: str, most: int, owner: tuple[int, int]) -> None:
+    """The code's folder: a tmpfs of ``most`` bytes and :data:`MAX_FOLDER_FILES` files, owned
+    by the identity it runs as, holding what the caller put in ``workdir`` (its files and
+    folders bound read-only, its empty folders as empty folders of its own, to write in). A
+    node filling it gets ENOSPC at its line; nothing it writes reaches this machine's disk
+    (every caller's folder is a temporary one, removed after the run)."""
+    target = staging + workdir
+    os.makedirs(target, exist_ok=True)
+    names = sorted(n for n in os.listdir(workdir) if n != STAGING)
+    _mount("tmpfs", target, "tmpfs", MS_NOSUID | MS_NODEV,
+           f"size={most},nr_inodes={MAX_FOLDER_FILES},mode=0700,uid={owner[0]},gid={owner[1]}")
+    for name in names:
+        path = os.path.join(workdir, name)
+        if os.path.isdir(path) and not os.path.islink(path) and not os.listdir(path):
+            os.mkdir(os.path.join(target, name), 0o755)
+            os.chown(os.path.join(target, name), *owner)
+        elif os.path.islink(path):
+            os.symlink(os.readlink(path), os.path.join(target, name))
+            os.lchown(os.path.join(target, name), *owner)
+        else:
             _bind(path, staging, writable=False)
-    for path in write:
-        _bind(path, staging, writable=True)
 
 
 def _pivot(staging: str) -> None:
@@ -416,6 +491,108 @@ def _xcpu(number: int, frame: object) -> None:
     os._exit(XCPU_EXIT)
 
 
+# --- who the code runs as -------------------------------------------------------------------
+
+def _identity(uid: int, gid: int) -> tuple[int, int]:
+    """The (uid, gid) the contained code runs as: the caller's own, or for root the overflow
+    user's (``nobody``): the kernel never counts root's processes against RLIMIT_NPROC."""
+    if uid != 0:
+        return uid, gid
+    return int(_read("/proc/sys/kernel/overflowuid") or 65534), int(_read("/proc/sys/kernel/overflowgid") or 65534)
+
+
+def _unshare_mapped_from_outside(identity: tuple[int, int]) -> None:
+    """For root: the namespaces made, with a uid and gid map only a process left outside may
+    write (it must hold CAP_SETUID over the parent namespace, user_namespaces(7)): root onto
+    root for the steps that build the walls, and ``identity`` onto itself for the code."""
+    go_read, go_write = os.pipe()
+    me = os.getpid()
+    helper = os.fork()
+    if helper == 0:  # stays outside: writes this process's maps once it has its namespace
+        code = 1
+        try:
+            os.close(go_write)
+            if os.read(go_read, 1) == b"1":
+                uid, gid = identity
+                _write(f"/proc/{me}/uid_map", f"0 0 1\n{uid} {uid} 1\n")
+                _write(f"/proc/{me}/gid_map", f"0 0 1\n{gid} {gid} 1\n")
+                code = 0
+        except BaseException:  # noqa: BLE001 - the waiting process reports the failed step
+            pass
+        os._exit(code)
+    os.close(go_read)
+    try:
+        _unshare(NAMESPACES)
+        os.write(go_write, b"1")
+    finally:
+        os.close(go_write)
+        _, status = os.waitpid(helper, 0)
+    if not os.WIFEXITED(status) or os.WEXITSTATUS(status) != 0:
+        error = ContainmentError(M("the containment could not be set up: {step} failed ({reason})",
+                                   step="uid_map", reason=os.strerror(errno.EPERM)))
+        error.errno, error.step = errno.EPERM, "uid_map"  # type: ignore[attr-defined]
+        raise error
+
+
+def _become(identity: tuple[int, int]) -> int:
+    """Inside: run as ``identity`` (no supplementary group); returns the capabilities kept.
+
+    For root's code, run as ``nobody``: CAP_DAC_READ_SEARCH in its user namespace, so that it
+    still reads what root gave it to read (a package in a folder of mode 700, as root's home
+    and ``mkdtemp`` make them); a capability of a user namespace reaches only the files whose
+    owner is mapped there (root's, nobody's), its view holds only the granted paths, bound
+    read-only, and the kernel checks RLIMIT_NPROC against capabilities of the first namespace
+    only (kernel/fork.c), which it has none of. A program it executes loses it (no ambient set)."""
+    uid, gid = identity
+    if os.getuid() == uid and os.getgid() == gid:
+        return 0
+    _prctl(PR_SET_KEEPCAPS, 1)
+    os.setgroups([])
+    os.setresgid(gid, gid, gid)
+    os.setresuid(uid, uid, uid)
+    return 1 << CAP_DAC_READ_SEARCH
+
+
+# --- the seccomp filter ---------------------------------------------------------------------
+
+@functools.lru_cache(maxsize=1)
+def _seccomp() -> object:
+    """pyseccomp (libseccomp through ctypes), or a :class:`ContainmentError` naming the step."""
+    try:
+        import pyseccomp
+    except (ImportError, RuntimeError, OSError) as exc:  # RuntimeError: libseccomp.so.2 not found
+        error = ContainmentError(M("the containment could not be set up: {step} failed ({reason})",
+                                   step="libseccomp", reason=str(exc)))
+        error.errno, error.step = errno.ENOENT, "libseccomp"  # type: ignore[attr-defined]
+        raise error from None
+    return pyseccomp
+
+
+def _refuse_namespaces_and_mounts(seccomp: object) -> None:
+    """Load the filter of :data:`REFUSED_CALLS` (EPERM) and of ``clone`` with a namespace flag;
+    ``clone3``, whose flags sit in memory a filter cannot read, answers ENOSYS, so the C library
+    falls back to ``clone`` (glibc's ``__clone_internal``), as Docker's and Chromium's filters do.
+    Inherited by every process the code starts; no process can remove it."""
+    lib: Any = seccomp
+    rules = lib.SyscallFilter(lib.ALLOW)
+    refused = lib.ERRNO(errno.EPERM)
+    try:
+        for name in REFUSED_CALLS:
+            if lib.resolve_syscall(lib.Arch.NATIVE, name) >= 0:  # negative: no such call on this processor
+                rules.add_rule(refused, name)
+        flags_argument = 1 if platform.machine().startswith("s390") else 0  # s390 swaps clone's first two
+        for flag in NEW_NAMESPACE_FLAGS:
+            rules.add_rule(refused, "clone", lib.Arg(flags_argument, lib.MASKED_EQ, flag, flag))
+        if lib.resolve_syscall(lib.Arch.NATIVE, "clone3") >= 0:
+            rules.add_rule(lib.ERRNO(errno.ENOSYS), "clone3")
+        rules.load()
+    except OSError as exc:
+        error = ContainmentError(M("the containment could not be set up: {step} failed ({reason})",
+                                   step="seccomp", reason=exc.strerror or str(exc)))
+        error.errno, error.step = exc.errno, "seccomp"  # type: ignore[attr-defined]
+        raise error from None
+
+
 class _CapHeader(ctypes.Structure):
     _fields_ = [("version", ctypes.c_uint32), ("pid", ctypes.c_int)]
 
@@ -424,15 +601,21 @@ class _CapData(ctypes.Structure):
     _fields_ = [("effective", ctypes.c_uint32), ("permitted", ctypes.c_uint32), ("inheritable", ctypes.c_uint32)]
 
 
-def _drop_privileges(last_cap: int, max_processes: int, max_file_bytes: int) -> None:
-    import resource
-
+def _drop_bounding_set(last_cap: int) -> None:
+    """No capability can ever come back (needs CAP_SETPCAP: before :func:`_become`)."""
     for cap in range(last_cap + 1):
         if _libc.prctl(ctypes.c_int(PR_CAPBSET_DROP), ctypes.c_ulong(cap), 0, 0, 0) != 0 and \
                 ctypes.get_errno() != errno.EINVAL:
             _check(-1, "PR_CAPBSET_DROP")
+
+
+def _drop_privileges(kept: int, max_processes: int, max_file_bytes: int) -> None:
+    """Every capability dropped but ``kept`` (a mask of the first 32), no new privileges, the limits."""
+    import resource
+
     header = _CapHeader(LINUX_CAPABILITY_VERSION_3, 0)
     data = (_CapData * 2)()
+    data[0].effective = data[0].permitted = kept
     _check(_libc.capset(ctypes.byref(header), data), "capset")
     _prctl(PR_SET_NO_NEW_PRIVS, 1)
     resource.setrlimit(resource.RLIMIT_NPROC, (max_processes, max_processes))
@@ -445,8 +628,9 @@ SPAWNS = frozenset({"os.fork", "os.forkpty", "os.posix_spawn", "os.spawn", "subp
 
 def _count_processes(most: int) -> None:
     """At most ``most`` processes started in all, by any process of the namespace: a counter in
-    memory they all share, checked by an audit hook before each fork or spawn. ``RLIMIT_NPROC``
-    does the same in the kernel for any user but root, whom the kernel never counts."""
+    memory they all share, checked by an audit hook before each fork or spawn, so that Python's
+    own calls fail at the learner's line with words of ours. The kernel's ``RLIMIT_NPROC`` (the
+    code never runs as root, see :func:`_identity`) is what holds against ``ctypes``."""
     import mmap
     import struct
 

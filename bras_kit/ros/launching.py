@@ -17,6 +17,8 @@ import tempfile
 from dataclasses import dataclass, field
 from typing import Any
 
+from .recording import Attempt
+
 PLAN_CPU_SECONDS = 20
 PLAN_WALL_SECONDS = 40.0
 PLAN_MEMORY_BYTES = 1 << 30
@@ -49,6 +51,8 @@ class PlannedNode:
     delay: float
     file: str  # where the Node(...) was written (absolute, as loaded)
     line: int
+    ros_arguments: list[str] = field(default_factory=list)
+    argv: list[str] = field(default_factory=list)  # the node's command line after the program (node.py:201-212)
 
     @property
     def shown(self) -> str:
@@ -58,6 +62,17 @@ class PlannedNode:
     def full_name(self) -> str:
         name = self.name or self.executable
         return (self.namespace.rstrip("/") + "/" + name) if self.namespace else "/" + name
+
+    def resolve(self, topic: str) -> str:
+        """The topic this node really uses for ``topic``, as rcl resolves it: expanded in the node's
+        namespace, then remapped by its ``-r`` rules (names.py)."""
+        from .names import InvalidROSArgs, parse_ros_arguments, resolve_topic_name
+
+        try:
+            rules = parse_ros_arguments(self.argv).remaps
+        except InvalidROSArgs:
+            rules = []
+        return resolve_topic_name(topic, self.name or self.executable, self.namespace or "/", rules)
 
 
 @dataclass(frozen=True)
@@ -77,6 +92,11 @@ class LaunchPlan:
     logs: list[tuple[float, str, str, int]] = field(default_factory=list)
     warnings: list[str] = field(default_factory=list)
     failure: LaunchFailure | None = None
+    included: list[str] = field(default_factory=list)  # the launch files it included (absolute, installed)
+    unfired: list[dict[str, Any]] = field(default_factory=list)  # OnProcessStart whose target never started
+    # what the launch file tried that its walls stopped; ``path`` relative to the watched root
+    # (the package's install prefix: map it back with BuildRecord.source_of)
+    blocked: list[Attempt] = field(default_factory=list)
 
     @property
     def ros2_launch_error(self) -> str:
@@ -119,7 +139,7 @@ def plan_launch(launch_file: str, prefixes: list[str], arguments: dict[str, str]
         walls = containment("auto", workdir, (*roots, os.path.dirname(os.path.abspath(launch_file))))
         try:
             return run_limited(_plan_here, os.path.abspath(launch_file), [*prefixes, ros], dict(arguments or {}),
-                               cwd, roots, cpu_seconds=PLAN_CPU_SECONDS, memory_bytes=PLAN_MEMORY_BYTES,
+                               cwd, roots, walls, cpu_seconds=PLAN_CPU_SECONDS, memory_bytes=PLAN_MEMORY_BYTES,
                                wall_seconds=PLAN_WALL_SECONDS, what=f"the launch file {launch_file}", contain=walls)
         except ResourceLimitError as exc:  # a launch file that never ends: as data
             return LaunchPlan(launch_file, failure=LaunchFailure(
@@ -127,8 +147,9 @@ def plan_launch(launch_file: str, prefixes: list[str], arguments: dict[str, str]
 
 
 def _plan_here(launch_file: str, prefixes: list[str], arguments: dict[str, str], cwd: str,
-               roots: tuple[str, ...]) -> LaunchPlan:
-    """In the child: the stand-in installed, the launch description visited."""
+               roots: tuple[str, ...], walls: Any = None) -> LaunchPlan:
+    """In the child: the stand-in installed, the launch description visited; contained
+    (``walls``), what the walls stopped is watched from the first prefix (the package's)."""
     import sys
     import traceback
     import warnings
@@ -150,27 +171,43 @@ def _plan_here(launch_file: str, prefixes: list[str], arguments: dict[str, str],
     _install()
     import launch._plan as record
     import xacro as standin_xacro
-    from launch._core import LaunchContext, visit_all
-    from launch._sources import get_launch_description_from_any_launch_file
+    from launch._actions import IncludeLaunchDescription
+    from launch._core import LaunchContext, LaunchDescription, visit_all
+    from launch._events import fire_pending, unfired_start_handlers
+    from launch._sources import AnyLaunchDescriptionSource
 
     standin_xacro._REAL = real_xacro
     record.reset()
+    record.ROOTS = tuple(roots)
     plan = LaunchPlan(launch_file)
     context = LaunchContext(argv=[f"{k}:={v}" for k, v in arguments.items()])
     context.launch_configurations.update(arguments)
     context.extend_locals({"current_launch_file_path": launch_file,
                            "current_launch_file_directory": os.path.dirname(launch_file)})
     sys.argv = ["ros2", "launch", launch_file]
+    watcher = None
+    if walls is not None:
+        from .attempts import Watcher
+
+        read, write = walls.granted()
+        watcher = Watcher(prefixes[0] if prefixes else os.path.dirname(launch_file), tuple(write), tuple(read))
+        watcher.install()
     with warnings.catch_warnings(record=True) as caught:
         warnings.simplefilter("always")
         try:
-            description = get_launch_description_from_any_launch_file(launch_file)
-            visit_all(description, context)
+            # ros2launch/api/api.py:168: the file is included, as ros2 launch includes it
+            visit_all(LaunchDescription([IncludeLaunchDescription(
+                AnyLaunchDescriptionSource(launch_file), launch_arguments=list(arguments.items()))]), context)
+            fire_pending(context, visit_all)  # what event handlers start once their event happened
+            record.UNFIRED.extend(unfired_start_handlers(context))
         except BaseException as exc:  # noqa: BLE001 - the learner's launch file, as data
-            frames = [f for f in traceback.extract_tb(exc.__traceback__)
+            first = (getattr(exc, "_likely_errors", None) or [exc])[0]  # InvalidLaunchFileError: the first loader's
+            if hasattr(first, "what"):  # NotSimulated: what bras-kit does not simulate, not what launch says
+                exc = first
+            frames = [f for f in traceback.extract_tb(first.__traceback__)
                       if os.path.abspath(f.filename).startswith(roots)]
-            if isinstance(exc, SyntaxError) and exc.filename:
-                where = (os.path.abspath(exc.filename), exc.lineno or 0, (exc.text or "").strip())
+            if isinstance(first, SyntaxError) and first.filename:
+                where = (os.path.abspath(first.filename), first.lineno or 0, (first.text or "").strip())
             elif frames:
                 where = (os.path.abspath(frames[-1].filename), frames[-1].lineno or 0, (frames[-1].line or "").strip())
             elif record.CURRENT:
@@ -184,9 +221,14 @@ def _plan_here(launch_file: str, prefixes: list[str], arguments: dict[str, str],
         package=n["package"], executable=n["executable"], name=n["name"], namespace=n["namespace"],
         parameters={k: _plain(v) for k, v in n["parameters"].items()}, parameter_files=list(n["parameter_files"]),
         remappings=[tuple(r) for r in n["remappings"]], arguments=list(n["arguments"]), delay=n["delay"],
-        file=n["file"], line=n["line"]) for n in record.NODES]
+        file=n["file"], line=n["line"], ros_arguments=list(n.get("ros_arguments", [])),
+        argv=list(n.get("argv", []))) for n in record.NODES]
     plan.processes = [dict(p) for p in record.PROCESSES]
+    plan.included = [f for f in record.INCLUDED if f != launch_file]
+    plan.unfired = [dict(u) for u in record.UNFIRED]
     plan.logs = list(record.LOGS)
+    if watcher is not None:
+        plan.blocked = watcher.finish()
     return plan
 
 
@@ -206,9 +248,40 @@ class StartProblem:
     """Why a node's counterpart cannot start, in its program's own words (``ros``) and a kind
     the feature above words for the learner."""
 
-    kind: str  # "empty", "file_fallback", "file_missing", "path", "xacro", "not_urdf"
+    kind: str  # "empty", "file_fallback", "file_missing", "file_refused", "path", "xacro", "not_urdf"
     ros: tuple[str, ...]
     detail: str = ""
+
+
+# the programs of the simulated install written in C++ (rclcpp): their words for an unknown ROS argument
+CPP_PROGRAMS = ("robot_state_publisher", "rviz2", "static_transform_publisher")
+
+
+def ros_arguments_start(node: PlannedNode) -> list[StartProblem]:
+    """What rcl makes of the node's command line (rcl/src/rcl/arguments.c): an argument after
+    ``--ros-args`` that is not a ROS flag ('--log-level warn' as one word) kills the node at
+    rclcpp::init / rclpy.init with UnknownROSArgsError (rclcpp context.cpp:240, rclpy utils.cpp:277);
+    a ROS flag with a wrong value stops it too (RCL_RET_INVALID_ROS_ARGS)."""
+    from .names import InvalidROSArgs, parse_ros_arguments, unknown_ros_args_error
+
+    cpp = node.executable in CPP_PROGRAMS
+    process = f"{node.executable}-1"
+    try:
+        parsed = parse_ros_arguments(node.argv)
+    except InvalidROSArgs as exc:
+        return [StartProblem("invalid_ros_args", (f"[ERROR] [{process}]: {exc}",), str(exc))]
+    if not parsed.unknown:
+        return []
+    words = unknown_ros_args_error(parsed.unknown, cpp=cpp)
+    said: tuple[str, ...]
+    if cpp:
+        said = (f"[{process}] terminate called after throwing an instance of 'rclcpp::exceptions::UnknownROSArgsError'",
+                f"[{process}]   what():  {words}",
+                f"[ERROR] [{process}]: process has died [exit code -6]")
+    else:
+        said = (f"[{process}] rclpy._rclpy_pybind11.UnknownROSArgsError: {words}",
+                f"[ERROR] [{process}]: process has died [exit code 1]")
+    return [StartProblem("unknown_ros_args", said, ", ".join(parsed.unknown))]
 
 
 RSP_EMPTY = "robot_description parameter must not be empty"
@@ -217,9 +290,12 @@ RSP_FALLBACK = ("No robot_description parameter, but command-line argument avail
                 "name of URDF file.  This backwards compatibility fallback will be removed in the future.")
 
 
-def robot_state_publisher_start(node: PlannedNode) -> tuple[str | None, list[StartProblem]]:
+def robot_state_publisher_start(node: PlannedNode, roots: tuple[str, ...] = ()) -> tuple[str | None, list[StartProblem]]:
     """The URDF robot_state_publisher 3.3 (Jazzy) would load, and what it says on the way
-    (robot_state_publisher.cpp: the constructor, lines 81-113; parseURDF, lines 164-176)."""
+    (robot_state_publisher.cpp: the constructor, lines 81-113; parseURDF, lines 164-176). A URDF
+    file named by the launch file is read only through :mod:`bras_kit.learner_files`, inside
+    ``roots`` (the package, its install tree): never a device, a pipe, or a file elsewhere
+    ("file_refused", and nothing of it is quoted)."""
     text = node.parameters.get("robot_description", "")
     problems: list[StartProblem] = []
     if not isinstance(text, str):
@@ -228,10 +304,18 @@ def robot_state_publisher_start(node: PlannedNode) -> tuple[str | None, list[Sta
         if node.arguments:
             problems.append(StartProblem("file_fallback", (f"[WARN] [robot_state_publisher]: {RSP_FALLBACK}",),
                                          node.arguments[0]))
+            from ..learner_files import Unreadable, read_text
+
             try:
-                with open(node.arguments[0], encoding="utf-8") as handle:
-                    text = handle.read()
-            except OSError:
+                text = read_text(node.arguments[0], roots)
+            except Unreadable as exc:
+                # a path that names nothing is what robot_state_publisher says; any other refusal is ours
+                if exc.kind != "missing" and os.path.lexists(os.path.join(roots[0] if roots else "", node.arguments[0])):
+                    return None, [*problems, StartProblem("file_refused", (), str(node.arguments[0])[:200])]
+                return None, [*problems, StartProblem(
+                    "file_missing", (f"[FATAL] [robot_state_publisher]: Failed to open URDF file: "
+                                     f"{node.arguments[0]}: No such file or directory",), node.arguments[0])]
+            except (OSError, UnicodeDecodeError):
                 return None, [*problems, StartProblem(
                     "file_missing", (f"[FATAL] [robot_state_publisher]: Failed to open URDF file: "
                                      f"{node.arguments[0]}: No such file or directory",), node.arguments[0])]

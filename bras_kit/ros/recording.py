@@ -78,6 +78,19 @@ class Attempt:
     line: int
 
 
+@dataclass(frozen=True)
+class SplitString:
+    """A string-sequence field (JointState.name) the node gave one string: sent as its letters."""
+
+    node: str
+    topic: str
+    field: str
+    value: str
+    path: str
+    line: int
+    count: int  # messages sent so
+
+
 @dataclass
 class Recording:
     target: str  # what ran: "bras_description animation" or a file
@@ -99,6 +112,7 @@ class Recording:
     start_ns: int = 0  # the simulated wall clock at t = 0 (header stamps count from it)
     output: str = ""  # what the node printed, when not shown live
     blocked: list[Attempt] = field(default_factory=list)  # what the containment stopped (contained runs)
+    split_strings: list[SplitString] = field(default_factory=list)
 
     def topics(self) -> dict[str, int]:
         """Messages published per topic, in order of first publication."""
@@ -175,3 +189,23 @@ def states_for(recording: Recording, dof: list[str] | tuple[str, ...], topic: st
     velocities = (np.gradient(positions, time_array, axis=0) if len(rows) > 1 and np.all(np.diff(time_array) > 0)
                   else np.zeros_like(positions))
     return JointStates(time_array, list(dof), positions, velocities)
+
+
+def sent_joint_states(recording: Recording, topic: str = JOINT_STATES) -> list[dict[str, Any]]:
+    """The JointState messages on ``topic`` as the node sent them, for ``run -o``: the node's
+    names, positions, velocities and efforts (empty when it set none: nothing is filled in) and
+    its header.stamp (``stamp``, seconds, 0.0 when left at zero), with ``time`` (when it published)."""
+    out = []
+    for message in recording.joint_state_messages(topic):
+        fields = message.fields
+        found = fields.get("header")
+        header: dict[str, Any] = found if isinstance(found, dict) else {}
+        stamp = header.get("stamp") or {}
+        out.append({"time": message.time,
+                    "stamp": {"sec": int(stamp.get("sec", 0)), "nanosec": int(stamp.get("nanosec", 0))},
+                    "frame_id": str(header.get("frame_id", "")),
+                    "name": [str(n) for n in fields.get("name") or []],
+                    "position": [float(v) for v in fields.get("position") or []],
+                    "velocity": [float(v) for v in fields.get("velocity") or []],
+                    "effort": [float(v) for v in fields.get("effort") or []]})
+    return out

@@ -188,7 +188,7 @@ def run_node(where: str, executable: str | None = None, *, duration: float = DEF
              echo: bool = False, parameters: dict[str, Any] | None = None, cpu_seconds: int = CPU_SECONDS,
              memory_bytes: int = MEMORY_BYTES, wall_seconds: float = WALL_SECONDS,
              contain: str = "auto", live: bool = False, on_joint_state: Any = None, keep: bool = True,
-             stop: Any = None, robot: Any = None) -> Recording:
+             stop: Any = None, robot: Any = None, beside: list[str] | tuple[str, ...] = ()) -> Recording:
     """Run the node ``where`` names (a package folder and an executable of its console_scripts,
     or a ``.py`` file) for ``duration`` simulated seconds and return its recording.
 
@@ -205,6 +205,8 @@ def run_node(where: str, executable: str | None = None, *, duration: float = DEF
     :class:`threading.Event`) ends the run early: :class:`bras_kit.sandbox.Stopped` is raised.
     ``robot`` (a :class:`~bras_kit.model.Robot`) is the one robot_state_publisher would publish
     for the node's tf2_ros Buffer; by default the package's robot description, if any.
+    ``beside``: the other package folders of its colcon workspace, built with it as colcon builds
+    the whole workspace, so get_package_share_directory finds them too.
     """
     from ..ros.child import robot_joints
     from ..sandbox import ResourceLimitError, run_limited
@@ -217,7 +219,7 @@ def run_node(where: str, executable: str | None = None, *, duration: float = DEF
     shared = mmap.mmap(-1, 8)
     try:
         with tempfile.TemporaryDirectory(prefix="bras-kit-run-") as workdir:
-            prefixes = _build(target, workdir)
+            prefixes = _build(target, workdir, beside)
             walls = containment(contain, workdir, (target.root, target.package or target.root))
             joints = _robot_joints(where) if robot is None else robot_joints(robot)
             write_end: int | None = None
@@ -265,7 +267,7 @@ def _preload() -> None:
     get_typestore(Stores.ROS2_JAZZY)
 
 
-def _build(target: Target, workdir: str) -> list[str]:
+def _build(target: Target, workdir: str, beside: list[str] | tuple[str, ...] = ()) -> list[str]:
     """The package built as colcon builds it (``ros2 run`` runs the installed package): the
     install prefixes to put in AMENT_PREFIX_PATH. A build that stops is an error, in colcon's words."""
     if target.package is None:
@@ -284,8 +286,12 @@ def _build(target: Target, workdir: str) -> list[str]:
                                path=os.path.join(target.package, str(hit.params.get("file", ""))), line=hit.line)
         return []  # BK600's cases (no setup.py): locate() already said what it needs
     from ..ros.launching import simulated_ros_prefix
+    from ..ros.workspace import build_others
 
-    return [record.prefix, simulated_ros_prefix(workdir)]
+    # one that does not build is missing, as after a colcon build stopped there: the node meets
+    # ROS's own PackageNotFoundError
+    built, _unbuilt = build_others(list(beside), os.path.join(workdir, "install"))
+    return [record.prefix, *built, simulated_ros_prefix(workdir)]
 
 
 def _limit_error(kind: str, target: Target, reached: float, cpu: int, wall: float, memory: int) -> NodeRunError:

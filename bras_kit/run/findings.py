@@ -52,6 +52,26 @@ def run_findings(recording: Recording, robot: Any, *, lang: str | None = None, s
     return sorted(findings, key=sort_key)
 
 
+def node_file_results(path: str, *, lang: str | None = None, select: Iterable[str] = (),
+                      ignore: Iterable[str] = (), duration: float = 10.0, **limits: Any) -> list[Any]:
+    """``validate FILE.py --run``: the one node file run as ``bras-kit run FILE.py`` runs it (its
+    package's robot, else the built-in tutorial arm), its run rules' findings as FileResults."""
+    from ..authoring import arm
+    from ..validate.findings import FileResult, sort_key
+    from . import run_node
+
+    recording = run_node(path, duration=duration, **limits)
+    robot = robot_of(path)
+    by_file: dict[str, list[Any]] = {}
+    for found in run_findings(recording, robot if robot is not None else arm(), lang=lang, select=select,
+                              ignore=ignore):
+        by_file.setdefault(str(found.data.get("file") or recording.source), []).append(found)
+    by_file.setdefault(recording.source, [])
+    base = os.path.dirname(path)
+    return [FileResult(os.path.join(base, file), sorted(findings, key=sort_key))
+            for file, findings in sorted(by_file.items())]
+
+
 def package_run_results(path: str, *, lang: str | None = None, select: Iterable[str] = (),
                         ignore: Iterable[str] = (), duration: float = 10.0, **limits: Any) -> list[Any]:
     """Run every executable of the package's console_scripts and return the run rules'

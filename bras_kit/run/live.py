@@ -33,7 +33,7 @@ class LiveNodes:
 
     def __init__(self, folder: str, executables: Sequence[str], deliver: Callable[[Sequence[str], Sequence[float]], None],
                  parameters: dict[str, dict[str, Any]] | None = None, lang: str | None = None,
-                 seconds: float | None = None) -> None:
+                 seconds: float | None = None, beside: Sequence[str] = ()) -> None:
         from . import MAX_DURATION
 
         self.folder = folder
@@ -42,6 +42,7 @@ class LiveNodes:
         self.parameters = parameters or {}
         self.lang = lang
         self.seconds = MAX_DURATION if seconds is None else seconds
+        self.beside = tuple(beside)  # the other packages of its workspace, built with it
         self.errors: list[BrasKitError] = []  # why a node ended before it was stopped
         self._stop = threading.Event()
         self._threads: list[threading.Thread] = []
@@ -69,7 +70,7 @@ class LiveNodes:
         try:
             run_node(self.folder, executable, duration=self.seconds, echo=True,
                      parameters=self.parameters.get(executable), live=True, keep=False, stop=self._stop,
-                     on_joint_state=lambda state: self.deliver(state.name, state.position))
+                     on_joint_state=lambda state: self.deliver(state.name, state.position), beside=self.beside)
         except Stopped:
             return
         except BrasKitError as exc:

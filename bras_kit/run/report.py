@@ -2,6 +2,7 @@
 
 from __future__ import annotations
 
+from ..inert import for_terminal
 from ..message import M, Message, Mn
 from ..ros.recording import Recording
 
@@ -28,9 +29,10 @@ def summary(recording: Recording) -> list[Message]:
     """A few lines: what ran, how long, what each node made, what each topic carried, the end."""
     r = recording
     lines = [M("{target} ({source}, {function}()): {time} s of simulated time in {wall} s",
-               target=r.target, source=r.source, function=r.function, time=r.end, wall=round(r.wall_seconds, 3))]
+               target=for_terminal(r.target), source=for_terminal(r.source), function=for_terminal(r.function),
+               time=r.end, wall=round(r.wall_seconds, 3))]
     for node in dict.fromkeys(r.nodes):
-        publishes = [f"{p.topic} ({p.type.rsplit('/', 1)[-1]})" for p in r.publishers if p.node == node]
+        publishes = [for_terminal(f"{p.topic} ({p.type.rsplit('/', 1)[-1]})") for p in r.publishers if p.node == node]
         periods = [t.period for t in r.timers if t.node == node]
         topics = publishes or M("no topic")
         if periods:
@@ -56,7 +58,8 @@ def summary(recording: Recording) -> list[Message]:
 
 
 def failure_lines(recording: Recording) -> list[str]:
-    """The learner's traceback: their files and lines only, then the exception."""
+    """The learner's traceback: their files and lines only, then the exception; every piece is
+    the learner's text, so its control characters are shown, not obeyed by the terminal."""
     failure = recording.failure
     if failure is None:
         return []
@@ -67,4 +70,4 @@ def failure_lines(recording: Recording) -> list[str]:
         if frame.text:
             out.append(f"    {frame.text}")
     out.append(f"{failure.kind}: {failure.detail}" if failure.detail else failure.kind)
-    return out
+    return [for_terminal(line) for line in out]

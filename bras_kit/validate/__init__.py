@@ -36,6 +36,8 @@ from . import (  # noqa: F401  (importing registers the rules)
     geometry,
     inertia,
     joints,
+    live,
+    live_texts,
     package,
     pitfalls,
     slips,

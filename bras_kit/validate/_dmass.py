@@ -12,6 +12,7 @@ does, not what physics would.
 
 from __future__ import annotations
 
+import functools
 import math
 from dataclasses import dataclass
 
@@ -47,6 +48,9 @@ class UrdfInertial:
 
 def quaternion_from_rpy(roll: float, pitch: float, yaw: float) -> tuple[float, float, float, float]:
     """urdf::Rotation::setFromRPY (normalised)."""
+    if roll == pitch == yaw == 0.0 and math.copysign(1.0, roll) + math.copysign(1.0, pitch) \
+            + math.copysign(1.0, yaw) == 3.0:
+        return (0.0, 0.0, 0.0, 1.0)  # what the formula gives for +0 angles, most inertials' rpy
     phi, the, psi = roll / 2.0, pitch / 2.0, yaw / 2.0
     x = math.sin(phi) * math.cos(the) * math.cos(psi) - math.cos(phi) * math.sin(the) * math.sin(psi)
     y = math.cos(phi) * math.sin(the) * math.cos(psi) + math.sin(phi) * math.cos(the) * math.sin(psi)
@@ -177,8 +181,14 @@ def _epsilon(moments: tuple[float, float, float]) -> float:
 
 def valid_mass_matrix(inertial: UrdfInertial) -> bool:
     """MassMatrix3::IsValid: IsNearPositive and ValidMoments(PrincipalMoments())."""
-    mass = _printed(inertial.mass)
-    m = np.array([[_printed(v) for v in row] for row in inertial.inertia])
+    return _valid(float(inertial.mass), tuple(inertial.inertia.ravel().tolist()))
+
+
+# a generated robot repeats one inertial on thousands of links: each distinct one is judged once
+@functools.lru_cache(maxsize=4096)
+def _valid(raw_mass: float, inertia: tuple[float, ...]) -> bool:
+    mass = _printed(raw_mass)
+    m = np.array([_printed(v) for v in inertia]).reshape(3, 3)
     if not (math.isfinite(mass) and np.isfinite(m).all()):
         return False
     with np.errstate(over="ignore", invalid="ignore"):  # gz-math's doubles overflow to inf silently
@@ -194,4 +204,4 @@ def valid_mass_matrix(inertial: UrdfInertial) -> bool:
 
 
 def finite_pose(inertial: UrdfInertial) -> bool:
-    return bool(np.isfinite(inertial.position).all())
+    return all(math.isfinite(v) for v in inertial.position.tolist())  # numpy's isfinite costs more on 3 values

@@ -9,7 +9,7 @@ is worded where it is shown (:mod:`bras_kit.validate.findings`).
 
 Codes by family: BK1xx structure, BK2xx joints, BK3xx the tutorial's pitfalls, BK4xx geometry,
 BK5xx inertia, BK6xx the whole ROS 2 package,
-BK7xx what Gazebo will make of the robot. Codes never change meaning; a retired code is not reused.
+BK7xx what Gazebo will make of the robot, BK8xx the live ROS 2 graph (``doctor --ros``). Codes never change meaning; a retired code is not reused.
 """
 
 from __future__ import annotations
@@ -34,6 +34,7 @@ FAMILIES = {
     "BK5": "inertia",
     "BK6": "package",
     "BK7": "gazebo",
+    "BK8": "live",
 }
 FAMILY_TITLES: dict[str, Message] = {
     "structure": M("structure (is this a robot, and one tree?)"),
@@ -43,6 +44,7 @@ FAMILY_TITLES: dict[str, Message] = {
     "inertia": M("inertia (mass and inertia for simulation)"),
     "package": M("the ROS 2 package (setup.py, launch file, RViz configuration, nodes)"),
     "gazebo": M("Gazebo (what libsdformat's URDF reader keeps, merges, drops or refuses)"),
+    "live": M("the live ROS 2 graph (what keeps RViz empty or the arm still)"),
 }
 SEVERITY_WORDS: dict[str, Message] = {ERROR: M("error"), WARNING: M("warning"), INFO: M("info")}
 

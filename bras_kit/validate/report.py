@@ -7,6 +7,7 @@ from collections.abc import Sequence
 from dataclasses import dataclass
 
 from ..i18n import say
+from ..inert import for_terminal
 from ..message import M, Message, Mn
 from .findings import FileResult, Finding
 from .registry import ERROR, INFO, SEVERITY_WORDS, WARNING
@@ -70,11 +71,13 @@ def finding_text(path: str, finding: Finding, lang: str | None = None, colour: b
     if colour:
         code = f"\033[1m{code}\033[0m"
         severity = f"\033[{_COLOURS[finding.severity]}m{severity}\033[0m"
-    element = element_text(finding)
-    head = " ".join(part for part in (where, code, severity, element, finding.text(lang)) if part)
+    element = for_terminal(element_text(finding))
+    where = for_terminal(where)
+    # a message may quote a learner's text (an exception's): its control characters are shown, not obeyed
+    head = " ".join(part for part in (where, code, severity, element, for_terminal(finding.text(lang))) if part)
     hint = finding.hint_text(lang)
     if hint:
-        return f"{head}\n  " + say(M("hint: {hint}", hint=hint), lang)
+        return f"{head}\n  " + say(M("hint: {hint}", hint=for_terminal(hint)), lang)
     return head
 
 
@@ -91,9 +94,46 @@ def summary_text(results: Sequence[FileResult], lang: str | None = None) -> str:
     return say(M("{checked}: {counts}.", checked=head, counts=", ".join(counts)), lang)
 
 
+# more findings of one rule in one file than this (a generated robot: one per link or joint) are
+# shown once, with their count and their first names; the JSON report keeps every one
+REPEATED = 10
+NAMES_SHOWN = 5
+
+
 def format_text(results: Sequence[FileResult], lang: str | None = None, colour: bool = False) -> str:
-    blocks = [finding_text(r.path, f, lang, colour) for r in results for f in r.findings]
+    blocks = [block for r in results for block in _file_blocks(r, lang, colour)]
     return "\n".join(blocks + ([""] if blocks else []) + [summary_text(results, lang)]) + "\n"
+
+
+def _file_blocks(result: FileResult, lang: str | None, colour: bool) -> list[str]:
+    by_code: dict[str, list[Finding]] = {}
+    for found in result.findings:
+        by_code.setdefault(found.code, []).append(found)
+    blocks = []
+    for found in result.findings:
+        same = by_code[found.code]
+        if len(same) <= REPEATED:
+            blocks.append(finding_text(result.path, found, lang, colour))
+        elif found is same[0]:
+            blocks.append(finding_text(result.path, found, lang, colour) + "\n  " + repeated_text(same, lang))
+    return blocks
+
+
+def repeated_text(same: Sequence[Finding], lang: str | None = None) -> str:
+    """The line under the first of many findings of one rule: how many more, where, which names."""
+    rest = same[1:]
+    names = [f.name for f in rest if f.name]
+    shown = ", ".join(names[:NAMES_SHOWN]) + (", ..." if len(names) > NAMES_SHOWN else "")
+    lines = [f.line for f in rest if f.line]
+    if lines and shown:
+        detail = say(M("lines {first} to {last}; {names}", first=min(lines), last=max(lines),
+                       names=for_terminal(shown)), lang)
+    else:
+        detail = say(M("lines {first} to {last}", first=min(lines), last=max(lines)), lang) if lines \
+            else for_terminal(shown)
+    return say(Mn("and {n} more {code} like it in this file ({detail}): --json lists each",
+                  "and {n} more {code} like it in this file ({detail}): --json lists each", len(rest),
+                  code=same[0].code, detail=detail), lang)
 
 
 def format_json(results: Sequence[FileResult], strict: bool = False, lang: str | None = None) -> str:

@@ -128,3 +128,19 @@ def label_offsets(poses: np.ndarray, spacing: float) -> np.ndarray:
     earlier_near = np.tril(distances < spacing, k=-1)  # row k: the frames before k within spacing
     out[:, 2] = spacing * earlier_near.sum(axis=1)
     return out
+
+
+def label_name(index: int) -> str:
+    """The scene name of the ``index``-th frame's name. Not a child of the frame's node: viser's
+    client (1.1.1, client/src/label/LabelRenderer.tsx, its useFrame) places a label with its
+    parent's ``matrixWorld``, which three.js updates only while drawing, after that hook: under a
+    moving frame the name is drawn where the frame was one drawing before, 150-200 px behind on
+    a slow (software WebGL) page. Under the scene's fixed root, the name's own position, sent
+    with the frame's in one message, is read as it comes."""
+    return f"/bras/name{index}"
+
+
+def label_places(poses: np.ndarray, scale: float) -> np.ndarray:
+    """Where each frame's name goes in the scene (N x 3): at its frame's origin, names of frames
+    that (nearly) coincide stacked upwards (:func:`label_offsets`)."""
+    return poses[:, :3, 3] + label_offsets(poses, 0.045 * scale)

@@ -23,11 +23,15 @@ from .panel import (
     banner,
     echo_rows,
     joint_box_text,
-    label_offsets,
+    label_name,
+    label_places,
     read_joint_box,
 )
 
 ROOT = "/bras"
+# a launch without joint_state_publisher(_gui): no slider window, as in ROS (BK620 says why)
+NO_SLIDER_WINDOW = M("No joint_state_publisher(_gui) is started: no sliders. The joints stay at 0 until a node "
+                     "publishes /joint_states (bras-kit run in another terminal).")
 GEOMETRIES = ("visual", "collision", "both")
 # Past this many visual triangles (Talos has 206k), a browser drawing WebGL on the CPU
 # (SwiftShader, a school laptop without a GPU driver) spends seconds a frame on the
@@ -195,7 +199,7 @@ class Session:
         self._lock = threading.RLock()
         self._frames: list[Any] = []
         self._labels: list[Any] = []
-        self._label_offsets: list[tuple[float, float, float]] = []
+        self._label_places: list[tuple[float, float, float]] = []
         self._visual_nodes: list[Any] = []
         self._collision_nodes: list[Any] = []
         self._sliders: dict[str, Any] = {}
@@ -296,8 +300,8 @@ class Session:
             self.past_limits = gui.add_checkbox(s(M("Allow values past the limits")), False,
                                                 hint=s(M("typed values past a joint's limits are refused unless this is on")))
             self.joint_note = gui.add_html("")
-            buttons = gui.add_button_group("", (s(M("Zero")), s(M("Random pose"))))
-            buttons.on_click(lambda event: self._button(event.target.value))
+            self.buttons = gui.add_button_group("", (s(M("Zero")), s(M("Random pose"))))
+            self.buttons.on_click(lambda event: self._button(event.target.value))
         motion = self.viewer.motion
         with gui.add_folder(s(M("Motion")), order=3):
             self.play = gui.add_checkbox(s(M("Play")), bool(self.viewer.autoplay and motion is not None),
@@ -330,12 +334,12 @@ class Session:
     def show_model(self, model: ViewModel) -> None:
         """Draw ``model``; keep the joint values whose joints still exist, and the Fixed Frame."""
         with self._lock, self.client.atomic():
-            for handle in self._frames:  # its label and meshes are its children: they go with it
+            for handle in [*self._frames, *self._labels]:  # a frame's meshes are its children: they go with it
                 handle.remove()
             for handle in self._model_gui:
                 handle.remove()
             self._frames, self._labels, self._visual_nodes, self._collision_nodes = [], [], [], []
-            self._label_offsets = []
+            self._label_places = []
             self._sent = None
             self._sliders, self._boxes, self._box_notes, self._model_gui = {}, {}, {}, []
             scene = self.client.scene
@@ -367,20 +371,37 @@ class Session:
                     cast_shadow=not heavy, receive_shadow=not heavy)
                 node.on_click(lambda _event, link=mesh.link: self.select(model.tree.links[link]))
                 self._collision_nodes.append(node)
-            choices = tuple(model.tree.links)
-            self.fixed.options = choices
-            if self.fixed_name in choices:
-                self.fixed_frame = choices.index(self.fixed_name)
+            links = tuple(model.tree.links)
+            choices = links
+            if self.fixed_name in links:
+                self.fixed_frame = links.index(self.fixed_name)
+            elif self.viewer.launch is not None and self.fixed_name:
+                # RViz keeps a Fixed Frame that is no frame, and draws nothing: so does the page,
+                # until the learner picks a frame of the robot (as in RViz's Global Options)
+                choices = (*links, self.fixed_name)
+                self.fixed_frame = 0
             else:
                 self.fixed_frame = 0
-            self.fixed.value = choices[self.fixed_frame]
-            if self.selected not in choices:
+            self._setting = True  # new options make viser pick the first one: not the learner's choice
+            try:
+                self.fixed.options = choices
+                self.fixed.value = self.fixed_name if self.fixed_name in choices else links[self.fixed_frame]
+            finally:
+                self._setting = False
+            if self.selected not in links:
                 self.selected = None
+            sliders = self.viewer.sliders
             with self.joint_folder:
-                for slider in model.sliders:
-                    self._add_joint(slider)
-                if not model.sliders:
+                if sliders:
+                    for slider in model.sliders:
+                        self._add_joint(slider)
+                if not sliders:
+                    self._model_gui.append(self.client.gui.add_html(
+                        f"<p data-note='no-sliders'><small>{self.w(NO_SLIDER_WINDOW)}</small></p>"))
+                elif not model.sliders:
                     self._model_gui.append(self.client.gui.add_markdown(self.s(M("This robot has no movable joint."))))
+            self.past_limits.visible = sliders
+            self.buttons.visible = sliders
             self._apply_visibility()
             self.update()
         self.show_checks()
@@ -391,9 +412,9 @@ class Session:
             return
         scene = self.client.scene
         for index, link in enumerate(self.model.tree.links):
-            self._labels.append(scene.add_label(f"{ROOT}/link{index}/name", link, font_screen_scale=0.8,
+            self._labels.append(scene.add_label(label_name(index), link, font_screen_scale=0.8,
                                                 anchor="bottom-left"))
-            self._label_offsets.append((0.0, 0.0, 0.0))
+            self._label_places.append((math.nan, math.nan, math.nan))  # not placed yet: update() sends it
 
     def _light(self, model: ViewModel) -> bool:
         """Light ``model``: viser's own lighting (environment map, shadows), or for a heavy robot
@@ -428,19 +449,27 @@ class Session:
         """The banner (a file that no longer reads, and the number of findings) at the top of the
         panel, the findings in "Checks", and the status line."""
         viewer = self.viewer
-        self.banner.content = banner(viewer.error, viewer.findings, self.lang)
+        blank = self.blank()
+        shown = "" if blank is None else (
+            f"<div data-banner='blank' style='background:#fff3e0;border-left:4px solid #e65100;padding:6px 8px;"
+            f"margin:0 0 6px 0'><b>{self.w(M('RViz shows nothing'))}</b><br>{self.w(blank)}</div>")
+        self.banner.content = shown + banner(viewer.error, viewer.findings, self.lang)
         rows = []
         if viewer.error is not None:
             rows.append(f"<p style='color:{ERROR_RED}'><b>{self.w(M('The file cannot be read'))}</b>: "
                         f"{html.escape(say(viewer.error, self.lang))}</p>")
-        for finding in viewer.findings:
+        for file, finding in viewer.checks:
             colour = {"error": ERROR_RED, "warning": "#e65100"}.get(finding.severity, "#455a64")
             line = f":{finding.line}" if finding.line else ""
-            rows.append(f"<p style='margin:2px 0'><b style='color:{colour}'>{finding.code}</b>{line} "
+            place = f"{html.escape(file)}{line} " if file else ""
+            rows.append(f"<p style='margin:2px 0' data-finding='{finding.code}'><b style='color:{colour}'>"
+                        f"{finding.code}</b>{'' if file else line} {place}"
                         f"{html.escape(say(finding.message, self.lang))}</p>")
         if not rows:
             rows.append(f"<p style='color:#2e7d32'>{self.w(M('No finding'))}</p>")
         self.findings.content = "".join(rows)
+        if viewer.launch is not None and not viewer.launch.checked:
+            rows = [f"<p><i>{self.w(M('checking the package...'))}</i></p>"]
         stamp = time.strftime("%H:%M:%S", time.localtime(viewer.loaded_at))
         self.status.content = (f"<small><b>{html.escape(self.model.robot.name or 'robot')}</b> · "
                                f"{html.escape(say(viewer.source_label, self.lang))} · "
@@ -452,9 +481,7 @@ class Session:
         start = time.perf_counter()
         model = self.model
         poses = model.poses(self.values, self.fixed_frame)
-        offsets = label_offsets(poses, 0.045 * model.scale)
-        # each name's offset in its own link's frame: R^T @ offset, for every link at once
-        local = np.einsum("nji,nj->ni", poses[:, :3, :3], offsets)
+        places = label_places(poses, model.scale)
         moved = np.arange(len(poses)) if self._sent is None else \
             np.flatnonzero(np.abs(poses - self._sent).max(axis=(1, 2)) > 1e-9)
         with self.client.atomic():  # one message to the browser: the links move together
@@ -462,12 +489,10 @@ class Session:
                 frame = self._frames[k]
                 frame.position = poses[k, :3, 3]
                 frame.wxyz = wxyz(poses[k, :3, :3])
-            shifted = np.flatnonzero(np.abs(local - np.asarray(self._label_offsets).reshape(-1, 3)).max(axis=1) > 1e-9) \
-                if len(local) and self._labels else ()
-            for k in shifted:
-                position = tuple(float(v) for v in local[k])
+            for k in _moved_labels(places, self._label_places) if self._labels else ():
+                position = (float(places[k, 0]), float(places[k, 1]), float(places[k, 2]))
                 self._labels[k].position = position
-                self._label_offsets[k] = position  # type: ignore[assignment]
+                self._label_places[k] = position
         self._sent = poses
         self.last_update_ms = 1000 * (time.perf_counter() - start)
         self._readouts(poses)
@@ -623,22 +648,44 @@ class Session:
             if self.show_names.value and not self._labels:
                 self._make_labels()
                 self.update()  # places the new names
+            drawn = self.blank() is None  # as RViz: no robot, or no Fixed Frame to draw it in
             for node in self._visual_nodes:
                 node.visible = bool(self.show_visual.value)
             for node in self._collision_nodes:
                 node.visible = bool(self.show_collision.value)
-            for frame in self._frames:
+            for frame in self._frames:  # a frame hidden hides its meshes (its children)
                 frame.show_axes = bool(self.show_frames.value)
+                frame.visible = drawn
             for label in self._labels:
-                label.visible = bool(self.show_names.value)
+                label.visible = bool(self.show_names.value) and drawn
             self.grid.visible = bool(self.show_grid.value)
 
     def _choose_fixed_frame(self) -> None:
         links = list(self.model.tree.links)
+        if self._setting or (self.fixed.value == self.fixed_name and self.fixed_name not in links):
+            return  # set from code, or the Fixed Frame that is no frame, as the page started
         if self.fixed.value in links:
-            self.fixed_frame = links.index(self.fixed.value)
-            self.fixed_name = self.fixed.value
-            self.update()
+            with self._lock:
+                self.fixed_frame = links.index(self.fixed.value)
+                self.fixed_name = self.fixed.value
+                self.update()
+                self._apply_visibility()
+                self.show_checks()
+
+    def blank(self) -> Message | None:
+        """Why this page draws no robot, as RViz would draw none (None: it is drawn)."""
+        launch = self.viewer.launch
+        if launch is None:
+            return None
+        return launch.blank() or launch.frame_missing(self.fixed_name)
+
+
+def _moved_labels(places: np.ndarray, sent: list[tuple[float, float, float]]) -> np.ndarray:
+    """The indices of the names whose place differs from the one the browser has (NaN: none yet)."""
+    if not len(places):
+        return np.zeros(0, dtype=int)
+    before = np.asarray(sent, dtype=float).reshape(-1, 3)
+    return np.flatnonzero(~(np.abs(places - before) <= 1e-9).all(axis=1))
 
 
 def _step(slider: Any) -> float:

@@ -10,14 +10,18 @@ import time
 import warnings
 from collections.abc import Callable, Iterator, Sequence
 from dataclasses import dataclass, field
-from typing import Any
+from typing import TYPE_CHECKING, Any
 
 from .. import backends
 from ..errors import BrasKitError
 from ..message import M
 from ..model import Robot
 from .model import ViewModel, view_model
+from .origin import refuse_other_origins
 from .session import Session
+
+if TYPE_CHECKING:
+    from ..evaluation import LaunchEvaluation
 
 LOCAL_HOST = "127.0.0.1"
 TICK_SECONDS = 1 / 30  # playback frame period
@@ -57,7 +61,7 @@ class Viewer:
                  motion_specs: Sequence[str] = (), loop_seconds: float = 10.0, watch: bool = True,
                  geometry: str = "visual", motion_topic: str | None = None, recorded: Any = None,
                  autoplay: bool = False, fixed_frame: str | None = None,
-                 refuse: Callable[[Robot], None] | None = None) -> None:
+                 refuse: Callable[[Robot], None] | None = None, launch: LaunchEvaluation | None = None) -> None:
         viser = backends.viser()
 
         from .session import GEOMETRIES
@@ -78,12 +82,18 @@ class Viewer:
         self.fixed_frame = fixed_frame  # the Fixed Frame pages start with (rviz2 -d's Global Options)
         self.loop_seconds = loop_seconds
         self.error: BaseException | None = None  # why the saved file does not read, while it does not
-        self.findings: list[Any] = []
+        self.checks: list[tuple[str, Any]] = []  # (file, finding): the file is "" for the model's own
+        # bras-kit launch: the one evaluation the terminal printed, shown as RViz would show it
+        # (its robot, findings, Fixed Frame and slider window); None for bras-kit view
+        self.launch: LaunchEvaluation | None = None
         self.reloads = 0
         self.loaded_at = time.time()
         self.model: ViewModel = self._build(source.load())  # a first model that cannot load is an error
-        self.source_label = source.path or M("built-in tutorial arm")
-        self._check(self.model.robot)
+        self.source_label: Any = source.path or M("built-in tutorial arm")
+        if launch is None:
+            self._check(self.model.robot)
+        else:
+            self._take(launch)
         # a tab closed during playback: the frame being sent to it is dropped, and viser says so
         # with a UserWarning on the terminal; for bras-kit a browser leaving is no event
         warnings.filterwarnings("ignore", message=r"Queued a \w+ on a closed connection", category=UserWarning)
@@ -93,6 +103,7 @@ class Viewer:
         with quiet():
             self.server = viser.ViserServer(host=host, port=port, verbose=False)
         never_share(self.server)
+        refuse_other_origins(self.server)  # a page of another site may not open its websocket
         # viser's logo opens its own "About" text, in English only: shown in English pages alone
         self.server.gui.configure_theme(control_width="large", show_share_button=False, show_logo=lang == "en")
         self._frame_camera(self.model)
@@ -128,10 +139,60 @@ class Viewer:
             with contextlib.suppress(Exception):  # a browser that left mid-frame
                 session.take_joint_state(values)
 
+    @property
+    def findings(self) -> list[Any]:
+        return [finding for _, finding in self.checks]
+
+    @property
+    def sliders(self) -> bool:
+        """Whether the page has joint sliders: in a launch, only when joint_state_publisher(_gui)
+        is started (that is the slider window); bras-kit view is that window."""
+        return self.launch is None or self.launch.sliders
+
     def _check(self, robot: Robot) -> None:
         from ..validate import validate
 
-        self.findings = validate(robot, package_paths=self.source.package_paths)
+        self.checks = [("", finding) for finding in validate(robot, package_paths=self.source.package_paths)]
+
+    def _take(self, launch: LaunchEvaluation) -> None:
+        self.launch = launch
+        self.fixed_frame = launch.fixed_frame
+        self.checks = launch.findings()
+        self.error = None
+        if launch.robot_file is not None:
+            self.source_label = launch.robot_file
+
+    def show_checks(self) -> None:
+        """The launch's findings are in (its checks run once the page is open): every page shows them."""
+        with self._lock:
+            if self.launch is not None:
+                self.checks = self.launch.findings()
+            for session in list(self.sessions.values()):
+                session.show_checks()
+
+    def show_launch(self, launch: LaunchEvaluation, package_paths: tuple[str, ...] | None = None) -> None:
+        """A new evaluation of the launch (a file of the package saved, built and launched again):
+        every page shows it, its robot if robot_state_publisher loads one (the install tree's, as
+        built now), else the last one hidden, with the reason. Call it while its install tree
+        exists: the robot's meshes are read from there."""
+        with self._lock:
+            self._take(launch)
+            model = self.model
+            if launch.robot is not None:
+                paths = self.source.package_paths if package_paths is None else package_paths
+                self.source = Source(robot=launch.robot, package_paths=paths)
+                model = self._build(launch.robot)
+            resized = _size_changed(self.model, model)
+            if resized:
+                self._frame_camera(model)
+            self.loaded_at = time.time()
+            for session in list(self.sessions.values()):
+                session.fixed_name = launch.fixed_frame
+                session.show_model(model)
+                if resized:
+                    session.frame_camera()
+            self.model = model
+            self.reloads += 1
 
     def reload(self) -> bool:
         """Read the source again; on success show the new model in every browser, else keep the

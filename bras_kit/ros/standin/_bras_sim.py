@@ -104,6 +104,8 @@ class State:
         self.threads: list[SimThread] = [SimThread(0, "MainThread", False)]
         self.current: SimThread = self.threads[0]
         self.thread_failures: list = []  # (thread name, exception, time)
+        # string-sequence fields given one string, split into letters: (node, topic, field, value, file, line)
+        self.split_strings: list[tuple[str, str, str, str, str, int]] = []
         self.tf: list = []  # transforms broadcast: (t_ns, static, TransformStamped as data)
         self.robot: dict | None = None  # the robot's joints for tf2's FK (bras_kit.ros.child gives it)
         self.on_advance = None  # called with the new time (the parent watches it through shared memory)

@@ -55,8 +55,39 @@ def definitions() -> dict:
     return _STORE
 
 
+# Services, which rosbags' store does not hold: the .srv files of Jazzy's common_interfaces
+# (std_srvs/srv/*.srv, 5.3.6), request and response, read with rosbags' .msg parser
+SERVICES = {
+    "std_srvs/srv/Empty": ("", ""),
+    "std_srvs/srv/SetBool": ("bool data", "bool success\nstring message"),
+    "std_srvs/srv/Trigger": ("", "bool success\nstring message"),
+}
+
+
+def service_definitions() -> dict:
+    """``{"std_srvs/srv/SetBool_Request": (constants, fields), ...}`` of Jazzy."""
+    from rosbags.typesys import get_types_from_msg
+
+    out = {}
+    for service, (request, response) in SERVICES.items():
+        package, _, name = service.split("/")
+        for part, text in (("Request", request), ("Response", response)):
+            parsed = get_types_from_msg(text, f"{package}/msg/{name}_{part}")
+            out[f"{service}_{part}"] = next(iter(parsed.values()))
+    return out
+
+
 def packages() -> set[str]:
-    return {name.split("/")[0] for name in definitions()}
+    return {name.split("/")[0] for name in definitions()} | {name.split("/")[0] for name in SERVICES}
+
+
+def _service_class(service: str, request: type, response: type) -> type:
+    """What rosidl_generator_py writes for a .srv (``_srv.py.em``): a class holding Request and
+    Response; the node's create_service/create_client take it."""
+    package, _, name = service.split("/")
+    return type(name, (), {"Request": request, "Response": response, "_type_name": service,
+                           "_TYPE_SUPPORT": service, "__module__": f"{package}.srv._{_snake(name)}",
+                           "__doc__": f"Service class '{name}'."})
 
 
 def _snake(name: str) -> str:
@@ -321,7 +352,9 @@ def convert_check(message: object, path: str = "") -> tuple[str, str, str] | Non
                 continue  # the buffer path (_msg_support.c.em:257)
             if kind.nested == "array" and type(value).__name__ == "ndarray":
                 continue
-            items = list(value) if _is_sequence(value) or type(value).__name__ == "ndarray" else None
+            # PySequence_Fast (_msg_support.c.em:400-420) takes any iterable: a str is a
+            # sequence of one-letter strings, which is what goes out
+            items = list(value) if _iterable(value) else None
             if items is None:
                 return where, "PySequence_Check(field)", _held(value)
             for k, item in enumerate(items):
@@ -333,6 +366,28 @@ def convert_check(message: object, path: str = "") -> tuple[str, str, str] | Non
         if found:
             return found
     return None
+
+
+def _iterable(value: object) -> bool:
+    try:
+        iter(value)  # type: ignore[call-overload]
+    except TypeError:
+        return False
+    return True
+
+
+def split_strings(message: object, path: str = "") -> list[tuple[str, str]]:
+    """The string-sequence fields (``name`` of a JointState) given one string: ``(field, value)``.
+    Jazzy's setter keeps it (no check, ``_msg.py.em:440``) and the C conversion iterates it
+    (PySequence_Fast): 'epaule, coude' goes out as 13 one-letter names."""
+    found = []
+    for field, kind in getattr(type(message), "_kinds", {}).items():
+        value = getattr(message, field)
+        if kind.nested and kind.base in ("string", "wstring") and isinstance(value, str):
+            found.append((f"{path}{field}", value))
+        elif kind.is_message and not kind.nested:
+            found.extend(split_strings(value, f"{path}{field}."))
+    return found
 
 
 def _held(value: object) -> str:
@@ -357,10 +412,17 @@ def _convert_scalar(kind: Kind, value: object, where: str) -> tuple[str, str, st
 
 
 def to_data(value: object) -> object:
-    """A message as plain data (dicts, lists, numbers), for the recording."""
+    """A message as plain data (dicts, lists, numbers), for the recording: what was sent (a
+    sequence field holding a str or another iterable goes out as its items)."""
     kinds = getattr(type(value), "_kinds", None)
     if kinds is not None:
-        return {field: to_data(getattr(value, field)) for field in kinds}
+        out = {}
+        for field, kind in kinds.items():
+            item = getattr(value, field)
+            if kind.nested and isinstance(item, (str, set, frozenset, range)):
+                item = list(item)
+            out[field] = to_data(item)
+        return out
     if isinstance(value, array.array):
         return value.tolist()
     if type(value).__name__ == "ndarray":
@@ -392,21 +454,61 @@ class _Loader(importlib.abc.Loader):
                     cls = _make_class(type_name_, constants, fields)
                     setattr(module, cls.__name__, cls)
                     cls.__module__ = f"{name}._{_snake(cls.__name__)}"
-        module.__getattr__ = _missing(name)  # type: ignore[attr-defined,method-assign]
+        if interface == "srv":
+            parts = service_definitions()
+            for service in sorted(SERVICES):
+                if service.startswith(f"{package}/srv/"):
+                    made = [_make_class(f"{service}_{part}", *parts[f"{service}_{part}"])
+                            for part in ("Request", "Response")]
+                    cls = _service_class(service, *made)
+                    for made_class in (*made, cls):
+                        made_class.__module__ = f"{name}._{_snake(cls.__name__)}"
+                        setattr(module, made_class.__name__, made_class)
+        # where Jazzy's apt packages put it: `from std_msgs.msg import JointState` fails with
+        # Python's "cannot import name 'JointState' from 'std_msgs.msg' (.../__init__.py)", and
+        # `from sensor_msgs import JointState` (.msg forgotten) from 'sensor_msgs' (an empty __init__.py)
+        module.__file__ = "/".join(filter(None, (JAZZY_SITE, package, interface, "__init__.py")))
+        module.__getattr__ = _missing(name, complete=True)  # type: ignore[attr-defined,method-assign]
 
 
-def _missing(module: str):  # type: ignore[no-untyped-def]
+JAZZY_SITE = "/opt/ros/jazzy/lib/python3.12/site-packages"
+
+
+def _missing(module: str, complete: bool = False):  # type: ignore[no-untyped-def]
+    """A name a message module lacks: Jazzy's definitions of the package are all there, so it
+    does not exist on Jazzy either (AttributeError, which ``from ... import`` makes the
+    ImportError Python raises on Jazzy); elsewhere, something bras-kit does not simulate."""
     def __getattr__(attribute: str):  # type: ignore[no-untyped-def]
         import _bras_sim
 
+        if complete and not attribute.startswith("_"):
+            raise AttributeError(f"module '{module}' has no attribute '{attribute}'")
         raise _bras_sim.not_simulated(module, attribute)
 
     return __getattr__
 
 
+def near_names(type_name: str) -> list[str]:
+    """Jazzy's interface types whose name is close to ``type_name`` ("Jointstate" -> ["sensor_msgs.msg.JointState"])."""
+    import difflib
+
+    every = {t.rsplit("/", 1)[-1]: t for t in (*definitions(), *SERVICES)}
+    close = difflib.get_close_matches(type_name, list(every), n=3, cutoff=0.8)
+    return [every[name].replace("/", ".") for name in close]
+
+
+def homes_of(type_name: str) -> list[str]:
+    """The interface modules of Jazzy that define ``type_name`` ("JointState" -> ["sensor_msgs.msg"])."""
+    found = {f"{t.split('/')[0]}.msg" for t in definitions() if t.rsplit("/", 1)[-1] == type_name}
+    found |= {f"{t.split('/')[0]}.srv" for t in SERVICES if t.rsplit("/", 1)[-1] == type_name}
+    return sorted(found)
+
+
 def find_spec(fullname: str) -> importlib.machinery.ModuleSpec | None:
     """The spec of ``pkg`` or ``pkg.msg`` when ``pkg`` is a message package of Jazzy's store."""
     package, _, rest = fullname.partition(".")
-    if rest not in ("", "msg") or package not in packages():
+    if rest not in ("", "msg", "srv") or package not in packages():
         return None
+    if rest and not any(t.startswith(f"{package}/{rest}/") for t in (*definitions(), *SERVICES)):
+        return None  # std_srvs has no msg module on Jazzy
     return importlib.machinery.ModuleSpec(fullname, _Loader(), is_package=True)

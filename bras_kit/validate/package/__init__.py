@@ -19,6 +19,7 @@ from collections.abc import Iterable
 from ..findings import FileResult, Finding, finding, sort_key
 from ..registry import select_rules
 from . import (
+    build_reach,  # noqa: F401  (BK639: what setup.py and launch files tried)
     node_mistakes,  # noqa: F401  (BK627, registered on import)
     run_reach,  # noqa: F401  (BK659: what the containment stopped)
     texts,  # noqa: F401  (the rules' words)
@@ -63,6 +64,8 @@ def validate_package(path: str, *, lang: str | None = None, select: Iterable[str
     learner's setup.py and launch files in the sandbox child, as colcon and ros2 launch would.
     """
     package = Package(path) if package is None else package
+    if launch:
+        launched(package)  # first: the rules over whole launches (BK611, BK620) read the evaluation too
     by_file: dict[str, list[Finding]] = {}
     for chosen in select_rules(select, ignore):
         check = PACKAGE_CHECKS.get(chosen.code)

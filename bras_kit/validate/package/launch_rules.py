@@ -23,12 +23,13 @@ from ...ros.launching import (
     StartProblem,
     plan_launch,
     robot_state_publisher_start,
+    ros_arguments_start,
 )
 from ..registry import ERROR, Hit
 from .rules import _at, package_rule
 from .sources import Package, relative
 
-LAUNCH_CHECKS = ("BK630", "BK631", "BK632", "BK633")
+LAUNCH_CHECKS = ("BK630", "BK631", "BK632", "BK633", "BK634", "BK635", "BK639")  # BK639: build_reach (what setup.py and launch files tried)
 
 
 @dataclass
@@ -39,6 +40,7 @@ class Launched:
     description: str | None = None  # the URDF robot_state_publisher loads
     problems: list[tuple[PlannedNode, StartProblem]] = field(default_factory=list)
     others: dict[str, Launched] = field(default_factory=dict)  # the other launch files, by source
+    start_problems: list[tuple[PlannedNode, StartProblem]] = field(default_factory=list)  # BK634: rcl's arguments
 
 
 def _launch_sources(build: BuildRecord) -> list[str]:
@@ -47,18 +49,29 @@ def _launch_sources(build: BuildRecord) -> list[str]:
                   i.source.endswith((".launch.py", "_launch.py", ".launch.xml", ".launch.yaml", ".launch.yml")))
 
 
+def share_files_named(build: BuildRecord, name: str) -> list[str]:
+    """The package files installed under share/PKG/ with the name ``name``, whatever it ends with:
+    ros2launch looks for the name in every folder of the share directory and takes any file
+    (ros2launch/api/api.py, get_share_file_path_from_package, Jazzy lines 39-64; more than one is
+    its MultipleLaunchFilesError)."""
+    wanted = os.path.basename(name)
+    return sorted(i.source for i in build.installed
+                  if i.target.startswith(f"share/{build.package}/") and os.path.basename(i.target) == wanted)
+
+
 def launch_package(root: str, install_base: str, launch_file: str | None = None,
                    arguments: dict[str, str] | None = None, *, prefixes: tuple[str, ...] = ()) -> Launched:
-    """Build ``root`` into ``install_base`` and evaluate ``launch_file`` (a name in its launch/
-    folder, default: the first installed one) as ``ros2 launch PKG FILE`` would."""
+    """Build ``root`` into ``install_base`` and evaluate ``launch_file`` (a file's name anywhere in
+    the package's share folder, default: the first installed launch file) as ``ros2 launch PKG
+    FILE`` would; ``prefixes``: the other packages of the workspace, built."""
     build = build_package(root, install_base)
     result = Launched(build)
     if build.failure is not None:
         return result
     sources = _launch_sources(build)
     if launch_file is not None:
-        chosen = [s for s in sources if os.path.basename(s) == os.path.basename(launch_file)]
-        result.launch_file = chosen[0] if chosen else launch_file
+        chosen = share_files_named(build, launch_file)
+        result.launch_file = chosen[0] if len(chosen) == 1 else launch_file
     elif sources:
         result.launch_file = sources[0]
     if not result.launch_file:
@@ -70,8 +83,9 @@ def launch_package(root: str, install_base: str, launch_file: str | None = None,
                        learner_roots=(root,))
     result.plan = plan
     for node in plan.nodes:
+        result.start_problems += [(node, p) for p in ros_arguments_start(node)]
         if node.package == "robot_state_publisher":
-            text, problems = robot_state_publisher_start(node)
+            text, problems = robot_state_publisher_start(node, roots=(build.prefix, *prefixes, root))
             result.problems += [(node, p) for p in problems]
             if text is not None and result.description is None:
                 result.description = text
@@ -198,7 +212,91 @@ def _launch_variant(pkg: Package, result: Launched, message: str) -> tuple[str, 
         return "file", {"path": path}
     if "ParameterValue" in message:
         return "yaml", {}
+    return _launch_misuse(result, message)
+
+
+# launch 3.4.3's words for a value, an entity or a description it cannot take (see _launch_misuse)
+_YAML_RULES = re.compile(r"using yaml rules: (?:yaml\.safe_load\(\) failed\n(?P<reason>[^\n]*)"
+                         r"(?:\n\s*in \"<unicode string>\", line (?P<line>\d+))?|output type is not allowed)")
+_MISSING_ATTRIBUTE = re.compile(r"Can not find attribute '(?P<a>[^']+)' in Entity '(?P<e>[^']+)'"
+                                r"|Attribute '(?P<a2>[^']+)' of type '.*?' not found in Entity '(?P<e2>[^']+)'")
+_UNEXPECTED = re.compile(r"Unexpected (?:attribute\(s\)|key\(s\)|nested tag\(s\)) found in `(?P<e>[^`]+)`: \{(?P<a>[^}]*)\}")
+_UNKNOWN_TAG = re.compile(r"Unrecognized entity of the type: (\S+)")
+_NO_DESCRIPTION = re.compile(r"'(\w+)' object has no attribute 'get_launch_arguments_with_include_launch_description")
+# what learners write from the Python API where the front ends (launch_xml, launch_yaml) read another name
+FRONTEND_NAMES = {"executable": "exec", "package": "pkg", "arguments": "args", "ros_arguments": "ros_args",
+                  "parameters": "param", "remappings": "remap", "default_value": "default", "launch_arguments": "arg"}
+
+
+def _frontend_fix(attribute: str, launch_file: str) -> str:
+    return f"{attribute}=" if launch_file.endswith(".xml") else f"{attribute}:"
+
+
+def _launch_misuse(result: Launched, message: str) -> tuple[str, dict[str, Any]]:
+    """launch's own refusals: a value read with YAML rules (type_utils.py:255), an attribute the
+    front end needs or does not know (launch_xml/entity.py:93, launch_yaml/entity.py:118,
+    expose.py:108), a tag it does not know (expose.py:40), launch_arguments given as a dict
+    (include_launch_description.py:150), a generate_launch_description() that returns no
+    LaunchDescription (include_launch_description.py:156)."""
+    launch = result.launch_file
+    found = _YAML_RULES.search(message)
+    if found:
+        fix = {".xml": 'type="str" on the <param>', ".yaml": "type: str under the param",
+               ".yml": "type: str under the param"}.get(os.path.splitext(launch)[1],
+                                                        "ParameterValue(..., value_type=str)")
+        return "yaml_rules", {"reason": found.group("reason") or "not a single value",
+                              "text_line": found.group("line") or "?", "fix": fix}
+    found = _MISSING_ATTRIBUTE.search(message)
+    if found:
+        attribute, entity = found.group("a") or found.group("a2"), found.group("e") or found.group("e2")
+        written = next((k for k, v in FRONTEND_NAMES.items() if v == attribute), "")
+        return "attribute_missing", {"attribute": attribute, "entity": entity, "written": written,
+                                     "fix": _frontend_fix(attribute, launch)}
+    found = _UNEXPECTED.search(message)
+    if found:
+        names = [n.strip().strip("'\"") for n in found.group("a").split(",") if n.strip()]
+        fixes = [_frontend_fix(FRONTEND_NAMES[n], launch) for n in names if n in FRONTEND_NAMES]
+        return ("attribute_renamed" if fixes else "attribute_unexpected"), {
+            "entity": found.group("e"), "attributes": ", ".join(names), "fix": ", ".join(fixes)}
+    found = _UNKNOWN_TAG.search(message)
+    if found:
+        return "tag_unknown", {"tag": found.group(1), "fixed": found.group(1).lower()}
+    if "values to unpack (expected 2" in message:
+        return "include_dict", {}
+    if "'Node' expected 'parameters' to be one of [<class 'list'>]" in message:
+        return "parameters_not_list", {}
+    found = re.search(r"'(\w+)' object is not iterable", message)
+    if found:
+        return ("not_a_list" if found.group(1)[:1].isupper() else "not_text"), {"given": found.group(1)}
+    if "does not contain the required function 'generate_launch_description()'" in message:
+        return "no_generate", {}
+    found = _NO_DESCRIPTION.search(message)
+    if found:
+        return "no_description", {"returned": "None" if found.group(1) == "NoneType" else found.group(1)}
     return "", {}
+
+
+def _ros_words(plan: LaunchPlan, variant: str) -> str:
+    """What ros2 launch prints; a value launch could not convert is shown by its first line only
+    (it is the whole URDF)."""
+    words = plan.ros2_launch_error
+    if variant == "yaml_rules":
+        words = re.sub(r"Failed to convert '(.*?)' using yaml rules",
+                       lambda m: "Failed to convert '" + m.group(1).strip().splitlines()[0][:60] + " ...' using yaml rules",
+                       words, count=1, flags=re.S)
+    return words
+
+
+def _where_generate(pkg: Package, result: Launched) -> int:
+    """The line of ``def generate_launch_description`` in the launch file (0 if not found)."""
+    from ...learner_files import read_text
+
+    try:
+        text = read_text(os.path.join(pkg.root, result.launch_file), (pkg.root,), errors="replace")
+    except OSError:
+        return 0
+    found = re.search(r"^\s*def\s+generate_launch_description\b", text, re.M)
+    return text.count("\n", 0, found.start()) + 1 if found else 0
 
 
 def _said_statically(pkg: Package, path: str) -> bool:
@@ -230,8 +328,30 @@ def ros2_launch_fails(pkg: Package) -> Iterator[Hit]:
             continue  # BK601/BK602 already name this file and the data_files entry to add
         if variant == "package" and params["missing"] == result.build.package and _marker_said(pkg):
             continue  # BK603: the package itself is not in the ament index
-        yield _at(file, line or None, variant, ros=plan.ros2_launch_error, error=plan.failure.type,
+        if variant == "no_description" and not line:
+            file, line = result.launch_file, _where_generate(pkg, result)
+        yield _at(file, line or None, variant, ros=_ros_words(plan, variant), error=plan.failure.type,
                   launch=result.launch_file, **params)
+
+
+@package_rule("BK634", "node-dies-on-its-ros-arguments", ERROR)
+def node_dies_on_its_ros_arguments(pkg: Package) -> Iterator[Hit]:
+    """A node whose command line rcl cannot read (rcl/src/rcl/arguments.c): '--log-level warn'
+    given as one argument after --ros-args is an unknown ROS argument, and the node dies at init."""
+    top = launched(pkg)
+    if top is None:
+        return
+    seen = set()
+    for result in _each(top):
+        for node, problem in result.start_problems:
+            file, line = _place(result, node.file, node.line)
+            if (file, line, problem.detail) in seen:
+                continue
+            seen.add((file, line, problem.detail))
+            words = problem.detail.split(", ")
+            fixed = ", ".join(repr(w) for one in words for w in one.split()) if problem.kind == "unknown_ros_args" else ""
+            yield _at(file, line or None, problem.kind, ros="\n".join(problem.ros), node=node.shown,
+                      unknown=problem.detail, fixed=fixed, launch=result.launch_file)
 
 
 @package_rule("BK632", "robot-description-rejected", ERROR)
@@ -245,6 +365,27 @@ def robot_description_rejected(pkg: Package) -> Iterator[Hit]:
                 continue
             file, line = _place(result, node.file, node.line)
             yield _at(file, line or None, problem.kind, ros="\n".join(problem.ros), detail=problem.detail,
+                      launch=result.launch_file)
+
+
+@package_rule("BK635", "event-handler-never-fires", ERROR)
+def event_handler_never_fires(pkg: Package) -> Iterator[Hit]:
+    """OnProcessStart(target_action=X, on_start=[...]) where X never starts (never put in the
+    description, or its condition false): the event never happens and what waits never starts
+    (launch event_handlers/on_action_event_base.py: the handler matches the started action by identity)."""
+    top = launched(pkg)
+    if top is None:
+        return
+    seen = set()
+    for result in _each(top):
+        if result.plan is None or result.plan.failure is not None:
+            continue
+        for unfired in result.plan.unfired:
+            file, line = _place(result, unfired["file"], unfired["line"])
+            if (file, line) in seen:
+                continue
+            seen.add((file, line))
+            yield _at(file, line or None, target=unfired["target"], waiting=unfired["waiting"] or ["-"],
                       launch=result.launch_file)
 
 

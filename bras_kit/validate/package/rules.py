@@ -32,7 +32,10 @@ from .staticpy import ShareFile, known
 
 # catkin_pkg's own test of a maintainer's email (catkin_pkg.package.Person.validate)
 EMAIL = re.compile(r"^[-a-zA-Z0-9_%+]+(\.[-a-zA-Z0-9_%+]+)*@[-a-zA-Z0-9%]+(\.[-a-zA-Z0-9%]+)*\.[a-zA-Z]{2,}$")
-REQUIRED_FOLDERS = (("urdf", (".urdf", ".xacro")), ("launch", (".launch.py", "_launch.py")))
+# the launch files ros2 launch reads: Python, XML and YAML (launch/launch_description_sources)
+LAUNCH_SUFFIXES = (".launch.py", "_launch.py", ".launch.xml", "_launch.xml", ".launch.yaml", "_launch.yaml",
+                   ".launch.yml", "_launch.yml")
+REQUIRED_FOLDERS = (("urdf", (".urdf", ".xacro")), ("launch", LAUNCH_SUFFIXES))
 ROBOT_DESCRIPTION = "/robot_description"
 MOTION_SECONDS = 60.0  # how long a node's sine formulas are followed (every tutorial wave repeats within)
 
@@ -76,9 +79,10 @@ def _inside(pkg: Package, relative: str, line: int | None) -> int | None:
     """``line``, or the file's last line when a parser points past the end ("no element found")."""
     if line is None or line <= 1:
         return line
+    from ...learner_files import read_bytes
+
     try:
-        with open(os.path.join(pkg.root, relative), "rb") as handle:
-            count = len(handle.read().splitlines())
+        count = len(read_bytes(os.path.join(pkg.root, relative), (pkg.root,)).splitlines())
     except OSError:
         return line
     return min(line, max(count, 1))
@@ -144,6 +148,35 @@ def setup_py_name_undefined(pkg: Package) -> Iterator[Hit]:
         yield _at(SETUP_PY, line, "known" if name in fixes else "", undefined=name, fix=fixes.get(name, ""))
 
 
+@package_rule("BK608", "next-step-not-written", INFO)
+def next_step_not_written(pkg: Package) -> Iterator[Hit]:
+    """What a package made as the tutorial makes it (``ros2 pkg create``, then one file per step)
+    does not hold yet: the next step, not a mistake. Only the first missing step is named."""
+    if pkg.setup is None:
+        return
+    if not pkg.files("urdf", REQUIRED_FOLDERS[0][1]):
+        yield _at(SETUP_PY, None, "urdf", package=pkg.name)
+    elif not pkg.files("launch", REQUIRED_FOLDERS[1][1]):
+        yield _at(SETUP_PY, None, "launch", package=pkg.name)
+    for script in pkg.setup.scripts or []:
+        if _not_written(pkg, script.module):
+            yield _at(SETUP_PY, script.line, "node", executable=script.name, module=script.module,
+                      node_file=_module_file(script.module), package=pkg.name)
+
+
+def _module_file(module: str) -> str:
+    return module.replace(".", "/") + ".py"
+
+
+def _not_written(pkg: Package, module: str) -> bool:
+    """An entry's module that does not exist while no node of the package is left without an
+    entry: the node is still to write. Beside a node no entry runs, it is a misspelling (BK622)."""
+    if os.path.exists(os.path.join(pkg.root, _module_file(module))):
+        return False
+    listed = {s.module for s in (pkg.setup.scripts if pkg.setup is not None else None) or []}
+    return not any(p.has_main and p.module not in listed for p in pkg.publishers)
+
+
 @package_rule("BK602", "launch-opens-uninstalled-file", ERROR)
 def launch_opens_uninstalled_file(pkg: Package) -> Iterator[Hit]:
     installed = pkg.installed()
@@ -157,6 +190,8 @@ def launch_opens_uninstalled_file(pkg: Package) -> Iterator[Hit]:
             continue  # BK601 already says the whole folder is not installed
         there = sorted(k for k in installed if os.path.dirname(k) == folder)
         exists = os.path.isfile(os.path.join(pkg.root, share.relative))
+        if share.relative.endswith(".rviz") and not exists:
+            continue  # not an error: RViz opens its default configuration (BK613 says so)
         yield _at(launch.path, line, "exists" if exists else ("other" if there else ""),
                   path=share.relative, package=pkg.name, installed=there or ["-"], folder=folder or ".")
 
@@ -241,7 +276,10 @@ def _config_argument(node: NodeCall) -> Any:
 
 
 def _rviz_files(pkg: Package) -> list[tuple[str, str, int]]:
-    """(source .rviz, launch file, line) for each -d of this package that the package holds."""
+    """(source .rviz, launch file, line) for each -d of this package that the package holds: read
+    from the Python launch files, and from every evaluated launch (XML and YAML too) when evaluated."""
+    from .evaluated import evaluations, rviz_uses
+
     installed = pkg.installed() or {}
     out = []
     for path, node in _rviz_starts(pkg):
@@ -250,7 +288,32 @@ def _rviz_files(pkg: Package) -> list[tuple[str, str, int]]:
             source = installed.get(target.relative, target.relative)
             if os.path.isfile(os.path.join(pkg.root, source)):
                 out.append((source, path, node.line))
+    seen = {source for source, _, _ in out}
+    for use in rviz_uses(pkg, evaluations(pkg) or []):
+        if use.source not in seen:
+            seen.add(use.source)
+            out.append((use.source, use.launch, use.line))
     return out
+
+
+def _description_topic_mismatches(pkg: Package, source: str, value: str) -> list[tuple[str, list[str], str]] | None:
+    """(the topic RViz subscribes to, the topics robot_state_publisher publishes, the launch file)
+    for each evaluated launch that gives ``source`` to RViz beside a robot_state_publisher, as rcl
+    resolves both names (namespace, remappings, ``~/``: bras_kit/ros/names.py). None when no
+    evaluated launch tells (then the root topic /robot_description is the reference)."""
+    from .evaluated import description_topics, evaluations, rviz_uses
+
+    told = False
+    out = []
+    for use in rviz_uses(pkg, evaluations(pkg) or []):
+        published = description_topics(use.result)
+        if use.source != source or not published:
+            continue
+        told = True
+        heard = use.node.resolve(value)
+        if heard not in published:
+            out.append((heard, sorted(published), use.launch))
+    return out if told else None
 
 
 def _rviz_lines(lines: list[str], key: str, start: int = 0) -> int | None:
@@ -313,9 +376,17 @@ def rviz_robot_model_not_shown(pkg: Package) -> Iterator[Hit]:
             continue
         topic = model.get("Description Topic")
         value = topic.get("Value") if isinstance(topic, dict) else topic
-        if value != ROBOT_DESCRIPTION:
-            line = _rviz_lines(lines, "Description Topic:", start) or start + 1
-            yield _at(source, line, "topic", topic=str(value if value is not None else ""))
+        line = _rviz_lines(lines, "Description Topic:", start) or start + 1
+        mismatches = _description_topic_mismatches(pkg, source, str(value)) if isinstance(value, str) and value \
+            else None
+        if mismatches is None:
+            if value != ROBOT_DESCRIPTION:
+                yield _at(source, line, "topic", topic=str(value if value is not None else ""))
+            continue
+        for heard, published, launch in dict.fromkeys((h, tuple(p), lf) for h, p, lf in mismatches):
+            plain = list(published) == [ROBOT_DESCRIPTION]
+            yield _at(source, line, "topic" if plain and heard == value else "namespace", topic=heard,
+                      published=", ".join(published), launch=launch)
 
 
 @package_rule("BK612", "rviz-no-tf-display", INFO)
@@ -332,11 +403,37 @@ def rviz_no_tf_display(pkg: Package) -> Iterator[Hit]:
 @package_rule("BK613", "rviz-without-configuration", INFO)
 def rviz_without_configuration(pkg: Package) -> Iterator[Hit]:
     for path, node in _rviz_starts(pkg):
-        if not known(node.arguments) or _config_argument(node) is not None:
+        target = _config_argument(node)
+        if isinstance(target, ShareFile) and target.package == pkg.name and target.relative.endswith(".rviz") \
+                and not os.path.isfile(os.path.join(pkg.root, target.relative)):
+            # not an error: rviz2 cannot load it and opens its default configuration
+            # (rviz_common visualization_frame.cpp:675, loadDisplayConfig: a missing file loads default.rviz)
+            yield _at(path, node.line, "missing", config=target.relative, package=pkg.name)
+            continue
+        if not known(node.arguments) or target is not None:
             continue
         configs = pkg.files("rviz", (".rviz",))
         yield _at(path, node.line, "unused" if configs else "", config=configs[0] if configs else "",
                   package=pkg.name)
+    yield from _rviz_configs_missing_in_front_end_files(pkg)
+
+
+def _rviz_configs_missing_in_front_end_files(pkg: Package) -> Iterator[Hit]:
+    """BK613 "missing" for the XML and YAML launch files, from their evaluation: -d to a file of
+    the package's share folder that nothing installs."""
+    from .evaluated import evaluations, place, rviz_config
+
+    for result in evaluations(pkg) or []:
+        if result.launch_file.endswith(".py"):
+            continue  # read above, from the source
+        share = os.path.join(result.build.prefix, "share", pkg.name) + os.sep
+        for node in result.plan.nodes:
+            config = rviz_config(node) if node.package == "rviz2" else None
+            config = os.path.normpath(config) if config else None
+            # the install tree is gone once evaluated: what the build installed says whether it is there
+            if config and config.startswith(share) and config.endswith(".rviz") and result.build.source_of(config) is None:
+                file, line = place(result, node.file, node.line)
+                yield _at(file, line or None, "missing", config=config[len(share):], package=pkg.name)
 
 
 # ---------------------------------------------------------------- "le robot ne bouge pas"
@@ -345,16 +442,18 @@ def rviz_without_configuration(pkg: Package) -> Iterator[Hit]:
 def _included(pkg: Package, path: str) -> bool:
     """Whether another launch file of the package names this one (IncludeLaunchDescription): the
     nodes it starts are only part of the launch, checked with the file that includes it."""
+    from ...learner_files import read_text
+
     name = os.path.basename(path)
-    for launch in pkg.launch_files:
-        if launch.path == path:
+    named = re.compile(r"(?<![\w.-])" + re.escape(name) + r"(?![\w.-])")
+    for other in pkg.files("launch", LAUNCH_SUFFIXES):  # an XML or YAML file includes Python ones too
+        if other == path:
             continue
         try:
-            with open(os.path.join(pkg.root, launch.path), encoding="utf-8", errors="replace") as handle:
-                text = handle.read()
+            text = read_text(os.path.join(pkg.root, other), (pkg.root,), errors="replace")
         except OSError:
             continue
-        if f"'{name}'" in text or f'"{name}"' in text:
+        if named.search(text):  # 'name', ".../launch/name", $(find-pkg-share p)/launch/name
             return True
     return False
 
@@ -374,7 +473,42 @@ def _publisher_for(pkg: Package, executable: Any) -> Publisher | None:
 
 @package_rule("BK620", "no-joint-state-source", ERROR)
 def no_joint_state_source(pkg: Package) -> Iterator[Hit]:
-    for launch in pkg.launch_files:
+    from .evaluated import (
+        evaluations,
+        joint_state_sources,
+        joint_state_topics,
+        place,
+        standing_alone,
+    )
+
+    results = evaluations(pkg) or []
+    movable = [j.name for j in pkg.robot.movable_joints()] if pkg.robot is not None else []
+    heard = [p for p in pkg.publishers if _on_joint_states(p.topic)]  # BK624 speaks of the others
+    # evaluated: each launch as ros2 launch runs it, an included file judged with the file that includes it
+    for result in standing_alone(results):
+        if _included(pkg, result.launch_file):
+            continue  # judged with the file that includes it (BK631 when that one stops)
+        rsp = [n for n in result.plan.nodes if n.package == "robot_state_publisher"]
+        if not rsp:
+            continue
+        file, line = place(result, rsp[0].file, rsp[0].line)
+        if not joint_state_sources(result, lambda executable: _publisher_for(pkg, executable) is not None):
+            yield _at(file, line or None, "nodes" if heard else "", joints=movable or ["?"],
+                      node=heard[0].module if heard else "")
+            continue
+        # rcl's names: the sliders at the root beside a namespaced robot_state_publisher are not heard
+        listens, sources = joint_state_topics(result, lambda executable: _publisher_for(pkg, executable))
+        in_code = {n.full_name for n in result.plan.nodes if n.package == pkg.name
+                   and (p := _publisher_for(pkg, n.executable)) is not None and not _on_joint_states(p.topic)}
+        if all(who in in_code for who, _ in sources):
+            continue  # BK624 names the topic written in the node
+        if sources and all(topic is not None and topic not in listens for _, topic in sources):
+            yield _at(file, line or None, "topic", joints=movable or ["?"], listens=", ".join(sorted(listens)),
+                      sources=", ".join(f"{who} -> {topic}" for who, topic in sources))
+    evaluated = {r.launch_file for r in results}
+    for launch in pkg.launch_files:  # the Python launch files no evaluation judged
+        if launch.path in evaluated:
+            continue
         nodes = launch.nodes
         starts_rsp = any(n.package == "robot_state_publisher" for n in nodes)
         if not starts_rsp or launch.includes or _included(pkg, launch.path):
@@ -385,8 +519,6 @@ def no_joint_state_source(pkg: Package) -> Iterator[Hit]:
         if any(not isinstance(n.executable, str) or _publisher_for(pkg, n.executable) is not None for n in own):
             continue
         line = next(n.line for n in nodes if n.package == "robot_state_publisher")
-        movable = [j.name for j in pkg.robot.movable_joints()] if pkg.robot is not None else []
-        heard = [p for p in pkg.publishers if _on_joint_states(p.topic)]  # BK624 speaks of the others
         yield _at(launch.path, line, "nodes" if heard else "", joints=movable or ["?"],
                   node=heard[0].module if heard else "")
 
@@ -430,6 +562,8 @@ def node_entry_point_missing(pkg: Package) -> Iterator[Hit]:
             yield _at(SETUP_PY, setup.scripts_line, "node", module=publisher.module, node_file=publisher.path,
                       package=pkg.name, executable=executable, entry=_entry_text(executable, publisher.module))
     for script in setup.scripts:
+        if _not_written(pkg, script.module):
+            continue  # BK608: the node is the learner's next step
         tree = pkg.module_tree(script.module)
         if tree is None:
             yield _at(SETUP_PY, script.line, "module", executable=script.name, module=script.module)
@@ -498,11 +632,31 @@ def _on_joint_states(topic: Any) -> bool:
 
 @package_rule("BK624", "joint-state-topic-wrong", ERROR)
 def joint_state_topic_wrong(pkg: Package) -> Iterator[Hit]:
-    """robot_state_publisher listens on /joint_states only: any other literal topic is heard by nobody."""
+    """robot_state_publisher listens on /joint_states only: any other literal topic is heard by nobody
+    — unless a launch file remaps it (or namespaces both) so that rcl resolves it to the topic
+    robot_state_publisher listens on (evaluated launches only: names.py)."""
+    heard_through_launch = _topics_heard_through_launch(pkg)
     for publisher in pkg.publishers:
+        if publisher.module in heard_through_launch:
+            continue
         if not _on_joint_states(publisher.topic):
             yield _at(publisher.path, publisher.topic_line, topic=publisher.topic,
                       fix="self.create_publisher(JointState, 'joint_states', 10)")
+
+
+def _topics_heard_through_launch(pkg: Package) -> set[str]:
+    """The modules whose JointState topic an evaluated launch makes robot_state_publisher hear."""
+    from .evaluated import evaluations, joint_state_topics
+
+    out = set()
+    for result in evaluations(pkg) or []:
+        listens, _ = joint_state_topics(result, lambda executable: None)
+        for node in result.plan.nodes:
+            publisher = _publisher_for(pkg, node.executable) if node.package == pkg.name else None
+            if publisher is not None and isinstance(publisher.topic, str) and publisher.topic \
+                    and node.resolve(publisher.topic) in listens:
+                out.add(publisher.module)
+    return out
 
 
 @package_rule("BK625", "joint-state-never-sent", ERROR)

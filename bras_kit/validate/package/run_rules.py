@@ -138,8 +138,15 @@ def _joint_state_messages(run: RunContext) -> list[Any]:
     return run.recording.joint_state_messages(JOINT_STATES)
 
 
+def _split_names(run: RunContext) -> list[Any]:
+    """msg.name given one string on /joint_states: sent as its letters (recording.SplitString)."""
+    return [s for s in run.recording.split_strings if s.topic == JOINT_STATES and s.field == "name"]
+
+
 @run_rule("BK645", "joint-state-lengths-differ", ERROR)
 def joint_state_lengths_differ(run: RunContext) -> Iterator[Hit]:
+    if _split_names(run):
+        return  # BK646 names the cause: the letters of one string
     for message in _joint_state_messages(run):
         names, position = message.fields.get("name") or [], message.fields.get("position") or []
         if len(names) != len(position):
@@ -153,6 +160,15 @@ def joint_state_lengths_differ(run: RunContext) -> Iterator[Hit]:
 
 @run_rule("BK646", "joint-state-unknown-names", ERROR)
 def joint_state_unknown_names(run: RunContext) -> Iterator[Hit]:
+    split = _split_names(run)
+    if split:
+        # rosidl_generator_py (Jazzy) _msg.py.em:440 keeps the str (no check) and the C
+        # conversion iterates it (_msg_support.c.em, PySequence_Fast): one name per letter
+        first = split[0]
+        letters = len(first.value)
+        yield _at(first.path or run.recording.source, first.line or None, "split", value=first.value,
+                  letters=letters, count=first.count, names=repr([n for n in first.value.replace(",", " ").split()]))
+        return
     movable = _movable(run)
     if run.robot is None:
         return
@@ -166,7 +182,7 @@ def joint_state_unknown_names(run: RunContext) -> Iterator[Hit]:
 @run_rule("BK647", "joint-state-joints-never-named", ERROR)
 def joint_state_joints_never_named(run: RunContext) -> Iterator[Hit]:
     messages = _joint_state_messages(run)
-    if run.robot is None or not messages:
+    if run.robot is None or not messages or _split_names(run):
         return
     named = {n for m in messages for n in m.fields.get("name") or []}
     missing = [n for n in _movable(run) if n not in named]
@@ -249,6 +265,16 @@ def beginner_mistake(r: Recording) -> tuple[str, str, int | None, dict[str, Any]
     here = (last.path, last.line) if last else (r.source, None)
     if failure is not None and r.ended == "error":
         detail = failure.detail
+        if failure.kind == "ImportError" and context.get("homes") is not None:
+            name, module = detail.split("'")[1], detail.split("'")[3] if detail.count("'") >= 4 else "?"
+            homes = [home for home in context["homes"] if home != module]
+            if homes:
+                return "wrong_import", *here, {"type": name, "module": module, "home": homes[0]}
+            near = context.get("near") or []
+            if near:  # a misspelt type: JointSate, Jointstate
+                home, _, close = near[0].rpartition(".")
+                return "misspelt_import", *here, {"type": name, "module": module, "home": home, "close": close}
+            return "unknown_import", *here, {"type": name, "module": module}
         if failure.kind == "RCLError" and "rcl_shutdown already called" in detail:
             return "shutdown_twice", *here, {"detail": detail}
         if failure.kind == "TypeError" and "does not support the context manager protocol" in detail:

@@ -45,11 +45,16 @@ class ShareFile:
     relative: str
 
 
-def parse_python(path: str) -> tuple[ast.Module | None, str | None, int | None]:
-    """The module's tree, or (None, reason, line) when it cannot be read or parsed."""
+def parse_python(path: str, root: str | None = None) -> tuple[ast.Module | None, str | None, int | None]:
+    """The module's tree, or (None, reason, line) when it cannot be read or parsed. The file is read
+    through the one reader (:mod:`bras_kit.learner_files`): inside ``root`` (default: its folder),
+    a regular file, never a device, a pipe or a link out."""
+    from ...learner_files import Unreadable, read_bytes
+
     try:
-        with open(path, "rb") as handle:
-            source = handle.read()
+        source = read_bytes(path, (root or os.path.dirname(os.path.abspath(path)),))
+    except Unreadable as exc:
+        return None, str(exc).rpartition(": ")[2], None
     except OSError as exc:
         return None, exc.strerror or str(exc), None
     try:

@@ -110,6 +110,31 @@ This is advice (info): the tutorial's own package declares none of them and runs
 where ROS 2 desktop is installed.""",
 )
 describe(
+    "BK608",
+    title="the package does not hold the next step's file yet",
+    message={
+        "urdf": "no robot description yet: urdf/ holds no .urdf or .xacro file",
+        "launch": "no launch file yet: launch/ holds no .launch.py file",
+        "node": "setup.py runs '{executable}' from {node_file}, not written yet: 'ros2 run {package} {executable}' "
+                "fails until it is",
+        "": "the package does not hold the next step's file yet",
+    },
+    hint={
+        "urdf": "next step: describe the robot in urdf/bras.urdf (the tutorial's step 3)",
+        "launch": "next step: write launch/affichage.launch.py (the tutorial's step 4)",
+        "node": "next step: write {node_file} with its main() (the tutorial's step 7)",
+        "": "write the next step's file",
+    },
+    explanation="""\
+A package made as the tutorial makes it (`ros2 pkg create`, or `bras-kit new --empty`) gets its
+files one step at a time: the robot description (step 3), the launch file (step 4), the
+`data_files` of `setup.py` (step 5), the node and its `console_scripts` entry (step 7). What is
+not written yet is the next step, not a mistake: this finding names it (info), and the rules
+that check a file start once it exists. A `console_scripts` entry whose module file is missing
+is reported here rather than as BK622, since `colcon build` succeeds and only
+`ros2 run` fails, until the file is written.""",
+)
+describe(
     "BK606",
     title="invalid maintainer email in package.xml",
     message={
@@ -147,17 +172,24 @@ describe(
         "missing": "the RViz configuration has no RobotModel display: the arm is not drawn",
         "disabled": "the RobotModel display is disabled: the arm is not drawn",
         "topic": "RobotModel reads its description from '{topic}', not /robot_description",
+        "namespace": "RobotModel reads its description from '{topic}', but robot_state_publisher publishes it on "
+                     "{published} ({launch}): the arm is not drawn",
         "": "the RobotModel display is not set up",
     },
     hint={
         "missing": "add a RobotModel display with Description Topic /robot_description, and save the configuration",
         "disabled": "tick the RobotModel display (Enabled: true) and save the configuration",
+        "namespace": "set Description Topic to {published}, or start robot_state_publisher outside the namespace",
         "": "set Description Topic to /robot_description",
     },
     explanation="""\
-robot_state_publisher publishes the URDF on the topic `/robot_description`. RViz's RobotModel
-display draws the links only when it reads that topic; with another topic, or no RobotModel at
-all, RViz stays empty although everything runs: the tutorial's first pitfall.""",
+robot_state_publisher publishes the URDF on the topic `robot_description`, a relative name: rcl
+resolves it in the node's namespace and through its remappings, so it is `/robot_description`
+at the root and `/bras/robot_description` under `PushRosNamespace('bras')` or `namespace='bras'`.
+RViz's RobotModel display draws the links only when it reads that very topic; with another topic,
+or no RobotModel at all, RViz stays empty although everything runs: the tutorial's first pitfall.
+With the launch file evaluated (`--launch`, `bras-kit launch`), both names are resolved as rcl
+resolves them (namespaces, remappings, `~/`).""",
 )
 describe(
     "BK612",
@@ -174,9 +206,12 @@ describe(
     title="RViz is started without a configuration",
     message={
         "unused": "rviz2 is started without -d, so {config} is not used: RViz opens empty",
+        "missing": "rviz2 is given -d {config}, which the package does not have: RViz opens its default "
+                   "configuration, empty",
         "": "rviz2 is started without a configuration: RViz opens empty",
     },
     hint={
+        "missing": "save RViz's configuration as {config} (File > Save Config As), install it, or correct the name",
         "unused": "pass arguments=['-d', os.path.join(get_package_share_directory('{package}'), '{config}')]",
         "": "save a configuration to rviz/{package}.rviz, install it, and pass it with arguments=['-d', ...]",
     },
@@ -190,9 +225,15 @@ describe(
     title="nothing publishes /joint_states",
     message={
         "nodes": "the launch file starts robot_state_publisher but nothing that publishes /joint_states ({node} does, but is not started): the joints {joints} have no angle",
+        "topic": "robot_state_publisher listens on {listens}, but JointState is published elsewhere ({sources}): the "
+                 "joints {joints} have no angle",
         "": "the launch file starts robot_state_publisher but nothing that publishes /joint_states: the joints {joints} have no angle",
     },
-    hint="start joint_state_publisher_gui (or your animation node) in the launch file",
+    hint={
+        "topic": "put them in the same namespace (one GroupAction with PushRosNamespace), or remap: "
+                 "remappings=[('joint_states', '{listens}')]",
+        "": "start joint_state_publisher_gui (or your animation node) in the launch file",
+    },
     explanation="""\
 robot_state_publisher computes the frames of moving links from the angles it receives on
 `/joint_states`. With no publisher, those links have no transform: RViz shows them at the
@@ -345,8 +386,13 @@ describe(
     message={
         "": "the node's JointState names {names}, which are not movable joints of the robot ({joints})",
         "one": "the node's JointState names {names}, which is not a movable joint of the robot ({joints})",
+        "split": "msg.name was given one string, '{value}', not a list: ROS sends its {letters} letters as {letters} joint names ({count} messages)",
     },
-    hint="use the joint names of the URDF: {joints}",
+    hint={
+        "": "use the joint names of the URDF: {joints}",
+        "one": "use the joint names of the URDF: {joints}",
+        "split": "give a list of names: msg.name = {names}",
+    },
     explanation="""\
 robot_state_publisher matches JointState entries to the URDF by name and ignores the others. A
 misspelt name (`Coude`, `elbow`, `coude_joint`) therefore leaves that joint without an angle,
@@ -495,6 +541,9 @@ describe(
     "BK652",
     title="the node made a beginner's mistake that rclpy (Jazzy) stops on",
     message={
+        "wrong_import": "'from {module} import {type}' fails: {type} is not in {module} but in {home}",
+        "unknown_import": "'from {module} import {type}' fails: ROS 2 Jazzy has no message {type} in {module}",
+        "misspelt_import": "'from {module} import {type}' fails: ROS 2 Jazzy has no {type}; the closest is {close}, in {home}",
         "shutdown_twice": "rclpy.shutdown() after Ctrl-C raised '{detail}': rclpy's Ctrl-C handler had already shut the context down",
         "with_node": "'with {cls}() as node:' fails: a Node of rclpy 7.1 (Jazzy) is not a context manager",
         "spin_forgotten": "main() returned at t = 0 s without spinning: the timer created here never fired",
@@ -508,6 +557,9 @@ describe(
         "stamp_seconds": "header.stamp only counts whole seconds (nanosec left at 0): {distinct} distinct stamps for {count} messages",
     },
     hint={
+        "wrong_import": "import it from its package: from {home} import {type} (and add the package to package.xml's <depend>)",
+        "unknown_import": "check the type's name and package (ros2 interface list on a ROS 2 machine)",
+        "misspelt_import": "write from {home} import {close}",
         "shutdown_twice": "end main() with rclpy.try_shutdown() (or 'if rclpy.ok(): rclpy.shutdown()')",
         "with_node": "write node = {cls}() then node.destroy_node() at the end (an executor, not a Node, can be used with 'with')",
         "spin_forgotten": "call rclpy.spin(node) after creating the node: spin is what runs the timers",
@@ -574,6 +626,23 @@ describe(
         "missing_source": "colcon build fails: {colcon}",
         "setup_raised": "colcon build fails, setup.py stops with an error: {colcon}",
         "outside": "data_files installs into {detail}, outside the package's install folder",
+        "name": "the package name '{detail}' is not a name colcon accepts: {colcon}",
+        "source_outside": "setup() names {source}, outside the package folder: bras-kit does not install it",
+        "source_link_out": "setup() names {source}, a symbolic link that leads outside the package folder: "
+                           "bras-kit does not install it",
+        "source_loop": "setup() names {source}, a loop of symbolic links: bras-kit does not install it",
+        "source_device": "setup() names {source}, a device, not a file: bras-kit does not install it",
+        "source_fifo": "setup() names {source}, a named pipe, not a file: bras-kit does not install it",
+        "source_socket": "setup() names {source}, a socket, not a file: bras-kit does not install it",
+        "source_too_large": "setup() names {source}, a file too large to install",
+        "module": "'{source}' is not a Python package or module name (dotted identifiers): bras-kit does not "
+                  "install it",
+        "entry_point": "the console_scripts entry '{source}' is not 'NAME = module:function' with Python names: "
+                       "bras-kit writes no script from it",
+        "value": "setup() was given {source}, which setuptools does not take there: bras-kit installs nothing "
+                 "from it",
+        "prefix": "{detail} already exists and is not an install folder colcon made: bras-kit does not remove it",
+        "install": "the install tree cannot be laid out: {colcon}",
         "": "colcon build fails: {colcon}",
     },
     hint={
@@ -585,6 +654,20 @@ describe(
         "missing_source": "create {source}, or remove it from data_files (glob('{folder}/*') installs what exists)",
         "setup_raised": "fix setup.py at this line; colcon runs it exactly as python would",
         "outside": "install below share/{package}, e.g. os.path.join('share', package_name, 'urdf')",
+        "name": "a package name has lower case letters, digits and underscores and starts with a letter (REP 144), "
+                "e.g. name='bras_description', the same in setup.py and package.xml",
+        "source_outside": "list only files of the package, relative to its folder, e.g. glob('urdf/*.urdf')",
+        "source_link_out": "copy the file into the package instead of linking to it",
+        "source_loop": "remove the link, and list the real file",
+        "source_device": "list only files of the package, relative to its folder, e.g. glob('urdf/*.urdf')",
+        "source_fifo": "list only files of the package, relative to its folder, e.g. glob('urdf/*.urdf')",
+        "source_socket": "list only files of the package, relative to its folder, e.g. glob('urdf/*.urdf')",
+        "source_too_large": "keep meshes small (decimate them) or leave them out of the package",
+        "module": "packages=[package_name] (the folder holding __init__.py), or find_packages(exclude=['test'])",
+        "entry_point": "write it as in the tutorial: 'animation = bras_description.animation:main'",
+        "value": "compare with the setup.py that ros2 pkg create writes",
+        "prefix": "move that folder away, or build into another folder with --install-base",
+        "install": "two data_files entries install a file and a folder of the same name: rename one",
         "": "fix setup.py",
     },
     explanation="""\
@@ -615,6 +698,22 @@ describe(
         "no_file": "no file {path} in the package: check the folder and file name",
         "yaml": "read as YAML, the URDF text fails: wrap it, ParameterValue(Command(['xacro ', path]), value_type=str) "
                 "(from launch_ros.parameter_descriptions import ParameterValue)",
+        "yaml_rules": "a parameter without a type is read with YAML rules, and the URDF text is not YAML ({reason}, "
+                      "line {text_line} of the text): keep it as text with {fix}",
+        "attribute_missing": "launch's XML and YAML files name it {attribute}, not {written}: write {fix}",
+        "attribute_renamed": "launch's XML and YAML files use other names than Python: write {fix}",
+        "attribute_unexpected": "{attributes} is not read on {entity}: remove it or check its name in the "
+                                "launch file format (docs.ros.org, Launch file format)",
+        "tag_unknown": "{tag} is not a tag launch reads (tags are lower case: node, include, group, arg, let, "
+                       "executable, timer...)",
+        "include_dict": "launch_arguments takes (name, value) pairs: write launch_arguments={{...}}.items()",
+        "parameters_not_list": "parameters takes a list of dicts: parameters=[{{'robot_description': description}}]",
+        "not_a_list": "LaunchDescription takes a list of actions: LaunchDescription([...]), not one {given}",
+        "not_text": "launch values are text or substitutions, not {given}: write it in quotes (default_value='true')",
+        "no_generate": "ros2 launch calls generate_launch_description(): define a function of that name that "
+                       "returns LaunchDescription([...])",
+        "no_description": "generate_launch_description() returns {returned}: end it with "
+                          "return LaunchDescription([...])",
         "": "the launch file stops at this line; fix it and launch again",
     },
     explanation="""\
@@ -624,8 +723,13 @@ action and substitution before starting the nodes. An exception on the way stops
 `FindPackageShare`: PackageNotFoundError), a file opened by a path relative to the current
 folder, a file that `setup.py` does not install, an executable that is not a console_scripts
 name, a URDF given to a parameter through a substitution without `ParameterValue(...,
-value_type=str)`. bras-kit evaluates the launch file the same way against a stand-in of
-launch, launch_ros and ament_index_python (Jazzy) and reports the line it stopped at.""",
+value_type=str)` (or, in XML and YAML, without `type="str"`: launch then reads the text with
+YAML rules and stops on "Failed to convert ... using yaml rules" when it is not YAML), an XML or
+YAML attribute written with its Python name (`executable` for `exec`: "Can not find attribute
+'exec' in Entity 'node'"), `launch_arguments` given as a dict instead of `dict.items()` ("too
+many values to unpack"), a `generate_launch_description()` that returns no LaunchDescription.
+bras-kit evaluates the launch file the same way against a stand-in of launch, launch_ros and
+ament_index_python (Jazzy) and reports the line it stopped at.""",
 )
 describe(
     "BK632",
@@ -633,6 +737,8 @@ describe(
     message={
         "empty": "robot_state_publisher stops: {ros}",
         "file_missing": "robot_state_publisher stops: {ros}",
+        "file_refused": "robot_state_publisher is given {detail} as its URDF file: a device, a pipe, a link out of "
+                        "the package or a file outside it, which bras-kit does not read",
         "path": "robot_description is a file's path, not its text: {ros}",
         "xacro": "robot_description is xacro source that xacro never expanded: {ros}",
         "not_urdf": "robot_description is not a URDF robot ({detail}): {ros}",
@@ -642,6 +748,8 @@ describe(
         "empty": "give the URDF text: parameters=[{{'robot_description': description}}] with description read from "
                  "the installed urdf/ file",
         "file_missing": "install the URDF (data_files) and pass its text as the robot_description parameter",
+        "file_refused": "read the robot from the package's installed urdf/ file: "
+                        "os.path.join(get_package_share_directory(PACKAGE), 'urdf', 'bras.urdf')",
         "path": "pass the file's text: with open(path) as f: description = f.read(), then "
                 "{{'robot_description': description}}",
         "xacro": "run xacro on it: ParameterValue(Command(['xacro ', path]), value_type=str), or "
@@ -655,6 +763,40 @@ the whole URDF (robot_state_publisher.cpp). An empty string stops it ("robot_des
 parameter must not be empty"), a path or a `.xacro` source fails to parse ("Unable to initialize
 urdf::model from robot description"): no TF, no model, an empty RViz. The text must be the URDF
 itself: read the installed file, or run xacro in the launch file.""",
+)
+describe(
+    "BK634",
+    title="a launched node dies on its ROS arguments",
+    message={
+        "unknown_ros_args": "{node} dies as it starts: {ros}",
+        "invalid_ros_args": "{node} dies as it starts: {ros}",
+        "": "{node} dies as it starts: {ros}",
+    },
+    hint={
+        "unknown_ros_args": "one list item per word: ros_arguments=[{fixed}] (in XML, ros_args=\"--log-level warn\" "
+                            "without inner quotes)",
+        "": "check the ROS arguments: -r FROM:=TO, -p NAME:=VALUE, --params-file FILE, --log-level LEVEL",
+    },
+    explanation="""\
+A node reads its ROS arguments with rcl's rules (rcl/src/rcl/arguments.c): after `--ros-args`
+each flag (`--log-level`, `-r`, `-p`, `--params-file`) and its value are separate words. Given
+`ros_arguments=['--log-level warn']`, the node receives one word `--log-level warn`, which is
+no ROS flag: rclpy.init and rclcpp::init stop with UnknownROSArgsError and the process dies,
+while the rest of the launch goes on without it. In XML, `ros_args="--log-level warn"` is split
+into two words and works.""",
+)
+describe(
+    "BK635",
+    title="an event handler waits for a process that never starts",
+    message="OnProcessStart waits for {target}, which this launch never starts: {waiting} never starts either",
+    hint="put that very Node in the LaunchDescription (the handler matches the same object), or start {waiting} "
+         "without the handler",
+    explanation="""\
+`RegisterEventHandler(OnProcessStart(target_action=rsp, on_start=[rviz]))` starts RViz when the
+action `rsp` has started, and only then: launch matches the started process by identity
+(event_handlers/on_action_event_base.py). When `rsp` is never put in the LaunchDescription (a
+second `Node(...)` is not the same object), or its condition is false, the event never happens and
+RViz never opens, without any error from ros2 launch.""",
 )
 describe(
     "BK633",

@@ -15,6 +15,7 @@ from ._core import (
     normalize_to_list_of_substitutions,
     perform_substitutions,
 )
+from ._events import record_start
 
 
 class DeclareLaunchArgument(Action):
@@ -234,6 +235,8 @@ class ExecuteProcess(Action):
         words = [perform_substitutions(context, c) for c in self.__cmd]
         _plan.PROCESSES.append({"cmd": words, "delay": context.delay, "file": self.__where[0],
                                 "line": self.__where[1]})
+        self._bras_cmd = words
+        record_start(context, self)
 
 
 class ExecuteLocal(ExecuteProcess):
@@ -255,8 +258,11 @@ class IncludeLaunchDescription(Action):
         elif not isinstance(launch_description_source, LaunchDescriptionSource):
             launch_description_source = AnyLaunchDescriptionSource(launch_description_source)
         self.__source = launch_description_source
-        items = launch_arguments.items() if isinstance(launch_arguments, dict) else (launch_arguments or [])
-        self.__launch_arguments = list(items)
+        # kept as given: a dict (not dict.items()) is iterated key by key in execute(), and each key is
+        # unpacked into (name, value): "too many values to unpack (expected 2)" for 'gui'
+        # (include_launch_description.py:150, ``for arg_name, arg_value in self.launch_arguments``)
+        self.__launch_arguments = [] if launch_arguments is None else launch_arguments
+        self.__where = _plan.caller()
 
     @property
     def launch_arguments(self) -> list:
@@ -267,14 +273,20 @@ class IncludeLaunchDescription(Action):
         return self.__source
 
     def execute(self, context: LaunchContext) -> list:
+        """include_launch_description.py:137."""
+        if self.__where[0]:
+            _plan.CURRENT = self.__where
         description = self.__source.get_launch_description(context)
         location = self.__source.location if hasattr(self.__source, "location") else ""
         if location and os.path.exists(location):
             context.extend_locals({'current_launch_file_path': location,
                                    'current_launch_file_directory': os.path.dirname(location)})
+            _plan.INCLUDED.append(location)
         given = [perform_substitutions(context, normalize_to_list_of_substitutions(name))
                  for name, _ in self.__launch_arguments]
-        for argument in description.get_launch_arguments():
+        # a description that is not a LaunchDescription (None, a list) fails here as on Jazzy:
+        # AttributeError: 'NoneType' object has no attribute 'get_launch_arguments_with_include_...'
+        for argument, _ in description.get_launch_arguments_with_include_launch_description_actions():
             if argument._conditionally_included or argument.default_value is not None:
                 continue
             if argument.name not in given and argument.name not in context.launch_configurations:
@@ -282,24 +294,25 @@ class IncludeLaunchDescription(Action):
                     "Included launch description missing required argument '{}' "
                     "(description: '{}'), given: [{}]".format(argument.name, argument.description, ', '.join(given)))
         sets = [SetLaunchConfiguration(name, value) for name, value in self.__launch_arguments]
+        _plan.CURRENT = None
         return [*sets, description]
 
 
 class RegisterEventHandler(Action):
-    """register_event_handler.py: OnProcessStart's actions run with their target; OnProcessExit's
-    run when the target is a process that ends by itself (not a node, which runs until Ctrl-C)."""
+    """register_event_handler.py: the handler is kept; its actions run only when its event happens."""
 
     def __init__(self, event_handler: Any, **kwargs: Any) -> None:
         super().__init__(**kwargs)
         self.__event_handler = event_handler
+        self.__where = _plan.caller()
 
     @property
     def event_handler(self) -> Any:
         return self.__event_handler
 
-    def execute(self, context: LaunchContext) -> list:
-        context.register_event_handler(self.__event_handler)
-        return list(getattr(self.__event_handler, "_bras_followers", lambda: [])())
+    def execute(self, context: LaunchContext) -> None:
+        self.__event_handler._bras_where = self.__where
+        context.register_event_handler(self.__event_handler)  # it fires when its event happens (_events.py)
 
 
 class UnregisterEventHandler(Action):

@@ -183,6 +183,12 @@ class LaunchContext:
 
     def register_event_handler(self, event_handler: Any, append: bool = False) -> None:
         _plan.record_handler(event_handler)
+        self.__dict__.setdefault("_bras_handlers", []).append(event_handler)
+
+    def unregister_event_handler(self, event_handler: Any) -> None:
+        handlers = self.__dict__.get("_bras_handlers", [])
+        if event_handler in handlers:
+            handlers.remove(event_handler)
 
     def emit_event_sync(self, event: Any) -> None:
         pass
@@ -246,6 +252,11 @@ class LaunchDescription(LaunchDescriptionEntity):
 
     def add_action(self, action: Action) -> None:
         self.add_entity(action)
+
+    def get_launch_arguments_with_include_launch_description_actions(
+            self, conditional_inclusion: bool = False) -> list:
+        """launch_description.py:93 (without the nested includes' actions)."""
+        return [(argument, None) for argument in self.get_launch_arguments(conditional_inclusion)]
 
     def get_launch_arguments(self, conditional_inclusion: bool = False) -> list:
         from .actions import DeclareLaunchArgument, IncludeLaunchDescription  # type: ignore[attr-defined]

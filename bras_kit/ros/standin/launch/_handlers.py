@@ -1,57 +1,85 @@
-"""launch/event_handlers/*.py (Jazzy), for the handlers learners register."""
+"""launch/event_handlers/*.py (Jazzy), for the handlers learners register: each fires only on an
+event that happened (see _events.py)."""
 
 from __future__ import annotations
 
 from typing import Any
 
-
-def _entities(value: Any) -> list:
-    if value is None or callable(value):
-        return []  # a callable handler gets an event bras-kit does not make
-    return list(value) if isinstance(value, (list, tuple)) else [value]
+from ._events import ProcessEvent, ProcessExited, ProcessStarted
 
 
 class EventHandler:
     def __init__(self, *, matcher: Any = None, entities: Any = None, handle_once: bool = False) -> None:
-        self._entities = _entities(entities)
+        self._matcher = matcher
+        self._entities = [] if entities is None else (list(entities) if isinstance(entities, (list, tuple))
+                                                      else [entities])
+        self._bras_once = handle_once
 
-    def _bras_followers(self) -> list:
-        return []
+    @property
+    def handle_once(self) -> bool:
+        return self._bras_once
+
+    def _bras_matches(self, event: Any) -> bool:
+        return bool(self._matcher(event)) if self._matcher is not None else False
+
+    def _bras_handle(self, event: Any, context: Any) -> list:
+        return list(self._entities)
 
 
-class OnProcessStart(EventHandler):
-    """Its actions start with the target (nodes start at once here)."""
+class _OnActionEvent(EventHandler):
+    """on_action_event_base.py: the target by identity, a predicate, or any process (None)."""
+
+    EVENT: type[ProcessEvent] = ProcessStarted
+
+    def __init__(self, *, target_action: Any = None, on_event: Any = None, **kwargs: Any) -> None:
+        super().__init__(handle_once=bool(kwargs.get("handle_once", False)))
+        self.target_action = target_action
+        self._on = on_event
+
+    def _bras_matches(self, event: Any) -> bool:
+        if not isinstance(event, self.EVENT):
+            return False
+        target = self.target_action
+        if target is None:
+            return True
+        if callable(target) and not hasattr(target, "execute"):
+            return bool(target(event.action))
+        return event.action is target
+
+    def _bras_handle(self, event: Any, context: Any) -> list:
+        on = self._on
+        if on is None:
+            return []
+        if callable(on):  # on_action_event_base.py handle(): a function of (event, context)
+            on = on(event, context)
+            if on is None:
+                return []
+        return list(on) if isinstance(on, (list, tuple)) else [on]
+
+
+class OnProcessStart(_OnActionEvent):
+    EVENT = ProcessStarted
 
     def __init__(self, *, target_action: Any = None, on_start: Any = None, **kwargs: Any) -> None:
-        super().__init__()
-        self.target_action = target_action
-        self._on = _entities(on_start)
-
-    def _bras_followers(self) -> list:
-        return self._on
+        super().__init__(target_action=target_action, on_event=on_start, **kwargs)
 
 
-class OnProcessExit(EventHandler):
-    """Its actions follow a process that ends by itself; a node runs until stopped, so what
-    follows a node's exit never starts during the launch."""
+class OnProcessExit(_OnActionEvent):
+    """A node runs until Ctrl-C: what follows its exit never starts during the launch."""
+
+    EVENT = ProcessExited
 
     def __init__(self, *, target_action: Any = None, on_exit: Any = None, **kwargs: Any) -> None:
-        super().__init__()
-        self.target_action = target_action
-        self._on = _entities(on_exit)
-
-    def _bras_followers(self) -> list:
-        from ._actions import ExecuteProcess
-
-        target = self.target_action
-        if target is not None and isinstance(target, ExecuteProcess) and not getattr(target, "_is_node", False):
-            return self._on
-        return []
+        super().__init__(target_action=target_action, on_event=on_exit, **kwargs)
 
 
-class OnExecutionComplete(OnProcessStart):
+class OnExecutionComplete(_OnActionEvent):
+    """Taken as the target's start: its execute() has completed when it starts."""
+
+    EVENT = ProcessStarted
+
     def __init__(self, *, target_action: Any = None, on_completion: Any = None, **kwargs: Any) -> None:
-        super().__init__(target_action=target_action, on_start=on_completion)
+        super().__init__(target_action=target_action, on_event=on_completion, **kwargs)
 
 
 class OnShutdown(EventHandler):

@@ -39,11 +39,25 @@ def get_launch_description_from_python_launch_file(python_launch_file_path: str)
 
 
 def get_launch_description_from_any_launch_file(launch_file_path: str) -> LaunchDescription:
-    if launch_file_path.endswith('.py'):
-        return get_launch_description_from_python_launch_file(launch_file_path)
-    from ._frontend import get_launch_description_from_frontend_launch_file
+    """any_launch_file_utilities.py:30: the loader the extension names first, then the other; when
+    both fail, one InvalidLaunchFileError lists what each said (ros2 launch prints that list)."""
+    from ._frontend import InvalidLaunchFileError, get_launch_description_from_frontend_launch_file
 
-    return get_launch_description_from_frontend_launch_file(launch_file_path)
+    loaders: list[Any] = [get_launch_description_from_frontend_launch_file]
+    extension = os.path.splitext(os.path.basename(launch_file_path))[1][1:]
+    if extension == 'py':
+        loaders.insert(0, get_launch_description_from_python_launch_file)
+    else:
+        loaders.append(get_launch_description_from_python_launch_file)
+        if extension not in ('xml', 'yaml', 'yml'):  # Parser.is_filename_valid
+            extension = ''
+    errors: list[BaseException] = []
+    for loader in loaders:
+        try:
+            return loader(launch_file_path)
+        except Exception as exc:  # noqa: BLE001 - kept, as launch keeps it
+            errors.append(exc)
+    raise InvalidLaunchFileError(extension, likely_errors=errors)
 
 
 class LaunchDescriptionSource:

@@ -26,6 +26,7 @@ from launch._core import (
     normalize_to_list_of_substitutions,
     perform_substitutions,
 )
+from launch._events import record_start
 
 
 # ------------------------------------------------------------------ substitutions
@@ -83,26 +84,22 @@ class ExecutableInPackage(FindPackagePrefix):
 
 # ------------------------------------------------------------------ parameters
 def perform_typed_substitution(context: LaunchContext, value: Any, data_type: Any) -> Any:
-    """launch/utilities/type_utils.py, for the value types learners give."""
-    if isinstance(value, (list, tuple)) and value and all(isinstance(v, Substitution) for v in value):
-        text = perform_substitutions(context, list(value))
-    elif isinstance(value, Substitution):
-        text = perform_substitutions(context, [value])
-    elif isinstance(value, str) or (isinstance(value, (list, tuple))
-                                    and any(isinstance(v, Substitution) for v in value)):
-        text = perform_substitutions(context, normalize_to_list_of_substitutions(value))
-    else:
+    """launch/utilities/type_utils.py:522: a scalar as it is, substitutions performed and their text
+    converted (coerce_to_type: with YAML rules when no type is given, type_utils.py:255)."""
+    from launch._types import SCALAR_TYPES, coerce_to_type
+
+    if isinstance(value, SCALAR_TYPES):
+        if data_type is not None and not isinstance(value, data_type):
+            raise TypeError(f'value=`{value}` is a scalar and not an instance of `{data_type}`')
         return value
-    if data_type is str:
-        return text
-    if data_type in (int, float, bool):
-        loaded = yaml.safe_load(text)
-        if data_type is float and isinstance(loaded, int) and not isinstance(loaded, bool):
-            loaded = float(loaded)
-        if not isinstance(loaded, data_type):
-            raise ValueError(f"Cannot convert input '{text}' to '{data_type}'")
-        return loaded
-    return yaml.safe_load(text)
+    if isinstance(value, Substitution):
+        value = [value]
+    if isinstance(value, (list, tuple)) and value and all(isinstance(v, Substitution) for v in value):
+        return coerce_to_type(perform_substitutions(context, list(value)), data_type)
+    if isinstance(value, (list, tuple)):
+        return [perform_substitutions(context, normalize_to_list_of_substitutions(v))
+                if isinstance(v, (Substitution, list)) else v for v in value]
+    return value
 
 
 class ParameterValue:
@@ -302,8 +299,10 @@ class Node(ExecuteProcess):
         self.__executable = executable
         self.__name = name
         self.__namespace = namespace
-        if parameters is not None and (isinstance(parameters, str) or not isinstance(parameters, Sequence)):
-            raise TypeError(f'Expecting list of parameters, got {parameters}')
+        if parameters is not None and not isinstance(parameters, list):
+            # node.py:214 ensure_argument_type(parameters, (list), 'parameters', 'Node'): a list, nothing else
+            raise TypeError(f"'Node' expected 'parameters' to be one of [{list}], but got '{parameters}' "
+                            f"of type '{type(parameters)}'")
         self.__parameters = list(parameters or [])
         self.__remappings = list(remappings or [])
         self.__arguments = list(arguments or [])
@@ -363,11 +362,21 @@ class Node(ExecuteProcess):
                      for a in self.__arguments]
         ros_arguments = [perform_substitutions(context, normalize_to_list_of_substitutions(a))
                          for a in self.__ros_arguments]
+        # the command line node.py builds (lines 201-212, 405, 474): what rcl will parse in the node
+        argv = [*arguments, *(['--ros-args', *ros_arguments] if self.__ros_arguments else []), '--ros-args']
+        if name is not None:
+            argv += ['-r', f'__node:={name}']
+        if namespace:
+            argv += ['-r', f'__ns:={namespace}']
+        for src, dst in remappings:
+            argv += ['-r', f'{src}:={dst}']
         self.__recorded = {
             "package": package, "executable": executable, "path": path, "name": name,
             "namespace": namespace, "parameters": parameters, "parameter_files": files,
-            "remappings": remappings, "arguments": arguments, "ros_arguments": ros_arguments,
+            "remappings": remappings, "arguments": arguments, "ros_arguments": ros_arguments, "argv": argv,
             "delay": context.delay, "file": self.__where[0], "line": self.__where[1],
         }
         _plan.NODES.append(self.__recorded)
         _plan.CURRENT = None
+        self._bras_cmd = [path, *argv]
+        record_start(context, self)

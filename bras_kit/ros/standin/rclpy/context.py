@@ -1,5 +1,7 @@
 """rclpy.context, simulated (the checks of rclpy/context.py and rclpy/src/rclpy/context.cpp)."""
 
+import sys
+
 import _bras_sim
 
 
@@ -11,6 +13,14 @@ class RCLError(RuntimeError):
 RCLError.__module__ = 'rclpy._rclpy_pybind11'
 
 
+class UnknownROSArgsError(RuntimeError):
+    """rclpy._rclpy_pybind11.UnknownROSArgsError (_rclpy_pybind11.cpp:115): ``--ros-args``
+    words rcl did not parse, named by their repr (utils.cpp:247-277)."""
+
+
+UnknownROSArgsError.__module__ = 'rclpy._rclpy_pybind11'
+
+
 class Context:
     """Like rclpy/context.py: init once, shutdown once; ``with Context()`` inits and try-shuts
     down (context.py:189-201)."""
@@ -19,6 +29,7 @@ class Context:
         self._initialized = False
         self._shutdown = False
         self._callbacks = []
+        self.global_arguments = None  # bras_kit.ros.names.ROSArguments, once initialized
 
     @property
     def handle(self):
@@ -29,6 +40,7 @@ class Context:
             raise RuntimeError(f'Domain id ({domain_id}) should not be lower than zero.')
         if self._initialized:
             raise RuntimeError('Context.init() must only be called once')  # context.py:96-97
+        self.global_arguments = parse_arguments(sys.argv if args is None else args)
         self._initialized = True
         self._shutdown = False
         _bras_sim.STATE.on_sigint.append(self._on_sigint)
@@ -79,6 +91,24 @@ class Context:
 
     def __exit__(self, exc_type, exc_val, exc_tb):
         self.try_shutdown()
+
+
+def parse_arguments(args):
+    """What rcl keeps of ``args`` (rclpy 7.1.6 context.py:99-101 hands init's args, else sys.argv,
+    to rcl_init, context.cpp:114): they become the context's global arguments, which every node
+    created with use_global_arguments=True (the default) applies: remappings (rcl publisher.c and
+    subscription.c resolve the topic with rcl_node_resolve_name), -p overrides, __node/__ns.
+    A --ros-args word rcl does not know raises UnknownROSArgsError (context.cpp:119)."""
+    from bras_kit.ros.names import InvalidROSArgs, parse_ros_arguments, unknown_ros_args_error
+
+    try:
+        # rcl_parse_arguments reads argv[0] as the program's name only when it is not a ROS word
+        parsed = parse_ros_arguments([str(a) for a in args])
+    except InvalidROSArgs as exc:
+        raise RCLError(f'failed to initialize rcl: {exc}') from None  # context.cpp:115-117
+    if parsed.unknown:
+        raise UnknownROSArgsError(unknown_ros_args_error(parsed.unknown, cpp=False))
+    return parsed
 
 
 _DEFAULT = [None]

@@ -30,12 +30,12 @@ S_TO_NS = 10**9
 
 # methods of the real rclpy Node the stand-in does not simulate (rclpy/node.py)
 _REAL_ONLY = {
-    'create_client', 'create_service', 'create_guard_condition', 'create_action_client',
+    'create_guard_condition', 'create_action_client',
     'list_parameters', 'get_topic_names_and_types',
     'get_service_names_and_types', 'get_node_names', 'get_node_names_and_namespaces',
     'count_publishers', 'count_subscribers', 'get_publishers_info_by_topic',
     'get_subscriptions_info_by_topic', 'wait_for_node', 'add_waitable', 'remove_waitable',
-    'destroy_client', 'destroy_service', 'destroy_guard_condition', 'get_fully_qualified_name',
+    'destroy_guard_condition', 'get_fully_qualified_name',
     'resolve_service_name', 'get_parameter_types', 'get_parameter_type',
 }
 
@@ -48,6 +48,17 @@ def _qos(qos_or_depth):
             raise ValueError('history depth must be greater than or equal to zero')
         return QoSProfile(depth=qos_or_depth)
     raise TypeError(f'Expected QoSProfile or int, but received {type(qos_or_depth)!r}')
+
+
+def _yaml_value(text):
+    """A -p value as rcl reads it (rcl_yaml_param_parser: YAML, '' an empty string)."""
+    import yaml
+
+    try:
+        value = yaml.safe_load(text) if text.strip() else ''
+    except yaml.YAMLError:
+        return text
+    return value if isinstance(value, (bool, int, float, str, list)) else text
 
 
 def _check_msg_type(msg_type):
@@ -77,6 +88,8 @@ class Node:
         self._publishers_list = []
         self._subscriptions_list = []
         self._timers_list = []
+        self._services_list = []
+        self._clients_list = []
         self._allow_undeclared_parameters = allow_undeclared_parameters
         # --ros-args -p NAME:=VALUE (bras-kit run -p) are global overrides, for every node
         self._parameter_overrides = {}
@@ -85,13 +98,30 @@ class Node:
                 self._parameter_overrides[name] = Parameter(name, value=value)
             except TypeError:  # a mixed list: rcl's YAML reading refuses it, the node never sees it
                 continue
-        self._parameter_overrides.update({p.name: p for p in parameter_overrides or []})
         namespace = namespace or ''
         if self._context.handle is None or not self._context.ok():
             raise NotInitializedException('cannot create node')
         validate_node_name(node_name)
         if not namespace.startswith('/'):
             namespace = '/' + namespace
+        # rclpy 7.1.6 node.py:187-193 -> rcl_node_init: the node's own cli_args, then the
+        # context's global arguments (rclpy.init's args) unless use_global_arguments=False
+        from .context import parse_arguments
+
+        self._local_arguments = parse_arguments(list(cli_args)) if cli_args else None
+        self._global_arguments = self._context.global_arguments if use_global_arguments else None
+        local, global_ = self._remap_rules()
+        from bras_kit.ros.names import node_identity
+
+        node_name, namespace = node_identity(node_name, namespace, local, global_)
+        # node.py:214-215: the overrides rcl read from -p (global first, the node's own win)
+        for arguments in (self._global_arguments, self._local_arguments):
+            for name, text in arguments.parameters if arguments is not None else ():
+                try:
+                    self._parameter_overrides[name] = Parameter(name, value=_yaml_value(text))
+                except TypeError:
+                    continue
+        self._parameter_overrides.update({p.name: p for p in parameter_overrides or []})
         self._name = node_name
         self._namespace = namespace
         self._logger = get_logger(node_name)
@@ -149,9 +179,19 @@ class Node:
     def get_logger(self):
         return self._logger
 
+    def _remap_rules(self):
+        return ([] if self._local_arguments is None else self._local_arguments.remaps,
+                [] if self._global_arguments is None else self._global_arguments.remaps)
+
     def resolve_topic_name(self, topic, *, only_expand=False):
+        """node.py:1483-1499 -> rcl_node_resolve_name: expanded, then remapped (the node's own
+        rules first, then the global ones: rcl remap.c rcl_remap_name) unless only_expand."""
         validate_topic_name(topic)
-        return expand_topic_name(topic, self._name, self._namespace)
+        if only_expand:
+            return expand_topic_name(topic, self._name, self._namespace)
+        from bras_kit.ros.names import resolve_topic_name
+
+        return resolve_topic_name(topic, self._name, self._namespace, *self._remap_rules())
 
     # ------------------------------------------------------------ topics
     def create_publisher(self, msg_type, topic, qos_profile, *, callback_group=None,
@@ -197,6 +237,59 @@ class Node:
             subscription.destroy()
             return True
         return False
+
+    # ------------------------------------------------------------ services
+    def resolve_service_name(self, service, *, only_expand=False):
+        return self.resolve_topic_name(service, only_expand=only_expand)  # the same rcl rules
+
+    def create_service(self, srv_type, srv_name, callback, *, qos_profile=None, callback_group=None):
+        """rclpy 7.1.6 node.py:1703-1745: the server waits for requests; nobody calls it in a
+        bras-kit run, so its callback never runs and the node goes on (timers, publishers)."""
+        from .service import Service, check_is_valid_srv_type, qos_services_default
+
+        if callback_group is None:
+            callback_group = self.default_callback_group
+        check_is_valid_srv_type(srv_type)
+        self._alive()
+        name = self.resolve_service_name(srv_name)
+        service = Service(srv_type, name, callback, callback_group, qos_profile or qos_services_default())
+        self._services_list.append(service)
+        return service
+
+    def create_client(self, srv_type, srv_name, *, qos_profile=None, callback_group=None):
+        """node.py:1661-1701."""
+        from .service import Client, check_is_valid_srv_type, qos_services_default
+
+        if callback_group is None:
+            callback_group = self.default_callback_group
+        check_is_valid_srv_type(srv_type)
+        self._alive()
+        client = Client(self, srv_type, self.resolve_service_name(srv_name),
+                        qos_profile or qos_services_default(), callback_group)
+        self._clients_list.append(client)
+        return client
+
+    def destroy_service(self, service):
+        if service in self._services_list:
+            self._services_list.remove(service)
+            service.destroy()
+            return True
+        return False
+
+    def destroy_client(self, client):
+        if client in self._clients_list:
+            self._clients_list.remove(client)
+            client.destroy()
+            return True
+        return False
+
+    @property
+    def services(self):
+        yield from self._services_list
+
+    @property
+    def clients(self):
+        yield from self._clients_list
 
     # ------------------------------------------------------------ time
     def create_timer(self, timer_period_sec, callback, callback_group=None, clock=None, autostart=True):
@@ -482,8 +575,10 @@ class Node:
 
     # ------------------------------------------------------------ end
     def destroy_node(self):
-        for item in self._publishers_list + self._subscriptions_list + self._timers_list:
+        for item in (self._publishers_list + self._subscriptions_list + self._timers_list + self._services_list
+                     + self._clients_list):
             item.destroy()
+        self._services_list, self._clients_list = [], []
         self._publishers_list, self._subscriptions_list, self._timers_list = [], [], []
         object.__setattr__(self, '_destroyed', True)
 

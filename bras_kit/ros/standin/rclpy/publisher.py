@@ -36,6 +36,9 @@ class Publisher:
                                         f"Assertion `{assertion}' failed")
             aborted.field, aborted.held = field, held
             raise aborted
+        for field, value in _messages.split_strings(msg):
+            path, line = _bras_sim.caller()
+            _bras_sim.STATE.split_strings.append((self._node.get_name(), self.topic, field, value, path, line))
         fields = _messages.to_data(msg)
         _bras_sim.record(self._node.get_name(), self.topic, _messages.type_name(self.msg_type) or '?', fields)
         from .executors import deliver

@@ -1,0 +1,363 @@
+"""The one place bras-kit meets the real rclpy: a read-only participant of the ROS 2 graph.
+
+Run as a script by an interpreter that imports rclpy (a sourced ROS 2 Jazzy, or the ``ros``
+extra's wheels); it imports nothing of bras-kit, so bras-kit's own venv never loads the wheels
+(their ``.pth`` re-executes every Python process of their venv once). The domain, discovery range
+and RMW come from the environment, as ``ros2`` takes them.
+
+    python _probe.py snapshot SECONDS   one JSON object on stdout: the graph watched for SECONDS
+    python _probe.py census SECONDS     the node names only, once they stop joining (other domains)
+    python _probe.py stream SECONDS     JSON lines until stdin closes: the description and each
+                                        JointState as they arrive, a graph every SECONDS
+
+Nothing here judges: the findings are made by bras-kit from what this prints
+(``bras_kit.live.rules``), worded by its registry. The QoS pairs are judged here because
+``rclpy.qos.qos_check_compatible`` is rmw's own test (ros2doctor's ``qos_compatibility.py`` does
+the same over every publisher/subscription pair).
+"""
+
+from __future__ import annotations
+
+import json
+import os
+import sys
+import threading
+import time
+from typing import Any
+
+# this folder is sys.path[0] when run as a script: keep its modules from shadowing rclpy's imports
+if sys.path and os.path.abspath(sys.path[0] or ".") == os.path.dirname(os.path.abspath(__file__)):
+    del sys.path[0]
+
+import rclpy  # noqa: E402
+from rclpy.executors import SingleThreadedExecutor  # noqa: E402
+from rclpy.qos import (  # noqa: E402
+    DurabilityPolicy,
+    QoSCompatibility,
+    QoSProfile,
+    ReliabilityPolicy,
+    qos_check_compatible,
+)
+
+NODE_NAME = f"_bras_kit_probe_{os.getpid()}"  # a leading '_' hides it from ros2 node list
+DESCRIPTION = "/robot_description"
+JOINT_STATES = "/joint_states"
+MAX_JOINT_STATES = 4000  # a 1 kHz publisher watched for 3 s, and some
+MAX_TEXT = 4_000_000  # a description bigger than this is cut (its length is still said)
+
+
+def _policy(value: object) -> str:
+    name = getattr(value, "name", str(value)).lower()
+    return {"system_default": "system_default", "unknown": "unknown"}.get(name, name)
+
+
+def _gid(raw: object) -> str:
+    try:
+        return bytes(raw).hex()  # type: ignore[call-overload]
+    except (TypeError, ValueError):
+        return ""
+
+
+def _endpoint(info: object) -> dict[str, object]:
+    qos = info.qos_profile  # type: ignore[attr-defined]
+    namespace = info.node_namespace or "/"  # type: ignore[attr-defined]
+    name = info.node_name  # type: ignore[attr-defined]
+    return {
+        "node": (namespace.rstrip("/") + "/" + name) if name else "",
+        "reliability": _policy(qos.reliability),
+        "durability": _policy(qos.durability),
+        "depth": int(qos.depth),
+        "gid": _gid(info.endpoint_gid),  # type: ignore[attr-defined]
+    }
+
+
+def _stamp(header: object) -> list[int]:
+    stamp = header.stamp  # type: ignore[attr-defined]
+    return [int(stamp.sec), int(stamp.nanosec)]
+
+
+class Probe:
+    """One hidden node that listens to the description and the joint states, and reads the graph."""
+
+    def __init__(self, emit: object = None) -> None:
+        from sensor_msgs.msg import JointState
+        from std_msgs.msg import String
+
+        rclpy.init(args=None, signal_handler_options=rclpy.signals.SignalHandlerOptions.NO)
+        self.node = rclpy.create_node(NODE_NAME, start_parameter_services=False,
+                                      enable_rosout=False)
+        self.executor = SingleThreadedExecutor()
+        self.executor.add_node(self.node)
+        self.emit = emit
+        self.lock = threading.Lock()
+        self.descriptions: list[dict[str, object]] = []
+        self.joint_states: list[dict[str, object]] = []
+        self.started = time.time()
+        self._clients: dict[str, Any] = {}
+        # robot_state_publisher 3.3 latches it: reliable, transient_local, depth 1
+        # (src/robot_state_publisher.cpp:133-135); this subscription gets what it holds...
+        latched = QoSProfile(depth=1, reliability=ReliabilityPolicy.RELIABLE,
+                             durability=DurabilityPolicy.TRANSIENT_LOCAL)
+        # ...and this one matches any publisher at all (volatile, best effort), as ros2 topic echo may
+        anything = QoSProfile(depth=10, reliability=ReliabilityPolicy.BEST_EFFORT,
+                              durability=DurabilityPolicy.VOLATILE)
+        for qos in (latched, anything):
+            self.node.create_subscription(String, DESCRIPTION, self._on_description, qos)
+        # robot_state_publisher reads /joint_states with SensorDataQoS (best effort), which
+        # matches every publisher (src/robot_state_publisher.cpp:144-147)
+        self.node.create_subscription(JointState, JOINT_STATES, self._on_joint_state,
+                                      QoSProfile(depth=200, reliability=ReliabilityPolicy.BEST_EFFORT))
+
+    def _on_description(self, msg: object, info: object) -> None:
+        text = msg.data  # type: ignore[attr-defined]
+        # rclpy's message info has no publisher gid (only timestamps and sequence numbers): a text
+        # is told apart by itself, and the publishers are read from the graph
+        record = {"received": time.time(), "length": len(text), "text": text[:MAX_TEXT],
+                  "sent": _info(info, "source_timestamp")}
+        with self.lock:
+            if self.descriptions and self.descriptions[-1]["text"] == record["text"]:
+                return  # the same text through both subscriptions (a new text is a new description)
+            self.descriptions.append(record)
+        if self.emit:
+            self.emit({"kind": "description", **record})  # type: ignore[operator]
+
+    def _on_joint_state(self, msg: object, info: object) -> None:
+        record = {
+            "received": time.time(),
+            "stamp": _stamp(msg.header),  # type: ignore[attr-defined]
+            "frame": msg.header.frame_id,  # type: ignore[attr-defined]
+            "name": list(msg.name),  # type: ignore[attr-defined]
+            "position": [float(v) for v in msg.position],  # type: ignore[attr-defined]
+            "sent": _info(info, "source_timestamp"),
+        }
+        with self.lock:
+            self.joint_states.append(record)
+            del self.joint_states[:-MAX_JOINT_STATES]
+        if self.emit:
+            self.emit({"kind": "joint_state", **record})  # type: ignore[operator]
+
+    def spin_for(self, seconds: float, until: object = None) -> None:
+        end = time.monotonic() + seconds
+        while time.monotonic() < end:
+            self.executor.spin_once(timeout_sec=min(0.05, max(0.0, end - time.monotonic())))
+            if until is not None and until():  # type: ignore[operator]
+                return
+
+    def nodes(self) -> list[str]:
+        names = []
+        for name, namespace in self.node.get_node_names_and_namespaces():
+            if name.startswith("_"):  # hidden nodes: ours, the ros2 daemon's
+                continue
+            names.append(namespace.rstrip("/") + "/" + name)
+        return sorted(set(names))
+
+    def unnamed_endpoints(self) -> bool:
+        """An endpoint whose node is not known yet: its participant is discovered, the node names
+        it announces (on ros_discovery_info) are still on their way."""
+        for topic, _ in self.node.get_topic_names_and_types():
+            for info in (*self.node.get_publishers_info_by_topic(topic),
+                         *self.node.get_subscriptions_info_by_topic(topic)):
+                if info.node_name in ("", "_NODE_NAME_UNKNOWN_"):
+                    return True
+        return False
+
+    def graph(self) -> dict[str, Any]:
+        """Nodes, topics with their endpoints and QoS, the pairs whose QoS cannot match."""
+        topics: dict[str, object] = {}
+        incompatible: list[dict[str, object]] = []
+        for topic, types in self.node.get_topic_names_and_types():
+            publishers = [i for i in self.node.get_publishers_info_by_topic(topic) if i.node_name != NODE_NAME]
+            subscribers = [i for i in self.node.get_subscriptions_info_by_topic(topic) if i.node_name != NODE_NAME]
+            if not publishers and not subscribers:
+                continue
+            topics[topic] = {"types": list(types), "publishers": [_endpoint(i) for i in publishers],
+                             "subscribers": [_endpoint(i) for i in subscribers]}
+            for pub in publishers:
+                for sub in subscribers:
+                    compatibility, reason = qos_check_compatible(pub.qos_profile, sub.qos_profile)
+                    if compatibility != QoSCompatibility.ERROR:
+                        # WARNING is for a policy left at system default or unknown: the graph
+                        # reports the policies in force, so only ERROR says "they never connect"
+                        continue
+                    incompatible.append({
+                        "topic": topic, "publisher": _endpoint(pub), "subscriber": _endpoint(sub),
+                        "level": "error" if compatibility == QoSCompatibility.ERROR else "warning",
+                        "reason": reason,
+                    })
+        return {"nodes": self.nodes(), "topics": topics, "incompatible": incompatible}
+
+    def parameter_clients(self, nodes: list[str]) -> list[tuple[str, Any]]:
+        """A client of each node's ``get_parameters`` service, made once: made while the graph is
+        watched, its service is discovered by the time it is asked."""
+        from rcl_interfaces.srv import GetParameters
+
+        for name in nodes:
+            if name not in self._clients:
+                self._clients[name] = self.node.create_client(GetParameters, f"{name}/get_parameters")
+        return [(name, self._clients[name]) for name in nodes]
+
+    def use_sim_time(self, nodes: list[str], timeout: float = 1.5) -> dict[str, object]:
+        """Each node's ``use_sim_time``, asked of its parameter service (None: no answer)."""
+        from rcl_interfaces.srv import GetParameters
+
+        answers: dict[str, object] = {name: None for name in nodes}
+        pending = {}
+        clients = self.parameter_clients(nodes)
+        end = time.monotonic() + timeout
+        # wait for the services to be discovered, then ask all at once
+        while time.monotonic() < end:
+            for name, client in clients:
+                if name not in pending and client.service_is_ready():
+                    pending[name] = client.call_async(GetParameters.Request(names=["use_sim_time"]))
+            if len(pending) == len(clients) and all(f.done() for f in pending.values()):
+                break
+            self.executor.spin_once(timeout_sec=0.05)
+        for name, future in pending.items():
+            if future.done() and future.result() is not None and future.result().values:
+                value = future.result().values[0]
+                answers[name] = bool(value.bool_value) if value.type == 1 else None  # PARAMETER_BOOL
+        for name in list(self._clients):  # nodes gone: their clients go too (a long stream)
+            if name not in nodes:
+                self.node.destroy_client(self._clients.pop(name))
+        return answers
+
+    def environment(self) -> dict[str, object]:
+        return {
+            "domain": int(os.environ.get("ROS_DOMAIN_ID") or 0),
+            "range": os.environ.get("ROS_AUTOMATIC_DISCOVERY_RANGE", ""),
+            "localhost_only": os.environ.get("ROS_LOCALHOST_ONLY", ""),
+            "rmw": rclpy.get_rmw_implementation_identifier(),
+            "distro": os.environ.get("ROS_DISTRO", ""),
+            "rclpy": os.path.dirname(rclpy.__file__),
+            "python": sys.executable,
+        }
+
+    def close(self) -> None:
+        try:
+            self.executor.shutdown(timeout_sec=0.5)
+            self.node.destroy_node()
+        finally:
+            rclpy.try_shutdown()
+
+
+def _info(info: object, key: str) -> int | None:
+    """One field of rclpy's message info (a dict of nanoseconds and sequence numbers)."""
+    try:
+        return int(info[key])  # type: ignore[index]
+    except (KeyError, TypeError, IndexError, ValueError):
+        return None
+
+
+# Fast DDS finds the nodes of a graph over 0.05-2.3 s (measured in a loopback namespace, 3 nodes,
+# a loaded machine): a look shorter than this would miss some of them
+DISCOVERY_FLOOR = 3.5
+STABLE_GRACE = 3.0
+
+
+def snapshot(seconds: float) -> int:
+    """Watch ``seconds`` (at least the discovery floor), and longer while nodes are still being
+    discovered: the rate and the publishers are measured over the whole window."""
+    probe = Probe()
+    try:
+        probe.spin_for(max(seconds, DISCOVERY_FLOOR), until=lambda: bool(probe.nodes()))
+        if probe.nodes():  # then at least 2 s of messages, to measure a rate, and until no node
+            # has joined for a second (nodes started together are discovered over 1-2.5 s)
+            seen, changed = [probe.nodes()], [time.monotonic()]
+
+            def track() -> bool:
+                if probe.nodes() != seen[0] or probe.unnamed_endpoints():
+                    seen[0], changed[0] = probe.nodes(), time.monotonic()
+                    probe.parameter_clients(seen[0])
+                return False
+
+            probe.parameter_clients(seen[0])
+
+            end = max(probe.started + seconds, probe.started + DISCOVERY_FLOOR, time.time() + min(seconds, 2.0))
+            probe.spin_for(end - time.time(), until=track)
+            last = time.monotonic() + STABLE_GRACE
+            while time.monotonic() - changed[0] < 1.0 and time.monotonic() < last:
+                probe.spin_for(0.1, until=track)
+        graph = probe.graph()
+        sim = probe.use_sim_time(list(graph["nodes"]))
+        with probe.lock:
+            out = {"kind": "snapshot", **probe.environment(), "started": probe.started, "ended": time.time(),
+                   **graph, "use_sim_time": sim, "descriptions": probe.descriptions,
+                   "joint_states": probe.joint_states}
+        print(json.dumps(out), flush=True)
+    finally:
+        probe.close()
+    return 0
+
+
+def census(seconds: float) -> int:
+    """The nodes of this domain, as soon as discovery shows one (or after ``seconds``)."""
+    probe = Probe()
+    try:
+        end = time.monotonic() + seconds
+        probe.spin_for(seconds, until=lambda: bool(probe.nodes()))
+        # then until no node has joined for a second (each is discovered on its own, 0.05-2.3 s
+        # apart measured in a loopback namespace), within the same time
+        seen, steady = probe.nodes(), time.monotonic()
+        while time.monotonic() < min(end, steady + 1.0):
+            probe.spin_for(0.1)
+            now = probe.nodes()
+            if now != seen:
+                seen, steady = now, time.monotonic()
+        print(json.dumps({"kind": "census", **probe.environment(), "nodes": probe.nodes()}), flush=True)
+    finally:
+        probe.close()
+    return 0
+
+
+def stream(every: float) -> int:
+    """JSON lines until stdin closes (the viewer stopped): never a traceback when the graph changes."""
+    out_lock = threading.Lock()
+    closed = threading.Event()
+
+    def emit(record: dict[str, object]) -> None:
+        try:
+            with out_lock:
+                sys.stdout.write(json.dumps(record) + "\n")
+                sys.stdout.flush()
+        except (BrokenPipeError, ValueError):
+            closed.set()
+
+    def watch_stdin() -> None:
+        try:
+            while sys.stdin.read(4096):
+                pass
+        finally:
+            closed.set()
+
+    threading.Thread(target=watch_stdin, daemon=True).start()
+    probe = Probe(emit)
+    emit({"kind": "hello", **probe.environment()})
+    try:
+        next_graph = time.monotonic() + min(every, 1.5)
+        while not closed.is_set():
+            probe.spin_for(0.05)
+            if time.monotonic() >= next_graph:
+                graph = probe.graph()
+                sim = probe.use_sim_time(list(graph["nodes"]), timeout=0.5)
+                emit({"kind": "graph", **graph, "use_sim_time": sim, "time": time.time()})
+                next_graph = time.monotonic() + every
+                with probe.lock:
+                    del probe.joint_states[:]
+    finally:
+        probe.close()
+    return 0
+
+
+def main(argv: list[str]) -> int:
+    if len(argv) != 2 or argv[0] not in ("snapshot", "census", "stream"):
+        print("usage: _probe.py snapshot|census|stream SECONDS", file=sys.stderr)
+        return 2
+    seconds = max(0.1, min(float(argv[1]), 600.0))
+    return {"snapshot": snapshot, "census": census, "stream": stream}[argv[0]](seconds)
+
+
+if __name__ == "__main__":
+    try:
+        sys.exit(main(sys.argv[1:]))
+    except KeyboardInterrupt:
+        sys.exit(130)

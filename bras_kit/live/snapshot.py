@@ -1,0 +1,197 @@
+"""One look at a live ROS 2 graph, as data: what the probe (``_probe.py``) saw in a few seconds.
+
+The probe prints JSON; :func:`snapshot_from_json` turns it into these frozen records and is the
+one place that reads it: a field of the wrong type, a name that is not text, a number that is not
+finite is dropped there (the probe runs in another interpreter, and what a graph holds is written
+by whoever joined it). The rules (:mod:`bras_kit.validate.live`) read only these records.
+"""
+
+from __future__ import annotations
+
+import math
+from collections.abc import Mapping, Sequence
+from dataclasses import dataclass, field
+from typing import Any
+
+DESCRIPTION = "/robot_description"
+JOINT_STATES = "/joint_states"
+CLOCK = "/clock"
+MAX_NAMES = 10_000
+
+
+@dataclass(frozen=True)
+class Endpoint:
+    """A publisher or a subscription of a topic: its node and the QoS it offers or asks for."""
+
+    node: str
+    reliability: str = ""
+    durability: str = ""
+
+
+@dataclass(frozen=True)
+class Topic:
+    name: str
+    types: tuple[str, ...] = ()
+    publishers: tuple[Endpoint, ...] = ()
+    subscribers: tuple[Endpoint, ...] = ()
+
+
+@dataclass(frozen=True)
+class QosMismatch:
+    """A publisher and a subscription of one topic whose QoS rmw says cannot match (or may not)."""
+
+    topic: str
+    publisher: Endpoint
+    subscriber: Endpoint
+    level: str  # "error" (they never communicate) or "warning" (rmw cannot tell)
+    reason: str
+
+
+@dataclass(frozen=True)
+class Description:
+    """A text received on /robot_description, and when (seconds since the epoch)."""
+
+    text: str
+    received: float
+    length: int
+
+
+@dataclass(frozen=True)
+class JointStateSample:
+    received: float  # wall clock of this machine, seconds
+    stamp: tuple[int, int]  # header.stamp (sec, nanosec)
+    name: tuple[str, ...]
+    position: tuple[float, ...]
+    sent: float | None = None  # the DDS source timestamp (the publisher's clock), seconds
+
+    @property
+    def stamp_seconds(self) -> float:
+        return self.stamp[0] + self.stamp[1] * 1e-9
+
+
+@dataclass(frozen=True)
+class Snapshot:
+    """The graph of one domain as the probe saw it between ``started`` and ``ended``."""
+
+    domain: int
+    discovery_range: str
+    rmw: str
+    started: float
+    ended: float
+    nodes: tuple[str, ...] = ()
+    topics: Mapping[str, Topic] = field(default_factory=dict)
+    mismatches: tuple[QosMismatch, ...] = ()
+    descriptions: tuple[Description, ...] = ()
+    joint_states: tuple[JointStateSample, ...] = ()
+    use_sim_time: Mapping[str, bool | None] = field(default_factory=dict)
+    # filled in by the caller when this domain was empty: other places the nodes were seen
+    elsewhere: tuple[Elsewhere, ...] = ()
+
+    @property
+    def duration(self) -> float:
+        return max(0.0, self.ended - self.started)
+
+    def publishers(self, topic: str) -> tuple[Endpoint, ...]:
+        found = self.topics.get(topic)
+        return found.publishers if found else ()
+
+    def subscribers(self, topic: str) -> tuple[Endpoint, ...]:
+        found = self.topics.get(topic)
+        return found.subscribers if found else ()
+
+
+@dataclass(frozen=True)
+class Elsewhere:
+    """Nodes seen with other settings than this terminal's: another domain, another discovery range."""
+
+    domain: int
+    discovery_range: str
+    nodes: tuple[str, ...]
+
+
+def _text(value: Any, limit: int = 10_000) -> str:
+    return value[:limit] if isinstance(value, str) else ""
+
+
+def _number(value: Any, default: float = 0.0) -> float:
+    if isinstance(value, bool) or not isinstance(value, (int, float)) or not math.isfinite(value):
+        return default
+    return float(value)
+
+
+def _list(value: Any) -> list[Any]:
+    return value[:MAX_NAMES] if isinstance(value, list) else []
+
+
+def _endpoint(value: Any) -> Endpoint:
+    data = value if isinstance(value, dict) else {}
+    return Endpoint(_text(data.get("node"), 300), _text(data.get("reliability"), 40), _text(data.get("durability"), 40))
+
+
+def _joint_state(value: Any) -> JointStateSample | None:
+    if not isinstance(value, dict):
+        return None
+    stamp = value.get("stamp")
+    if not (isinstance(stamp, list) and len(stamp) == 2 and all(isinstance(v, int) for v in stamp)):
+        return None
+    names = tuple(_text(n, 300) for n in _list(value.get("name")) if isinstance(n, str))
+    positions = tuple(_number(p, math.nan) for p in _list(value.get("position")))
+    sent = _number(value.get("sent"), math.nan) * 1e-9
+    return JointStateSample(_number(value.get("received")), (int(stamp[0]), int(stamp[1])), names, positions,
+                            sent if math.isfinite(sent) and sent > 0 else None)
+
+
+def snapshot_from_json(data: Any) -> Snapshot:
+    """The probe's JSON object as a :class:`Snapshot` (what does not fit is left out)."""
+    data = data if isinstance(data, dict) else {}
+    topics: dict[str, Topic] = {}
+    raw_topics = data.get("topics")
+    for name, value in (raw_topics.items() if isinstance(raw_topics, dict) else ()):
+        if not isinstance(name, str) or not isinstance(value, dict):
+            continue
+        topics[name] = Topic(name, tuple(_text(t, 300) for t in _list(value.get("types"))),
+                             tuple(e for e in map(_endpoint, _list(value.get("publishers"))) if e.node),
+                             tuple(e for e in map(_endpoint, _list(value.get("subscribers"))) if e.node))
+    mismatches = tuple(
+        QosMismatch(_text(m.get("topic"), 300), _endpoint(m.get("publisher")), _endpoint(m.get("subscriber")),
+                    "error" if m.get("level") == "error" else "warning", _text(m.get("reason"), 1000))
+        for m in _list(data.get("incompatible")) if isinstance(m, dict)
+    )
+    descriptions = tuple(
+        Description(_text(d.get("text"), 10_000_000), _number(d.get("received")),
+                    int(_number(d.get("length"))))
+        for d in _list(data.get("descriptions")) if isinstance(d, dict)
+    )
+    samples = tuple(s for s in (_joint_state(v) for v in _list(data.get("joint_states"))) if s is not None)
+    raw_sim = data.get("use_sim_time")
+    sim = {k: (v if isinstance(v, bool) else None) for k, v in raw_sim.items()
+           if isinstance(k, str)} if isinstance(raw_sim, dict) else {}
+    domain = data.get("domain")
+    elsewhere = tuple(
+        Elsewhere(e["domain"], _text(e.get("range"), 40), tuple(_text(n, 300) for n in _list(e.get("nodes"))))
+        for e in _list(data.get("elsewhere"))
+        if isinstance(e, dict) and isinstance(e.get("domain"), int) and not isinstance(e.get("domain"), bool)
+    )
+    return Snapshot(
+        domain=domain if isinstance(domain, int) and not isinstance(domain, bool) else 0,
+        discovery_range=_text(data.get("range"), 40),
+        rmw=_text(data.get("rmw"), 100),
+        started=_number(data.get("started")),
+        ended=_number(data.get("ended")),
+        nodes=tuple(sorted({_text(n, 300) for n in _list(data.get("nodes")) if isinstance(n, str)})),
+        topics=topics,
+        mismatches=mismatches,
+        descriptions=descriptions,
+        joint_states=samples,
+        use_sim_time=sim,
+        elsewhere=elsewhere,
+    )
+
+
+def merge_stream(hello: Mapping[str, Any], graph: Mapping[str, Any] | None, descriptions: Sequence[Mapping[str, Any]],
+                 joint_states: Sequence[Mapping[str, Any]], started: float, ended: float) -> Snapshot:
+    """A :class:`Snapshot` made from the probe's stream (``view --ros``): its last graph, the
+    descriptions and the joint states of the last few seconds."""
+    data: dict[str, Any] = {**hello, **(graph or {}), "descriptions": list(descriptions),
+                            "joint_states": list(joint_states), "started": started, "ended": ended}
+    return snapshot_from_json(data)

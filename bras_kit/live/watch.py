@@ -1,0 +1,210 @@
+"""Run the probe (``_probe.py``) with an interpreter that imports the real rclpy, and read it.
+
+Which interpreter, first found wins:
+
+1. ``BRAS_KIT_ROS_PYTHON``, when set;
+2. this one, when it can import rclpy (ROS sourced: ``source /opt/ros/jazzy/setup.bash`` puts the
+   system's rclpy on ``PYTHONPATH``; or the ``ros`` extra installed beside bras-kit);
+3. a venv of bras-kit's own in the cache folder, ``ros-jazzy-pyX.Y`` (the error below gives the
+   two commands that make it).
+
+Else :class:`RosUnavailable` (exit code :data:`NO_ROS_EXIT`: "could not look", neither "healthy"
+nor "problems found"). The probe is a subprocess: the wheels' ``.pth`` re-executes every Python
+process of their venv once, and rclpy's import costs a second; bras-kit's other commands never
+pay either.
+"""
+
+from __future__ import annotations
+
+import concurrent.futures
+import importlib.util
+import json
+import os
+import subprocess
+import sys
+from collections.abc import Iterator, Mapping
+from typing import IO, Any
+
+from ..errors import BrasKitError
+from ..message import M
+from .snapshot import Elsewhere, Snapshot, snapshot_from_json
+
+NO_ROS_EXIT = 3  # could not look: no rclpy to join the graph with
+PROBE = os.path.join(os.path.dirname(os.path.abspath(__file__)), "_probe.py")
+START_SLACK = 30.0  # seconds allowed for the probe's own start (rclpy's import, the re-exec) and its end
+RANGES = ("LOCALHOST", "SUBNET")
+# RTPS's default ports (DDSI-RTPS 2.5, 9.6.1 "Default Port Numbers"): PB 7400 + DG 250 x domain; every participant
+# of a domain binds ports in its block, so the blocks in use name the domains of this computer
+PORT_BASE, DOMAIN_GAIN, MAX_DOMAIN = 7400, 250, 232
+
+
+class RosUnavailable(BrasKitError):
+    """No interpreter here imports rclpy: bras-kit could not look at the graph."""
+
+    exit_code = NO_ROS_EXIT
+
+
+class ProbeFailed(BrasKitError):
+    """The probe started but did not report (rclpy failed to start, the RMW is missing...)."""
+
+    exit_code = NO_ROS_EXIT
+
+
+def cached_venv_python() -> str:
+    from ..cachedir import cache_home
+
+    minor = f"{sys.version_info[0]}.{sys.version_info[1]}"
+    return os.path.join(cache_home(), f"ros-jazzy-py{minor}", "bin", "python")
+
+
+# the real rclpy of Jazzy on PyPI, pinned as the `ros` extra pins it (ros-rclpy also holds Kilted's 9.1.2)
+WHEELS = "'ros-jazzy-rclpy[fastrtps]==7.1.6' ros-jazzy-sensor-msgs==5.3.6 ros-jazzy-std-msgs==5.3.6"
+
+
+def ros_python(environ: Mapping[str, str] | None = None) -> str:
+    """The interpreter that runs the probe (see the module's text), or :class:`RosUnavailable`."""
+    env = os.environ if environ is None else environ
+    given = env.get("BRAS_KIT_ROS_PYTHON", "").strip()
+    if given:
+        if not os.access(given, os.X_OK):
+            raise RosUnavailable(M("BRAS_KIT_ROS_PYTHON names {path}, which is not a program that can run",
+                                   path=given),
+                                 hint=M("point it at a Python that imports rclpy, or unset it"))
+        return given
+    if importlib.util.find_spec("rclpy") is not None:
+        return sys.executable
+    cached = cached_venv_python()
+    if os.access(cached, os.X_OK):
+        return cached
+    venv = os.path.dirname(os.path.dirname(cached))
+    raise RosUnavailable(
+        M("no rclpy here: bras-kit cannot join the ROS 2 graph"),
+        hint=M("source ROS 2 first (source /opt/ros/jazzy/setup.bash), or install the real rclpy's wheels once: "
+               "python3 -m venv {venv} && {venv}/bin/pip install {wheels}", venv=venv, wheels=WHEELS))
+
+
+def probe_env(domain: int | None = None, discovery_range: str | None = None) -> dict[str, str]:
+    """This process's environment for the probe, with another domain or discovery range if asked."""
+    env = dict(os.environ)
+    env["PYTHONUNBUFFERED"] = "1"
+    env.pop("PYTHONSTARTUP", None)
+    if domain is not None:
+        env["ROS_DOMAIN_ID"] = str(domain)
+    if discovery_range is not None:
+        env["ROS_AUTOMATIC_DISCOVERY_RANGE"] = discovery_range
+        env.pop("ROS_LOCALHOST_ONLY", None)  # deprecated in Jazzy; it would override the range
+    return env
+
+
+def _run_probe(python: str, mode: str, seconds: float, env: Mapping[str, str]) -> dict[str, Any]:
+    try:
+        done = subprocess.run([python, PROBE, mode, f"{seconds:g}"], env=dict(env), capture_output=True, text=True,
+                              timeout=seconds + START_SLACK, stdin=subprocess.DEVNULL)
+    except subprocess.TimeoutExpired as exc:
+        raise ProbeFailed(M("the ROS 2 probe did not answer in {seconds:.0f} s", seconds=exc.timeout),
+                          hint=M("run again; if it persists, try 'ros2 node list' in the same terminal")) from None
+    except OSError as exc:
+        raise RosUnavailable(M("{python} cannot run: {reason}", python=python, reason=exc.strerror or str(exc)),
+                             hint=M("point BRAS_KIT_ROS_PYTHON at a Python that imports rclpy")) from None
+    lines = [line for line in done.stdout.splitlines() if line.startswith("{")]
+    if done.returncode != 0 or not lines:
+        last = (done.stderr.strip().splitlines() or ["(nothing)"])[-1][:500]
+        raise ProbeFailed(M("{python} could not join the ROS 2 graph: {detail}", python=python, detail=last),
+                          hint=M("check that this Python imports rclpy and sensor_msgs (python3 -c 'import rclpy, "
+                                 "sensor_msgs'), with ROS 2 Jazzy sourced or the 'ros' extra installed"))
+    try:
+        data = json.loads(lines[-1])
+    except json.JSONDecodeError:
+        raise ProbeFailed(M("the ROS 2 probe printed something unreadable"),
+                          hint=M("run again; if it persists, report it")) from None
+    return data if isinstance(data, dict) else {}
+
+
+def look(seconds: float, python: str | None = None) -> dict[str, Any]:
+    """Watch this terminal's ROS 2 graph for ``seconds``: the probe's JSON object; when the graph
+    is empty, with ``elsewhere``: the nodes found on other domains or with the other range."""
+    python = python or ros_python()
+    data = _run_probe(python, "snapshot", seconds, probe_env())
+    if not snapshot_from_json(data).nodes:
+        data["elsewhere"] = [{"domain": e.domain, "range": e.discovery_range, "nodes": list(e.nodes)}
+                             for e in look_elsewhere(python, snapshot_from_json(data))]
+    return data
+
+
+def take_snapshot(seconds: float, python: str | None = None) -> Snapshot:
+    """:func:`look`, read as a :class:`Snapshot`."""
+    return snapshot_from_json(look(seconds, python))
+
+
+def domains_in_use(own: int | None = None) -> list[int]:
+    """The ROS domains some process of this computer takes part in, read from the UDP ports bound
+    (``/proc/net/udp``, ``udp6``): a domain's block of RTPS ports, as Fast DDS and Cyclone DDS
+    bind them. Empty where /proc is not Linux's."""
+    low_ephemeral = 32768
+    try:
+        with open("/proc/sys/net/ipv4/ip_local_port_range", encoding="ascii") as file:
+            low_ephemeral = int(file.read().split()[0])
+    except (OSError, ValueError, IndexError):
+        pass
+    domains: set[int] = set()
+    for table in ("/proc/net/udp", "/proc/net/udp6"):
+        try:
+            with open(table, encoding="ascii") as file:
+                rows = file.read().splitlines()[1:]
+        except OSError:
+            continue
+        for row in rows:
+            fields = row.split()
+            if len(fields) < 2 or ":" not in fields[1]:
+                continue
+            try:
+                port = int(fields[1].rsplit(":", 1)[1], 16)
+            except ValueError:
+                continue
+            if PORT_BASE <= port < low_ephemeral:
+                domain, offset = divmod(port - PORT_BASE, DOMAIN_GAIN)
+                if domain <= MAX_DOMAIN and (offset < 2 or offset >= 10):  # multicast d0/d2, unicast d1/d3 + 2 x pid
+                    domains.add(domain)
+    return sorted(d for d in domains if d != own)
+
+
+def _census(python: str, env: Mapping[str, str], seconds: float) -> dict[str, Any] | None:
+    try:
+        return _run_probe(python, "census", seconds, env)
+    except BrasKitError:
+        return None
+
+
+def look_elsewhere(python: str, snapshot: Snapshot, seconds: float = 3.0) -> Iterator[Elsewhere]:
+    """Nodes this terminal cannot see: on the other domains in use here, or with the other
+    discovery range on this domain (one short probe each, in parallel)."""
+    ours = snapshot.discovery_range.upper() or "SUBNET"
+    other_range = "SUBNET" if ours == "LOCALHOST" else "LOCALHOST"
+    tries: list[tuple[int, str]] = [(d, ours) for d in domains_in_use(snapshot.domain)][:8]
+    tries.append((snapshot.domain, other_range))
+    with concurrent.futures.ThreadPoolExecutor(max_workers=len(tries)) as pool:
+        futures = [pool.submit(_census, python, probe_env(domain, rng), seconds) for domain, rng in tries]
+        for (domain, rng), future in zip(tries, futures):
+            found = future.result()
+            nodes = found.get("nodes") if found else None
+            if isinstance(nodes, list) and nodes:
+                yield Elsewhere(domain, rng, tuple(str(n)[:300] for n in nodes[:50]))
+
+
+def open_stream(python: str, every: float = 2.0) -> subprocess.Popen[str]:
+    """The probe in stream mode (``view --ros``): JSON lines on its stdout until its stdin closes."""
+    return subprocess.Popen([python, PROBE, "stream", f"{every:g}"], env=probe_env(), stdin=subprocess.PIPE,
+                            stdout=subprocess.PIPE, stderr=subprocess.DEVNULL, text=True, bufsize=1)
+
+
+def read_records(stream: IO[str]) -> Iterator[dict[str, Any]]:
+    """The probe's JSON lines as dicts (a line that does not parse is skipped)."""
+    for line in stream:
+        if not line.startswith("{"):
+            continue
+        try:
+            record = json.loads(line)
+        except json.JSONDecodeError:
+            continue
+        if isinstance(record, dict):
+            yield record

@@ -1,0 +1,258 @@
+"""The colcon workspace a command is typed in: its root, its packages by name, their build order.
+
+The tutorial types ``colcon build`` in ``~/ros2_cellule_ws`` and ``ros2 launch bras_description
+affichage.launch.py`` from there or from any folder below it (after ``source install/setup.bash``).
+``bras-kit build``, ``bras-kit launch PKG FILE`` and ``bras-kit run PKG EXE`` find the workspace
+the same way here, walking up from the current folder to the first one holding ``src/``, and
+find a package by the name its ``package.xml`` gives, as colcon lists them:
+
+- colcon-recursive-crawl (``package_discovery/recursive_crawl.py``, lines 60-83) walks the base
+  path, stops below a folder it identified as a package, skips folders starting with a dot;
+- a folder holding ``COLCON_IGNORE`` (colcon-core ``package_identification/ignore.py``, lines
+  26-29), ``AMENT_IGNORE`` or ``CATKIN_IGNORE`` (colcon-ros ``package_identification/ros.py``,
+  lines 49-52) is skipped with everything below it;
+- packages build in topological order of their dependencies, ties by name (colcon-core
+  ``topological_order.py``).
+
+Outside any workspace, the one whose ``install/setup.bash`` was sourced in this shell is used
+(COLCON_PREFIX_PATH), as ``ros2 launch`` finds a sourced workspace's packages from anywhere.
+
+::
+
+    from bras_kit.ros.workspace import find_workspace, resolve_package
+    workspace = find_workspace(".")             # None outside a workspace
+    [p.name for p in workspace.packages]        # ['bras_description', 'cellule_bringup'], build order
+    folder, workspace = resolve_package("bras_description")
+"""
+
+from __future__ import annotations
+
+import os
+from dataclasses import dataclass
+from typing import Any
+
+from ..errors import ParameterError
+from ..message import M
+
+IGNORE_MARKERS = ("COLCON_IGNORE", "AMENT_IGNORE", "CATKIN_IGNORE")
+# package.xml's dependency tags colcon orders a build by (build and run categories of catkin_pkg)
+DEPEND_TAGS = ("depend", "build_depend", "buildtool_depend", "build_export_depend", "exec_depend",
+               "buildtool_export_depend")
+MAX_DEPTH = 64  # how far up a workspace root is looked for
+
+
+@dataclass(frozen=True)
+class WorkspacePackage:
+    name: str  # package.xml's <name> (the folder's name when it has none)
+    folder: str  # absolute
+    depends: tuple[str, ...] = ()
+
+
+@dataclass(frozen=True)
+class Workspace:
+    root: str  # absolute: the folder holding src/ (where colcon build is typed)
+    packages: tuple[WorkspacePackage, ...]  # in build order
+
+    @property
+    def src(self) -> str:
+        return os.path.join(self.root, "src")
+
+    @property
+    def install(self) -> str:
+        return os.path.join(self.root, "install")
+
+    def package(self, name: str) -> WorkspacePackage | None:
+        return next((p for p in self.packages if p.name == name), None)
+
+    def holding(self, folder: str) -> WorkspacePackage | None:
+        """The package whose folder is ``folder``."""
+        full = os.path.realpath(folder)
+        return next((p for p in self.packages if os.path.realpath(p.folder) == full), None)
+
+    @property
+    def names(self) -> list[str]:
+        return [p.name for p in self.packages]
+
+
+def _manifest(folder: str) -> tuple[str, tuple[str, ...]]:
+    """(name, dependencies) from ``folder/package.xml``; the folder's name when it cannot be read
+    (the build then says what is wrong with it)."""
+    from ..errors import BrasKitError
+    from ..xmlio import read_xml
+
+    try:
+        xml = read_xml(os.path.join(folder, "package.xml"))
+    except (BrasKitError, OSError):
+        return os.path.basename(folder), ()
+    name = xml.find("name")
+    depends = tuple(sorted({(node.text or "").strip() for tag in DEPEND_TAGS for node in xml.findall(tag)} - {""}))
+    text = (name.text or "").strip() if name is not None else ""
+    return text or os.path.basename(folder), depends
+
+
+def package_name(folder: str) -> str:
+    """The name colcon gives the package at ``folder`` (its package.xml's, else the folder's)."""
+    return _manifest(folder)[0]
+
+
+def read_packages(src: str) -> list[WorkspacePackage]:
+    """The packages below ``src``, found as colcon finds them (see the module's notes), by name."""
+    found: list[WorkspacePackage] = []
+    seen: set[str] = set()
+    for folder, dirs, files in os.walk(src, followlinks=True):
+        real = os.path.realpath(folder)
+        if real in seen:  # a link back up: crawled once
+            dirs[:] = []
+            continue
+        seen.add(real)
+        if any(marker in files for marker in IGNORE_MARKERS):
+            dirs[:] = []
+            continue
+        if "package.xml" in files:
+            name, depends = _manifest(folder)
+            found.append(WorkspacePackage(name, os.path.abspath(folder), depends))
+            dirs[:] = []  # packages do not nest
+            continue
+        dirs[:] = sorted(d for d in dirs if not d.startswith("."))
+    return sorted(found, key=lambda p: p.name)
+
+
+def build_order(packages: list[WorkspacePackage]) -> list[WorkspacePackage]:
+    """Each package after the workspace packages it depends on, ties by name; a cycle is left in
+    name order (colcon refuses it; the builds here do not depend on each other's output)."""
+    left = {p.name: p for p in packages}
+    order: list[WorkspacePackage] = []
+    while left:
+        ready = sorted(name for name, p in left.items() if not (set(p.depends) & set(left) - {name}))
+        for name in ready or sorted(left):
+            order.append(left.pop(name))
+    return order
+
+
+def workspace_root(start: str) -> str | None:
+    """The first folder from ``start`` up that holds ``src/`` with a package below it."""
+    folder = os.path.abspath(start)
+    for _ in range(MAX_DEPTH):
+        src = os.path.join(folder, "src")
+        if os.path.isdir(src) and read_packages(src):
+            return folder
+        parent = os.path.dirname(folder)
+        if parent == folder:
+            return None
+        folder = parent
+    return None
+
+
+def find_workspace(start: str = ".") -> Workspace | None:
+    """The colcon workspace ``start`` is in (its root or any folder below), or None."""
+    root = workspace_root(start)
+    if root is None:
+        return None
+    return Workspace(root, tuple(build_order(read_packages(os.path.join(root, "src")))))
+
+
+def sourced_workspace(environ: Any = None) -> Workspace | None:
+    """The workspace whose ``install/setup.bash`` was sourced in this shell: colcon's setup files
+    put its install folder on COLCON_PREFIX_PATH (bras-kit build writes one that does the same)."""
+    for prefix in (os.environ if environ is None else environ).get("COLCON_PREFIX_PATH", "").split(os.pathsep):
+        if prefix and os.path.basename(os.path.normpath(prefix)) == "install":
+            root = os.path.dirname(os.path.normpath(prefix))
+            if workspace_root(root) == os.path.abspath(root):
+                return find_workspace(root)
+    return None
+
+
+def current_workspace() -> Workspace | None:
+    """The workspace of the current folder (its root or below), else the one sourced in this shell."""
+    return find_workspace(".") or sourced_workspace()
+
+
+def is_package_folder(folder: str) -> bool:
+    return os.path.isfile(os.path.join(folder, "package.xml"))
+
+
+def resolve_package(where: str, *, command: str = "launch") -> tuple[str, Workspace | None]:
+    """The package folder ``where`` names for ``bras-kit launch|run WHERE``, and its workspace:
+    a package folder as given, else a package's name in the workspace of the current folder (its
+    source in ``src/``, which bras-kit builds as colcon does). A clear error otherwise; its hint
+    never repeats the command that failed."""
+    if os.path.isdir(where) and is_package_folder(where):
+        return where, find_workspace(where)
+    workspace = current_workspace()
+    named = workspace.package(where) if workspace is not None and os.sep not in where.strip(os.sep) else None
+    if named is None and workspace is not None and where in (".", ""):
+        named = _around(workspace, ".")  # typed inside a package's folder, as the tutorial's `cd bras_description`
+    if named is not None:
+        return _shown(named.folder), workspace
+    if workspace is not None:
+        built = os.path.isdir(os.path.join(workspace.install, where, "share", where))
+        if built:
+            raise ParameterError(
+                M("package '{name}' is in the workspace's install/ but its source is not in {src}",
+                  name=where, src=workspace.src),
+                hint=M("bras-kit builds each package from its source, as colcon does: put the package "
+                       "folder back under {src}", src=workspace.src))
+        if where in (".", "") or os.path.isdir(where):
+            raise ParameterError(
+                M("{folder} is not a package folder (no package.xml)", folder=where),
+                hint=M("name a package of the workspace {root}: {names}", root=workspace.root,
+                       names=", ".join(workspace.names)))
+        raise ParameterError(
+            M("package '{name}' not found in the workspace {root}", name=where, root=workspace.root),
+            hint=M("its packages, by the name in their package.xml: {names}", names=", ".join(workspace.names)))
+    if os.path.isdir(where):
+        raise ParameterError(
+            M("{folder} is not a package folder (no package.xml), and no colcon workspace (a folder with src/) "
+              "holds the current folder", folder=where),
+            hint=M("type the command in your workspace (cd ~/ros2_cellule_ws) or give the path of a package "
+                   "folder (with package.xml)"))
+    raise ParameterError(
+        M("package '{name}' not found: no such folder here, and no colcon workspace (a folder with src/) "
+          "holds the current folder", name=where),
+        hint=M("type the command in your workspace (cd ~/ros2_cellule_ws) or give the path of a package "
+               "folder (with package.xml)"))
+
+
+def _around(workspace: Workspace, folder: str) -> WorkspacePackage | None:
+    """The package of ``workspace`` whose folder holds ``folder``."""
+    full = os.path.realpath(folder)
+    for package in workspace.packages:
+        root = os.path.realpath(package.folder)
+        if full == root or full.startswith(root + os.sep):
+            return package
+    return None
+
+
+def _shown(path: str) -> str:
+    """``path`` relative to the current folder when it is below it, else as it is."""
+    full = os.path.abspath(path)
+    here = os.path.abspath(".")
+    if full == here:
+        return "."
+    if full.startswith(here + os.sep):
+        return os.path.relpath(full, here)
+    return full
+
+
+def others(workspace: Workspace | None, folder: str) -> list[str]:
+    """The workspace's packages other than the one at ``folder``, in build order: what colcon
+    builds beside it, so that get_package_share_directory and FindPackageShare find them."""
+    if workspace is None:
+        return []
+    full = os.path.realpath(folder)
+    return [p.folder for p in workspace.packages if os.path.realpath(p.folder) != full]
+
+
+def build_others(folders: list[str], install_base: str) -> tuple[list[str], list[str]]:
+    """``folders`` built into ``install_base`` (one build_package each): the prefixes of those
+    built, and the names of those whose build stopped (``bras-kit build`` says why)."""
+    from .build import build_package
+
+    prefixes, failed = [], []
+    for folder in folders:
+        record = build_package(folder, install_base)
+        if record.failure is None:
+            prefixes.append(record.prefix)
+        else:
+            failed.append(record.package)
+    return prefixes, failed

@@ -1,0 +1,310 @@
+"""BK8xx: the live ROS 2 graph (``bras-kit doctor --ros``), what keeps RViz empty or the arm still.
+
+Each rule is a small function over one :class:`LiveGraph` (a snapshot of the graph, and the
+robot read from the text received on /robot_description), as ros2doctor's checks
+(``ros2doctor/api/topic.py``, ``qos_compatibility.py``) and ROS 1's tfwtf are: it yields hits,
+never words. The hits carry ``file``: the topic or node the finding is about, shown where a file
+would be. The robot's own defects are the URDF rules' findings (BK1xx-BK5xx), run by
+:func:`bras_kit.live.doctor.diagnose` on the received text.
+"""
+
+from __future__ import annotations
+
+import difflib
+import math
+from collections.abc import Callable, Iterable, Iterator
+from dataclasses import dataclass
+from typing import Any
+
+from ..live.snapshot import CLOCK, DESCRIPTION, JOINT_STATES, Snapshot
+from ..model import Robot
+from .registry import ERROR, WARNING, Hit, hit, rule
+
+TUTORIAL_RATE = 20.0  # the tutorial's node: create_timer(0.05, ...)
+SLOW_RATE = 15.0  # below this the arm visibly steps (a fifth under the tutorial's rate, with jitter)
+SLIDER_NODE = "joint_state_publisher"  # the slider window's node name (10 Hz by default: its 'rate')
+FAR_STAMP = 5.0  # seconds between a stamp and this machine's clock before it is "far"
+MAX_SAMPLES_NAMED = 8
+
+
+@dataclass(frozen=True)
+class LiveGraph:
+    """What the live rules read: one snapshot, and the robot its description gives (None when
+    no description was received or it is not a URDF)."""
+
+    snapshot: Snapshot
+    robot: Robot | None = None
+
+
+LiveCheck = Callable[[LiveGraph], Iterable[Hit]]
+LIVE_CHECKS: dict[str, LiveCheck] = {}
+
+
+def live_rule(code: str, name: str, severity: str) -> Callable[[LiveCheck], LiveCheck]:
+    """Register a live rule: it runs on a :class:`LiveGraph`, never on a robot file."""
+
+    def decorate(check: LiveCheck) -> LiveCheck:
+        def on_context(context: Any) -> Iterable[Hit]:
+            return check(context) if isinstance(context, LiveGraph) else ()
+
+        rule(code, name, severity)(on_context)
+        LIVE_CHECKS[code] = check
+        return check
+
+    return decorate
+
+
+def _at(where: str, variant: str = "", **params: object) -> Hit:
+    return hit("file", None, None, variant, file=where, **params)
+
+
+def _nodes(endpoints: Iterable[Any]) -> list[str]:
+    return sorted({e.node for e in endpoints if e.node})
+
+
+# ---------------------------------------------------------------- nobody here
+
+@live_rule("BK800", "graph-empty", ERROR)
+def graph_empty(graph: LiveGraph) -> Iterator[Hit]:
+    snap = graph.snapshot
+    if snap.nodes:
+        return
+    if snap.elsewhere:
+        there = snap.elsewhere[0]
+        if there.domain != snap.domain:
+            yield _at(f"ROS_DOMAIN_ID={snap.domain}", "domain", domain=snap.domain, other=there.domain,
+                      nodes=list(there.nodes), command=f"export ROS_DOMAIN_ID={there.domain}")
+        else:
+            command = f"export ROS_AUTOMATIC_DISCOVERY_RANGE={there.discovery_range}"
+            yield _at(f"ROS_DOMAIN_ID={snap.domain}", "range", domain=snap.domain, other=there.discovery_range,
+                      ours=snap.discovery_range or "SUBNET", nodes=list(there.nodes), command=command)
+        return
+    yield _at(f"ROS_DOMAIN_ID={snap.domain}", domain=snap.domain, seconds=round(snap.duration, 1))
+
+
+# ---------------------------------------------------------------- /robot_description
+
+@live_rule("BK801", "robot-description-not-published", ERROR)
+def description_not_published(graph: LiveGraph) -> Iterator[Hit]:
+    snap = graph.snapshot
+    if snap.nodes and not snap.publishers(DESCRIPTION) and not snap.descriptions:
+        readers = _nodes(snap.subscribers(DESCRIPTION))
+        yield _at(DESCRIPTION, "readers" if readers else "", readers=readers, nodes=list(snap.nodes))
+
+
+@live_rule("BK802", "robot-description-volatile", ERROR)
+def description_volatile(graph: LiveGraph) -> Iterator[Hit]:
+    for endpoint in graph.snapshot.publishers(DESCRIPTION):
+        if endpoint.durability == "volatile":
+            yield _at(DESCRIPTION, node=endpoint.node)
+
+
+@live_rule("BK803", "robot-description-not-received", ERROR)
+def description_not_received(graph: LiveGraph) -> Iterator[Hit]:
+    snap = graph.snapshot
+    publishers = snap.publishers(DESCRIPTION)
+    if publishers and not snap.descriptions and not any(e.durability == "volatile" for e in publishers):
+        yield _at(DESCRIPTION, nodes=_nodes(publishers), seconds=round(snap.duration, 1))
+
+
+def description_kind(text: str) -> str:
+    """What a received description is: "urdf" (XML), "empty", "path" (a file's name) or "other"."""
+    stripped = text.strip()
+    if not stripped:
+        return "empty"
+    if stripped.startswith("<"):
+        return "urdf"
+    if "\n" not in stripped and (stripped.endswith((".urdf", ".xacro", ".xml", ".sdf")) or "/" in stripped
+                                 or stripped.startswith("package://")):
+        return "path"
+    return "other"
+
+
+@live_rule("BK804", "robot-description-not-urdf", ERROR)
+def description_not_urdf(graph: LiveGraph) -> Iterator[Hit]:
+    if not graph.snapshot.descriptions:
+        return
+    text = graph.snapshot.descriptions[-1].text
+    kind = description_kind(text)
+    if kind == "urdf":
+        return
+    stripped = text.strip()
+    yield _at(DESCRIPTION, kind, text=stripped[:200], length=len(text))
+
+
+# ---------------------------------------------------------------- /joint_states
+
+@live_rule("BK810", "joint-states-not-published", ERROR)
+def joint_states_not_published(graph: LiveGraph) -> Iterator[Hit]:
+    snap = graph.snapshot
+    if not snap.nodes or snap.publishers(JOINT_STATES) or snap.joint_states:
+        return
+    robot = graph.robot
+    moving = [j.child for j in robot.movable_joints() if j.child] if robot else []
+    root = _root_link(robot)
+    yield _at(JOINT_STATES, "links" if moving and root else "", link=moving[-1] if moving else "",
+              root=root or "", readers=_nodes(snap.subscribers(JOINT_STATES)))
+
+
+def _root_link(robot: Robot | None) -> str | None:
+    if robot is None:
+        return None
+    children = {j.child for j in robot.joints}
+    roots = [name for name in robot.link_names if name not in children]
+    return roots[0] if roots else None
+
+
+@live_rule("BK811", "joint-states-several-publishers", WARNING)
+def joint_states_several_publishers(graph: LiveGraph) -> Iterator[Hit]:
+    nodes = _nodes(graph.snapshot.publishers(JOINT_STATES))
+    if len(nodes) >= 2:
+        slider = [n for n in nodes if n.rsplit("/", 1)[-1].startswith(SLIDER_NODE)]
+        yield _at(JOINT_STATES, "slider" if slider else "", nodes=nodes, n=len(nodes),
+                  slider=slider[0] if slider else "")
+
+
+@live_rule("BK812", "joint-states-not-received", ERROR)
+def joint_states_not_received(graph: LiveGraph) -> Iterator[Hit]:
+    snap = graph.snapshot
+    publishers = snap.publishers(JOINT_STATES)
+    if publishers and not snap.joint_states:
+        sim = sorted(n for n in _nodes(publishers) if snap.use_sim_time.get(n))
+        no_clock = not snap.publishers(CLOCK)
+        yield _at(JOINT_STATES, "sim" if sim and no_clock else "", nodes=_nodes(publishers),
+                  seconds=round(snap.duration, 1), sim=sim)
+
+
+def measured_rate(graph: LiveGraph) -> float | None:
+    """Messages per second on /joint_states (None under 3 messages), over the time they were sent
+    (DDS's source timestamps: a loaded machine delivers in bursts), else over their reception."""
+    samples = graph.snapshot.joint_states
+    if len(samples) < 3:
+        return None
+    sent = [s.sent for s in samples if s.sent is not None]
+    times = sent if len(sent) == len(samples) else [s.received for s in samples]
+    span = max(times) - min(times)
+    return (len(samples) - 1) / span if span > 0 else None
+
+
+@live_rule("BK813", "joint-states-slow", WARNING)
+def joint_states_slow(graph: LiveGraph) -> Iterator[Hit]:
+    nodes = _nodes(graph.snapshot.publishers(JOINT_STATES))
+    if any(n.rsplit("/", 1)[-1].startswith(SLIDER_NODE) for n in nodes):
+        return  # the slider window's 10 Hz is its default, and it only moves when a slider does
+    rate = measured_rate(graph)
+    if rate is not None and rate < SLOW_RATE:
+        yield _at(JOINT_STATES, rate=round(rate, 1), expected=TUTORIAL_RATE, period=round(1.0 / rate, 3),
+                  nodes=nodes, count=len(graph.snapshot.joint_states))
+
+
+@live_rule("BK814", "joint-states-stamp-zero", ERROR)
+def joint_states_stamp_zero(graph: LiveGraph) -> Iterator[Hit]:
+    samples = graph.snapshot.joint_states
+    zero = [s for s in samples if s.stamp == (0, 0)]
+    if zero:
+        yield _at(JOINT_STATES, "all" if len(zero) == len(samples) else "some", count=len(zero), total=len(samples),
+                  nodes=_nodes(graph.snapshot.publishers(JOINT_STATES)))
+
+
+@live_rule("BK815", "joint-states-stamp-far", WARNING)
+def joint_states_stamp_far(graph: LiveGraph) -> Iterator[Hit]:
+    offsets = [s.stamp_seconds - s.received for s in graph.snapshot.joint_states if s.stamp != (0, 0)]
+    if not offsets:
+        return
+    worst = max(offsets, key=abs)
+    if abs(worst) > FAR_STAMP:
+        yield _at(JOINT_STATES, "behind" if worst < 0 else "ahead", seconds=round(abs(worst), 1),
+                  stamp=round(worst + graph.snapshot.joint_states[-1].received, 3))
+
+
+def _names_seen(graph: LiveGraph) -> list[str]:
+    seen: list[str] = []
+    for sample in graph.snapshot.joint_states:
+        for name in sample.name:
+            if name not in seen:
+                seen.append(name)
+    return seen
+
+
+@live_rule("BK816", "joint-states-unknown-joint", ERROR)
+def joint_states_unknown_joint(graph: LiveGraph) -> Iterator[Hit]:
+    if graph.robot is None:
+        return
+    movable = [j.name for j in graph.robot.movable_joints() if j.name]
+    others = {j.name for j in graph.robot.joints if j.name} - set(movable)
+    for name in _names_seen(graph):
+        if name in movable:
+            continue
+        if name in others:
+            yield _at(JOINT_STATES, "fixed", joint=name)
+            continue
+        near = difflib.get_close_matches(name, movable, n=1, cutoff=0.5)
+        yield _at(JOINT_STATES, "near" if near else "", joint=name, near=near[0] if near else "", movable=movable)
+
+
+@live_rule("BK817", "joint-states-joint-missing", ERROR)
+def joint_states_joint_missing(graph: LiveGraph) -> Iterator[Hit]:
+    if graph.robot is None or not graph.snapshot.joint_states:
+        return
+    seen = set(_names_seen(graph))
+    for joint in graph.robot.movable_joints():
+        if joint.name and joint.name not in seen:
+            yield _at(JOINT_STATES, joint=joint.name, link=joint.child or "", seen=sorted(seen))
+
+
+@live_rule("BK818", "joint-states-past-limits", WARNING)
+def joint_states_past_limits(graph: LiveGraph) -> Iterator[Hit]:
+    if graph.robot is None:
+        return
+    worst: dict[str, tuple[float, float, float]] = {}
+    for sample in graph.snapshot.joint_states:
+        for name, value in zip(sample.name, sample.position):
+            joint = graph.robot.joint(name)
+            if joint is None or not joint.movable or not math.isfinite(value):
+                continue
+            lower, upper = joint.bounds()
+            excess = max(lower - value, value - upper)
+            if excess > 1e-9 and excess > worst.get(name, (0.0, 0.0, 0.0))[0]:
+                worst[name] = (excess, value, lower if value < lower else upper)
+    for name, (excess, value, bound) in sorted(worst.items()):
+        lower, upper = graph.robot.joint(name).bounds()  # type: ignore[union-attr]
+        yield _at(JOINT_STATES, "lower" if value < bound else "upper", joint=name, value=round(value, 3),
+                  bound=bound, excess=round(excess, 3), lower=lower, upper=upper)
+
+
+@live_rule("BK819", "joint-states-names-and-positions-differ", ERROR)
+def joint_states_lengths_differ(graph: LiveGraph) -> Iterator[Hit]:
+    bad = [s for s in graph.snapshot.joint_states if len(s.name) != len(s.position)]
+    if bad:
+        sample = bad[-1]
+        yield _at(JOINT_STATES, "empty" if not sample.position else "", count=len(bad),
+                  total=len(graph.snapshot.joint_states), names=len(sample.name), positions=len(sample.position))
+
+
+# ---------------------------------------------------------------- QoS, clock
+
+@live_rule("BK820", "qos-incompatible", ERROR)
+def qos_incompatible(graph: LiveGraph) -> Iterator[Hit]:
+    for pair in graph.snapshot.mismatches:
+        if pair.level == "error":
+            yield _at(pair.topic, _qos_variant(pair), publisher=pair.publisher.node, subscriber=pair.subscriber.node,
+                      offered=f"{pair.publisher.reliability}, {pair.publisher.durability}",
+                      requested=f"{pair.subscriber.reliability}, {pair.subscriber.durability}", reason=pair.reason)
+
+
+def _qos_variant(pair: Any) -> str:
+    if pair.publisher.durability == "volatile" and pair.subscriber.durability == "transient_local":
+        return "durability"
+    if pair.publisher.reliability == "best_effort" and pair.subscriber.reliability == "reliable":
+        return "reliability"
+    return ""
+
+
+@live_rule("BK830", "use-sim-time-without-clock", ERROR)
+def use_sim_time_without_clock(graph: LiveGraph) -> Iterator[Hit]:
+    snap = graph.snapshot
+    if snap.publishers(CLOCK):
+        return
+    for node, value in sorted(snap.use_sim_time.items()):
+        if value:
+            yield _at(node, node=node)

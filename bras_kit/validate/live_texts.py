@@ -1,0 +1,280 @@
+"""The English words of the live rules (BK8xx). French: ``validate.po`` (msgctxt = code)."""
+
+from __future__ import annotations
+
+from .registry import describe
+
+describe(
+    "BK800",
+    title="no ROS 2 node is seen on this domain",
+    message={
+        "domain": "no node on ROS_DOMAIN_ID {domain}, but {nodes} run on domain {other}: this terminal and "
+                  "theirs are on different domains",
+        "range": "no node on ROS_DOMAIN_ID {domain} with discovery range {ours}, but {nodes} are seen with "
+                 "range {other}: the terminals do not search the same way",
+        "": "no ROS 2 node on ROS_DOMAIN_ID {domain} (watched {seconds} s), nor on another domain of this computer",
+    },
+    hint={
+        "domain": "type '{command}' in this terminal (or the same ROS_DOMAIN_ID in every terminal), then run again",
+        "range": "type '{command}' in this terminal (or the same setting in every terminal), then run again",
+        "": "start the tutorial's launch file in another terminal (ros2 launch bras_description "
+            "affichage.launch.py), with the same ROS_DOMAIN_ID, then run again",
+    },
+    explanation="""\
+ROS 2 nodes only see the nodes of their own domain (`ROS_DOMAIN_ID`, 0 when unset) that search
+for each other the same way (`ROS_AUTOMATIC_DISCOVERY_RANGE`: `LOCALHOST` keeps to this
+computer, `SUBNET` is the default). Two terminals set differently each see an empty graph: RViz
+in one shows nothing of what the other publishes. When this domain is empty, `doctor --ros`
+looks at the domains other processes of this computer use and tries the other discovery range,
+and names the setting that finds the nodes.""",
+)
+describe(
+    "BK801",
+    title="nothing publishes /robot_description",
+    message={
+        "readers": "nothing publishes /robot_description, yet {readers} wait for it: RViz stays empty "
+                   "(\"Waiting for robot_description...\" is not a hang: nothing will come)",
+        "": "nothing publishes /robot_description (nodes seen: {nodes}): RViz's RobotModel has no robot to show",
+    },
+    hint="start robot_state_publisher with the URDF as its robot_description parameter: the tutorial's "
+         "launch file does it (ros2 launch bras_description affichage.launch.py)",
+    explanation="""\
+RViz's RobotModel display reads the robot from the topic `/robot_description`, which
+robot_state_publisher publishes from its `robot_description` parameter. When it is not running
+(or crashed at start: look at its terminal), RViz stays empty and RobotModel shows a warning.""",
+)
+describe(
+    "BK802",
+    title="/robot_description is published volatile",
+    message="{node} publishes /robot_description volatile: a reader started after it (RViz) never gets it",
+    hint="publish it with QoSProfile(depth=1, durability=DurabilityPolicy.TRANSIENT_LOCAL), as "
+         "robot_state_publisher does, or let robot_state_publisher publish it",
+    explanation="""\
+robot_state_publisher publishes the description once, reliable and *transient local*
+(src/robot_state_publisher.cpp:133-135 in Jazzy's 3.3): the middleware keeps the last message
+for readers that join later, like RViz opened after the launch. A description published
+*volatile* reaches only the readers present at that instant; a transient-local reader (RViz's
+RobotModel) does not even match it. The model stays empty, with no error.""",
+)
+describe(
+    "BK803",
+    title="/robot_description is published but nothing was received",
+    message="{nodes} publish /robot_description, but no text came in {seconds} s",
+    hint="restart the node that publishes it; if it publishes by hand, publish with transient_local "
+         "durability so that late readers get it",
+    explanation="""\
+A publisher of `/robot_description` is in the graph, but no message reached a reliable,
+transient-local reader (what RViz is) while `doctor --ros` watched. The publisher has not
+published yet, or published once long ago without keeping the message.""",
+)
+describe(
+    "BK804",
+    title="/robot_description is not a URDF",
+    message={
+        "path": "/robot_description holds a file name, '{text}', not the URDF itself: RViz cannot read a path",
+        "empty": "/robot_description is empty: RViz has no robot to show",
+        "other": "/robot_description is not XML ('{text}'): RViz cannot read it as a URDF",
+        "": "/robot_description is not a URDF",
+    },
+    hint={
+        "path": "give robot_state_publisher the file's contents: robot_desc = open(urdf_path).read(), then "
+                "parameters=[{{'robot_description': robot_desc}}] (the tutorial's launch file)",
+        "empty": "read the URDF file in the launch file and pass its text as robot_description",
+        "": "pass the URDF's text as robot_description",
+    },
+    explanation="""\
+The `robot_description` parameter of robot_state_publisher is the URDF *text*. A launch file
+that passes the path (`parameters=[{'robot_description': urdf_path}]`) or an empty string
+publishes that on `/robot_description`; RViz's RobotModel cannot parse it and stays empty.
+The tutorial's launch file reads the file first: `open(urdf_path).read()`.""",
+)
+describe(
+    "BK810",
+    title="nothing publishes /joint_states",
+    message={
+        "links": "nothing publishes /joint_states: robot_state_publisher publishes no transform for the moving "
+                 "links, RViz says \"No transform from [{link}] to [{root}]\" and the arm does not move",
+        "": "nothing publishes /joint_states: the arm does not move",
+    },
+    hint="start the slider window (ros2 run joint_state_publisher_gui joint_state_publisher_gui) or your "
+         "node (ros2 run bras_description animation), in a terminal with the same ROS_DOMAIN_ID",
+    explanation="""\
+robot_state_publisher turns the angles it receives on `/joint_states` into the transforms of the
+moving links. With nobody publishing them, only the fixed links have a transform: RViz draws
+them and says "No transform from [avant_bras] to [base]" for the others. The tutorial's pitfall
+"Le robot apparaît mais ne bouge pas": check that a source publishes on /joint_states.""",
+)
+describe(
+    "BK811",
+    title="several nodes publish /joint_states",
+    message={
+        "slider": "{n} nodes publish /joint_states ({nodes}): the slider window ({slider}) and your node take "
+                  "turns, the arm jumps between their angles",
+        "": "{n} nodes publish /joint_states ({nodes}): robot_state_publisher takes each message in turn and the "
+            "arm jumps between them",
+    },
+    hint={
+        "slider": "close the slider window, as the tutorial says before running the animation node",
+        "": "keep one publisher of /joint_states (or give them different joints)",
+    },
+    explanation="""\
+robot_state_publisher uses every message it receives on `/joint_states`. With the slider window
+and the animation node both running, each resets the arm to its own angles many times a second:
+the arm flickers. The tutorial says to close the slider window before `ros2 run bras_description
+animation`.""",
+)
+describe(
+    "BK812",
+    title="/joint_states has publishers but no message came",
+    message={
+        "sim": "{nodes} publish /joint_states but sent nothing in {seconds} s: {sim} use simulated time and "
+               "nothing publishes /clock, so their timers never fire",
+        "": "{nodes} publish /joint_states but sent nothing in {seconds} s: the arm does not move",
+    },
+    hint={
+        "sim": "set use_sim_time to false (or start what publishes /clock)",
+        "": "make sure the node's timer runs: rclpy.spin(node) after creating it, and a timer callback that "
+            "calls publish",
+    },
+    explanation="""\
+A node created a publisher on `/joint_states` but no message reached `doctor --ros` while it
+watched: its timer is not running (no `rclpy.spin`), or waits for a clock that never ticks
+(`use_sim_time` true without `/clock`), or the node publishes only when something else happens.""",
+)
+describe(
+    "BK813",
+    title="/joint_states comes slower than the tutorial's 20 Hz",
+    message="/joint_states comes at {rate} Hz (one message every {period} s), not the tutorial's {expected} Hz: "
+            "the arm moves in visible steps",
+    hint="create the timer with a period of 0.05 s: self.create_timer(0.05, self.tick)",
+    explanation="""\
+The tutorial's node publishes twenty times a second (`create_timer(0.05, ...)`), enough for a
+smooth motion in RViz. The rate is measured over the messages received while `doctor --ros`
+watched (all publishers together). The slider window publishes at 10 Hz by design and is not
+checked.""",
+)
+describe(
+    "BK814",
+    title="/joint_states messages are stamped zero",
+    message={
+        "all": "every /joint_states message ({total}) has header.stamp = 0: robot_state_publisher 3.3 publishes "
+               "no transform for them, the arm does not move",
+        "some": "{count} of {total} /joint_states messages have header.stamp = 0: robot_state_publisher skips them",
+    },
+    hint="stamp each message: msg.header.stamp = self.get_clock().now().to_msg()",
+    explanation="""\
+robot_state_publisher publishes a joint's transform only when the message's stamp is at least
+one publish period after the last one it used for that joint; a joint seen for the first time
+counts from time zero (src/robot_state_publisher.cpp:324-340 in Jazzy's 3.3). A stamp of zero is
+never after zero plus a period: nothing is published, RViz says "No transform" and the arm stays
+still. The tutorial's node stamps each message with `self.get_clock().now().to_msg()`.""",
+)
+describe(
+    "BK815",
+    title="/joint_states stamps are far from this computer's clock",
+    message={
+        "behind": "/joint_states messages are stamped {seconds} s before this computer's clock: RViz may "
+                  "drop the transforms as too old",
+        "ahead": "/joint_states messages are stamped {seconds} s after this computer's clock: RViz may "
+                 "wait for them or drop them",
+    },
+    hint="stamp with the node's clock, self.get_clock().now().to_msg(), and keep every node on the same time "
+         "(use_sim_time on all of them or on none)",
+    explanation="""\
+The transforms robot_state_publisher publishes carry the stamp of the joint states. RViz looks
+transforms up near its own clock; stamps far in the past or the future give "extrapolation"
+warnings and a still or missing arm. A stamp made by hand (a counter, a clock of another
+machine) or simulated time on only some of the nodes cause it.""",
+)
+describe(
+    "BK816",
+    title="/joint_states names a joint that the URDF cannot move",
+    message={
+        "near": "/joint_states names '{joint}', which is not a movable joint of /robot_description: did you "
+                "mean '{near}'?",
+        "fixed": "/joint_states names '{joint}', a fixed joint: robot_state_publisher ignores it",
+        "": "/joint_states names '{joint}', which is not a joint of /robot_description (its movable joints: "
+            "{movable})",
+    },
+    hint={
+        "near": "write '{near}' in msg.name, exactly as in the URDF",
+        "fixed": "leave '{joint}' out of msg.name",
+        "": "use the URDF's joint names in msg.name: {movable}",
+    },
+    explanation="""\
+robot_state_publisher looks each name of a JointState up in the URDF and silently skips the
+ones it does not know (ROS 2 prints no warning). The joint meant keeps no transform and RViz
+says "No transform" for its link, or draws it where it was.""",
+)
+describe(
+    "BK817",
+    title="a movable joint of the URDF is never in /joint_states",
+    message="joint '{joint}' is never in /joint_states (names received: {seen}): robot_state_publisher "
+            "publishes no transform for '{link}', which RViz cannot place",
+    hint="add '{joint}' to msg.name with its position (every movable joint, in every message or in turn)",
+    explanation="""\
+robot_state_publisher publishes the transform of a moving link only once it has received its
+joint's position. A joint left out of every message leaves its link, and all below it, without a
+transform: RViz says "No transform from [avant_bras] to [base]".""",
+)
+describe(
+    "BK818",
+    title="/joint_states positions are past the joint limits",
+    message={
+        "upper": "joint '{joint}' reaches {value} rad, {excess} rad above its upper limit {bound}",
+        "lower": "joint '{joint}' reaches {value} rad, {excess} rad below its lower limit {bound}",
+    },
+    hint="stay within {lower}..{upper} rad (the <limit> of the URDF), or widen the limit if the mechanism "
+         "allows it",
+    explanation="""\
+robot_state_publisher draws any angle it receives, even past the `<limit>` of the URDF: RViz
+shows the arm through itself. A real arm or a controller would stop at the limit. The tutorial's
+pitfall "Les articulations dépassent".""",
+)
+describe(
+    "BK819",
+    title="/joint_states messages have more names than positions, or fewer",
+    message={
+        "empty": "{count} of {total} /joint_states messages have {names} names and no position: "
+                 "robot_state_publisher ignores them",
+        "": "{count} of {total} /joint_states messages have {names} names but {positions} positions: "
+            "robot_state_publisher ignores them",
+    },
+    hint="give msg.position one value per name, in the same order",
+    explanation="""\
+robot_state_publisher ignores a JointState whose `name` and `position` lists differ in length
+(src/robot_state_publisher.cpp:303-312 in Jazzy's 3.3), with one line in its log.""",
+)
+describe(
+    "BK820",
+    title="a publisher and a subscription cannot match (QoS)",
+    message={
+        "durability": "{publisher} publishes volatile and {subscriber} reads transient_local: they never "
+                      "connect, {subscriber} receives nothing",
+        "reliability": "{publisher} publishes best effort and {subscriber} reads reliable: they never connect, "
+                       "{subscriber} receives nothing",
+        "": "{publisher} ({offered}) and {subscriber} ({requested}) cannot connect: {reason}",
+    },
+    hint={
+        "durability": "publish transient_local (as robot_state_publisher does), or read volatile",
+        "reliability": "publish reliable, or read best effort",
+        "": "give both ends compatible QoS settings",
+    },
+    explanation="""\
+A subscription receives only from publishers whose QoS offers at least what it asks: a reader
+asking *transient local* does not match a *volatile* publisher, a *reliable* reader does not
+match a *best effort* publisher. Nothing reports it but a warning in the reader's log; the
+check is rmw's own (`rclpy.qos.qos_check_compatible`, as `ros2 doctor` uses).""",
+)
+describe(
+    "BK830",
+    title="a node uses simulated time but nothing publishes /clock",
+    message="{node} has use_sim_time = true but nothing publishes /clock: its clock stays at zero, its "
+            "timers never fire and its stamps are zero",
+    hint="ros2 param set {node} use_sim_time false (or drop use_sim_time from the launch file), unless a "
+         "simulator or 'ros2 bag play --clock' is meant to run",
+    explanation="""\
+With `use_sim_time` true a node reads its time from `/clock` (a simulator, `ros2 bag play
+--clock`). Without anything on `/clock` its time stays at zero: its timers never fire and what it
+stamps is stamped zero, so robot_state_publisher publishes no transform and the arm stays still.""",
+)

@@ -1,0 +1,171 @@
+"""bras-kit view --ros: the viewer fed by the learner's live ROS 2 graph, RViz's companion.
+
+The probe (:mod:`bras_kit.live._probe`, stream mode) runs beside the viewer and prints JSON lines:
+the text of /robot_description when it arrives (the page shows that robot, and shows the new one
+when it is replaced), every JointState as it arrives (every page moves at once, as
+robot_state_publisher turns it into TF for RViz), and the graph every two seconds (the doctor's
+findings, the same rules as ``bras-kit doctor --ros``, on the page's "Checks"). A record that
+does not fit, a node leaving, a description that is not a URDF: each shows as a finding, the
+page keeps the last robot it could draw, never a traceback.
+
+::
+
+    feed = RosFeed(python).start()
+    robot = feed.wait_for_robot(10.0)    # None: why is in feed.results()
+    viewer = Viewer(Source(robot=robot), ...); feed.attach(viewer)
+"""
+
+from __future__ import annotations
+
+import collections
+import contextlib
+import subprocess
+import threading
+import time
+from typing import Any
+
+from ..live.snapshot import merge_stream
+from ..live.watch import open_stream, read_records
+from ..model import Robot
+
+WINDOW = 3.0  # seconds of joint states the live findings judge (as doctor --ros watches 3 s)
+MAX_SAMPLES = 4000
+
+
+class RosFeed:
+    """The probe's stream, read on a thread; :meth:`attach` hands it to a viewer."""
+
+    def __init__(self, python: str, every: float = 2.0) -> None:
+        self.python = python
+        self.every = every
+        self.process: subprocess.Popen[str] | None = None
+        self.hello: dict[str, Any] = {}
+        self.graph: dict[str, Any] | None = None
+        self.description: dict[str, Any] | None = None
+        self.samples: collections.deque[dict[str, Any]] = collections.deque(maxlen=MAX_SAMPLES)
+        self.started = time.time()
+        self.robot: Robot | None = None
+        self.viewer: Any = None
+        self.latencies: collections.deque[float] = collections.deque(maxlen=1000)  # s, publish -> page
+        self._robot_ready = threading.Event()
+        self._lock = threading.Lock()
+        self._thread: threading.Thread | None = None
+
+    def start(self) -> RosFeed:
+        self.process = open_stream(self.python, self.every)
+        self._thread = threading.Thread(target=self._read, daemon=True, name="bras-kit-ros-feed")
+        self._thread.start()
+        return self
+
+    @property
+    def running(self) -> bool:
+        return self.process is not None and self.process.poll() is None
+
+    def wait_for_robot(self, seconds: float) -> Robot | None:
+        """The robot of the first description that reads, or None after ``seconds``."""
+        self._robot_ready.wait(seconds)
+        return self.robot
+
+    def attach(self, viewer: Any) -> None:
+        """From now on, ``viewer`` shows what comes (a new description, joint states, findings)."""
+        with self._lock:
+            self.viewer = viewer
+        self._show_findings()
+
+    # -- what the probe says ---------------------------------------------------------------------
+    def _read(self) -> None:
+        assert self.process is not None and self.process.stdout is not None
+        for record in read_records(self.process.stdout):
+            try:
+                self._take(record)
+            except Exception:  # noqa: BLE001 - whatever the graph holds, the page keeps going
+                continue
+
+    def _take(self, record: dict[str, Any]) -> None:
+        kind = record.get("kind")
+        if kind == "joint_state":
+            self._joint_state(record)
+        elif kind == "description":
+            self._description(record)
+        elif kind == "graph":
+            with self._lock:
+                self.graph = record
+            self._show_findings()
+        elif kind == "hello":
+            self.hello = record
+
+    def _joint_state(self, record: dict[str, Any]) -> None:
+        names, positions = record.get("name"), record.get("position")
+        if not isinstance(names, list) or not isinstance(positions, list):
+            return
+        with self._lock:
+            self.samples.append(record)
+            viewer = self.viewer
+        if viewer is not None:
+            pairs = [(n, float(p)) for n, p in zip(names, positions)
+                     if isinstance(n, str) and isinstance(p, (int, float)) and not isinstance(p, bool)]
+            viewer.show_joint_state([n for n, _ in pairs], [p for _, p in pairs])
+            sent = record.get("sent")
+            if isinstance(sent, int) and sent > 0:
+                self.latencies.append(time.time() - sent * 1e-9)
+
+    def _description(self, record: dict[str, Any]) -> None:
+        from ..live.doctor import robot_of
+
+        with self._lock:
+            self.description = record
+        robot, _ = robot_of(self.snapshot())
+        if robot is not None and robot.links:
+            self.robot = robot
+            self._robot_ready.set()
+            viewer = self.viewer
+            if viewer is not None:
+                from .viewer import Source
+
+                viewer.source = Source(robot=robot, package_paths=viewer.source.package_paths)
+                viewer.source_label = "/robot_description"
+                viewer.reload()
+        self._show_findings()
+
+    # -- what the doctor says of it ------------------------------------------------------------
+    def snapshot(self) -> Any:
+        """The graph as :func:`bras_kit.live.doctor.diagnose` reads it: the last graph, the last
+        description, the joint states of the last :data:`WINDOW` seconds."""
+        now = time.time()
+        with self._lock:
+            recent = [s for s in self.samples if isinstance(s.get("received"), (int, float))
+                      and s["received"] >= now - WINDOW]
+            graph = self.graph
+            descriptions = [self.description] if self.description else []
+        started = max(self.started, now - WINDOW)
+        return merge_stream(self.hello, graph, descriptions, recent, started, now)
+
+    def results(self) -> list[Any]:
+        from ..live.doctor import diagnose
+
+        return diagnose(self.snapshot())
+
+    def _show_findings(self) -> None:
+        viewer = self.viewer
+        if viewer is None or self.graph is None:
+            return
+        checks = [(r.path, f) for r in self.results() for f in r.findings]
+        viewer.checks = checks
+        with contextlib.suppress(Exception):  # a browser that left mid-update
+            viewer.show_checks()
+
+    def stop(self) -> None:
+        """Close the probe's stdin (it leaves the graph), then end it if it lingers."""
+        process = self.process
+        if process is None:
+            return
+        with contextlib.suppress(OSError, ValueError):
+            if process.stdin is not None:
+                process.stdin.close()
+        try:
+            process.wait(timeout=3)
+        except subprocess.TimeoutExpired:
+            process.kill()
+            process.wait(timeout=3)
+        if self._thread is not None:
+            self._thread.join(timeout=3)

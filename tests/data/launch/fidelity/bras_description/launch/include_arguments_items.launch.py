@@ -1,0 +1,18 @@
+# The same with .items(): included as it should be.
+import os
+
+from ament_index_python.packages import get_package_share_directory
+from launch import LaunchDescription
+from launch.actions import IncludeLaunchDescription
+from launch.launch_description_sources import PythonLaunchDescriptionSource
+from launch_ros.actions import Node
+
+
+def generate_launch_description():
+    share = get_package_share_directory('bras_description')
+    return LaunchDescription([
+        IncludeLaunchDescription(
+            PythonLaunchDescriptionSource(os.path.join(share, 'launch', 'rsp_only.launch.py')),
+            launch_arguments={'gui': 'false'}.items()),
+        Node(package='joint_state_publisher_gui', executable='joint_state_publisher_gui'),
+    ])

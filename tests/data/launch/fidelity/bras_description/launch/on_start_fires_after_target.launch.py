@@ -1,0 +1,21 @@
+# RViz after robot_state_publisher has started: the handler is registered after the target, and fires.
+import os
+
+from ament_index_python.packages import get_package_share_directory
+from launch import LaunchDescription
+from launch.actions import RegisterEventHandler
+from launch.event_handlers import OnProcessStart
+from launch_ros.actions import Node
+
+
+def generate_launch_description():
+    with open(os.path.join(get_package_share_directory('bras_description'), 'urdf', 'bras.urdf')) as f:
+        description = f.read()
+    rsp = Node(package='robot_state_publisher', executable='robot_state_publisher',
+               parameters=[{'robot_description': description}])
+    return LaunchDescription([
+        rsp,
+        Node(package='joint_state_publisher_gui', executable='joint_state_publisher_gui'),
+        RegisterEventHandler(OnProcessStart(target_action=rsp,
+                                            on_start=[Node(package='rviz2', executable='rviz2')])),
+    ])

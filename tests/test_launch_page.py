@@ -1,0 +1,176 @@
+"""bras-kit launch's page and terminal tell one story (issue 43): both read one evaluation of the
+package, and the page shows what RViz would show from it. In a real browser (Debian's chromium,
+headless, SwiftShader WebGL, Playwright, as tests/test_launch_view.py).
+
+Oracles: the pixels of the arm (its blue upper arm and orange forearm), the panel's text, and the
+terminal's report, each finding's code printed by the terminal against those the page lists."""
+
+from __future__ import annotations
+
+import os
+import re
+import shutil
+import signal
+import time
+from pathlib import Path
+
+import pytest
+from test_launch_view import _launch, _url
+from test_view import ARGS, CHROMIUM, _free_port, _screenshot, _wait
+
+pytestmark = pytest.mark.slow
+
+TUTORIAL = Path(__file__).parent / "data" / "launch" / "tutorial" / "bras_description"
+SCENE = (slice(0, 640), slice(0, 590))  # the 3D view left of the panel, above the orientation triad
+NOTICE = (slice(0, 200), slice(0, 330))  # viser's "Software WebGL" notice (an orange bar) over the scene
+FINDING = re.compile(r"(?m)^\S+?:(?:\d+:)? (BK\d{3}) ")  # a finding as the terminal prints it
+
+
+@pytest.fixture(scope="module")
+def browser():
+    from playwright.sync_api import sync_playwright
+
+    with sync_playwright() as playwright:
+        launched = playwright.chromium.launch(executable_path=CHROMIUM, headless=True, args=ARGS)
+        yield launched
+        launched.close()
+
+
+def _arm_pixels(page) -> int:
+    """How many pixels of the arm's blue upper arm and orange forearm the scene shows."""
+    image = _screenshot(page)[SCENE]
+    r, g, b = image[..., 0], image[..., 1], image[..., 2]
+    blue = (b > 120) & (b - r > 70) & (b - g > 40)
+    orange = (r > 120) & (r - b > 100) & (g > 0.35 * r) & (g < 0.7 * r)
+    arm = blue | orange
+    arm[NOTICE] = False
+    return int(arm.sum())
+
+
+class Launched:
+    """bras-kit launch running on ``package``, its page open in the browser."""
+
+    def __init__(self, browser, tmp_path: Path, package: Path, items: list[str], lang: str) -> None:
+        env = {k: v for k, v in os.environ.items() if k not in ("DISPLAY", "WAYLAND_DISPLAY")}
+        env["BRAS_KIT_LANG"] = lang
+        runtime = tmp_path / "runtime"
+        runtime.mkdir(mode=0o700)
+        env["XDG_RUNTIME_DIR"] = str(runtime)  # its own bus: no other test's run joins it
+        self.errors = tmp_path / "stderr.txt"
+        self.process = _launch([str(package), *items, "--port", str(_free_port()), "--duration", "2"], env,
+                               self.errors)
+        self.page = browser.new_page(viewport={"width": 1000, "height": 700})
+        self.page.goto(_url(self.process, self.errors))
+        self.page.wait_for_selector("[data-banner='count']", timeout=60_000)
+
+    def page_codes(self) -> list[str]:
+        """The codes the page's Checks list, once the checks are in."""
+        assert _wait(lambda: self.page.locator("[data-finding]").count() > 0 or
+                     "No finding" in self.page.inner_text("body"), 120), self.page.inner_text("body")
+        return sorted(self.page.locator("[data-finding]").evaluate_all("(all) => all.map(e => e.dataset.finding)"))
+
+    def stop(self) -> tuple[str, str]:
+        """Ctrl-C; what it printed on its terminal (stdout, stderr)."""
+        self.page.close()
+        self.process.send_signal(signal.SIGINT)
+        out, _ = self.process.communicate(timeout=60)
+        return out, self.errors.read_text()
+
+
+def _copy_tutorial(tmp_path: Path) -> Path:
+    package = tmp_path / "bras_description"
+    shutil.copytree(TUTORIAL, package)
+    return package
+
+
+def _without_lines(path: Path, word: str) -> str:
+    """``path`` rewritten without its lines holding ``word``; returns the text it had."""
+    text = path.read_text(encoding="utf-8")
+    kept = [line for line in text.splitlines() if word not in line]
+    assert len(kept) < len(text.splitlines()), f"no line of {path.name} holds {word}"
+    path.write_text("\n".join(kept) + "\n", encoding="utf-8")
+    return text
+
+
+@pytest.mark.parametrize(("lang", "title", "reason"), [
+    ("en", "RViz shows nothing", "Fixed Frame [monde] does not exist"),
+    ("fr", "RViz n'affiche rien", "Fixed Frame [monde] n'existe pas"),
+])
+def test_a_fixed_frame_that_is_no_frame_draws_no_arm_and_the_page_says_why(browser, tmp_path, lang, title, reason):
+    """RViz started with a configuration whose Fixed Frame is no frame of the robot draws nothing
+    ("Frame [monde] does not exist"): the terminal says BK610, and the page draws no arm, says why,
+    and lists the same findings; choosing a frame of the robot draws it, as in RViz."""
+    from bras_kit.scaffold import scaffold_package
+
+    package = tmp_path / "bras_description"
+    scaffold_package(package)
+    rviz = package / "rviz" / "bras_description.rviz"
+    rviz.write_text(rviz.read_text(encoding="utf-8").replace("Fixed Frame: base", "Fixed Frame: monde"),
+                    encoding="utf-8")
+    launched = Launched(browser, tmp_path, package, ["affichage.launch.py"], lang)
+    try:
+        page = launched.page
+        blank = page.locator("[data-banner='blank']")
+        assert _wait(lambda: blank.count() == 1, 60), page.inner_text("body")
+        assert title in blank.inner_text() and reason in blank.inner_text()
+        codes = launched.page_codes()
+        time.sleep(3.0)  # the scene has drawn its grid by now: no arm in it
+        assert _arm_pixels(page) == 0
+        page.screenshot(path=str(tmp_path / "fixed_frame_monde.png"))
+        page.locator("input[role='combobox'][value='monde']").click()
+        page.get_by_role("option", name="base", exact=True).click()
+        assert _wait(lambda: _arm_pixels(page) > 500, 60), "choosing the base frame does not draw the arm"
+        assert _wait(lambda: blank.count() == 0, 10)
+    finally:
+        out, err = launched.stop()
+    assert "Traceback" not in err
+    assert "BK610" in codes
+    assert sorted(FINDING.findall(out)) == codes, out
+
+
+def test_without_joint_state_publisher_the_page_has_no_sliders(browser, tmp_path):
+    """No joint_state_publisher(_gui) in the launch file: no slider window in ROS, BK620 in the
+    terminal; the page has no joint sliders either, says why, and lists the same findings."""
+    package = _copy_tutorial(tmp_path)
+    _without_lines(package / "launch" / "affichage.launch.py", "joint_state_publisher_gui")
+    launched = Launched(browser, tmp_path, package, [], "en")
+    try:
+        page = launched.page
+        assert _wait(lambda: "No joint_state_publisher(_gui) is started" in page.inner_text("body"), 60)
+        assert page.get_by_text("coude =", exact=True).count() == 0  # the joints' boxes under their sliders
+        assert page.get_by_role("button", name="Random pose").count() == 0 or \
+            not page.get_by_role("button", name="Random pose").is_visible()
+        assert _wait(lambda: _arm_pixels(page) > 500, 60), "the arm is drawn, its joints at 0"
+        codes = launched.page_codes()
+    finally:
+        out, err = launched.stop()
+    assert "Traceback" not in err
+    assert "BK620" in codes
+    assert sorted(FINDING.findall(out)) == codes, out
+
+
+def test_a_rebuild_shows_what_the_install_tree_now_holds(browser, tmp_path):
+    """The urdf line removed from data_files while the launch runs: saved, built and launched
+    again, ROS says "No such file" and BK601 in the terminal; the page no longer draws the old arm
+    (ros2 launch stopped: nothing runs) and says why; the line put back, the arm is drawn again."""
+    package = _copy_tutorial(tmp_path)
+    launched = Launched(browser, tmp_path, package, [], "en")
+    try:
+        page = launched.page
+        assert _wait(lambda: _arm_pixels(page) > 500, 60), "the arm is not drawn"
+        setup = package / "setup.py"
+        before = _without_lines(setup, "'urdf'")
+        assert _wait(lambda: "ros2 launch stopped" in page.inner_text("body"), 180), page.inner_text("body")
+        assert _wait(lambda: _arm_pixels(page) == 0, 30), "the old arm stays on the page"
+        assert _wait(lambda: "BK601" in launched.page_codes(), 120)
+        setup.write_text(before, encoding="utf-8")
+        assert _wait(lambda: _arm_pixels(page) > 500, 180), "the arm is not drawn again"
+        assert "ros2 launch stopped" not in page.inner_text("body")
+        codes = launched.page_codes()
+    finally:
+        out, err = launched.stop()
+    assert "No such file or directory" in err and "BK601" in out
+    reports = re.split(r"(?m)^\d+ files? checked: .*$", out)  # each report ends with its summary line
+    assert len(reports) >= 4, out  # the launch, the rebuild without the line, the one with it back
+    assert "BK601" in FINDING.findall(reports[-3])
+    assert sorted(FINDING.findall(reports[-2])) == codes, out  # the last report: the line put back
