@@ -293,12 +293,12 @@ def census(seconds: float) -> int:
     """The nodes of this domain, as soon as discovery shows one (or after ``seconds``)."""
     probe = Probe()
     try:
-        end = time.monotonic() + seconds
         probe.spin_for(seconds, until=lambda: bool(probe.nodes()))
-        # then until no node has joined for a second (each is discovered on its own, 0.05-2.3 s
-        # apart measured in a loopback namespace), within the same time
+        # then until no node has joined for 1.5 s (each is discovered on its own, 0.05-2.3 s apart
+        # measured in a loopback namespace), 4 s at most after the first
         seen, steady = probe.nodes(), time.monotonic()
-        while time.monotonic() < min(end, steady + 1.0):
+        end = steady + 4.0
+        while seen and time.monotonic() < min(end, steady + 1.5):
             probe.spin_for(0.1)
             now = probe.nodes()
             if now != seen:
