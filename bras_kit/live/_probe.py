@@ -294,11 +294,11 @@ def census(seconds: float) -> int:
     probe = Probe()
     try:
         probe.spin_for(seconds, until=lambda: bool(probe.nodes()))
-        # then until no node has joined for 1.5 s (each is discovered on its own, 0.05-2.3 s apart
-        # measured in a loopback namespace), 4 s at most after the first
+        # then until no node has joined for 2.5 s (each is discovered on its own, 0.05-2.3 s apart
+        # measured in a loopback namespace), 6 s at most after the first
         seen, steady = probe.nodes(), time.monotonic()
-        end = steady + 4.0
-        while seen and time.monotonic() < min(end, steady + 1.5):
+        end = steady + 6.0
+        while seen and time.monotonic() < min(end, steady + 2.5):
             probe.spin_for(0.1)
             now = probe.nodes()
             if now != seen:
