@@ -90,30 +90,19 @@ def _use_colour() -> bool:
     return sys.stdout.isatty() and "NO_COLOR" not in os.environ and os.environ.get("TERM") != "dumb"
 
 
-def _run_results(packages: list[str], lang: str, select: list[str], ignore: list[str],
-                 duration: float | None) -> list:  # type: ignore[type-arg]
+def _run_results(targets: list[str], lang: str, select: list[str], ignore: list[str],
+                 duration: float | None, *, nodes: bool = False) -> list:  # type: ignore[type-arg]
+    """Each package (or, with ``nodes``, each node file) run as ``bras-kit run`` runs it, its findings."""
     from ..i18n import say
     from ..run import uncontained_note
-    from ..run.findings import package_run_results
+    from ..run.findings import node_file_results, package_run_results
 
     note = uncontained_note()
-    if note is not None and packages:
+    if note is not None and targets:
         print(say(note, lang), file=sys.stderr)
-    return [result for package in packages for result in
-            package_run_results(package, lang=lang, select=select, ignore=ignore, duration=duration or 10.0)]
-
-
-def _node_results(nodes: list[str], lang: str, select: list[str], ignore: list[str],
-                  duration: float | None) -> list:  # type: ignore[type-arg]
-    from ..i18n import say
-    from ..run import uncontained_note
-    from ..run.findings import node_file_results
-
-    note = uncontained_note()
-    if note is not None and nodes:
-        print(say(note, lang), file=sys.stderr)
-    return [result for node in nodes for result in
-            node_file_results(node, lang=lang, select=select, ignore=ignore, duration=duration or 10.0)]
+    results_of = node_file_results if nodes else package_run_results
+    return [result for target in targets for result in
+            results_of(target, lang=lang, select=select, ignore=ignore, duration=duration or 10.0)]
 
 
 def _merge(results: list, extra: list) -> list:  # type: ignore[type-arg]
@@ -164,7 +153,7 @@ def run(args: argparse.Namespace) -> int:
     if nodes:  # a lone node file, run as `bras-kit run FILE.py` runs it (not read as XML)
         args.files = [f for f in args.files if f not in nodes]
     if nodes and not args.files:
-        results = _node_results(nodes, lang, select, ignore, args.duration)
+        results = _run_results(nodes, lang, select, ignore, args.duration, nodes=True)
     elif args.files:
         if args.wrist or args.inertials or args.param:
             raise ParameterError(M("--wrist, --inertials and --param apply to the built-in arm only"),
@@ -189,7 +178,7 @@ def run(args: argparse.Namespace) -> int:
                                                        select=select, ignore=ignore)
                                if path in generated else validate_path(path, mappings=mappings, **options))
                     for path in paths]
-        results += _node_results(nodes, lang, select, ignore, args.duration)
+        results += _run_results(nodes, lang, select, ignore, args.duration, nodes=True)
     else:
         from ..authoring import arm, parse_assignments
 
