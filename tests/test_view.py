@@ -12,6 +12,7 @@ from pathlib import Path
 
 import numpy as np
 import pytest
+from page_words import page_words
 
 pytestmark = pytest.mark.slow
 
@@ -236,15 +237,7 @@ def test_viser_s_own_words_are_french_in_a_french_page(browser, arm_file):
     with Viewer(Source(path=str(arm_file)), port=_free_port(), lang="fr") as viewer:
         page = _open(browser, viewer.url)
         assert _wait(lambda: "Rendu WebGL logiciel" in page.inner_text("body"), 20)
-        shown = page.evaluate("""() => {
-            const out = [];
-            const walker = document.createTreeWalker(document.body, NodeFilter.SHOW_TEXT);
-            while (walker.nextNode()) out.push(walker.currentNode.nodeValue.trim());
-            for (const e of document.querySelectorAll("[title],[aria-label],[placeholder]"))
-                for (const name of ["title", "aria-label", "placeholder"])
-                    if (e.hasAttribute(name)) out.push(e.getAttribute(name).trim());
-            return out;
-        }""")
+        shown = page_words(page)
         left = sorted({text for text in shown if text in english or text.startswith("Edit props for ")})
         assert left == [], left
         assert "Réduire le panneau" in shown

@@ -19,6 +19,7 @@ from pathlib import Path
 
 import numpy as np
 import pytest
+from page_words import page_words
 from test_view import (
     ARGS,
     CHROMIUM,
@@ -136,18 +137,6 @@ def _export(tmp_path: Path, *options: str) -> Path:
     return out
 
 
-def _page_words(page) -> list[str]:
-    return page.evaluate("""() => {
-        const out = [];
-        const walker = document.createTreeWalker(document.body, NodeFilter.SHOW_TEXT);
-        while (walker.nextNode()) out.push(walker.currentNode.nodeValue.trim());
-        for (const e of document.querySelectorAll("[title],[aria-label],[placeholder]"))
-            for (const name of ["title", "aria-label", "placeholder"])
-                if (e.hasAttribute(name)) out.push(e.getAttribute(name).trim());
-        return out;
-    }""")
-
-
 def test_the_exported_page_has_a_title_and_no_english_under_lang_fr(browser, tmp_path):
     """The oracle of English is viser's client source (test_view._viser_client_words), not bras-kit's list."""
     english = _viser_client_words()
@@ -157,7 +146,7 @@ def test_the_exported_page_has_a_title_and_no_english_under_lang_fr(browser, tmp
     page.goto(out.as_uri())
     assert _wait(lambda: "Rendu WebGL logiciel" in page.inner_text("body"), 60), page.inner_text("body")
     assert page.title() == "bras : tutoriel (bras-kit)"
-    shown = _page_words(page)
+    shown = page_words(page)
     left = sorted({text for text in shown if text in english})
     assert left == [], left
     assert "Software WebGL rendering detected" not in page.inner_text("body")
