@@ -34,10 +34,13 @@ pytestmark = pytest.mark.slow
 
 NO_GEOMETRY = Path(__file__).parent / "data" / "view" / "bras_sans_geometrie.urdf"
 PLAYER_TOP = 650  # the exported page's play bar, and the live page's bottom: no scene below
-NEAR = 12  # px between the name's bottom-left corner and the sphere at its frame's origin (export)
-# the live page, as measured on SwiftShader with two busy cores: 4-25 px (the label's box hides part of
-# the sphere, shifting its centre); names made children of their frames: 60-145 px, or off by more than 150
-LIVE_NEAR = 30
+# px between the name's bottom-left corner and the sphere at its frame's origin, as measured on SwiftShader
+# with two busy cores: exported page 4-18 px (median 5-8), live page 4-25 px (the label's box hides part of
+# the sphere, shifting its centre; a busy picture may show the name one drawing late). Names made children of
+# their frames: 60-145 px, or off by more than 150. Every picture within NEAR, the exported page's median
+# within TYPICAL.
+NEAR = 30
+TYPICAL = 12
 
 
 @pytest.fixture(scope="module")
@@ -68,13 +71,14 @@ def _elbow_and_its_name(image: np.ndarray, columns: slice = slice(None)) -> tupl
     return elbow, (np.array([near[:, 0].max(), near[:, 1].min()]) if len(near) else None)
 
 
-def _assert_names_on_frames(page, pictures: int = 10, columns: slice = slice(None), near: float = NEAR) -> None:
+def _assert_names_on_frames(page, pictures: int = 10, columns: slice = slice(None), typical: float | None = None) -> None:
     gaps = []
     for _ in range(pictures):
         elbow, corner = _elbow_and_its_name(_screenshot(page), columns)
         gaps.append(None if corner is None or elbow is None else float(np.hypot(*(corner - elbow))))
         time.sleep(0.2)
-    assert all(gap is not None and gap <= near for gap in gaps), f"avant_bras drawn off its frame (px): {gaps}"
+    assert all(gap is not None and gap <= NEAR for gap in gaps), f"avant_bras drawn off its frame (px): {gaps}"
+    assert typical is None or float(np.median(gaps)) <= typical, f"avant_bras mostly off its frame (px): {gaps}"
 
 
 def test_frame_names_sit_on_their_frames_while_the_exported_arm_moves(browser, tmp_path):
@@ -98,7 +102,7 @@ def test_frame_names_sit_on_their_frames_while_the_exported_arm_moves(browser, t
         return len(moved) > 1 and np.ptp(np.array(moved), axis=0).max() > 100
 
     assert _wait(has_moved, 30), "the exported arm does not move"
-    _assert_names_on_frames(page)
+    _assert_names_on_frames(page, typical=TYPICAL)
     page.close()
 
 
@@ -122,7 +126,7 @@ def test_frame_names_sit_on_their_frames_while_a_node_moves_the_live_arm(browser
         node = threading.Thread(target=publish, daemon=True)
         node.start()
         try:
-            _assert_names_on_frames(page, columns=slice(0, 590), near=LIVE_NEAR)  # left of the panel
+            _assert_names_on_frames(page, columns=slice(0, 590))  # left of the panel
         finally:
             stop.set()
             node.join()

@@ -185,11 +185,14 @@ def _unzip(archive: str, target: str) -> None:
 
 
 class _Capped(io.RawIOBase):
-    """A decompressed stream that ends in an error past ``most`` bytes: tarfile reads an
-    extended header whole, whatever size it claims (a few KB of gzip can claim gigabytes)."""
+    """A decompressed stream that ends in an error past ``most`` bytes, and, while ``headers`` is
+    true, on any one read larger than :data:`MAX_TAR_HEADER_BYTES`: tarfile reads an extended
+    header whole, whatever size it claims (a few KB of gzip can claim gigabytes), where it reads a
+    member's data in small blocks, and only when extracting."""
 
     def __init__(self, stream: Any, most: int, archive: str) -> None:
         self._stream, self._most, self._archive = stream, most, archive
+        self.headers = True
 
     def readable(self) -> bool:
         return True
@@ -198,6 +201,10 @@ class _Capped(io.RawIOBase):
         return True
 
     def read(self, size: int = -1) -> bytes:
+        if self.headers and (size is None or size < 0 or size > MAX_TAR_HEADER_BYTES):
+            raise SubmissionError(M("the archive holds a header larger than {most} MB: refused",
+                                    most=MAX_TAR_HEADER_BYTES >> 20), path=self._archive,
+                                  hint=M("hand in a .zip or .tar.gz made by an archive tool"))
         if size is None or size < 0 or self._stream.tell() + size > self._most:
             size = self._most - self._stream.tell() + 1
         data: bytes = self._stream.read(size)
@@ -230,12 +237,14 @@ def _untar(archive: str, target: str) -> None:
     # the headers are read one by one, at most MAX_ARCHIVE_FILES + 1 of them, through a stream
     # that stops past what the members may hold plus their headers
     most = MAX_ARCHIVE_BYTES + MAX_TAR_HEADER_BYTES
-    with _decompressed(archive) as stream, tarfile.open(fileobj=_Capped(stream, most, archive), mode="r:") as bundle:
+    with _decompressed(archive) as stream, tarfile.open(fileobj=(capped := _Capped(stream, most, archive)),
+                                                        mode="r:") as bundle:
         members = []
         while (member := bundle.next()) is not None:
             members.append(member)
             if len(members) > MAX_ARCHIVE_FILES:
                 break
+        capped.headers = False
         _check_totals(len(members), sum(m.size for m in members), archive)
         for member in members:
             _safe_member(member.name, archive)
