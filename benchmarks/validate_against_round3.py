@@ -17,8 +17,11 @@ this tree's). Make it without touching your working tree::
 
 Both wall time (best and median) and CPU time (user + system of the process and its children,
 median) are printed: the CPU column stays meaningful on a machine others share. Also printed:
-what `bras-kit validate PKG_DIR` spends its time on now, phase by phase, in a fresh process
-(``--phases PKG_DIR`` alone prints that table).
+what `bras-kit validate PKG_DIR` spends its time on now, phase by phase, one after the other in a
+fresh process (``--phases PKG_DIR`` alone prints that table). The command itself runs the worker's
+phases beside its own (bras_kit.cli.validate._evaluate_ahead): on two cores its wall time is about
+the longer of the two columns, plus Python's start; the ratio to round 3 is printed as well, since
+the 0.5 s target was set on a machine where round 3 took 0.44-0.52 s.
 """
 
 from __future__ import annotations
@@ -65,19 +68,23 @@ def phases(package: str) -> None:
 
     start = mark("", (time.perf_counter(), 0.0))
     at = start
+    from bras_kit.ros.launched import evaluate_package
+    at = mark("worker: import the evaluation (bras_kit.ros.launched, no rule, no numpy)", at)
+    evaluated = evaluate_package(package)
+    at = mark("worker: build + launch file evaluated, two contained children", at)
     from bras_kit.validate import validate_path
     from bras_kit.validate.package import Package, validate_package
-    from bras_kit.validate.package.launch_rules import launched
-    at = mark("import bras_kit.validate (rules, package rules, launch rules)", at)
+    at = mark("command: import the rules (the rest of bras_kit.validate, numpy)", at)
     read = Package(package)
     validate_package(package, package=read, launch=False)
-    at = mark("package rules read statically (BK600-BK627)", at)
-    launched(read)  # what the BK630-BK633 rules read, once per package
-    at = mark("build + launch file evaluated, two contained children (BK630-BK633)", at)
+    at = mark("command: package rules read statically (BK600-BK627)", at)
+    read.ahead = lambda root: evaluated
+    validate_package(package, package=read, launch=True)
+    at = mark("command: the evaluation's rules (BK630-BK639), on the worker's answer", at)
     validate_path(os.path.join(package, "urdf", "bras.urdf"))
-    at = mark("the URDF rules on urdf/bras.urdf", at)
+    at = mark("command: the URDF rules on urdf/bras.urdf", at)
     for label, wall, cpu in clock[1:]:
-        print(f"  {label:70} {wall:7.3f}s wall {cpu:7.3f}s cpu")
+        print(f"  {label:74} {wall:7.3f}s wall {cpu:7.3f}s cpu")
 
 
 def main() -> int:
@@ -145,8 +152,10 @@ def main() -> int:
         print(f"{label:44} {name:8} {best:9.3f}s {median:7.3f}s {cpu:7.3f}s {count:>10}")
     package_now = next(r for r in rows if r[1] == "now" and "PKG_DIR" in r[0])
     large = {r[1]: r for r in rows if "chain" in r[0]}
+    package_then = next(r for r in rows if r[1] == "round 3" and "PKG_DIR" in r[0])
     print(f"\nvalidate PKG_DIR now: best {package_now[2]:.3f} s (target < {TARGET_PACKAGE} s: "
-          f"{'met' if package_now[2] < TARGET_PACKAGE else 'MISSED'})")
+          f"{'met' if package_now[2] < TARGET_PACKAGE else 'MISSED'}); now / round 3: "
+          f"{package_now[3] / package_then[3]:.2f} (median wall), {package_now[4] / package_then[4]:.2f} (cpu)")
     print(f"large file now / round 3: {large['now'][3] / large['round 3'][3]:.2f} (median wall), "
           f"{large['now'][4] / large['round 3'][4]:.2f} (cpu)")
     return 0

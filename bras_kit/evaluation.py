@@ -23,8 +23,8 @@ from .message import M, Message
 
 if TYPE_CHECKING:
     from .model import Robot
+    from .ros.launched import Launched
     from .validate.findings import FileResult, Finding
-    from .validate.package.launch_rules import Launched
 
 JOINT_STATE_PUBLISHERS = ("joint_state_publisher", "joint_state_publisher_gui")
 RVIZ_FILE_LIMIT = 1 << 20
@@ -91,7 +91,7 @@ def evaluate_launch(root: str, install_base: str, launch_file: str | None, argum
     """Build ``root`` into ``install_base`` and evaluate ``launch_file`` as ``ros2 launch`` does;
     the robot robot_state_publisher loads, the Fixed Frame and the slider window read from that
     one plan. Findings come after (:func:`check_launch`)."""
-    from .validate.package.launch_rules import launch_package
+    from .ros.launched import launch_package
 
     launched = launch_package(root, install_base, launch_file, arguments, prefixes=prefixes)
     package._launched = launched  # the package rules read this build, not one of their own

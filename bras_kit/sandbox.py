@@ -27,7 +27,7 @@ import sys
 import threading
 import time
 from collections.abc import Callable, Iterator
-from typing import Any, TypeVar
+from typing import Any, Generic, TypeVar
 
 from .errors import BrasKitError
 from .message import M, Message
@@ -172,14 +172,31 @@ def run_limited(function: Callable[..., T], *args: Any, cpu_seconds: int = DEFAU
     return _fork_here(function, args, kwargs, cpu_seconds, memory_bytes, wall_seconds, what, contain, stop)
 
 
+def start_limited(function: Callable[..., T], *args: Any, cpu_seconds: int = DEFAULT_CPU_SECONDS,
+                  memory_bytes: int = DEFAULT_MEMORY_BYTES, wall_seconds: float = DEFAULT_WALL_SECONDS,
+                  what: Message | str | None = None, contain: Any = None) -> Pending[T]:
+    """:func:`run_limited` begun and not waited for: the child works while this process goes on,
+    :meth:`Pending.result` waits for its answer (the wall clock counts from now). A pending child
+    nobody asks is killed when this process ends."""
+    import atexit
+
+    pending = _start(function, args, {}, cpu_seconds, memory_bytes, wall_seconds, what, contain, None)
+    atexit.register(pending.close)
+    return pending
+
+
 def _fork_here(function: Callable[..., T], args: tuple[Any, ...], kwargs: dict[str, Any], cpu_seconds: int,
                memory_bytes: int, wall_seconds: float, what: Message | str | None, contain: Any, stop: Any) -> T:
     """:func:`run_limited`, the child forked by this process."""
+    return _start(function, args, kwargs, cpu_seconds, memory_bytes, wall_seconds, what, contain, stop).result()
+
+
+def _start(function: Callable[..., T], args: tuple[Any, ...], kwargs: dict[str, Any], cpu_seconds: int,
+           memory_bytes: int, wall_seconds: float, what: Message | str | None, contain: Any, stop: Any) -> Pending[T]:
     if not available():
         if contain is not None:
             raise BrasKitError(M("this system cannot fork a contained child process"))
-        return function(*args, **kwargs)
-    what = M("this file") if what is None else what
+        return Pending(lambda: function(*args, **kwargs))
     read_fd, write_fd = os.pipe()
     sys.stdout.flush()
     sys.stderr.flush()
@@ -188,70 +205,107 @@ def _fork_here(function: Callable[..., T], args: tuple[Any, ...], kwargs: dict[s
         os.close(read_fd)
         _child(write_fd, function, args, kwargs, cpu_seconds, memory_bytes, contain)
     os.close(write_fd)
-    chunks: list[bytes] = []
-    size = 0
-    deadline = time.monotonic() + wall_seconds
-    timed_out = too_big = stopped = False
-    interrupted = True  # until the loop ends by itself: a Ctrl-C or SIGTERM of this process leaves it
-    try:
-        while True:
-            left = deadline - time.monotonic()
-            if left <= 0:
-                timed_out = True
-                break
-            if stop is not None and stop.is_set():
-                stopped = True
-                break
-            ready, _, _ = select.select([read_fd], [], [], min(left, 0.2 if stop is not None else 1.0))
-            if not ready:
-                continue
-            chunk = os.read(read_fd, 1 << 20)
-            if not chunk:
-                break
-            size += len(chunk)
-            if size > MAX_RESULT_BYTES:
-                too_big = True
-                break
-            chunks.append(chunk)
-        interrupted = False
-    finally:
-        os.close(read_fd)
-        if timed_out or too_big or stopped or interrupted:  # interrupted: nobody will read its result
+    pending: Pending[T] = Pending(None)
+    pending._child = (pid, read_fd)
+    pending._deadline = time.monotonic() + wall_seconds
+    pending._limits = (M("this file") if what is None else what, cpu_seconds, memory_bytes, wall_seconds, contain,
+                       stop)
+    return pending
+
+
+class Pending(Generic[T]):
+    """A child at work (:func:`start_limited`); ``here``: the function, where no child can be forked."""
+
+    def __init__(self, here: Callable[[], T] | None) -> None:
+        self._here = here
+        self._child: tuple[int, int] | None = None
+        self._deadline = 0.0
+        self._limits: tuple[Any, ...] = ()
+
+    def close(self) -> None:
+        """Kill the child if it is still at work, and reap it (its answer is not read)."""
+        if self._child is not None:
+            pid, read_fd = self._child
+            self._child = None
+            os.close(read_fd)
             _kill(pid)
-        _, status = os.waitpid(pid, 0)
-    if stopped:
-        raise Stopped(M("{what} was stopped", what=what))
-    if timed_out:
-        raise _limit_error("wall", M("{what} took more than {seconds:g} s and was stopped", what=what,
-                                     seconds=wall_seconds),
-                           hint=M("the file may loop or recurse without end; simplify it"))
-    if too_big:
-        raise _limit_error("size", M("{what} made a result larger than {most} MiB and was stopped", what=what,
-                                     most=MAX_RESULT_BYTES >> 20))
-    if os.WIFSIGNALED(status):
-        sig = os.WTERMSIG(status)
-        if sig in (signal.SIGXCPU, signal.SIGKILL):
-            raise _limit_error("cpu", M("{what} used more than {seconds} s of CPU and was stopped", what=what,
-                                        seconds=cpu_seconds),
+            os.waitpid(pid, 0)
+
+    def result(self) -> T:
+        """The child's answer, once (its error raised as run_limited raises it)."""
+        import atexit
+
+        atexit.unregister(self.close)
+        if self._here is not None:
+            return self._here()
+        if self._child is None:
+            raise RuntimeError("the answer was already read, or the child was closed")
+        (pid, read_fd), self._child = self._child, None
+        what, cpu_seconds, memory_bytes, wall_seconds, contain, stop = self._limits
+        chunks: list[bytes] = []
+        size = 0
+        deadline = self._deadline
+        timed_out = too_big = stopped = False
+        interrupted = True  # until the loop ends by itself: a Ctrl-C or SIGTERM of this process leaves it
+        try:
+            while True:
+                left = deadline - time.monotonic()
+                if left <= 0:
+                    timed_out = True
+                    break
+                if stop is not None and stop.is_set():
+                    stopped = True
+                    break
+                ready, _, _ = select.select([read_fd], [], [], min(left, 0.2 if stop is not None else 1.0))
+                if not ready:
+                    continue
+                chunk = os.read(read_fd, 1 << 20)
+                if not chunk:
+                    break
+                size += len(chunk)
+                if size > MAX_RESULT_BYTES:
+                    too_big = True
+                    break
+                chunks.append(chunk)
+            interrupted = False
+        finally:
+            os.close(read_fd)
+            if timed_out or too_big or stopped or interrupted:  # interrupted: nobody will read its result
+                _kill(pid)
+            _, status = os.waitpid(pid, 0)
+        if stopped:
+            raise Stopped(M("{what} was stopped", what=what))
+        if timed_out:
+            raise _limit_error("wall", M("{what} took more than {seconds:g} s and was stopped", what=what,
+                                         seconds=wall_seconds),
                                hint=M("the file may loop or recurse without end; simplify it"))
-        raise _limit_error("signal", M("{what} stopped the worker process (signal {signal})", what=what, signal=sig),
-                           hint=M("it may need more memory than allowed; simplify the file"))
-    if not chunks:
-        raise _limit_error("memory", M("{what} ran out of memory and was stopped", what=what),
-                           hint=M("the limit is {most} MiB above the program's own size", most=memory_bytes >> 20))
-    try:
-        kind, value = _load(b"".join(chunks), trusted=contain is None)
-    except Exception as exc:  # noqa: BLE001 - a contained child's bytes are a stranger's
-        raise BrasKitError(M("{what} failed: {reason}", what=what, reason=f"unreadable result ({exc})"[:500])) from None
-    if kind == "ok":
-        return value  # type: ignore[no-any-return]
-    if kind == "error":
-        raise _rebuild_error(*value)
-    if kind == "limit":
-        needed = M("{what} needed more memory than allowed and was stopped", what=what) if value == "memory" else \
-            M("{what} needed more recursion than allowed and was stopped", what=what)
-        raise _limit_error("memory", needed, hint=M("simplify the file (no huge values, no deep recursion)"))
-    raise BrasKitError(M("{what} failed: {reason}", what=what, reason=value))
+        if too_big:
+            raise _limit_error("size", M("{what} made a result larger than {most} MiB and was stopped", what=what,
+                                         most=MAX_RESULT_BYTES >> 20))
+        if os.WIFSIGNALED(status):
+            sig = os.WTERMSIG(status)
+            if sig in (signal.SIGXCPU, signal.SIGKILL):
+                raise _limit_error("cpu", M("{what} used more than {seconds} s of CPU and was stopped", what=what,
+                                            seconds=cpu_seconds),
+                                   hint=M("the file may loop or recurse without end; simplify it"))
+            raise _limit_error("signal", M("{what} stopped the worker process (signal {signal})", what=what, signal=sig),
+                               hint=M("it may need more memory than allowed; simplify the file"))
+        if not chunks:
+            raise _limit_error("memory", M("{what} ran out of memory and was stopped", what=what),
+                               hint=M("the limit is {most} MiB above the program's own size", most=memory_bytes >> 20))
+        try:
+            kind, value = _load(b"".join(chunks), trusted=contain is None)
+        except Exception as exc:  # noqa: BLE001 - a contained child's bytes are a stranger's
+            raise BrasKitError(M("{what} failed: {reason}", what=what, reason=f"unreadable result ({exc})"[:500])) from None
+        if kind == "ok":
+            return value  # type: ignore[no-any-return]
+        if kind == "error":
+            raise _rebuild_error(*value)
+        if kind == "limit":
+            needed = M("{what} needed more memory than allowed and was stopped", what=what) if value == "memory" else \
+                M("{what} needed more recursion than allowed and was stopped", what=what)
+            raise _limit_error("memory", needed, hint=M("simplify the file (no huge values, no deep recursion)"))
+        raise BrasKitError(M("{what} failed: {reason}", what=what, reason=value))
 
 
 SAFE_BUILTINS = frozenset({"set", "frozenset", "complex", "range", "slice", "bytearray"})

@@ -13,8 +13,8 @@ import sys
 import pytest
 
 from bras_kit.ros.build import build_package
+from bras_kit.ros.launched import launch_package
 from bras_kit.validate.package import Package, validate_package
-from bras_kit.validate.package.launch_rules import launch_package
 
 DATA = os.path.join(os.path.dirname(__file__), "data", "launch")
 

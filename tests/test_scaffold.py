@@ -170,7 +170,7 @@ def test_packaged_xacro_defaults_to_the_chosen_variant(tmp_path):
 
 
 def test_xacro_package_launch_file_runs_xacro_and_launches_clean(tmp_path):
-    from bras_kit.validate.package.launch_rules import launch_package
+    from bras_kit.ros.launched import launch_package
 
     scaffold_package(tmp_path / PKG, xacro=True)
     result = launch_package(str(tmp_path / PKG), str(tmp_path / "install"))

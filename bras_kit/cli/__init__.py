@@ -215,8 +215,16 @@ def _language_in(argv: Sequence[str]) -> str | None:
     return found if found in LANGUAGES else None
 
 
+# OpenBLAS's threads, unless the user chose their number: bras-kit's matrices are 4x4 and 6xN, which
+# one thread computes as fast, and starting a thread per core costs 50-100 ms of CPU when numpy is
+# imported, taken from the worker `validate PKG_DIR` runs beside it (benchmarks/validate_against_round3.py)
+BLAS_THREADS = ("OPENBLAS_NUM_THREADS", "GOTO_NUM_THREADS", "OMP_NUM_THREADS")
+
+
 def main(argv: Sequence[str] | None = None) -> int:
     argv = list(sys.argv[1:] if argv is None else argv)
+    if not any(os.environ.get(name) for name in BLAS_THREADS):
+        os.environ["OPENBLAS_NUM_THREADS"] = "1"
     if not os.environ.get("BRAS_KIT_DEBUG"):
         warnings.showwarning = _show_warning
         # a library's log record (matplotlib's "posx and posy should be finite values") would go to

@@ -171,7 +171,7 @@ def _launch(args: argparse.Namespace, launch_file: str | None, arguments: dict[s
         result = evaluation.launched
         plan = result.plan
         if result.build.failure is None and launch_file is not None and plan is None:
-            from ..validate.package.launch_rules import _launch_sources, share_files_named
+            from ..ros.launched import launch_sources, share_files_named
 
             share = os.path.join(result.build.prefix, "share", result.build.package)
             found = share_files_named(result.build, launch_file)
@@ -184,7 +184,7 @@ def _launch(args: argparse.Namespace, launch_file: str | None, arguments: dict[s
                 M("file '{file}' was not found in the share directory of package '{package}' which is at '{share}'",
                   file=launch_file, package=result.build.package, share=share),
                 hint=M("the installed launch files are {names}; a new one needs colcon build (data_files)",
-                       names=[os.path.basename(f) for f in _launch_sources(result.build)] or "-"))
+                       names=[os.path.basename(f) for f in launch_sources(result.build)] or "-"))
         nodes = []
         if result.build.failure is None and plan is not None:
             shown = result.launch_file

@@ -21,9 +21,19 @@ import os
 import socket
 import sys
 import sysconfig
+from dataclasses import dataclass
 from typing import Any
 
-from .recording import Attempt
+
+@dataclass(frozen=True)
+class Attempt:
+    """Something the contained node tried that its walls forbid (bras_kit.ros.attempts), and where."""
+
+    kind: str  # "write", "read", "network", "signal", "ctypes", "symlink", "process"
+    detail: str  # the path, the address, the signal...
+    path: str  # the learner's file (relative to the package folder)
+    line: int
+
 
 MAX_ATTEMPTS = 50
 STDLIB = os.path.abspath(sysconfig.get_paths()["stdlib"]) + os.sep

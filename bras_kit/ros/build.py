@@ -25,7 +25,7 @@ import sys
 from dataclasses import dataclass, field
 from typing import Any
 
-from .recording import Attempt
+from .attempts import Attempt
 from .setup_check import CheckedSetup, Installed, Refusal, check_setup, name_problem
 
 __all__ = ["BuildFailure", "BuildRecord", "Installed", "build_package"]

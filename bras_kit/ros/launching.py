@@ -17,7 +17,7 @@ import tempfile
 from dataclasses import dataclass, field
 from typing import Any
 
-from .recording import Attempt
+from .attempts import Attempt
 
 PLAN_CPU_SECONDS = 20
 PLAN_WALL_SECONDS = 40.0

@@ -7,11 +7,14 @@ from __future__ import annotations
 
 import math
 from dataclasses import dataclass, field
-from typing import Any
+from typing import TYPE_CHECKING, Any
 
-import numpy as np
+from .attempts import Attempt
 
-from ..motion.core import JointStates
+if TYPE_CHECKING:  # numpy is imported where a recording becomes joint states: a launch file's
+    import numpy as np  # evaluation (bras_kit.ros.launched) reads this module and needs none of it
+
+    from ..motion.core import JointStates
 
 JOINT_STATES = "/joint_states"
 JOINT_STATE_TYPE = "sensor_msgs/msg/JointState"
@@ -66,16 +69,6 @@ class NodeFailure:
     # what explains it beyond the traceback: the callback that raised ("callback", "def_path",
     # "def_line", "made_path", "made_line", "bound"), the thread ("thread")
     context: dict[str, Any] = field(default_factory=dict)
-
-
-@dataclass(frozen=True)
-class Attempt:
-    """Something the contained node tried that its walls forbid (bras_kit.ros.attempts), and where."""
-
-    kind: str  # "write", "read", "network", "signal", "ctypes", "symlink", "process"
-    detail: str  # the path, the address, the signal...
-    path: str  # the learner's file (relative to the package folder)
-    line: int
 
 
 @dataclass(frozen=True)
@@ -141,6 +134,10 @@ def joint_states(recording: Recording, topic: str = JOINT_STATES) -> JointStates
     """The JointState messages published on ``topic`` as a joint-state sequence (time = when
     each was published). Joints are those of the first message; a message that names other
     joints or gives fewer positions is left out (the findings say so)."""
+    import numpy as np
+
+    from ..motion.core import JointStates
+
     messages = recording.joint_state_messages(topic)
     names: list[str] = []
     times: list[float] = []
@@ -170,6 +167,10 @@ def states_for(recording: Recording, dof: list[str] | tuple[str, ...], topic: st
     reads them: each message sets the joints it names (unknown names are ignored), the others
     keep their last value (0 at first). Messages whose name and position lengths differ are
     dropped, as robot_state_publisher drops them."""
+    import numpy as np
+
+    from ..motion.core import JointStates
+
     index = {name: k for k, name in enumerate(dof)}
     current = np.zeros(len(dof))
     times: list[float] = []

@@ -16,9 +16,10 @@ import tempfile
 from dataclasses import dataclass, field
 from typing import Any
 
+from .attempts import Attempt
 from .contain import containment
 from .locate import Target
-from .recording import Attempt, NodeFailure
+from .recording import NodeFailure
 
 
 @dataclass

@@ -28,6 +28,7 @@ Outside any workspace, the one whose ``install/setup.bash`` was sourced in this 
 from __future__ import annotations
 
 import os
+from collections.abc import Iterable
 from dataclasses import dataclass
 from typing import Any
 
@@ -169,6 +170,25 @@ def current_workspace() -> Workspace | None:
 
 def is_package_folder(folder: str) -> bool:
     return os.path.isfile(os.path.join(folder, "package.xml"))
+
+
+def is_package(path: str) -> bool:
+    """A folder holding ``package.xml`` and ``setup.py`` (an ament_python package)."""
+    return os.path.isfile(os.path.join(path, "package.xml")) and os.path.isfile(os.path.join(path, "setup.py"))
+
+
+def find_packages(paths: Iterable[str]) -> list[str]:
+    """The ament_python packages among ``paths`` and below them (hidden folders skipped)."""
+    out: list[str] = []
+    for path in paths:
+        if not os.path.isdir(path):
+            continue
+        for folder, dirs, _ in os.walk(path):
+            dirs[:] = sorted(d for d in dirs if not d.startswith("."))
+            if is_package(folder):
+                out.append(folder)
+                dirs[:] = []  # packages do not nest
+    return out
 
 
 def resolve_package(where: str, *, command: str = "launch") -> tuple[str, Workspace | None]:

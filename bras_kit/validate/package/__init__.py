@@ -13,9 +13,10 @@ itself is checked by the URDF rules (``bras-kit validate PKGDIR`` collects its `
 
 from __future__ import annotations
 
-import os
 from collections.abc import Iterable
 
+from ...ros.launched import launch_package  # noqa: F401  (the package built and launched)
+from ...ros.workspace import find_packages, is_package  # noqa: F401  (light: the CLI finds packages before importing the rules)
 from ..findings import FileResult, Finding, finding, sort_key
 from ..registry import select_rules
 from . import (
@@ -24,31 +25,12 @@ from . import (
     run_reach,  # noqa: F401  (BK659: what the containment stopped)
     texts,  # noqa: F401  (the rules' words)
 )
-from .launch_rules import LAUNCH_CHECKS, installed_descriptions, launch_package, launched  # noqa: F401  (BK630-BK633: built and launched)
+from .launch_rules import LAUNCH_CHECKS, installed_descriptions, launched  # noqa: F401  (BK630-BK633)
 from .rules import PACKAGE_CHECKS  # importing registers the rules
 from .run_rules import RUN_CHECKS  # the rules over a run of the node (BK640-BK659)
-from .sources import PACKAGE_XML, SETUP_PY, Package
+from .sources import Package
 
 __all__ = ["Package", "find_packages", "installed_descriptions", "is_package", "launch_package", "validate_package"]
-
-
-def is_package(path: str) -> bool:
-    """A folder holding ``package.xml`` and ``setup.py`` (an ament_python package)."""
-    return os.path.isfile(os.path.join(path, PACKAGE_XML)) and os.path.isfile(os.path.join(path, SETUP_PY))
-
-
-def find_packages(paths: Iterable[str]) -> list[str]:
-    """The ament_python packages among ``paths`` and below them (hidden folders skipped)."""
-    out: list[str] = []
-    for path in paths:
-        if not os.path.isdir(path):
-            continue
-        for folder, dirs, _ in os.walk(path):
-            dirs[:] = sorted(d for d in dirs if not d.startswith("."))
-            if is_package(folder):
-                out.append(folder)
-                dirs[:] = []  # packages do not nest
-    return out
 
 
 def validate_package(path: str, *, lang: str | None = None, select: Iterable[str] = (),

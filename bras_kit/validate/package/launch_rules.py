@@ -1,9 +1,9 @@
 """BK630-BK634: the package built as colcon builds it and launched as ``ros2 launch`` launches it.
 
-:func:`launch_package` is the one reading used by ``bras-kit launch`` and ``bras-kit validate
-PKG_DIR``: setup.py is run (sandboxed) into a temporary install tree (:mod:`bras_kit.ros.build`),
-each launch file is evaluated (:mod:`bras_kit.ros.launching`), and robot_state_publisher is fed
-its ``robot_description``. Every mistake is a finding at the learner's file and line, with the
+:func:`~bras_kit.ros.launched.launch_package` is the one reading used by ``bras-kit launch`` and
+``bras-kit validate PKG_DIR`` (:mod:`bras_kit.ros.launched`): setup.py is run (sandboxed) into a
+temporary install tree, each launch file is evaluated, and robot_state_publisher is fed its
+``robot_description``. Every mistake is a finding at the learner's file and line, with the
 words ROS prints (``ros``) and the cause and fix chosen here.
 """
 
@@ -11,20 +11,12 @@ from __future__ import annotations
 
 import os
 import re
-import tempfile
 from collections.abc import Iterator
-from dataclasses import dataclass, field
 from typing import Any
 
-from ...ros.build import BuildRecord, build_package
-from ...ros.launching import (
-    LaunchPlan,
-    PlannedNode,
-    StartProblem,
-    plan_launch,
-    robot_state_publisher_start,
-    ros_arguments_start,
-)
+from ...ros.build import BuildRecord
+from ...ros.launched import Launched, evaluate_package
+from ...ros.launching import LaunchPlan
 from ..registry import ERROR, Hit
 from .rules import _at, package_rule
 from .sources import Package, relative
@@ -32,86 +24,20 @@ from .sources import Package, relative
 LAUNCH_CHECKS = ("BK630", "BK631", "BK632", "BK633", "BK634", "BK635", "BK639")  # BK639: build_reach (what setup.py and launch files tried)
 
 
-@dataclass
-class Launched:
-    build: BuildRecord
-    launch_file: str = ""  # package-relative source of the launch file
-    plan: LaunchPlan | None = None
-    description: str | None = None  # the URDF robot_state_publisher loads
-    problems: list[tuple[PlannedNode, StartProblem]] = field(default_factory=list)
-    others: dict[str, Launched] = field(default_factory=dict)  # the other launch files, by source
-    start_problems: list[tuple[PlannedNode, StartProblem]] = field(default_factory=list)  # BK634: rcl's arguments
-
-
-def _launch_sources(build: BuildRecord) -> list[str]:
-    return sorted(i.source for i in build.installed
-                  if i.target.startswith(f"share/{build.package}/") and
-                  i.source.endswith((".launch.py", "_launch.py", ".launch.xml", ".launch.yaml", ".launch.yml")))
-
-
-def share_files_named(build: BuildRecord, name: str) -> list[str]:
-    """The package files installed under share/PKG/ with the name ``name``, whatever it ends with:
-    ros2launch looks for the name in every folder of the share directory and takes any file
-    (ros2launch/api/api.py, get_share_file_path_from_package, Jazzy lines 39-64; more than one is
-    its MultipleLaunchFilesError)."""
-    wanted = os.path.basename(name)
-    return sorted(i.source for i in build.installed
-                  if i.target.startswith(f"share/{build.package}/") and os.path.basename(i.target) == wanted)
-
-
-def launch_package(root: str, install_base: str, launch_file: str | None = None,
-                   arguments: dict[str, str] | None = None, *, prefixes: tuple[str, ...] = ()) -> Launched:
-    """Build ``root`` into ``install_base`` and evaluate ``launch_file`` (a file's name anywhere in
-    the package's share folder, default: the first installed launch file) as ``ros2 launch PKG
-    FILE`` would; ``prefixes``: the other packages of the workspace, built."""
-    build = build_package(root, install_base)
-    result = Launched(build)
-    if build.failure is not None:
-        return result
-    sources = _launch_sources(build)
-    if launch_file is not None:
-        chosen = share_files_named(build, launch_file)
-        result.launch_file = chosen[0] if len(chosen) == 1 else launch_file
-    elif sources:
-        result.launch_file = sources[0]
-    if not result.launch_file:
-        return result
-    target = next((i.target for i in build.installed if i.source == result.launch_file), None)
-    if target is None:
-        return result
-    plan = plan_launch(os.path.join(build.prefix, target), [build.prefix, *prefixes], arguments,
-                       learner_roots=(root,))
-    result.plan = plan
-    for node in plan.nodes:
-        result.start_problems += [(node, p) for p in ros_arguments_start(node)]
-        if node.package == "robot_state_publisher":
-            text, problems = robot_state_publisher_start(node, roots=(build.prefix, *prefixes, root))
-            result.problems += [(node, p) for p in problems]
-            if text is not None and result.description is None:
-                result.description = text
-    return result
-
-
 # ------------------------------------------------------------------ reading, once per package
-
-_CACHE: dict[int, Launched] = {}
 
 
 def launched(pkg: Package) -> Launched | None:
-    """The package built and its launch files evaluated (kept on the Package)."""
+    """The package built and its launch files evaluated (kept on the Package; begun ahead in a
+    worker where the CLI did, see :attr:`Package.ahead`)."""
     kept = getattr(pkg, "_launched", None)
     if kept is not None:
         return kept
-    if not os.path.isfile(os.path.join(pkg.root, "package.xml")):
-        return None
-    with tempfile.TemporaryDirectory(prefix="bras-kit-build-") as base:
-        first = launch_package(pkg.root, os.path.join(base, "install"))
-        if first.plan is not None:
-            for other in _launch_sources(first.build):
-                if other != first.launch_file:
-                    first.others[other] = launch_package(pkg.root, os.path.join(base, "install"), other)
-    pkg._launched = first  # type: ignore[attr-defined]
-    return first
+    result = pkg.ahead(pkg.root) if pkg.ahead is not None else None
+    if result is None:
+        result = evaluate_package(pkg.root)
+    pkg._launched = result  # type: ignore[attr-defined]
+    return result  # type: ignore[no-any-return]
 
 
 def installed_descriptions(packages: list[Package]) -> list[str]:

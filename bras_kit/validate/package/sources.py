@@ -9,6 +9,7 @@ from __future__ import annotations
 
 import ast
 import os
+from collections.abc import Callable
 from dataclasses import dataclass, field
 from functools import cached_property
 from typing import Any
@@ -131,6 +132,9 @@ class Package:
         self.shown_root = root.rstrip("/\\") or root
         self.problems: list[Problem] = []
         self.read: set[str] = set()  # files (relative) the rules have read
+        # the build and launch evaluation begun ahead in a worker (bras_kit.cli.validate): its answer
+        # for a package folder, None where it has none
+        self.ahead: Callable[[str], Any] | None = None
 
     def path(self, relative_path: str) -> str:
         """The path as shown to the user: under the folder given on the command line."""

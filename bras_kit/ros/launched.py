@@ -1,0 +1,95 @@
+"""A package built as colcon builds it and its launch files evaluated as ``ros2 launch`` would: the
+reading under ``bras-kit launch`` and ``bras-kit validate PKG_DIR`` (whose rules, BK630-BK635,
+live in :mod:`bras_kit.validate.package.launch_rules`). It imports no rule and no numpy, so a
+worker can begin it while the rules are imported (:func:`bras_kit.cli.validate._evaluate_ahead`).
+"""
+
+from __future__ import annotations
+
+import os
+import tempfile
+from dataclasses import dataclass, field
+
+from .build import BuildRecord, build_package
+from .launching import (
+    LaunchPlan,
+    PlannedNode,
+    StartProblem,
+    plan_launch,
+    robot_state_publisher_start,
+    ros_arguments_start,
+)
+
+
+@dataclass
+class Launched:
+    build: BuildRecord
+    launch_file: str = ""  # package-relative source of the launch file
+    plan: LaunchPlan | None = None
+    description: str | None = None  # the URDF robot_state_publisher loads
+    problems: list[tuple[PlannedNode, StartProblem]] = field(default_factory=list)
+    others: dict[str, Launched] = field(default_factory=dict)  # the other launch files, by source
+    start_problems: list[tuple[PlannedNode, StartProblem]] = field(default_factory=list)  # BK634: rcl's arguments
+
+
+def launch_sources(build: BuildRecord) -> list[str]:
+    return sorted(i.source for i in build.installed
+                  if i.target.startswith(f"share/{build.package}/") and
+                  i.source.endswith((".launch.py", "_launch.py", ".launch.xml", ".launch.yaml", ".launch.yml")))
+
+
+def share_files_named(build: BuildRecord, name: str) -> list[str]:
+    """The package files installed under share/PKG/ with the name ``name``, whatever it ends with:
+    ros2launch looks for the name in every folder of the share directory and takes any file
+    (ros2launch/api/api.py, get_share_file_path_from_package, Jazzy lines 39-64; more than one is
+    its MultipleLaunchFilesError)."""
+    wanted = os.path.basename(name)
+    return sorted(i.source for i in build.installed
+                  if i.target.startswith(f"share/{build.package}/") and os.path.basename(i.target) == wanted)
+
+
+def launch_package(root: str, install_base: str, launch_file: str | None = None,
+                   arguments: dict[str, str] | None = None, *, prefixes: tuple[str, ...] = ()) -> Launched:
+    """Build ``root`` into ``install_base`` and evaluate ``launch_file`` (a file's name anywhere in
+    the package's share folder, default: the first installed launch file) as ``ros2 launch PKG
+    FILE`` would; ``prefixes``: the other packages of the workspace, built."""
+    build = build_package(root, install_base)
+    result = Launched(build)
+    if build.failure is not None:
+        return result
+    sources = launch_sources(build)
+    if launch_file is not None:
+        chosen = share_files_named(build, launch_file)
+        result.launch_file = chosen[0] if len(chosen) == 1 else launch_file
+    elif sources:
+        result.launch_file = sources[0]
+    if not result.launch_file:
+        return result
+    target = next((i.target for i in build.installed if i.source == result.launch_file), None)
+    if target is None:
+        return result
+    plan = plan_launch(os.path.join(build.prefix, target), [build.prefix, *prefixes], arguments,
+                       learner_roots=(root,))
+    result.plan = plan
+    for node in plan.nodes:
+        result.start_problems += [(node, p) for p in ros_arguments_start(node)]
+        if node.package == "robot_state_publisher":
+            text, problems = robot_state_publisher_start(node, roots=(build.prefix, *prefixes, root))
+            result.problems += [(node, p) for p in problems]
+            if text is not None and result.description is None:
+                result.description = text
+    return result
+
+
+def evaluate_package(root: str) -> Launched | None:
+    """``root`` built in a temporary install tree, its first launch file evaluated, then each other one
+    (None: no package.xml)."""
+    if not os.path.isfile(os.path.join(root, "package.xml")):
+        return None
+    with tempfile.TemporaryDirectory(prefix="bras-kit-build-") as base:
+        first = launch_package(root, os.path.join(base, "install"))
+        if first.plan is not None:
+            for other in launch_sources(first.build):
+                if other != first.launch_file:
+                    first.others[other] = launch_package(root, os.path.join(base, "install"), other)
+    return first
