@@ -187,6 +187,28 @@ def test_bras_kit_run_refuses_a_data_file_linked_out(world, capsys):
     world.unchanged()
 
 
+@pytest.mark.parametrize("lang", ["en", "fr"])
+def test_bras_kit_run_names_what_setup_py_tried_at_its_lines(world, capsys, lang):
+    """The build under `bras-kit run` is the one `bras-kit build` makes: what setup.py tried that its
+    walls stopped is BK639 at its lines there too (errors: exit 1, as for the node's own BK659), and
+    the node still runs (setup() itself was fine)."""
+    package = world.package("setup_reaches")
+    assert main(["run", str(package), "animation", "--duration", "1", "--lang", lang, "--json"]) == 1
+    captured = capsys.readouterr()
+    import json
+
+    report = json.loads(captured.out)
+    assert "20 messages" in captured.err, captured.err  # the node ran (20 Hz for 1 s)
+    out = captured.out + captured.err
+    assert all(f["code"] == "BK639" for r in report["files"] for f in r["findings"] if f["severity"] == "error")
+    for rule, file, line in EXPECTED["setup_reaches"]:
+        assert any(r["path"].endswith(file) and f["code"] == rule and f["line"] == line
+                   for r in report["files"] for f in r["findings"]), report["files"]
+    assert ("outside the folder it runs in" if lang == "en" else "hors du dossier") in out, out
+    assert "Traceback" not in out
+    world.unchanged()
+
+
 @pytest.mark.parametrize("case", ["name_home", "rsp_dev_zero", "rsp_secret", "rviz_dev_zero", "launch_reaches"])
 def test_bras_kit_launch_ends_and_refuses(world, case, capsys):
     """/dev/zero as the URDF file or RViz's configuration: the parent used to read it until its

@@ -91,7 +91,7 @@ def run(args: argparse.Namespace) -> int:
         print(f"Starting >>> {for_terminal(package_name(folder))}", flush=True)  # the learner's text, inert
         record = build_package(folder, base)
         blocked = [FileResult(os.path.join(folder, str(hit.params["file"])), [finding(RULES["BK639"], hit)])
-                   for hit in setup_blocked_hits(record)]
+                   for hit in setup_blocked_hits(record.blocked)]
         if blocked:  # what setup.py tried that its walls stopped, at its lines (docs/security.md)
             sys.stdout.write(format_text(blocked, lang))
         if record.failure is None:

@@ -215,16 +215,22 @@ def _robot(args: argparse.Namespace):  # type: ignore[no-untyped-def]
 
 
 def _results(recording, robot, args):  # type: ignore[no-untyped-def]
-    """The run rules' findings as the validator's per-file results, paths under the target."""
+    """The run rules' findings as the validator's per-file results, paths under the target; with
+    them, what the package's setup.py tried that its walls stopped (BK639, as ``bras-kit build``
+    shows it)."""
     from ..run.findings import run_findings
-    from ..validate.findings import FileResult
+    from ..validate.findings import FileResult, finding
+    from ..validate.package.build_reach import setup_blocked_hits
+    from ..validate.registry import RULES
 
     base = args.target if os.path.isdir(args.target) else os.path.dirname(args.target)
     by_file: dict[str, list] = {}  # type: ignore[type-arg]
-    for finding in run_findings(recording, robot, lang=args.lang):
-        by_file.setdefault(str(finding.data.get("file") or recording.source), []).append(finding)
+    for found in run_findings(recording, robot, lang=args.lang):
+        by_file.setdefault(str(found.data.get("file") or recording.source), []).append(found)
     if not by_file:
         by_file[recording.source] = []
+    for hit in setup_blocked_hits(recording.build_blocked):
+        by_file.setdefault(str(hit.params["file"]), []).append(finding(RULES["BK639"], hit))
     return [FileResult(os.path.join(base, file), findings) for file, findings in sorted(by_file.items())]
 
 

@@ -143,13 +143,15 @@ def _evaluate_ahead(files: list[str]) -> Callable[[str], Any]:
     """The packages among ``files`` built and launched in a worker begun now, while this process imports
     the rules and applies the static ones (on two cores, about half of `validate PKG_DIR`'s time): the
     answer for a package folder, None where the worker has none (the caller evaluates it itself)."""
+    import threading
+
     from ..errors import BrasKitError
     from ..ros.workspace import find_packages
     from ..sandbox import start_limited
 
     roots = [os.path.abspath(root) for root in find_packages(files)]
-    if not roots:
-        return lambda root: None
+    if not roots or threading.active_count() > 1:  # a fork beside another thread may wait forever for an
+        return lambda root: None  # import lock that thread holds (docs/design/ros-layer.md): not ahead, then
     pending = start_limited(_evaluated, roots, cpu_seconds=3600, wall_seconds=3600, memory_bytes=1 << 40,
                             what=M("the build and launch evaluation"))
     answers: list[dict[str, Any]] = []

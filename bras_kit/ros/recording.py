@@ -105,6 +105,7 @@ class Recording:
     start_ns: int = 0  # the simulated wall clock at t = 0 (header stamps count from it)
     output: str = ""  # what the node printed, when not shown live
     blocked: list[Attempt] = field(default_factory=list)  # what the containment stopped (contained runs)
+    build_blocked: list[Attempt] = field(default_factory=list)  # what the package's setup.py tried (BK639)
     split_strings: list[SplitString] = field(default_factory=list)
 
     def topics(self) -> dict[str, int]:

@@ -219,7 +219,7 @@ def run_node(where: str, executable: str | None = None, *, duration: float = DEF
     shared = mmap.mmap(-1, 8)
     try:
         with tempfile.TemporaryDirectory(prefix="bras-kit-run-") as workdir:
-            prefixes = _build(target, workdir, beside)
+            prefixes, build_blocked = _build(target, workdir, beside)
             walls = containment(contain, workdir, (target.root, target.package or target.root))
             joints = _robot_joints(where) if robot is None else robot_joints(robot)
             write_end: int | None = None
@@ -234,10 +234,12 @@ def run_node(where: str, executable: str | None = None, *, duration: float = DEF
                 if walls is not None:  # the pipe to the relay is the one way out the contained node keeps
                     walls = dataclasses.replace(walls, keep=(write_end,))
             try:
-                return run_limited(_child, target, duration, echo, workdir, shared, dict(parameters or {}),
-                                   walls, joints, prefixes, write_end, keep, cpu_seconds=cpu_seconds, contain=walls,
-                                   stop=stop,
-                                   memory_bytes=memory_bytes, wall_seconds=wall, what=f"the node {target.shown}")
+                recording: Recording = run_limited(
+                    _child, target, duration, echo, workdir, shared, dict(parameters or {}), walls, joints, prefixes,
+                    write_end, keep, cpu_seconds=cpu_seconds, contain=walls, stop=stop, memory_bytes=memory_bytes,
+                    wall_seconds=wall, what=f"the node {target.shown}")
+                recording.build_blocked = build_blocked
+                return recording
             except ResourceLimitError as exc:
                 reached = struct.unpack("<q", shared[:8])[0] / 1e9
                 raise _limit_error(exc.kind, target, reached, cpu_seconds, wall, memory_bytes) from None
@@ -267,11 +269,12 @@ def _preload() -> None:
     get_typestore(Stores.ROS2_JAZZY)
 
 
-def _build(target: Target, workdir: str, beside: list[str] | tuple[str, ...] = ()) -> list[str]:
+def _build(target: Target, workdir: str, beside: list[str] | tuple[str, ...] = ()) -> tuple[list[str], list[Any]]:
     """The package built as colcon builds it (``ros2 run`` runs the installed package): the
-    install prefixes to put in AMENT_PREFIX_PATH. A build that stops is an error, in colcon's words."""
+    install prefixes to put in AMENT_PREFIX_PATH, and what its setup.py tried that its walls
+    stopped. A build that stops is an error, in colcon's words."""
     if target.package is None:
-        return []
+        return [], []
     from ..ros.build import build_package
 
     record = build_package(target.package, os.path.join(workdir, "install"))
@@ -284,14 +287,14 @@ def _build(target: Target, workdir: str, beside: list[str] | tuple[str, ...] = (
             found = finding(RULES["BK630"], hit)
             raise BrasKitError(found.message, hint=found.hint,
                                path=os.path.join(target.package, str(hit.params.get("file", ""))), line=hit.line)
-        return []  # BK600's cases (no setup.py): locate() already said what it needs
+        return [], []  # BK600's cases (no setup.py): locate() already said what it needs
     from ..ros.launching import simulated_ros_prefix
     from ..ros.workspace import build_others
 
     # one that does not build is missing, as after a colcon build stopped there: the node meets
     # ROS's own PackageNotFoundError
     built, _unbuilt = build_others(list(beside), os.path.join(workdir, "install"))
-    return [record.prefix, *built, simulated_ros_prefix(workdir)]
+    return [record.prefix, *built, simulated_ros_prefix(workdir)], list(record.blocked)
 
 
 def _limit_error(kind: str, target: Target, reached: float, cpu: int, wall: float, memory: int) -> NodeRunError:

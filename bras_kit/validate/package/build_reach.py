@@ -9,18 +9,19 @@ from the install tree; its attempts are shown at the package file it was install
 from __future__ import annotations
 
 import os
-from collections.abc import Iterator
+from collections.abc import Iterable, Iterator
 
-from ...ros.build import BuildRecord
+from ...ros.attempts import Attempt
 from ..registry import ERROR, Hit, describe
 from .launch_rules import _each, launched
 from .rules import _at, package_rule
 from .sources import Package
 
 
-def setup_blocked_hits(record: BuildRecord) -> Iterator[Hit]:
-    """BK639's hits for what one build's setup.py tried (``bras-kit build`` shows them too)."""
-    for attempt in record.blocked:
+def setup_blocked_hits(blocked: Iterable[Attempt]) -> Iterator[Hit]:
+    """BK639's hits for what one build's setup.py tried (``BuildRecord.blocked``: ``bras-kit build``
+    and ``bras-kit run`` show them too)."""
+    for attempt in blocked:
         yield _at(attempt.path or "setup.py", attempt.line or None, attempt.kind, detail=attempt.detail or "-")
 
 
@@ -29,7 +30,7 @@ def setup_or_launch_reached_beyond(pkg: Package) -> Iterator[Hit]:
     top = launched(pkg)
     if top is None:
         return
-    yield from setup_blocked_hits(top.build)
+    yield from setup_blocked_hits(top.build.blocked)
     found = []
     for result in _each(top):
         for attempt in result.plan.blocked if result.plan is not None else []:
