@@ -19,7 +19,7 @@ Both wall time (best and median) and CPU time (user + system of the process and 
 median) are printed: the CPU column stays meaningful on a machine others share. Also printed:
 what `bras-kit validate PKG_DIR` spends its time on now, phase by phase, one after the other in a
 fresh process (``--phases PKG_DIR`` alone prints that table). The command itself runs the worker's
-phases beside its own (bras_kit.cli.validate._evaluate_ahead): on two cores its wall time is about
+phases beside its own (bras_kit.ros.launched.evaluate_ahead): on two cores its wall time is about
 the longer of the two columns, plus Python's start; the ratio to round 3 is printed as well, since
 the 0.5 s target was set on a machine where round 3 took 0.44-0.52 s.
 """

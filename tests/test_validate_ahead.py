@@ -1,5 +1,5 @@
 """`bras-kit validate PKG_DIR` begins the package's build and launch evaluation in a worker of its
-own (bras_kit.cli.validate._evaluate_ahead) while it imports the rules: the answer is the one the
+own (bras_kit.ros.launched.evaluate_ahead) while it imports the rules: the answer is the one the
 rules would have computed themselves (oracle: the same evaluation run in this process, and the
 command's output with and without a package folder to find), a worker in trouble changes nothing
 (the rules evaluate the package themselves), and a worker nobody waits for is not left behind.
@@ -21,7 +21,7 @@ from pathlib import Path
 import pytest
 
 from bras_kit.errors import BrasKitError
-from bras_kit.ros.launched import evaluate_package
+from bras_kit.ros.launched import evaluate_ahead, evaluate_package
 from bras_kit.sandbox import ResourceLimitError, run_limited, start_limited
 from bras_kit.scaffold import scaffold_package
 
@@ -37,39 +37,74 @@ def _shape(launched) -> tuple:  # type: ignore[no-untyped-def]
             None if plan is None else plan.failure, sorted(launched.others))
 
 
-def test_the_answer_ahead_is_the_evaluation_the_rules_would_make(tmp_path):
-    from bras_kit.cli.validate import _evaluate_ahead
+# in a fresh interpreter: the worker is begun only where no other thread runs, and a test process
+# may keep threads of earlier tests (the guard itself is tested below)
+AHEAD = """
+import json, os, pickle, sys, threading
+import bras_kit.ros.launched as launched_module
+from bras_kit.ros.launched import evaluate_ahead
 
+root, broken = sys.argv[1], sys.argv[2] == "broken"
+if broken:
+    def evaluate_package(root):
+        raise RuntimeError("a bug of the worker's")
+    launched_module.evaluate_package = evaluate_package  # the forked worker inherits it
+answer = evaluate_ahead([os.path.dirname(root)])
+sys.stdout.buffer.write(pickle.dumps((answer(root), answer(os.path.dirname(root) + "/elsewhere"),
+                                      threading.active_count())))
+"""
+
+
+def _ahead(root: Path, broken: bool = False) -> tuple:  # type: ignore[type-arg]
+    done = subprocess.run([sys.executable, "-c", AHEAD, str(root), "broken" if broken else "fine"],
+                          capture_output=True, timeout=120)
+    assert done.returncode == 0, done.stderr.decode()
+    return pickle.loads(done.stdout)  # noqa: S301 - this test's own child
+
+
+def test_the_answer_ahead_is_the_evaluation_the_rules_would_make(tmp_path):
     root = tmp_path / PKG
     scaffold_package(str(root))
-    answer = _evaluate_ahead([str(tmp_path)])
-    ahead = answer(str(root))
+    ahead, elsewhere, threads = _ahead(root)
     here = evaluate_package(str(root))
     assert ahead is not None and here is not None
     assert _shape(ahead) == _shape(here)
     assert ahead.plan is not None and {n.package for n in ahead.plan.nodes} >= {"robot_state_publisher"}
-    assert answer(str(tmp_path / "elsewhere")) is None  # not a package it was given
+    assert elsewhere is None  # not a package it was given
+    assert threads == 1
 
 
-def test_a_worker_in_trouble_leaves_the_evaluation_to_the_rules(tmp_path, monkeypatch):
-    import bras_kit.ros.launched as launched_module
-    from bras_kit.cli.validate import _evaluate_ahead
+def test_a_worker_in_trouble_leaves_the_evaluation_to_the_rules(tmp_path):
+    from bras_kit.validate.package import Package, launched
 
     root = tmp_path / PKG
     scaffold_package(str(root))
-
-    def broken(root: str) -> None:
-        raise RuntimeError("a bug of the worker's")
-
-    monkeypatch.setattr(launched_module, "evaluate_package", broken)  # the forked worker inherits it
-    answer = _evaluate_ahead([str(root)])
-    assert answer(str(root)) is None
-    monkeypatch.undo()
-    from bras_kit.validate.package import Package, launched
-
+    ahead, _, _ = _ahead(root, broken=True)
+    assert ahead is None
     package = Package(str(root))
-    package.ahead = answer
+    package.ahead = lambda folder: ahead
     assert _shape(launched(package)) == _shape(evaluate_package(str(root)))
+
+
+def test_beside_another_thread_no_worker_is_forked(tmp_path, monkeypatch):
+    """A fork beside a thread that holds an import lock would wait for it forever: no worker then."""
+    import threading
+
+    import bras_kit.sandbox as sandbox
+
+    root = tmp_path / PKG
+    scaffold_package(str(root))
+    forked: list[object] = []
+    monkeypatch.setattr(sandbox, "_start", lambda *args: forked.append(args))
+    stop = threading.Event()
+    other = threading.Thread(target=stop.wait, daemon=True)
+    other.start()
+    try:
+        answer = evaluate_ahead([str(root)])
+    finally:
+        stop.set()
+        other.join()
+    assert answer(str(root)) is None and forked == []
 
 
 def _cli(*args: str, cwd: Path) -> subprocess.CompletedProcess[str]:

@@ -9,8 +9,6 @@ from __future__ import annotations
 import argparse
 import os
 import sys
-from collections.abc import Callable
-from typing import Any
 
 from ..message import M
 
@@ -123,54 +121,12 @@ def _merge(results: list, extra: list) -> list:  # type: ignore[type-arg]
     return list(by_path.values())
 
 
-def _evaluated(roots: list[str]) -> dict[str, Any]:
-    """In a worker of bras-kit's own (not the learner's: each learner file still runs in its contained
-    child): each package built and its launch files evaluated, in order, up to the first that raises
-    (this process meets it again, in its place)."""
-    from ..errors import BrasKitError
-    from ..ros.launched import evaluate_package  # not the rules: no numpy, a third of the imports
-
-    out: dict[str, Any] = {}
-    for root in roots:
-        try:
-            out[root] = evaluate_package(root)
-        except BrasKitError:
-            break
-    return out
-
-
-def _evaluate_ahead(files: list[str]) -> Callable[[str], Any]:
-    """The packages among ``files`` built and launched in a worker begun now, while this process imports
-    the rules and applies the static ones (on two cores, about half of `validate PKG_DIR`'s time): the
-    answer for a package folder, None where the worker has none (the caller evaluates it itself)."""
-    import threading
-
-    from ..errors import BrasKitError
-    from ..ros.workspace import find_packages
-    from ..sandbox import start_limited
-
-    roots = [os.path.abspath(root) for root in find_packages(files)]
-    if not roots or threading.active_count() > 1:  # a fork beside another thread may wait forever for an
-        return lambda root: None  # import lock that thread holds (docs/design/ros-layer.md): not ahead, then
-    pending = start_limited(_evaluated, roots, cpu_seconds=3600, wall_seconds=3600, memory_bytes=1 << 40,
-                            what=M("the build and launch evaluation"))
-    answers: list[dict[str, Any]] = []
-
-    def answer(root: str) -> Any:
-        if not answers:
-            try:
-                answers.append(pending.result())
-            except BrasKitError:  # the worker's own trouble: evaluated here instead, as without it
-                answers.append({})
-        return answers[0].get(os.path.abspath(root))
-
-    return answer
-
-
 def run(args: argparse.Namespace) -> int:
     from ..errors import ParameterError
+    from ..ros.launched import evaluate_ahead
 
-    ahead = _evaluate_ahead([f for f in args.files if not (f.endswith(".py") and os.path.isfile(f))])
+    # begun before the rules are imported: the build and launch evaluation runs beside them
+    ahead = evaluate_ahead([f for f in args.files if not (f.endswith(".py") and os.path.isfile(f))])
     from ..validate import (
         check_robot,
         collect_files,

@@ -253,8 +253,27 @@ def available() -> Status:
                   M("mounts inside a user namespace"), _how_to_enable())
 
 
+_begun: tuple[int, int, str] | None = None  # the trial's child at work (begin_trial)
+
+
+def begin_trial() -> None:
+    """Fork the throwaway child of :func:`available`'s trial now and go on: its answer is read when
+    :func:`available` is first asked, so the trial can run on another core while this process
+    imports (``validate PKG_DIR`` does, before it forks its worker)."""
+    global _begun
+    if _begun is None and available.cache_info().currsize == 0 and sys.platform == "linux" \
+            and platform.machine() in PIVOT_ROOT:
+        _begun = _trial_start()
+
+
 def _trial() -> tuple[str, int]:
     """The whole containment tried once in a throwaway child: ("", 0), or the step that failed and its errno."""
+    global _begun
+    begun, _begun = _begun, None
+    return _trial_finish(*(begun or _trial_start()))
+
+
+def _trial_start() -> tuple[int, int, str]:
     import json
     import tempfile
 
@@ -277,6 +296,12 @@ def _trial() -> tuple[str, int]:
         finally:
             os._exit(0)
     os.close(write)
+    return pid, read, workdir
+
+
+def _trial_finish(pid: int, read: int, workdir: str) -> tuple[str, int]:
+    import json
+
     try:
         chunks = []
         while chunk := os.read(read, 4096):

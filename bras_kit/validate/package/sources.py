@@ -132,8 +132,8 @@ class Package:
         self.shown_root = root.rstrip("/\\") or root
         self.problems: list[Problem] = []
         self.read: set[str] = set()  # files (relative) the rules have read
-        # the build and launch evaluation begun ahead in a worker (bras_kit.cli.validate): its answer
-        # for a package folder, None where it has none
+        # the build and launch evaluation begun ahead in a worker (bras_kit.ros.launched.evaluate_ahead):
+        # its answer for a package folder, None where it has none
         self.ahead: Callable[[str], Any] | None = None
 
     def path(self, relative_path: str) -> str:
