@@ -47,7 +47,7 @@ def validate_package(path: str, *, lang: str | None = None, select: Iterable[str
     """
     package = Package(path) if package is None else package
     if launch:
-        launched(package)  # first: the rules over whole launches (BK611, BK620) read the evaluation too
+        package.evaluate = True  # the rules over whole launches (BK611, BK620...) read the evaluation too
     by_file: dict[str, list[Finding]] = {}
     for chosen in select_rules(select, ignore):
         check = PACKAGE_CHECKS.get(chosen.code)

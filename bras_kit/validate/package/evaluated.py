@@ -21,6 +21,10 @@ DESCRIPTION_TOPIC = "robot_description"  # robot_state_publisher.cpp: create_pub
 def evaluations(pkg: Package) -> list[Any] | None:
     """The evaluated launch files that did not stop (``Launched``), or None if none was evaluated."""
     top = getattr(pkg, "_launched", None)
+    if top is None and pkg.evaluate:
+        from .launch_rules import launched
+
+        top = launched(pkg)
     if top is None or top.plan is None:
         return None
     results = [top, *top.others.values()]

@@ -135,6 +135,9 @@ class Package:
         # the build and launch evaluation begun ahead in a worker (bras_kit.ros.launched.evaluate_ahead):
         # its answer for a package folder, None where it has none
         self.ahead: Callable[[str], Any] | None = None
+        # set by validate_package(launch=True): the rules that judge whole launches wait for the
+        # evaluation where they first need it (the others run meanwhile)
+        self.evaluate = False
 
     def path(self, relative_path: str) -> str:
         """The path as shown to the user: under the folder given on the command line."""
