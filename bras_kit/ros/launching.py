@@ -17,6 +17,11 @@ import tempfile
 from dataclasses import dataclass, field
 from typing import Any
 
+from ..errors import BrasKitError
+from ..model import (
+    robot_from_xml,  # the description robot_state_publisher is given, read as it reads it
+)
+from ..xmlio import parse_xml
 from .attempts import Attempt
 
 PLAN_CPU_SECONDS = 20
@@ -343,10 +348,6 @@ def robot_state_publisher_start(node: PlannedNode, roots: tuple[str, ...] = ()) 
         return None, [*problems, StartProblem(kind, fatal, stripped[:200])]
     if "xmlns:xacro" in stripped or "<xacro:" in stripped or "${" in stripped:
         return None, [*problems, StartProblem("xacro", fatal)]
-    from ..errors import BrasKitError
-    from ..model import robot_from_xml
-    from ..xmlio import parse_xml
-
     try:
         robot_from_xml(parse_xml(text, "robot_description"), "robot_description", text)
     except BrasKitError as exc:
