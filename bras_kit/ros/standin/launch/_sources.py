@@ -41,9 +41,7 @@ def get_launch_description_from_python_launch_file(python_launch_file_path: str)
 def get_launch_description_from_any_launch_file(launch_file_path: str) -> LaunchDescription:
     """any_launch_file_utilities.py:30: the loader the extension names first, then the other; when
     both fail, one InvalidLaunchFileError lists what each said (ros2 launch prints that list)."""
-    from ._frontend import InvalidLaunchFileError, get_launch_description_from_frontend_launch_file
-
-    loaders: list[Any] = [get_launch_description_from_frontend_launch_file]
+    loaders: list[Any] = [_frontend_loader]
     extension = os.path.splitext(os.path.basename(launch_file_path))[1][1:]
     if extension == 'py':
         loaders.insert(0, get_launch_description_from_python_launch_file)
@@ -57,7 +55,17 @@ def get_launch_description_from_any_launch_file(launch_file_path: str) -> Launch
             return loader(launch_file_path)
         except Exception as exc:  # noqa: BLE001 - kept, as launch keeps it
             errors.append(exc)
+    from ._frontend import InvalidLaunchFileError
+
     raise InvalidLaunchFileError(extension, likely_errors=errors)
+
+
+def _frontend_loader(launch_file_path: str) -> LaunchDescription:
+    """The XML and YAML front ends, imported when a file needs them (a Python launch file that
+    loads never does: the parsers are a sixth of a launch file's evaluation)."""
+    from ._frontend import get_launch_description_from_frontend_launch_file
+
+    return get_launch_description_from_frontend_launch_file(launch_file_path)
 
 
 class LaunchDescriptionSource:
