@@ -550,3 +550,31 @@ def test_data_files_completed_by_a_loop_are_not_reported(tmp_path):
     setup.write_text(setup.read_text(encoding="utf-8").replace(
         "for folder in ('urdf',):\n    files.append(installed(folder, '*.urdf', '*.xacro'))\n", ""), encoding="utf-8")
     assert [code for code, _, _ in bk6(validate_package(str(dest)))] == ["BK601"]
+
+
+@pytest.mark.parametrize(("written", "lang", "said"), [
+    ("Node(package='robot_state_publiser'", "en", "did you mean 'robot_state_publisher'?"),
+    ("Node(package='robot_state_publiser'", "fr", "vouliez-vous dire 'robot_state_publisher' ?"),
+    ("Node(package='joint_state_publisher_gu'", "en", "did you mean 'joint_state_publisher_gui'?"),
+    ("PACKAGE = 'bras_descripton'", "en", "use the name in package.xml ('bras_description')"),
+    ("PACKAGE = 'bras_descripton'", "fr", "utilisez le nom de package.xml ('bras_description')"),
+])
+def test_a_package_launch_cannot_find_is_named_with_the_one_meant(tmp_path, written, lang, said):
+    """ROS's "package 'X' not found" (BK631): a ROS package misspelled is named as the one the tutorial
+    starts; the learner's own package misspelled sends to package.xml's name."""
+    from bras_kit.i18n import say
+    from bras_kit.validate.package import Package
+
+    root = tmp_path / PKG
+    scaffold_package(str(root))
+    launch = root / "launch" / "affichage.launch.py"
+    original = {"Node(package='robot_state_publiser'": "Node(package='robot_state_publisher'",
+                "Node(package='joint_state_publisher_gu'": "Node(package='joint_state_publisher_gui'",
+                "PACKAGE = 'bras_descripton'": "PACKAGE = 'bras_description'"}[written]
+    text = launch.read_text()
+    assert text.count(original) == 1
+    launch.write_text(text.replace(original, written))
+    found = [f for r in validate_package(str(root), package=Package(str(root)), launch=True) for f in r.findings
+             if f.code == "BK631"]
+    assert len(found) == 1, found
+    assert said in say(found[0].hint, lang), say(found[0].hint, lang)

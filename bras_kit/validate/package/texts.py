@@ -688,6 +688,7 @@ describe(
     hint={
         "package": "no installed package is called '{missing}': use the name in package.xml ('{known}'), then "
                    "colcon build and source install/setup.bash",
+        "package_near": "no installed package is called '{missing}': did you mean '{near}'?",
         "executable": "the package's executables are its console_scripts names ({names}): use one of them, or add "
                       "'{executable} = PACKAGE.MODULE:main' to console_scripts and build again",
         "executable_py": "an executable has no .py: write executable='{fixed}' (the console_scripts name)",
