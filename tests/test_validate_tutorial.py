@@ -59,6 +59,8 @@ def _run_setup(root: Path) -> dict:
         os.chdir(here)
         if saved is not None:
             sys.modules["setuptools"] = saved
+        else:  # not left behind: a child forked later by this process would inherit the recorder
+            del sys.modules["setuptools"]
     return recorded
 
 
