@@ -205,22 +205,18 @@ def _start(function: Callable[..., T], args: tuple[Any, ...], kwargs: dict[str, 
         os.close(read_fd)
         _child(write_fd, function, args, kwargs, cpu_seconds, memory_bytes, contain)
     os.close(write_fd)
-    pending: Pending[T] = Pending(None)
-    pending._child = (pid, read_fd)
-    pending._deadline = time.monotonic() + wall_seconds
-    pending._limits = (M("this file") if what is None else what, cpu_seconds, memory_bytes, wall_seconds, contain,
-                       stop)
-    return pending
+    limits = (M("this file") if what is None else what, cpu_seconds, memory_bytes, wall_seconds, contain, stop)
+    return Pending(child=(pid, read_fd), deadline=time.monotonic() + wall_seconds, limits=limits)
 
 
 class Pending(Generic[T]):
-    """A child at work (:func:`start_limited`); ``here``: the function, where no child can be forked."""
+    """A child at work (:func:`start_limited`): its pid and the pipe its answer comes through, when
+    its wall clock runs out, and run_limited's limits (to word its errors); ``here``: the function
+    itself, called by :meth:`result` where no child can be forked."""
 
-    def __init__(self, here: Callable[[], T] | None) -> None:
-        self._here = here
-        self._child: tuple[int, int] | None = None
-        self._deadline = 0.0
-        self._limits: tuple[Any, ...] = ()
+    def __init__(self, here: Callable[[], T] | None = None, *, child: tuple[int, int] | None = None,
+                 deadline: float = 0.0, limits: tuple[Any, ...] = ()) -> None:
+        self._here, self._child, self._deadline, self._limits = here, child, deadline, limits
 
     def close(self) -> None:
         """Kill the child if it is still at work, and reap it (its answer is not read)."""

@@ -1,8 +1,9 @@
 """`bras-kit validate PKG_DIR` begins the package's build and launch evaluation in a worker of its
 own (bras_kit.ros.launched.evaluate_ahead) while it imports the rules: the answer is the one the
-rules would have computed themselves (oracle: the same evaluation run in this process, and the
-command's output with and without a package folder to find), a worker in trouble changes nothing
-(the rules evaluate the package themselves), and a worker nobody waits for is not left behind.
+rules would have computed themselves (oracles: the same evaluation run in this process, and the
+package findings of validate_package run in this process with no worker), a worker in trouble
+changes nothing (the rules evaluate the package themselves), and a worker nobody waits for is not
+left behind.
 
 ``start_limited`` is the sandbox's child begun and not waited for: the same answers and errors as
 ``run_limited``, and the child killed when its caller closes it or ends."""

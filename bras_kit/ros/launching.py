@@ -18,9 +18,7 @@ from dataclasses import dataclass, field
 from typing import Any
 
 from ..errors import BrasKitError
-from ..model import (
-    robot_from_xml,  # the description robot_state_publisher is given, read as it reads it
-)
+from ..model import robot_from_xml  # robot_state_publisher's description, read as it reads it
 from ..xmlio import parse_xml
 from .attempts import Attempt
 

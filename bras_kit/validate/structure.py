@@ -52,10 +52,10 @@ MISSING_ELEMENTS = {("joint", "parent"), ("joint", "child"), ("inertial", "mass"
 VECTOR_SIZES = {"xyz": 3, "rpy": 3, "size": 3, "scale": 3, "rgba": 4}
 
 
-def closest(name: str | None, choices: Iterable[str]) -> str | None:
+def closest(name: str | None, choices: Iterable[str], cutoff: float = 0.6) -> str | None:
     if not name:
         return None
-    match = difflib.get_close_matches(name, list(choices), n=1, cutoff=0.6)
+    match = difflib.get_close_matches(name, list(choices), n=1, cutoff=cutoff)
     return match[0] if match else None
 
 

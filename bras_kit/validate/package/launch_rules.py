@@ -113,15 +113,14 @@ _EXECUTABLE = re.compile(r"executable '([^']+)' not found on the libexec directo
 def _launch_variant(pkg: Package, result: Launched, message: str) -> tuple[str, dict[str, Any]]:
     found = _PACKAGE_NOT_FOUND.search(message)
     if found:
-        import difflib
-
         from ...ros.launching import ROS_INSTALL
+        from ..structure import closest
 
         name = found.group(1)
         known = result.build.package
-        near = difflib.get_close_matches(name, [known, *ROS_INSTALL], n=1, cutoff=0.75)
-        if near and near[0] != known:  # a ROS package misspelled ('robot_state_publiser')
-            return "package_near", {"missing": name, "near": near[0]}
+        near = closest(name, [known, *ROS_INSTALL], cutoff=0.75)
+        if near is not None and near != known:  # a ROS package misspelled ('robot_state_publiser')
+            return "package_near", {"missing": name, "near": near}
         return "package", {"missing": name, "known": known}
     found = _EXECUTABLE.search(message)
     if found:
