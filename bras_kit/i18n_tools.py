@@ -114,7 +114,7 @@ def extract_file(path: Path, root: Path = PACKAGE_ROOT) -> list[Extracted]:
 
 
 # Jinja templates whose {% trans %} blocks go into a domain: folder (under the repository's
-# templates/) -> domain. The package templates are the generated ROS 2 package's prose.
+# bras_kit/templates/) -> domain. The package templates are the generated ROS 2 package's prose.
 TEMPLATE_DOMAINS = {"package": "package"}
 
 

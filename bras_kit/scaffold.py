@@ -32,7 +32,7 @@ OTHER_JOINT_WAVE = (0.5, 0.5, 0.0)
 # Fraction of each half-range (and of each velocity limit) the motion leaves unused.
 LIMIT_MARGIN = 0.1
 
-# template (under templates/package/) -> file made, relative to the package folder
+# template (under bras_kit/templates/package/) -> file made, relative to the package folder
 _FILES: tuple[tuple[str, str], ...] = (
     ("package.xml.j2", "package.xml"),
     ("setup.py.j2", "setup.py"),
@@ -314,7 +314,7 @@ def template_environment(lang: str):  # type: ignore[no-untyped-def]
 
 
 # ros2 pkg create --build-type ament_python (ros2cli 0.32.2, Jazzy): ros2pkg/api/create.py,
-# create_package_environment and populate_ament_python; template (under templates/empty/) -> file
+# create_package_environment and populate_ament_python; template (under bras_kit/templates/empty/) -> file
 _EMPTY_FILES: tuple[tuple[str, str], ...] = (
     ("package.xml.j2", "package.xml"),
     ("setup.py.j2", "setup.py"),

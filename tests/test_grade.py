@@ -51,7 +51,7 @@ def klass(tmp_path_factory) -> tuple[Path, dict[str, float]]:
     _write(root / "wrist_inertials.urdf", full)
     expected["wrist_inertials"] = 18
     _write(root / "xacro_learner" / "bras.urdf.xacro",
-           (Path(__file__).parent.parent / "templates" / "robot" / "bras.urdf.xacro").read_text())
+           (Path(__file__).parent.parent / "bras_kit" / "templates" / "robot" / "bras.urdf.xacro").read_text())
     expected["xacro_learner"] = 13  # the template with its defaults: the tutorial arm
     # whole packages: the package item needs no BK6 warning (+2)
     scaffold_package(root / "pkg_full", wrist=True, inertials=True)

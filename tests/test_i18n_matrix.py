@@ -146,7 +146,7 @@ CASES: dict[str, list[str]] = {
     "urdf-exists": ["urdf", "-o", f"{T}/exists.png"],
     "urdf-into-folder": ["urdf", "-o", f"{T}/adir"],
     "urdf-missing-parent": ["urdf", "-o", f"{T}/no/where/b.urdf"],
-    "xacro-ok": ["xacro", str(REPO / "templates" / "robot" / "bras.urdf.xacro"), "-o", f"{T}/x.urdf"],
+    "xacro-ok": ["xacro", str(REPO / "bras_kit" / "templates" / "robot" / "bras.urdf.xacro"), "-o", f"{T}/x.urdf"],
     "xacro-missing": ["xacro", f"{T}/absent.xacro"],
     "xacro-undefined-property": ["xacro", str(DATA / "xacro" / "broken" / "undefined_property.xacro")],
     "new-ok": ["new", f"{T}/pkg"],

@@ -37,7 +37,7 @@ def test_the_wheel_holds_every_module_and_template(tmp_path):
     names = set(zipfile.ZipFile(wheel).namelist())
     modules = {p.relative_to(ROOT).as_posix() for p in (ROOT / "bras_kit").rglob("*.py")}
     assert modules - names == set()
-    templates = {"bras_kit/templates/" + p.relative_to(ROOT / "templates").as_posix()
-                 for p in (ROOT / "templates").rglob("*") if p.is_file() and "__pycache__" not in p.parts}
+    templates = {p.relative_to(ROOT).as_posix() for p in (ROOT / "bras_kit" / "templates").rglob("*")
+                 if p.is_file() and "__pycache__" not in p.parts}
     assert templates - names == set()
     assert "bras_kit/templates/robot/bras.urdf.xacro" in names

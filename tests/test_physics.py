@@ -21,7 +21,7 @@ from bras_kit.physics import build_mjcf, simulate
 from bras_kit.xmlio import parse_xml
 
 G = 9.81  # MuJoCo's default gravity, m/s^2
-# the tutorial arm's defaults (templates/robot/bras.urdf.xacro): masses, lengths, efforts
+# the tutorial arm's defaults (bras_kit/templates/robot/bras.urdf.xacro): masses, lengths, efforts
 M1, L1, M2, L2 = 1.0, 0.6, 0.5, 0.5
 EFFORT = 10.0
 
