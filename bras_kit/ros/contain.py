@@ -44,6 +44,7 @@ what Linux gives any user, without a daemon, root or a helper program:
 
 from __future__ import annotations
 
+import contextlib
 import ctypes
 import errno
 import functools
@@ -201,13 +202,19 @@ def python_paths() -> list[str]:
     """The Python installation (prefixes, stdlib, site-packages), bras-kit itself, and the
     folders on ``sys.path`` that belong to an installation (never the current folder)."""
     here = os.path.dirname(os.path.dirname(os.path.abspath(__file__)))  # bras_kit/
-    paths = {sys.prefix, sys.base_prefix, sys.exec_prefix, sys.base_exec_prefix, here}
-    paths.update(v for k, v in sysconfig.get_paths().items() if k in ("stdlib", "platstdlib", "purelib", "platlib"))
+    paths = {sys.prefix, sys.base_prefix, sys.exec_prefix, sys.base_exec_prefix, here, *_installation()}
     paths.update(p for p in sys.path if p and ("site-packages" in p or "dist-packages" in p))
     home = os.path.abspath(os.path.expanduser("~"))
     # never "/" nor the home folder (a Python installed as ~ itself): its own folders are granted instead
     return sorted(p for p in {os.path.abspath(p) for p in paths if p}
                   if p != "/" and not (home + "/").startswith(p.rstrip("/") + "/"))
+
+
+@functools.lru_cache(maxsize=1)
+def _installation() -> tuple[str, ...]:
+    """The interpreter's stdlib and site-packages folders (sysconfig takes 2 ms to work them out:
+    once per process, and a child forked after the first containment has them)."""
+    return tuple(v for k, v in sysconfig.get_paths().items() if k in ("stdlib", "platstdlib", "purelib", "platlib"))
 
 
 def _existing(paths: Iterable[str]) -> list[str]:
@@ -263,6 +270,8 @@ def begin_trial() -> None:
     global _begun
     if _begun is None and available.cache_info().currsize == 0 and sys.platform == "linux" \
             and platform.machine() in PIVOT_ROOT:
+        with contextlib.suppress(ContainmentError):
+            _seccomp()  # imported once, before the fork: the trial's child and this process both need it
         _begun = _trial_start()
 
 
@@ -275,9 +284,11 @@ def _trial() -> tuple[str, int]:
 
 def _trial_start() -> tuple[int, int, str]:
     import json
-    import tempfile
 
-    workdir = tempfile.mkdtemp(prefix="bras-kit-contain-")
+    from .. import scratch
+
+    workdir = scratch.mkdtemp("bras-kit-contain-")
+    _installation()  # worked out once, here: the trial's child and every child forked later have it
     read, write = os.pipe()
     sys.stdout.flush()
     sys.stderr.flush()

@@ -1,24 +1,21 @@
 """A package built as colcon builds it and its launch files evaluated as ``ros2 launch`` would: the
 reading under ``bras-kit launch`` and ``bras-kit validate PKG_DIR`` (whose rules, BK630-BK635,
-live in :mod:`bras_kit.validate.package.launch_rules`). It imports no rule and no numpy, so that
-:func:`evaluate_ahead` can begin it in a worker before the rules are imported.
+live in :mod:`bras_kit.validate.package.launch_rules`). It imports no rule and no numpy: the worker
+of :mod:`bras_kit.ros.ahead` runs it beside the rules.
 """
 
 from __future__ import annotations
 
 import os
-import tempfile
-from collections.abc import Callable, Iterable
 from dataclasses import dataclass, field
-from typing import Any
 
+from .. import scratch
 from .build import BuildRecord, build_package
 from .launching import (
     LaunchPlan,
     PlannedNode,
     StartProblem,
     plan_launch,
-    preload_planning,
     robot_state_publisher_start,
     ros_arguments_start,
 )
@@ -26,6 +23,8 @@ from .launching import (
 
 @dataclass
 class Launched:
+    """A package built, one of its launch files evaluated, and what robot_state_publisher would read."""
+
     build: BuildRecord
     launch_file: str = ""  # package-relative source of the launch file
     plan: LaunchPlan | None = None
@@ -89,61 +88,10 @@ def evaluate_package(root: str) -> Launched | None:
     (None: no package.xml)."""
     if not os.path.isfile(os.path.join(root, "package.xml")):
         return None
-    with tempfile.TemporaryDirectory(prefix="bras-kit-build-") as base:
+    with scratch.folder("bras-kit-build-") as base:
         first = launch_package(root, os.path.join(base, "install"))
         if first.plan is not None:
             for other in launch_sources(first.build):
                 if other != first.launch_file:
                     first.others[other] = launch_package(root, os.path.join(base, "install"), other)
     return first
-
-
-def evaluate_ahead(paths: Iterable[str]) -> Callable[[str], Launched | None]:
-    """The packages among ``paths`` (and below them) built and evaluated by :func:`evaluate_package`
-    in a worker of bras-kit's own begun now, while the caller goes on (``validate PKG_DIR`` imports
-    its rules and reads the package statically meanwhile: on two cores, about half its time). The
-    function returned gives a package folder's answer, waiting for the worker the first time; None
-    where the worker has none (no worker, not one of its packages, or the worker in trouble): the
-    caller then evaluates the package itself. Each learner file still runs in its own contained
-    child, forked by the worker."""
-    import threading
-
-    from ..errors import BrasKitError
-    from ..message import M
-    from ..sandbox import start_limited
-    from .contain import available, begin_trial
-    from .workspace import find_packages
-
-    roots = [os.path.abspath(root) for root in find_packages(paths)]
-    if not roots or threading.active_count() > 1:  # a fork beside another thread may wait forever for an
-        return lambda root: None  # import lock that thread holds (docs/design/ros-layer.md): not ahead, then
-    begin_trial()  # the containment's trial, on the other core while the line below imports
-    preload_planning()  # the worker and each of its children start with them (the rules need most too)
-    available()  # the trial's answer, which the worker inherits
-    pending = start_limited(_evaluate_all, roots, cpu_seconds=3600, wall_seconds=3600, memory_bytes=1 << 40,
-                            what=M("the build and launch evaluation"))
-    answers: list[dict[str, Launched | None]] = []
-
-    def answer(root: str) -> Launched | None:
-        if not answers:
-            try:
-                answers.append(pending.result())
-            except BrasKitError:  # the worker's own trouble: evaluated by the caller instead, as without it
-                answers.append({})
-        return answers[0].get(os.path.abspath(root))
-
-    return answer
-
-
-def _evaluate_all(roots: list[str]) -> dict[str, Any]:
-    """In the worker: each package evaluated, in order, up to the first that raises (the caller
-    meets that error again, in its place)."""
-    from ..errors import BrasKitError
-
-    out: dict[str, Any] = {}
-    for root in roots:
-        try:
-            out[root] = evaluate_package(root)
-        except BrasKitError:
-            break
-    return out

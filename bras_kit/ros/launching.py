@@ -13,10 +13,10 @@ comes back as data with the learner's file and line.
 from __future__ import annotations
 
 import os
-import tempfile
 from dataclasses import dataclass, field
 from typing import Any
 
+from .. import scratch
 from ..errors import BrasKitError
 from ..model import robot_from_xml  # robot_state_publisher's description, read as it reads it
 from ..xmlio import parse_xml
@@ -43,6 +43,8 @@ ROS_INSTALL: dict[str, tuple[str, ...]] = {
 
 @dataclass(frozen=True)
 class PlannedNode:
+    """A node a launch file starts (a launch_ros Node action), as ros2 launch would start it."""
+
     package: str | None
     executable: str
     name: str | None
@@ -80,6 +82,8 @@ class PlannedNode:
 
 @dataclass(frozen=True)
 class LaunchFailure:
+    """Why the launch stopped: the exception, and the learner's line it came through."""
+
     type: str  # the exception's class, e.g. PackageNotFoundError
     message: str  # str(exception), as ros2 launch prints it
     file: str  # the learner's file the exception came through (absolute), "" if none
@@ -89,6 +93,8 @@ class LaunchFailure:
 
 @dataclass
 class LaunchPlan:
+    """What evaluating a launch file gave: the nodes and processes it starts, its logs, or its failure."""
+
     launch_file: str
     nodes: list[PlannedNode] = field(default_factory=list)
     processes: list[dict[str, Any]] = field(default_factory=list)
@@ -131,7 +137,7 @@ def plan_launch(launch_file: str, prefixes: list[str], arguments: dict[str, str]
     """Evaluate ``launch_file`` (from an install tree) with the packages at ``prefixes``."""
     from ..sandbox import ResourceLimitError, run_limited
 
-    with tempfile.TemporaryDirectory(prefix="bras-kit-launch-") as workdir:
+    with scratch.folder("bras-kit-launch-") as workdir:
         ros = simulated_ros_prefix(workdir)
         cwd = os.path.join(workdir, "ws")
         os.makedirs(cwd)
@@ -150,17 +156,9 @@ def plan_launch(launch_file: str, prefixes: list[str], arguments: dict[str, str]
 
 
 def preload_planning() -> None:
-    """Import, in this process, what each launch file's child imports before the stand-in hides
-    ROS's names (the real xacro, PyYAML, bras-kit's xacro tools, the stand-in's installer):
-    children forked afterwards start with them instead of importing them each (about 30 ms)."""
-    import contextlib
-
-    with contextlib.suppress(ImportError):
-        import xacro.substitution_args  # noqa: F401
-    import yaml  # noqa: F401
-
-    import bras_kit.xacrotools  # noqa: F401
-
+    """Import, in this process, what every launch file's child imports before it installs the
+    stand-in (the installer and the records it fills): children forked afterwards start with it.
+    What only some launch files need (the real xacro, PyYAML) each child imports when it does."""
     from . import child  # noqa: F401
 
 
@@ -174,27 +172,15 @@ def _plan_here(launch_file: str, prefixes: list[str], arguments: dict[str, str],
 
     os.environ["AMENT_PREFIX_PATH"] = os.pathsep.join(prefixes)
     os.chdir(cwd)
-    real_xacro = {}
-    try:
-        import xacro  # noqa: F401 - the real one, kept aside for the stand-in's Command(['xacro ', ...])
-        import xacro.substitution_args  # noqa: F401
-
-        real_xacro = {n: m for n, m in sys.modules.items() if n == "xacro" or n.startswith("xacro.")}
-    except ImportError:
-        pass
-    import bras_kit.xacrotools  # noqa: F401 - imported before the stand-in hides the real xacro
-
     from .child import _install
 
-    _install()
+    _install()  # the real xacro, if imported before, is set aside: the stand-in's imports it when it expands
     import launch._plan as record
-    import xacro as standin_xacro
     from launch._actions import IncludeLaunchDescription
     from launch._core import LaunchContext, LaunchDescription, visit_all
     from launch._events import fire_pending, unfired_start_handlers
     from launch._sources import AnyLaunchDescriptionSource
 
-    standin_xacro._REAL = real_xacro
     record.reset()
     record.ROOTS = tuple(roots)
     plan = LaunchPlan(launch_file)

@@ -12,10 +12,10 @@ what the hostile corpus (tests/data/hostile_code/package/) is checked with::
 from __future__ import annotations
 
 import os
-import tempfile
 from dataclasses import dataclass, field
 from typing import Any
 
+from .. import scratch
 from .attempts import Attempt
 from .contain import containment
 from .locate import Target
@@ -42,7 +42,7 @@ def run_script(path: str, *, root: str | None = None, call: str | None = None, a
     path = os.path.abspath(path)
     root = os.path.abspath(root or os.path.dirname(path))
     target = Target(root, "", call or "", path, os.path.relpath(path, root))
-    with tempfile.TemporaryDirectory(prefix="bras-kit-script-") as workdir:
+    with scratch.folder("bras-kit-script-") as workdir:
         walls = containment(contain, workdir, (root,))
         ran: ScriptRun = run_limited(_run_here, target, list(argv), workdir, walls, cpu_seconds=cpu_seconds,
                                      memory_bytes=memory_bytes, wall_seconds=wall_seconds, contain=walls,

@@ -20,9 +20,9 @@ from __future__ import annotations
 import mmap
 import os
 import struct
-import tempfile
 from typing import Any
 
+from .. import scratch
 from ..errors import BrasKitError
 from ..message import M
 from ..ros.contain import containment, uncontained_note
@@ -218,7 +218,7 @@ def run_node(where: str, executable: str | None = None, *, duration: float = DEF
     _preload()
     shared = mmap.mmap(-1, 8)
     try:
-        with tempfile.TemporaryDirectory(prefix="bras-kit-run-") as workdir:
+        with scratch.folder("bras-kit-run-") as workdir:
             prefixes, build_blocked = _build(target, workdir, beside)
             walls = containment(contain, workdir, (target.root, target.package or target.root))
             joints = _robot_joints(where) if robot is None else robot_joints(robot)
