@@ -27,6 +27,8 @@ VARIANT_FLAGS = ("wrist", "inertials", "collisions")
 
 @dataclass(frozen=True)
 class Parameter:
+    """One parameter of the arm template: its name, default value (as written) and kind."""
+
     name: str
     default: str
     kind: str  # "number", "colour" or "flag"

@@ -53,6 +53,8 @@ class Issue:
 
 @dataclass
 class Origin:
+    """An <origin>: translation (m) and roll, pitch, yaw (rad)."""
+
     xyz: Vec3 = (0.0, 0.0, 0.0)
     rpy: Vec3 = (0.0, 0.0, 0.0)
     line: int | None = None
@@ -60,6 +62,8 @@ class Origin:
 
 @dataclass
 class Geometry:
+    """A <geometry>: the shape's kind and the sizes that kind reads."""
+
     kind: str  # box, cylinder, sphere, mesh; "" when absent or unknown
     size: Vec3 | None = None
     radius: float | None = None
@@ -71,6 +75,8 @@ class Geometry:
 
 @dataclass
 class Material:
+    """A <material>: named, with a colour or a texture (or a reference to a named one)."""
+
     name: str | None
     rgba: tuple[float, float, float, float] | None = None
     texture: str | None = None
@@ -79,6 +85,8 @@ class Material:
 
 @dataclass
 class Visual:
+    """A <visual> of a link: what RViz draws."""
+
     origin: Origin
     geometry: Geometry | None
     material: Material | None = None
@@ -88,6 +96,8 @@ class Visual:
 
 @dataclass
 class Collision:
+    """A <collision> of a link: what a simulator and a planner test contacts with."""
+
     origin: Origin
     geometry: Geometry | None
     name: str | None = None
@@ -96,6 +106,8 @@ class Collision:
 
 @dataclass
 class Inertial:
+    """An <inertial>: mass (kg), centre of mass (origin) and inertia tensor (kg m²)."""
+
     origin: Origin
     mass: float | None
     inertia: dict[str, float | None]  # ixx ixy ixz iyy iyz izz
@@ -113,6 +125,8 @@ class Inertial:
 
 @dataclass
 class Link:
+    """A <link>: a rigid body, with what is drawn, what collides and how it weighs."""
+
     name: str | None
     visuals: list[Visual] = field(default_factory=list)
     collisions: list[Collision] = field(default_factory=list)
@@ -122,6 +136,8 @@ class Link:
 
 @dataclass
 class Limit:
+    """A joint's <limit>: position bounds (rad or m), effort and velocity."""
+
     lower: float | None = None
     upper: float | None = None
     effort: float | None = None
@@ -131,6 +147,8 @@ class Limit:
 
 @dataclass
 class Mimic:
+    """A joint's <mimic>: its value follows another joint's (multiplier, offset)."""
+
     joint: str | None
     multiplier: float = 1.0
     offset: float = 0.0
@@ -156,6 +174,8 @@ class SafetyController:
 
 @dataclass
 class Joint:
+    """A <joint>: how ``child`` moves relative to ``parent``, where (origin) and about which axis."""
+
     name: str | None
     type: str | None
     parent: str | None
@@ -195,6 +215,8 @@ class Joint:
 
 @dataclass
 class Robot:
+    """A URDF <robot> as read (links, joints, named materials), with the problems met reading it."""
+
     name: str | None
     links: list[Link] = field(default_factory=list)
     joints: list[Joint] = field(default_factory=list)

@@ -1,5 +1,5 @@
 """`bras-kit validate PKG_DIR` begins the package's build and launch evaluation in a worker of its
-own (bras_kit.ros.launched.evaluate_ahead) while it imports the rules: the answer is the one the
+own (bras_kit.ros.ahead.evaluate_ahead) while it imports the rules: the answer is the one the
 rules would have computed themselves (oracles: the same evaluation run in this process, and the
 package findings of validate_package run in this process with no worker), a worker in trouble
 changes nothing (the rules evaluate the package themselves), and a worker nobody waits for is not
@@ -22,7 +22,8 @@ from pathlib import Path
 import pytest
 
 from bras_kit.errors import BrasKitError
-from bras_kit.ros.launched import evaluate_ahead, evaluate_package
+from bras_kit.ros.ahead import evaluate_ahead
+from bras_kit.ros.launched import evaluate_package
 from bras_kit.sandbox import ResourceLimitError, run_limited, start_limited
 from bras_kit.scaffold import scaffold_package
 
@@ -43,7 +44,7 @@ def _shape(launched) -> tuple:  # type: ignore[no-untyped-def]
 AHEAD = """
 import json, os, pickle, sys, threading
 import bras_kit.ros.launched as launched_module
-from bras_kit.ros.launched import evaluate_ahead
+from bras_kit.ros.ahead import evaluate_ahead
 
 root, broken = sys.argv[1], sys.argv[2] == "broken"
 if broken:

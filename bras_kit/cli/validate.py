@@ -123,7 +123,7 @@ def _merge(results: list, extra: list) -> list:  # type: ignore[type-arg]
 
 def run(args: argparse.Namespace) -> int:
     from ..errors import ParameterError
-    from ..ros.launched import evaluate_ahead
+    from ..ros.ahead import evaluate_ahead
 
     # begun before the rules are imported: the build and launch evaluation runs beside them
     ahead = evaluate_ahead([f for f in args.files if not (f.endswith(".py") and os.path.isfile(f))])
@@ -173,6 +173,11 @@ def run(args: argparse.Namespace) -> int:
         read = [Package(package) for package in packages]
         for package in read:
             package.ahead = ahead
+        # a file no xacro file sits beside is checked as written whatever the packages install:
+        # first, while the worker evaluates the packages (their rules wait for it where they need it)
+        pairs = generated_pairs(paths, [])
+        alone = {path: FileResult(path, validate_path(path, mappings=mappings, **options))
+                 for path in paths if path not in pairs}
         results = [result for package in read
                    for result in validate_package(package.root, lang=lang, select=select, ignore=ignore,
                                                   package=package, launch=True)]
@@ -181,7 +186,8 @@ def run(args: argparse.Namespace) -> int:
         # bras.urdf beside bras.urdf.xacro: check the xacro once, unless the package installs the URDF
         # (then the launch file loads it and it is the learner's own file, checked as written)
         generated = generated_pairs(paths, [*args.files, *installed_descriptions(read)])
-        results += [FileResult(path, compare_generated(path, generated[path], mappings=mappings,
+        results += [alone[path] if path in alone else
+                    FileResult(path, compare_generated(path, generated[path], mappings=mappings,
                                                        package_paths=args.package_path, lang=lang,
                                                        select=select, ignore=ignore)
                                if path in generated else validate_path(path, mappings=mappings, **options))

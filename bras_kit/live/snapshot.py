@@ -13,9 +13,8 @@ from collections.abc import Mapping, Sequence
 from dataclasses import dataclass, field
 from typing import Any
 
-DESCRIPTION = "/robot_description"
-JOINT_STATES = "/joint_states"
-CLOCK = "/clock"
+from ..ros.topics import CLOCK, DESCRIPTION, JOINT_STATES  # noqa: F401 - their names, also read from here
+
 MAX_NAMES = 10_000
 
 

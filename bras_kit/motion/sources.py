@@ -26,6 +26,8 @@ from .waypoints import WAYPOINT_SUFFIXES, read_waypoints
 
 @dataclass
 class _Layer:
+    """The tracks one source gives (a formula, a waypoint file, a recording), its length and notes."""
+
     tracks: dict[str, Track] = field(default_factory=dict)
     duration: float | None = None
     label: str = ""

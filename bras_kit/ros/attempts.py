@@ -18,9 +18,7 @@ at the line. It observes only: it cannot be removed, but it enforces nothing eit
 from __future__ import annotations
 
 import os
-import socket
 import sys
-import sysconfig
 from dataclasses import dataclass
 from typing import Any
 
@@ -36,7 +34,6 @@ class Attempt:
 
 
 MAX_ATTEMPTS = 50
-STDLIB = os.path.abspath(sysconfig.get_paths()["stdlib"]) + os.sep
 HERE = os.path.dirname(os.path.abspath(__file__)) + os.sep  # bras_kit/ros (the stand-in, this module)
 WRITE_FLAGS = os.O_WRONLY | os.O_RDWR | os.O_CREAT | os.O_TRUNC | os.O_APPEND
 CHANGES = {"os.remove": 0, "os.rename": 0, "os.mkdir": 0, "os.rmdir": 0, "os.chmod": 0, "os.chown": 0,
@@ -56,7 +53,10 @@ class Watcher:
     ``writable`` and ``readable`` the folders the containment grants."""
 
     def __init__(self, root: str, writable: tuple[str, ...], readable: tuple[str, ...]) -> None:
+        import sysconfig  # here, in the child: the parent reads Attempt records only
+
         self.root = os.path.abspath(root) + os.sep
+        self.stdlib = os.path.abspath(sysconfig.get_paths()["stdlib"]) + os.sep
         self.writable = tuple(os.path.realpath(p) for p in writable)
         self.readable = self.writable + tuple(os.path.realpath(p) for p in readable)
         self.attempts: list[Attempt] = []
@@ -134,6 +134,8 @@ class Watcher:
         return kind, text if real == os.path.abspath(text) else f"{text} ({real})"
 
     def _address(self, sock: Any, address: Any) -> tuple[str, str] | None:
+        import socket  # already loaded: the event comes from it
+
         family = getattr(sock, "family", None)
         if family == socket.AF_UNIX and isinstance(address, (str, bytes)) and address[:1] not in ("\0", b"\0"):
             return self._path("write", address) and ("network", f"unix:{os.fsdecode(address)}")
@@ -153,7 +155,7 @@ class Watcher:
             full = os.path.abspath(name)
             if full.startswith(self.root):
                 return os.path.relpath(full, self.root).replace(os.sep, "/"), frame.f_lineno
-            if direct and not full.startswith(STDLIB) and not full.startswith(HERE):
+            if direct and not full.startswith(self.stdlib) and not full.startswith(HERE):
                 return None
             frame = frame.f_back
         return None

@@ -38,6 +38,8 @@ class InvalidROSArgs(ValueError):
 
 @dataclass(frozen=True)
 class RemapRule:
+    """One ``--remap``/``-r`` rule (rcl_remap_t): ``match:=replacement``, for one node or all."""
+
     match: str
     replacement: str
     node: str | None = None  # "node:from:=to" applies to that node only
@@ -50,6 +52,8 @@ class RemapRule:
 
 @dataclass
 class ROSArguments:
+    """A command line's ROS arguments, parsed as rcl parses them (rcl_arguments_t)."""
+
     remaps: list[RemapRule] = field(default_factory=list)
     parameters: list[tuple[str, str]] = field(default_factory=list)  # -p NAME:=VALUE, in order
     params_files: list[str] = field(default_factory=list)

@@ -16,8 +16,7 @@ if TYPE_CHECKING:  # numpy is imported where a recording becomes joint states: a
 
     from ..motion.core import JointStates
 
-JOINT_STATES = "/joint_states"
-JOINT_STATE_TYPE = "sensor_msgs/msg/JointState"
+from .topics import JOINT_STATE_TYPE, JOINT_STATES  # noqa: F401 - their names, also read from here
 
 
 @dataclass(frozen=True)

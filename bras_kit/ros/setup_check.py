@@ -42,6 +42,8 @@ SHOWN = 200  # characters of a refused value shown back
 
 @dataclass(frozen=True)
 class Installed:
+    """One file of the install tree and the package file it comes from."""
+
     target: str  # relative to the package's prefix, e.g. share/bras_description/urdf/bras.urdf
     source: str  # relative to the package folder
 
@@ -63,6 +65,8 @@ class Refusal:
 
 @dataclass(frozen=True)
 class CheckedSetup:
+    """What setup() asked for, every name and path checked: all the build acts on."""
+
     name: str
     installed: tuple[Installed, ...]  # data_files, in setuptools' order
     modules: tuple[Installed, ...]  # the packages' .py files (target under lib/pythonX.Y/site-packages)

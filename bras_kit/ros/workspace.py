@@ -44,6 +44,8 @@ MAX_DEPTH = 64  # how far up a workspace root is looked for
 
 @dataclass(frozen=True)
 class WorkspacePackage:
+    """A package of the workspace: its name, folder and the workspace packages it depends on."""
+
     name: str  # package.xml's <name> (the folder's name when it has none)
     folder: str  # absolute
     depends: tuple[str, ...] = ()
@@ -51,6 +53,8 @@ class WorkspacePackage:
 
 @dataclass(frozen=True)
 class Workspace:
+    """A colcon workspace: its root folder and its packages, in build order."""
+
     root: str  # absolute: the folder holding src/ (where colcon build is typed)
     packages: tuple[WorkspacePackage, ...]  # in build order
 

@@ -87,6 +87,8 @@ def euler_matrix(phi: float, theta: float, psi: float) -> np.ndarray:
 
 @dataclass
 class DMass:
+    """ODE's dMass: a mass, its centre and its inertia about that centre."""
+
     mass: float
     c: np.ndarray
     inertia: np.ndarray

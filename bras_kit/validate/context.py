@@ -36,6 +36,8 @@ class Graph:
 
 @dataclass
 class Context:
+    """What the URDF rules read: the robot, the pose or motion to check, and facts computed once."""
+
     robot: Robot
     pose: Mapping[str, float] | None = None
     states: Any = None  # bras_kit.motion.JointStates (times, names, positions, velocities)

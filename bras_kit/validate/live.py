@@ -14,11 +14,14 @@ import difflib
 import math
 from collections.abc import Callable, Iterable, Iterator
 from dataclasses import dataclass
-from typing import Any
+from typing import TYPE_CHECKING, Any
 
-from ..live.snapshot import CLOCK, DESCRIPTION, JOINT_STATES, Snapshot
 from ..model import Robot
+from ..ros.topics import CLOCK, DESCRIPTION, JOINT_STATES
 from .registry import ERROR, WARNING, Hit, hit, rule
+
+if TYPE_CHECKING:  # the snapshot's records are imported with a live graph (doctor --ros), not by validate
+    from ..live.snapshot import Snapshot
 
 TUTORIAL_RATE = 20.0  # the tutorial's node: create_timer(0.05, ...)
 SLOW_RATE = 15.0  # below this the arm visibly steps (a fifth under the tutorial's rate, with jitter)

@@ -17,6 +17,8 @@ _COLOURS = {ERROR: "31", WARNING: "33", INFO: "36"}  # red, yellow, cyan
 
 @dataclass(frozen=True)
 class Totals:
+    """How many files were checked, and how many findings of each severity."""
+
     files: int
     unreadable: int
     errors: int

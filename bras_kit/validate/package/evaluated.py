@@ -82,6 +82,8 @@ def joint_state_sources(result: Any, publishes: Any) -> bool:
 
 @dataclass(frozen=True)
 class RvizUse:
+    """An .rviz file of the package that an evaluated launch gives to rviz2 -d, and where."""
+
     source: str  # the .rviz file of the package (relative)
     launch: str  # the launch file that gives it (relative)
     line: int

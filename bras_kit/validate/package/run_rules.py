@@ -11,16 +11,21 @@ from __future__ import annotations
 import math
 from collections.abc import Callable, Iterable, Iterator
 from dataclasses import dataclass
-from typing import Any
+from typing import TYPE_CHECKING, Any
 
-from ...ros.recording import JOINT_STATE_TYPE, JOINT_STATES, Recording, stamp_seconds
+from ...ros.topics import JOINT_STATE_TYPE, JOINT_STATES
 from ..registry import ERROR, WARNING, Hit, hit, rule
+
+if TYPE_CHECKING:  # the records are imported with a run: validate PKG_DIR without --run has none
+    from ...ros.recording import Recording
 
 RATE_TOLERANCE = 0.2  # a measured rate 20 % away from the timer's is "far"
 
 
 @dataclass(frozen=True)
 class RunContext:
+    """What the run rules read: a run's recording and the robot it was run against."""
+
     recording: Recording
     robot: Any  # bras_kit.model.Robot or None
 
@@ -225,6 +230,8 @@ def joint_state_past_limits(run: RunContext) -> Iterator[Hit]:
 
 @run_rule("BK650", "joint-state-stamp-zero", WARNING)
 def joint_state_stamp_zero(run: RunContext) -> Iterator[Hit]:
+    from ...ros.recording import stamp_seconds
+
     messages = _joint_state_messages(run)
     zero = [m for m in messages if (stamp_seconds(m.fields) or 0.0) == 0.0]
     if zero:

@@ -45,6 +45,8 @@ class Problem:
 
 @dataclass(frozen=True)
 class Manifest:
+    """What the rules read of package.xml: the name, the maintainers, the run dependencies."""
+
     name: str | None
     name_line: int | None
     line: int
@@ -55,6 +57,8 @@ class Manifest:
 
 @dataclass(frozen=True)
 class DataEntry:
+    """One (destination, [sources]) entry of setup.py's data_files, and its line."""
+
     destination: str  # "share/PKG/urdf"
     sources: list[str]  # relative to the package folder
     line: int
@@ -62,6 +66,8 @@ class DataEntry:
 
 @dataclass(frozen=True)
 class EntryPoint:
+    """One console_scripts entry: ``name = module:function``, and its line."""
+
     name: str
     module: str
     function: str
@@ -70,6 +76,8 @@ class EntryPoint:
 
 @dataclass
 class Setup:
+    """What the rules read of setup.py, statically: the name, data_files and console scripts."""
+
     name: Any  # str, or UNKNOWN
     name_line: int
     line: int  # the setup( call
@@ -95,6 +103,8 @@ class NodeCall:
 
 @dataclass(frozen=True)
 class LaunchFile:
+    """A Python launch file read statically: its Node(...) calls and the share files it names."""
+
     path: str  # relative to the package folder
     nodes: list[NodeCall]
     share_files: list[tuple[ShareFile, int]]  # files of share/ the launch file builds a path to
@@ -132,7 +142,7 @@ class Package:
         self.shown_root = root.rstrip("/\\") or root
         self.problems: list[Problem] = []
         self.read: set[str] = set()  # files (relative) the rules have read
-        # the build and launch evaluation begun ahead in a worker (bras_kit.ros.launched.evaluate_ahead):
+        # the build and launch evaluation begun ahead in a worker (bras_kit.ros.ahead.evaluate_ahead):
         # its answer for a package folder, None where it has none
         self.ahead: Callable[[str], Any] | None = None
         # set by validate_package(launch=True): the rules that judge whole launches wait for the

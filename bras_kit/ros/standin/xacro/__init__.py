@@ -1,7 +1,8 @@
 """Stand-in for the xacro package as a launch file uses it: ``xacro.process_file(path).toxml()``
 and the ``xacro FILE NAME:=VALUE`` program that ``Command(['xacro ', path])`` runs. Both expand
-with the real xacro behind bras-kit's walls (bras_kit.xacrotools), whose modules the launch runner
-keeps aside before the stand-in is installed (``_REAL``)."""
+with the real xacro behind bras-kit's walls (bras_kit.xacrotools), imported past the stand-in's
+import hook the first time a file is expanded (``_REAL``): a launch file that expands none never
+pays for it."""
 
 from __future__ import annotations
 
@@ -10,7 +11,7 @@ import sys
 from collections.abc import Iterator
 from typing import Any
 
-_REAL: dict[str, Any] = {}  # the real xacro modules, set by bras_kit.ros.launching in the child
+_REAL: dict[str, Any] = {}  # the real xacro modules, once imported (_load_real)
 
 
 class XacroException(Exception):
@@ -19,8 +20,38 @@ class XacroException(Exception):
         self.suffix = suffix
 
 
+def _ours() -> dict[str, Any]:
+    return {name: sys.modules[name] for name in list(sys.modules) if name == 'xacro' or name.startswith('xacro.')}
+
+
+def _load_real() -> None:
+    """Import the real xacro (and xacro.substitution_args, which bras-kit's expansion reads) with the
+    stand-in's hook set aside, keep its modules in ``_REAL``, and put the stand-in's back."""
+    from bras_kit.ros.child import StandinFinder
+
+    ours = _ours()
+    hooks = [finder for finder in sys.meta_path if isinstance(finder, StandinFinder)]
+    for name in ours:
+        del sys.modules[name]
+    for finder in hooks:
+        sys.meta_path.remove(finder)
+    try:
+        import xacro.substitution_args  # noqa: F401 - the real one: nothing else answers for the name now
+
+        _REAL.update(_ours())
+    except ImportError:
+        pass  # no real xacro: the expansion says so
+    finally:
+        sys.meta_path[:0] = hooks
+        for name in _ours():
+            del sys.modules[name]
+        sys.modules.update(ours)
+
+
 @contextlib.contextmanager
 def _real_modules() -> Iterator[None]:
+    if not _REAL:
+        _load_real()
     ours = {name: sys.modules[name] for name in list(sys.modules) if name == 'xacro' or name.startswith('xacro.')}
     sys.modules.update(_REAL)
     try:
