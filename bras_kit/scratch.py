@@ -14,7 +14,6 @@ least :data:`MIN_FREE` bytes free (Docker gives containers a 64 MiB ``/dev/shm``
 
 from __future__ import annotations
 
-import functools
 import os
 import stat
 import tempfile
@@ -24,9 +23,10 @@ CHOSEN_BY_USER = ("TMPDIR", "TEMP", "TMP")  # tempfile.gettempdir()'s own variab
 IN_MEMORY = ("XDG_RUNTIME_DIR", "/dev/shm")  # an environment variable's folder, or a path
 
 
-@functools.lru_cache(maxsize=1)
 def scratch_root() -> str | None:
-    """The folder for bras-kit's scratch folders (None: tempfile's own choice)."""
+    """The folder for bras-kit's scratch folders (None: tempfile's own choice), worked out each
+    time (a few system calls): a long-lived process (the grader, a notebook, the tests) may see
+    the environment change."""
     if any(os.environ.get(name) for name in CHOSEN_BY_USER):
         return None
     for candidate in IN_MEMORY:

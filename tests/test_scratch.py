@@ -17,13 +17,6 @@ import pytest
 from bras_kit import scratch
 
 
-@pytest.fixture(autouse=True)
-def fresh_choice():
-    scratch.scratch_root.cache_clear()
-    yield
-    scratch.scratch_root.cache_clear()
-
-
 def _folder(tmp_path, name: str, mode: int) -> str:
     path = tmp_path / name
     path.mkdir()
@@ -95,7 +88,6 @@ def test_without_tmpdir_the_runtime_folder_is_taken_then_dev_shm(tmp_path, monke
         assert stat.S_IMODE(os.stat(made).st_mode) == 0o700
     finally:
         os.rmdir(made)
-    scratch.scratch_root.cache_clear()
     os.chmod(runtime, 0o777)  # no longer safe: the next candidate, or tempfile's choice
     expected = "/dev/shm" if scratch.usable("/dev/shm") else None
     assert scratch.scratch_root() == expected

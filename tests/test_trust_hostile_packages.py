@@ -14,11 +14,18 @@ from __future__ import annotations
 
 import json
 import os
+import re
+import select
 import shutil
+import signal
+import subprocess
+import sys
+import time
 from pathlib import Path
 
 import pytest
 from test_containment_hostile import snapshot
+from test_ros_bus import private_runtime  # noqa: F401 - the fixture
 
 from bras_kit.cli import main
 from bras_kit.ros.contain import available
@@ -206,6 +213,49 @@ def test_bras_kit_run_names_what_setup_py_tried_at_its_lines(world, capsys, lang
                    for r in report["files"] for f in r["findings"]), report["files"]
     assert ("outside the folder it runs in" if lang == "en" else "hors du dossier") in out, out
     assert "Traceback" not in out
+    world.unchanged()
+
+
+@pytest.mark.slow
+def test_a_live_run_names_what_setup_py_tried_before_its_node_runs(world, private_runtime):  # noqa: F811
+    """Beside an open launch (here a page of the bus, which bras-kit launch opens), `bras-kit run`
+    is live until Ctrl-C: what setup.py tried that its walls stopped is BK639 at its lines as soon
+    as the package is built, while the node publishes, not when the run ends; Ctrl-C then ends it
+    with exit 1, as a batch run with those findings ends. Oracles: the lines of the corpus, the
+    node's messages reaching the page, the process still running when the findings are read."""
+    from bras_kit.ros.bus import Bus
+
+    package = world.package("setup_reaches")
+    received: list[object] = []
+    with Bus.listen() as page:
+        page.on_joint_state(received.append)
+        live = subprocess.Popen([sys.executable, "-m", "bras_kit", "run", str(package), "animation", "--quiet",
+                                 "--lang", "en"], stdout=subprocess.PIPE, stderr=subprocess.PIPE, text=True,
+                                preexec_fn=lambda: signal.signal(signal.SIGINT, signal.SIG_DFL))
+        said, fd = b"", live.stdout.fileno()  # type: ignore[union-attr]
+        try:
+            end = time.monotonic() + 120
+            while time.monotonic() < end and not re.search(rb"files? checked", said):
+                if select.select([fd], [], [], 0.5)[0]:
+                    chunk = os.read(fd, 65536)  # unbuffered: select sees all that is not read yet
+                    said += chunk
+                    if not chunk:
+                        break
+            running = live.poll() is None
+            deadline = time.monotonic() + 60
+            while len(received) < 10 and time.monotonic() < deadline:
+                time.sleep(0.1)
+        finally:
+            live.send_signal(signal.SIGINT)
+            out, err = live.communicate(timeout=60)
+    shown = said.decode()
+    assert running, shown + err
+    assert len(received) >= 10, err  # the node was publishing, live, after the findings were shown
+    for rule, file, line in EXPECTED["setup_reaches"]:
+        assert f"{file}:{line}: {rule}" in shown, shown
+    assert "outside the folder it runs in" in shown and SECRET not in shown + out + err
+    assert "stopped by Ctrl-C" in err and "Traceback" not in shown + out + err
+    assert live.returncode == 1, err
     world.unchanged()
 
 

@@ -181,23 +181,35 @@ def _run_live(args: argparse.Namespace, bus, parameters, robot, beside: list[str
                        joints=list(shown.joints)), lang)
         bus.publish_joint_state(state)
 
+    built: list[int] = []  # the exit code setup.py's findings give (BK639), once the package is built
+
+    def show_build(blocked) -> None:  # type: ignore[no-untyped-def]
+        from ..i18n import current_language
+        from ..validate.report import exit_code, format_text
+
+        results = _setup_results(blocked, args)
+        built.append(exit_code(results) if results else 0)
+        if results:  # before the node's own output, as a batch run lists them (at the end)
+            sys.stdout.write(format_text(results, lang or current_language()))
+            sys.stdout.flush()
+
     started = time.monotonic()
     previous = _stop_on_sigterm()
     try:
         recording = run_node(args.target, args.executable, duration=MAX_DURATION, echo=not args.quiet,
                              parameters=parameters, live=True, keep=False, on_joint_state=deliver, robot=robot,
-                             beside=beside)
+                             beside=beside, on_built=show_build)
     except KeyboardInterrupt:
         print(say(M("stopped by Ctrl-C after {seconds} s", seconds=round(time.monotonic() - started, 1)), lang),
               file=sys.stderr, flush=True)
-        return 0
+        return max(built, default=0)
     finally:
         signal.signal(signal.SIGTERM, previous)
         bus.close()
     print(say(M("the node {ending}", ending=ending(recording)), lang), file=sys.stderr)
     for text in failure_lines(recording):
         print(text, file=sys.stderr)
-    return 1 if recording.failure is not None else 0
+    return max(1 if recording.failure is not None else 0, *built)
 
 
 def _robot(args: argparse.Namespace):  # type: ignore[no-untyped-def]
@@ -219,18 +231,34 @@ def _results(recording, robot, args):  # type: ignore[no-untyped-def]
     them, what the package's setup.py tried that its walls stopped (BK639, as ``bras-kit build``
     shows it)."""
     from ..run.findings import run_findings
-    from ..validate.findings import FileResult, finding
-    from ..validate.package.build_reach import setup_blocked_hits
-    from ..validate.registry import RULES
 
-    base = args.target if os.path.isdir(args.target) else os.path.dirname(args.target)
     by_file: dict[str, list] = {}  # type: ignore[type-arg]
     for found in run_findings(recording, robot, lang=args.lang):
         by_file.setdefault(str(found.data.get("file") or recording.source), []).append(found)
     if not by_file:
         by_file[recording.source] = []
-    for hit in setup_blocked_hits(recording.build_blocked):
+    return _by_file(_setup_findings(recording.build_blocked, by_file), args)
+
+
+def _setup_results(blocked, args):  # type: ignore[no-untyped-def]
+    """What setup.py tried that its walls stopped (BK639), as per-file results (none: [])."""
+    return _by_file(_setup_findings(blocked, {}), args)
+
+
+def _setup_findings(blocked, by_file):  # type: ignore[no-untyped-def]
+    from ..validate.findings import finding
+    from ..validate.package.build_reach import setup_blocked_hits
+    from ..validate.registry import RULES
+
+    for hit in setup_blocked_hits(blocked):
         by_file.setdefault(str(hit.params["file"]), []).append(finding(RULES["BK639"], hit))
+    return by_file
+
+
+def _by_file(by_file, args):  # type: ignore[no-untyped-def]
+    from ..validate.findings import FileResult
+
+    base = args.target if os.path.isdir(args.target) else os.path.dirname(args.target)
     return [FileResult(os.path.join(base, file), findings) for file, findings in sorted(by_file.items())]
 
 

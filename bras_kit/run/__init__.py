@@ -188,7 +188,8 @@ def run_node(where: str, executable: str | None = None, *, duration: float = DEF
              echo: bool = False, parameters: dict[str, Any] | None = None, cpu_seconds: int = CPU_SECONDS,
              memory_bytes: int = MEMORY_BYTES, wall_seconds: float = WALL_SECONDS,
              contain: str = "auto", live: bool = False, on_joint_state: Any = None, keep: bool = True,
-             stop: Any = None, robot: Any = None, beside: list[str] | tuple[str, ...] = ()) -> Recording:
+             stop: Any = None, robot: Any = None, beside: list[str] | tuple[str, ...] = (),
+             on_built: Any = None) -> Recording:
     """Run the node ``where`` names (a package folder and an executable of its console_scripts,
     or a ``.py`` file) for ``duration`` simulated seconds and return its recording.
 
@@ -206,7 +207,10 @@ def run_node(where: str, executable: str | None = None, *, duration: float = DEF
     ``robot`` (a :class:`~bras_kit.model.Robot`) is the one robot_state_publisher would publish
     for the node's tf2_ros Buffer; by default the package's robot description, if any.
     ``beside``: the other package folders of its colcon workspace, built with it as colcon builds
-    the whole workspace, so get_package_share_directory finds them too.
+    the whole workspace, so get_package_share_directory finds them too. ``on_built`` is called
+    with what the package's setup.py tried that its walls stopped (a list of
+    :class:`~bras_kit.ros.attempts.Attempt`, also the recording's ``build_blocked``) once it is
+    built, before the node starts: a live run shows it then, not at Ctrl-C.
     """
     from ..ros.child import robot_joints
     from ..sandbox import ResourceLimitError, run_limited
@@ -220,6 +224,8 @@ def run_node(where: str, executable: str | None = None, *, duration: float = DEF
     try:
         with scratch.folder("bras-kit-run-") as workdir:
             prefixes, build_blocked = _build(target, workdir, beside)
+            if on_built is not None:
+                on_built(list(build_blocked))
             walls = containment(contain, workdir, (target.root, target.package or target.root))
             joints = _robot_joints(where) if robot is None else robot_joints(robot)
             write_end: int | None = None
