@@ -16,7 +16,10 @@ from __future__ import annotations
 
 import os
 import stat
-import tempfile
+from typing import TYPE_CHECKING
+
+if TYPE_CHECKING:  # imported where a folder is made: validate reads its worker's answer without
+    import tempfile  # making any (tempfile imports shutil, random: 4 ms)
 
 MIN_FREE = 512 << 20  # bytes free a folder in memory must have to be used
 CHOSEN_BY_USER = ("TMPDIR", "TEMP", "TMP")  # tempfile.gettempdir()'s own variables
@@ -54,9 +57,13 @@ def usable(path: str, min_free: int = MIN_FREE) -> bool:
 
 def mkdtemp(prefix: str) -> str:
     """A new folder of this user's only (0700), in :func:`scratch_root`."""
+    import tempfile
+
     return tempfile.mkdtemp(prefix=prefix, dir=scratch_root())
 
 
 def folder(prefix: str) -> tempfile.TemporaryDirectory[str]:
     """:class:`tempfile.TemporaryDirectory` in :func:`scratch_root`: removed when the block ends."""
+    import tempfile
+
     return tempfile.TemporaryDirectory(prefix=prefix, dir=scratch_root())

@@ -20,7 +20,6 @@ the words colcon prints first, the cause and fix chosen by the feature above.
 from __future__ import annotations
 
 import os
-import shutil
 import sys
 from dataclasses import dataclass, field
 from typing import Any, cast
@@ -204,6 +203,8 @@ def _clear_prefix(record: BuildRecord) -> BuildFailure | None:
         (os.path.isfile(marker) and not os.path.islink(marker)) or not os.listdir(prefix))
     if not ours:
         return BuildFailure("prefix", (), "setup.py", record.setup_line, source=prefix, detail=prefix)
+    import shutil
+
     shutil.rmtree(prefix)
     return None
 
