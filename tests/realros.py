@@ -7,8 +7,11 @@ without them). ``BRAS_KIT_RCLPY_PYTHON`` names another interpreter that imports 
 apt ROS, say).
 
 DDS never leaves this machine: every process that uses the real rclpy runs in a network namespace
-of its own with loopback only (``unshare -rn``, ``ip link set lo up``), with
-``ROS_AUTOMATIC_DISCOVERY_RANGE=LOCALHOST`` and a ``ROS_DOMAIN_ID`` of its own. Processes that must
+of its own with loopback only (``unshare -rnm``, ``ip link set lo up``), with
+``ROS_AUTOMATIC_DISCOVERY_RANGE=LOCALHOST`` and a ``ROS_DOMAIN_ID`` of its own. Its ``/dev/shm``
+is a tmpfs of its own too (the ``m``: a mount namespace): Fast DDS's shared-memory transport leaves
+its segments there when a process is killed (about 0.5 MB each, hundreds per run of the suite),
+and they go with the namespace instead of filling the machine's ``/dev/shm``. Processes that must
 see each other run in one namespace: start them from one command (a shell line or a driver script).
 """
 
@@ -76,8 +79,11 @@ def graph_env(domain: int, **extra: str) -> dict[str, str]:
 
 
 def in_loopback_namespace(argv: list[str]) -> list[str]:
-    """``argv`` run in a new network namespace whose only interface is loopback, brought up first."""
-    return ["unshare", "-rn", "sh", "-c", 'ip link set lo up || exit 97; exec "$@"', "sh", *argv]
+    """``argv`` run in a new network namespace whose only interface is loopback, brought up first,
+    with a ``/dev/shm`` of its own (a new mount namespace, private)."""
+    return ["unshare", "-rnm", "sh", "-c",
+            'ip link set lo up || exit 97; mount -t tmpfs -o size=256m,mode=1777 tmpfs /dev/shm || exit 98; exec "$@"',
+            "sh", *argv]
 
 
 def shell_in_loopback_namespace(script: str) -> list[str]:

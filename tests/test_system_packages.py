@@ -83,7 +83,7 @@ NEEDED_BY_TESTS = {
     "tmux": ("tests/test_exercises_watch.py", '"tmux"'),
     "chromium": ("tests/test_view.py", '"/usr/bin/chromium"'),
     "liburdfdom-tools": ("tests/test_check_urdf.py", "check_urdf"),
-    "util-linux": ("tests/realros.py", '"unshare", "-rn"'),
+    "util-linux": ("tests/realros.py", '"unshare", "-rnm"'),
     "iproute2": ("tests/realros.py", "ip link set lo up"),
 }
 
