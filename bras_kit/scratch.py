@@ -5,8 +5,9 @@ the containment's trial, a node's run.
 They go where :mod:`tempfile` puts them, except that when the user set no ``TMPDIR`` (nor
 ``TEMP``, ``TMP``) a folder in memory is preferred: ``$XDG_RUNTIME_DIR`` (the user's own, made by
 the login manager), else ``/dev/shm``. Building and evaluating the tutorial's package makes and
-removes about 150 folders and files; on a disk each costs a journal write (0.2 ms each on CI's
-virtual disk: 30 ms of ``validate PKG_DIR``'s 0.25 s), in memory a few microseconds. A candidate
+removes about 150 folders and files; on a disk each costs a journal write (0.2 ms each on the
+virtual disk of the machine this was measured on: about 25 ms of ``validate PKG_DIR``), in memory a
+few microseconds. A candidate
 is taken only if it is a folder this user can write, owned by this user or root, sticky when
 others can write it too (so that no one else can remove or rename what is made there), with at
 least :data:`MIN_FREE` bytes free (Docker gives containers a 64 MiB ``/dev/shm``).

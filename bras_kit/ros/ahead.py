@@ -1,10 +1,12 @@
 """A package's build and launch evaluation begun in a worker of bras-kit's own, before the caller
 imports what it needs meanwhile (``validate PKG_DIR``: its rules, numpy among them).
 
-The caller imports the evaluation (:mod:`bras_kit.ros.launched`) first: it reads the worker's answer
-with it, and the worker starts with it. The worker then imports what only it needs (libseccomp,
-the real xacro, the stand-in's installer) on the other core, while the caller imports its rules. Each learner file still runs in its own contained child, forked by the worker;
-the worker itself runs bras-kit's code only, and sends back data (:class:`~bras_kit.ros.launched.Launched`).
+The caller imports what both sides need first (the evaluation, :mod:`bras_kit.ros.launched`, with
+which it reads the worker's answer; PyYAML), so the worker starts with it. The worker then loads
+what only it needs (libseccomp, the launch children's installer) on the other core, while the
+caller imports its rules. Each learner file still runs in its own contained child, forked by the
+worker; the worker itself runs bras-kit's code only, and sends back data
+(:class:`~bras_kit.ros.launched.Launched`).
 """
 
 from __future__ import annotations
@@ -52,8 +54,7 @@ def evaluate_ahead(paths: Iterable[str]) -> Callable[[str], Any]:
 def _evaluate_all(roots: list[str]) -> dict[str, Any]:
     """In the worker: each package evaluated, in order, up to the first that raises (the caller
     meets that error again, in its place). The containment's trial runs in its throwaway child
-    while the worker imports the evaluation and what each launch file's child needs (its children
-    start with them)."""
+    while the worker imports what each launch file's child needs (its children start with it)."""
     from ..errors import BrasKitError
     from . import launched
     from .contain import available, begin_trial
