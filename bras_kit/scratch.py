@@ -7,10 +7,10 @@ They go where :mod:`tempfile` puts them, except that when the user set no ``TMPD
 the login manager), else ``/dev/shm``. Building and evaluating the tutorial's package makes and
 removes about 150 folders and files; on a disk each costs a journal write (0.2 ms each on the
 virtual disk of the machine this was measured on: about 25 ms of ``validate PKG_DIR``), in memory a
-few microseconds. A candidate
-is taken only if it is a folder this user can write, owned by this user or root, sticky when
-others can write it too (so that no one else can remove or rename what is made there), with at
-least :data:`MIN_FREE` bytes free (Docker gives containers a 64 MiB ``/dev/shm``).
+few microseconds. A candidate is taken only if it is a folder this user can write, owned by this
+user or root, sticky when others can write it too (so that no one else can remove or rename what
+is made there), with at least :data:`MIN_FREE` bytes free (Docker gives containers a 64 MiB
+``/dev/shm``).
 """
 
 from __future__ import annotations

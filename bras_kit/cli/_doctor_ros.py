@@ -79,7 +79,7 @@ def _read_look(path: str) -> dict[str, Any]:
 
 def _facts(snapshot: Any) -> list[Any]:
     """What was seen, before what is wrong with it: the domain, the nodes, who publishes what."""
-    from ..live.snapshot import DESCRIPTION, JOINT_STATES
+    from ..ros.topics import DESCRIPTION, JOINT_STATES
     from ..validate.live import LiveGraph, measured_rate
 
     facts = [M("ROS 2 graph on ROS_DOMAIN_ID {domain} ({rmw}, discovery {range}), watched {seconds:.1f} s",

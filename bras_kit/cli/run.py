@@ -187,7 +187,7 @@ def _run_live(args: argparse.Namespace, bus, parameters, robot, beside: list[str
         from ..i18n import current_language
         from ..validate.report import exit_code, format_text
 
-        results = _setup_results(blocked, args)
+        results = _file_results({}, blocked, args)
         built.append(exit_code(results) if results else 0)
         if results:  # before the node's own output, as a batch run lists them (at the end)
             sys.stdout.write(format_text(results, lang or current_language()))
@@ -237,27 +237,18 @@ def _results(recording, robot, args):  # type: ignore[no-untyped-def]
         by_file.setdefault(str(found.data.get("file") or recording.source), []).append(found)
     if not by_file:
         by_file[recording.source] = []
-    return _by_file(_setup_findings(recording.build_blocked, by_file), args)
+    return _file_results(by_file, recording.build_blocked, args)
 
 
-def _setup_results(blocked, args):  # type: ignore[no-untyped-def]
-    """What setup.py tried that its walls stopped (BK639), as per-file results (none: [])."""
-    return _by_file(_setup_findings(blocked, {}), args)
-
-
-def _setup_findings(blocked, by_file):  # type: ignore[no-untyped-def]
-    from ..validate.findings import finding
+def _file_results(by_file, blocked, args):  # type: ignore[no-untyped-def]
+    """``by_file`` (findings by file, under the target) with what setup.py tried that its walls
+    stopped (``blocked``: BK639), as per-file results in name order."""
+    from ..validate.findings import FileResult, finding
     from ..validate.package.build_reach import setup_blocked_hits
     from ..validate.registry import RULES
 
     for hit in setup_blocked_hits(blocked):
         by_file.setdefault(str(hit.params["file"]), []).append(finding(RULES["BK639"], hit))
-    return by_file
-
-
-def _by_file(by_file, args):  # type: ignore[no-untyped-def]
-    from ..validate.findings import FileResult
-
     base = args.target if os.path.isdir(args.target) else os.path.dirname(args.target)
     return [FileResult(os.path.join(base, file), findings) for file, findings in sorted(by_file.items())]
 

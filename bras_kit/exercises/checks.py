@@ -344,7 +344,7 @@ def _node_robot(session: Session, spec: Mapping[str, Any]) -> Any:
 
 
 def _messages(session: Session, spec: Mapping[str, Any]) -> tuple[Any, list[Any]]:
-    from ..ros.recording import JOINT_STATES
+    from ..ros.topics import JOINT_STATES
 
     recording = session.run(spec["file"], float(spec.get("duration", DEFAULT_DURATION)))
     messages = recording.joint_state_messages(JOINT_STATES)

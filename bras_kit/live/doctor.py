@@ -11,11 +11,12 @@ from __future__ import annotations
 
 from ..errors import BrasKitError
 from ..model import Robot
+from ..ros.topics import DESCRIPTION
 from ..validate import validate
 from ..validate.findings import FileResult, finding, sort_key
 from ..validate.live import LiveGraph, description_kind
 from ..validate.registry import select_rules
-from .snapshot import DESCRIPTION, Snapshot
+from .snapshot import Snapshot
 
 # the validator's rules that need files or a package beside the URDF, which a live graph lacks
 NOT_ON_LIVE_TEXT = ("BK6", "BK7", "BK8")

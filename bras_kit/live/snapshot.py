@@ -13,8 +13,6 @@ from collections.abc import Mapping, Sequence
 from dataclasses import dataclass, field
 from typing import Any
 
-from ..ros.topics import CLOCK, DESCRIPTION, JOINT_STATES  # noqa: F401 - their names, also read from here
-
 MAX_NAMES = 10_000
 
 

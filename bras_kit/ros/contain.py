@@ -266,7 +266,8 @@ _begun: tuple[int, int, str] | None = None  # the trial's child at work (begin_t
 def begin_trial() -> None:
     """Fork the throwaway child of :func:`available`'s trial now and go on: its answer is read when
     :func:`available` is first asked, so the trial can run on another core while this process
-    imports (``validate PKG_DIR`` does, before it forks its worker)."""
+    imports (the worker of ``validate PKG_DIR``, :mod:`bras_kit.ros.ahead`, imports the launch
+    children's installer meanwhile)."""
     global _begun
     if _begun is None and available.cache_info().currsize == 0 and sys.platform == "linux" \
             and platform.machine() in PIVOT_ROOT:

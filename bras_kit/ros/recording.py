@@ -16,7 +16,7 @@ if TYPE_CHECKING:  # numpy is imported where a recording becomes joint states: a
 
     from ..motion.core import JointStates
 
-from .topics import JOINT_STATE_TYPE, JOINT_STATES  # noqa: F401 - their names, also read from here
+from .topics import JOINT_STATE_TYPE, JOINT_STATES
 
 
 @dataclass(frozen=True)

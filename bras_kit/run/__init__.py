@@ -27,14 +27,8 @@ from ..errors import BrasKitError
 from ..message import M
 from ..ros.contain import containment, uncontained_note
 from ..ros.locate import Target, locate
-from ..ros.recording import (
-    JOINT_STATES,
-    NodeFailure,
-    Published,
-    Recording,
-    joint_states,
-    stamp_seconds,
-)
+from ..ros.recording import NodeFailure, Published, Recording, joint_states, stamp_seconds
+from ..ros.topics import JOINT_STATES
 from .findings import robot_of, run_findings
 
 __all__ = ["JOINT_STATES", "NodeFailure", "NodeRunError", "Published", "Recording", "Target",
@@ -95,7 +89,7 @@ def _live_forwarder(fd: int, keep: bool = True):  # type: ignore[no-untyped-def]
     import json
     import time
 
-    from ..ros.recording import JOINT_STATE_TYPE, JOINT_STATES, stamp_seconds
+    from ..ros.topics import JOINT_STATE_TYPE
 
     sleep, clock = time.sleep, time.perf_counter
     start = clock()

@@ -21,6 +21,7 @@ class XacroException(Exception):
 
 
 def _ours() -> dict[str, Any]:
+    """The modules named xacro or xacro.* in sys.modules now (the stand-in's, or the real ones)."""
     return {name: sys.modules[name] for name in list(sys.modules) if name == 'xacro' or name.startswith('xacro.')}
 
 
@@ -52,7 +53,7 @@ def _load_real() -> None:
 def _real_modules() -> Iterator[None]:
     if not _REAL:
         _load_real()
-    ours = {name: sys.modules[name] for name in list(sys.modules) if name == 'xacro' or name.startswith('xacro.')}
+    ours = _ours()
     sys.modules.update(_REAL)
     try:
         yield
