@@ -47,6 +47,18 @@ def _arm_pixels(page) -> int:
     return int(arm.sum())
 
 
+def _seen(page, tmp_path: Path, what: str) -> str:
+    """A failed wait explained: ``what``, the arm's pixel count, the panel's text, and the page's
+    screenshot saved in the test's folder (a failure in CI then says what the page showed)."""
+    shot = tmp_path / "page.png"
+    try:
+        page.screenshot(path=str(shot))
+        text = page.inner_text("body")
+    except Exception as exc:  # noqa: BLE001 - the browser itself in trouble is the explanation
+        return f"{what}; the page cannot be read: {exc}"
+    return f"{what}; {_arm_pixels(page)} arm pixels, screenshot {shot}; the page says:\n{text[:2000]}"
+
+
 class Launched:
     """bras-kit launch running on ``package``, its page open in the browser."""
 
@@ -119,7 +131,8 @@ def test_a_fixed_frame_that_is_no_frame_draws_no_arm_and_the_page_says_why(brows
         page.screenshot(path=str(tmp_path / "fixed_frame_monde.png"))
         page.locator("input[role='combobox'][value='monde']").click()
         page.get_by_role("option", name="base", exact=True).click()
-        assert _wait(lambda: _arm_pixels(page) > 500, 60), "choosing the base frame does not draw the arm"
+        assert _wait(lambda: _arm_pixels(page) > 500, 60), \
+            _seen(page, tmp_path, "choosing the base frame does not draw the arm")
         assert _wait(lambda: blank.count() == 0, 10)
     finally:
         out, err = launched.stop()
@@ -140,7 +153,8 @@ def test_without_joint_state_publisher_the_page_has_no_sliders(browser, tmp_path
         assert page.get_by_text("coude =", exact=True).count() == 0  # the joints' boxes under their sliders
         assert page.get_by_role("button", name="Random pose").count() == 0 or \
             not page.get_by_role("button", name="Random pose").is_visible()
-        assert _wait(lambda: _arm_pixels(page) > 500, 60), "the arm is drawn, its joints at 0"
+        assert _wait(lambda: _arm_pixels(page) > 500, 60), \
+            _seen(page, tmp_path, "the arm is not drawn (its joints at 0 without a joint_state_publisher)")
         codes = launched.page_codes()
     finally:
         out, err = launched.stop()
@@ -157,14 +171,14 @@ def test_a_rebuild_shows_what_the_install_tree_now_holds(browser, tmp_path):
     launched = Launched(browser, tmp_path, package, [], "en")
     try:
         page = launched.page
-        assert _wait(lambda: _arm_pixels(page) > 500, 60), "the arm is not drawn"
+        assert _wait(lambda: _arm_pixels(page) > 500, 60), _seen(page, tmp_path, "the arm is not drawn")
         setup = package / "setup.py"
         before = _without_lines(setup, "'urdf'")
         assert _wait(lambda: "ros2 launch stopped" in page.inner_text("body"), 180), page.inner_text("body")
-        assert _wait(lambda: _arm_pixels(page) == 0, 30), "the old arm stays on the page"
+        assert _wait(lambda: _arm_pixels(page) == 0, 30), _seen(page, tmp_path, "the old arm stays on the page")
         assert _wait(lambda: "BK601" in launched.page_codes(), 120)
         setup.write_text(before, encoding="utf-8")
-        assert _wait(lambda: _arm_pixels(page) > 500, 180), "the arm is not drawn again"
+        assert _wait(lambda: _arm_pixels(page) > 500, 180), _seen(page, tmp_path, "the arm is not drawn again")
         assert "ros2 launch stopped" not in page.inner_text("body")
         codes = launched.page_codes()
     finally:
