@@ -22,7 +22,12 @@ fresh process (``--phases PKG_DIR`` alone prints that table). The command itself
 phases beside its own (bras_kit.ros.ahead.evaluate_ahead): on two cores its wall time is about
 the longer of the two sides, plus Python's start and what both import before the fork; the ratio
 to round 3 is printed as well, since the 0.5 s target was set on a machine where round 3 took
-0.44-0.52 s.
+0.44-0.52 s. On one core the two sides add up instead: ``taskset -c 0 python benchmarks/...``
+gives that figure.
+
+The untimed first run of each tree leaves what a learner's first command leaves: this boot's
+record of the containment's trial (bras_kit.ros.contain), read by every later command instead of
+forking a trial child; and each tree's bytecode.
 """
 
 from __future__ import annotations
@@ -75,26 +80,28 @@ def phases(package: str) -> None:
     from bras_kit.ros import launched
     at = mark("both, before the fork: the evaluation (bras_kit.ros.launched) and PyYAML", at)
     from bras_kit.ros.contain import available, begin_trial
-    from bras_kit.ros.launching import preload_planning
-    begin_trial()
-    preload_planning()
+    if begin_trial():  # no trial where this boot's record says one passed (bras_kit.ros.contain)
+        from bras_kit.ros.launching import preload_planning
+        preload_planning()
     available()
-    at = mark("worker: libseccomp, the containment's trial, the launch child's installer", at)
+    at = mark("worker: libseccomp, the containment's trial (none once recorded this boot)", at)
     evaluated = launched.evaluate_package(package)
-    at = mark("worker: build + launch file evaluated, two contained children", at)
+    at = mark("worker: build + launch file evaluated (setup.py's child, the launch file's beside it)", at)
     from bras_kit.validate import validate_path
     from bras_kit.validate.package import Package, validate_package
-    at = mark("command: import the rules (the rest of bras_kit.validate, numpy)", at)
+    at = mark("command: import the rules (the rest of bras_kit.validate; numpy is not imported)", at)
     validate_path(os.path.join(package, "urdf", "bras.urdf"))
     at = mark("command: the URDF rules on urdf/bras.urdf", at)
     read = Package(package)
     validate_package(package, package=read, launch=False)
-    at = mark("command: package rules read statically (BK600-BK627)", at)
+    at = mark("command: package rules read statically (BK600-BK627; BK623 follows its formulas)", at)
     read.ahead = lambda root: evaluated
     validate_package(package, package=read, launch=True)
     at = mark("command: the evaluation's rules (BK630-BK639), on the worker's answer", at)
+    if "numpy" in sys.modules:
+        print("  (numpy was imported: a rule or a module on this path needs it again)")
     for label, wall, cpu in clock[1:]:
-        print(f"  {label:74} {wall:7.3f}s wall {cpu:7.3f}s cpu")
+        print(f"  {label:88} {wall:7.3f}s wall {cpu:7.3f}s cpu")
 
 
 def main() -> int:

@@ -220,9 +220,10 @@ def check_containment() -> Check:
     import errno
     import tempfile
 
-    from .ros.contain import Containment, available
+    from .ros.contain import Containment, available, forget_trial
     from .sandbox import run_limited
 
+    forget_trial()  # tried for real, not read from this boot's record of an earlier trial
     status = available()
     if not status.ok:
         return Check(M("containment"), NOTE, M("none: {found}", found=status.found),

@@ -19,8 +19,12 @@ import math
 import re
 from collections.abc import Callable
 from dataclasses import dataclass
+from typing import TYPE_CHECKING, Any
 
-import numpy as np
+if TYPE_CHECKING:
+    import numpy as np
+else:
+    from .lazy_numpy import np
 
 from .errors import ParameterError, TimeInJointValueError, UnsafeExpressionError
 from .message import M, Mc, Message, Mn
@@ -32,77 +36,168 @@ MAX_EXPONENT = 100.0  # largest constant exponent of **
 CONSTANTS = {"pi": math.pi, "e": math.e, "tau": math.tau}
 VARIABLE = "t"
 
-# Value and derivative arrays (or plain floats for parts that do not depend on t).
+# Value and derivative arrays (or plain floats for parts that do not depend on t). Every node takes
+# the times and the arithmetic it runs on: numpy for arrays (Expression.evaluate), _Floats for one
+# time as a Python float (Expression.at); the same tree either way.
 _Pair = tuple  # (value, derivative)
-_Node = Callable[[np.ndarray], _Pair]
+_Node = Callable[..., _Pair]
 
 
-def _unary(value: Callable, slope: Callable) -> Callable[[_Pair], _Pair]:
-    """A one-argument function and its derivative rule d f(u) = slope(u, f(u)) * du."""
+def _guarded(function: Callable[[float], float], error: Callable[[float], float]) -> Any:
+    """``function`` of one float, with ``error(u)`` where Python's math raises (domain, overflow)."""
 
-    def apply(arg: _Pair) -> _Pair:
+    def apply(u: float) -> float:
+        try:
+            return function(u)
+        except (ValueError, OverflowError):
+            return error(u)
+
+    return staticmethod(apply)
+
+
+def _signed_zero(out: float, u: float) -> float:
+    """floor and ceil keep the sign of a zero result, as C's (and numpy's) do: ceil(-0.5) is -0.0."""
+    return math.copysign(out, u) if out == 0 else out
+
+
+def _pole(a: float, b: float) -> float:
+    """0 (or -0) to the negative power ``b``: C's pow gives an infinity signed by odd powers of -0."""
+    odd = b == math.floor(b) and math.fmod(b, 2.0) != 0
+    return math.copysign(math.inf, a) if odd else math.inf
+
+
+class _Floats:
+    """numpy's functions of one float64, as :meth:`Expression.at` runs them: the same IEEE values
+    where numpy (under ``errstate(all="ignore")``) gives inf or nan and Python's math raises.
+    Checked against numpy on the whole whitelist and its edge cases (tests/test_expr_floats.py)."""
+
+    sin = _guarded(math.sin, lambda u: math.nan)  # sin(inf)
+    cos = _guarded(math.cos, lambda u: math.nan)
+    tan = _guarded(math.tan, lambda u: math.nan)
+    arcsin = _guarded(math.asin, lambda u: math.nan)  # |u| > 1
+    arccos = _guarded(math.acos, lambda u: math.nan)
+    arctan = staticmethod(math.atan)
+    arctan2 = staticmethod(math.atan2)
+    sqrt = _guarded(math.sqrt, lambda u: math.nan)  # u < 0
+    exp = _guarded(math.exp, lambda u: math.inf)  # an overflow
+    log = _guarded(math.log, lambda u: -math.inf if u == 0 else math.nan)
+    abs = staticmethod(abs)
+
+    @staticmethod
+    def sign(u: float) -> float:
+        return 0.0 if u == 0 else u if u != u else math.copysign(1.0, u)  # sign(-0.0) is 0.0, sign(nan) nan
+
+    @staticmethod
+    def floor(u: float) -> float:
+        return u if not math.isfinite(u) else _signed_zero(float(math.floor(u)), u)
+
+    @staticmethod
+    def ceil(u: float) -> float:
+        return u if not math.isfinite(u) else _signed_zero(float(math.ceil(u)), u)
+
+    @staticmethod
+    def where(pick: bool, a: float, b: float) -> float:
+        return a if pick else b
+
+    @staticmethod
+    def divide(a: float, b: float) -> float:
+        try:
+            return a / b
+        except ZeroDivisionError:  # numpy: 0/0 is nan, x/0 an infinity signed by both signs
+            return math.nan if a == 0 or a != a else math.copysign(math.inf, a) * math.copysign(1.0, b)
+
+    @staticmethod
+    def multiply(a: float, b: float) -> float:
+        return a * b
+
+    @staticmethod
+    def mod(a: float, b: float) -> float:
+        try:
+            return a % b  # numpy's remainder is Python's: the sign of the divisor
+        except ZeroDivisionError:
+            return math.nan
+
+    @staticmethod
+    def power(a: float, b: float) -> float:
+        if b == 0.5:  # numpy takes a square root for a constant exponent 0.5: (-0.0)**0.5 is -0.0, (-inf)**0.5 nan
+            return a if a == 0 else math.nan if a < 0 else math.sqrt(a)
+        try:
+            return math.pow(a, b)
+        except OverflowError:
+            return -math.inf if a < 0 and b == math.floor(b) and math.fmod(b, 2.0) != 0 else math.inf
+        except ValueError:  # a pole (0 to a negative power) or a negative base to a fraction
+            return _pole(a, b) if a == 0 else math.nan
+
+
+_FLOATS = _Floats()
+
+
+def _unary(value: Callable[[Any], Callable], slope: Callable) -> Callable[..., _Pair]:
+    """A one-argument function and its derivative rule d f(u) = slope(ops, u, f(u)) * du."""
+
+    def apply(ops: Any, arg: _Pair) -> _Pair:
         u, du = arg
-        out = value(u)
+        out = value(ops)(u)
         if isinstance(du, float) and du == 0.0:  # constant argument: avoid 0 * inf
             return out, 0.0
-        return out, slope(u, out) * du
+        return out, slope(ops, u, out) * du
 
     return apply
 
 
-def _minimum(*args: _Pair) -> _Pair:
+def _minimum(ops: Any, *args: _Pair) -> _Pair:
     value, slope = args[0]
     for u, du in args[1:]:
         pick = u < value
-        value, slope = np.where(pick, u, value), np.where(pick, du, slope)
+        value, slope = ops.where(pick, u, value), ops.where(pick, du, slope)
     return value, slope
 
 
-def _maximum(*args: _Pair) -> _Pair:
+def _maximum(ops: Any, *args: _Pair) -> _Pair:
     value, slope = args[0]
     for u, du in args[1:]:
         pick = u > value
-        value, slope = np.where(pick, u, value), np.where(pick, du, slope)
+        value, slope = ops.where(pick, u, value), ops.where(pick, du, slope)
     return value, slope
 
 
-def _clip(x: _Pair, low: _Pair, high: _Pair) -> _Pair:
-    return _minimum(_maximum(x, low), high)
+def _clip(ops: Any, x: _Pair, low: _Pair, high: _Pair) -> _Pair:
+    return _minimum(ops, _maximum(ops, x, low), high)
 
 
-def _atan2(y: _Pair, x: _Pair) -> _Pair:
+def _atan2(ops: Any, y: _Pair, x: _Pair) -> _Pair:
     (u, du), (v, dv) = y, x
-    return np.arctan2(u, v), (v * du - u * dv) / (u * u + v * v)
+    return ops.arctan2(u, v), ops.divide(v * du - u * dv, u * u + v * v)
 
 
-def _deg(arg: _Pair) -> _Pair:
+def _deg(ops: Any, arg: _Pair) -> _Pair:
     u, du = arg
     return u * (math.pi / 180.0), du * (math.pi / 180.0)
 
 
-def _step(function: Callable) -> Callable[[_Pair], _Pair]:
+def _step(function: Callable[[Any], Callable]) -> Callable[..., _Pair]:
     """floor and ceil: flat between the jumps."""
-    return lambda arg: (function(arg[0]), 0.0)
+    return lambda ops, arg: (function(ops)(arg[0]), 0.0)
 
 
 # name -> (smallest and largest number of arguments, rule on (value, derivative) pairs)
 FUNCTIONS: dict[str, tuple[int, int, Callable[..., _Pair]]] = {
-    "sin": (1, 1, _unary(np.sin, lambda u, f: np.cos(u))),
-    "cos": (1, 1, _unary(np.cos, lambda u, f: -np.sin(u))),
-    "tan": (1, 1, _unary(np.tan, lambda u, f: 1.0 + f * f)),
-    "asin": (1, 1, _unary(np.arcsin, lambda u, f: 1.0 / np.sqrt(1.0 - u * u))),
-    "acos": (1, 1, _unary(np.arccos, lambda u, f: -1.0 / np.sqrt(1.0 - u * u))),
-    "atan": (1, 1, _unary(np.arctan, lambda u, f: 1.0 / (1.0 + u * u))),
+    "sin": (1, 1, _unary(lambda o: o.sin, lambda o, u, f: o.cos(u))),
+    "cos": (1, 1, _unary(lambda o: o.cos, lambda o, u, f: -o.sin(u))),
+    "tan": (1, 1, _unary(lambda o: o.tan, lambda o, u, f: 1.0 + f * f)),
+    "asin": (1, 1, _unary(lambda o: o.arcsin, lambda o, u, f: o.divide(1.0, o.sqrt(1.0 - u * u)))),
+    "acos": (1, 1, _unary(lambda o: o.arccos, lambda o, u, f: o.divide(-1.0, o.sqrt(1.0 - u * u)))),
+    "atan": (1, 1, _unary(lambda o: o.arctan, lambda o, u, f: o.divide(1.0, 1.0 + u * u))),
     "atan2": (2, 2, _atan2),
-    "sqrt": (1, 1, _unary(np.sqrt, lambda u, f: 0.5 / f)),
-    "exp": (1, 1, _unary(np.exp, lambda u, f: f)),
-    "log": (1, 1, _unary(np.log, lambda u, f: 1.0 / u)),
-    "abs": (1, 1, _unary(np.abs, lambda u, f: np.sign(u))),
+    "sqrt": (1, 1, _unary(lambda o: o.sqrt, lambda o, u, f: o.divide(0.5, f))),
+    "exp": (1, 1, _unary(lambda o: o.exp, lambda o, u, f: f)),
+    "log": (1, 1, _unary(lambda o: o.log, lambda o, u, f: o.divide(1.0, u))),
+    "abs": (1, 1, _unary(lambda o: o.abs, lambda o, u, f: o.sign(u))),
     "min": (2, 16, _minimum),
     "max": (2, 16, _maximum),
     "clip": (3, 3, _clip),
-    "floor": (1, 1, _step(np.floor)),
-    "ceil": (1, 1, _step(np.ceil)),
+    "floor": (1, 1, _step(lambda o: o.floor)),
+    "ceil": (1, 1, _step(lambda o: o.ceil)),
     "deg": (1, 1, _deg),
 }
 
@@ -145,7 +240,7 @@ class Expression:
         """Values and exact time derivatives at the times ``t`` (same shape as ``t``)."""
         times = np.asarray(t, dtype=float)
         with np.errstate(all="ignore"):
-            value, slope = self._node(times)
+            value, slope = self._node(times, np)
             value = np.broadcast_to(np.asarray(value, dtype=float), times.shape).copy()
             slope = np.broadcast_to(np.asarray(slope, dtype=float), times.shape).copy()
         return value, slope
@@ -155,6 +250,13 @@ class Expression:
 
     def derivative(self, t: np.ndarray | float) -> np.ndarray:
         return self.evaluate(t)[1]
+
+    def at(self, t: float) -> float:
+        """The value at one time, a Python float, without numpy: what :meth:`evaluate` gives there
+        (numpy's IEEE results, see :class:`_Floats`; a transcendental function may differ from
+        numpy's in the last bit). The derivative is not given: where it is 0 * inf, numpy's depends
+        on whether it got an array or one time (``sqrt(abs(sin(t)))`` at 0)."""
+        return float(self._node(float(t), _FLOATS)[0])
 
 
 def compile_expression(text: str, *, prefix: str = "") -> Expression:
@@ -309,14 +411,14 @@ class _Compiler:
             number = math.inf
         if not math.isfinite(number):
             raise self.fail(node, M("the number is too large"), kind=ParameterError)
-        return (lambda t: (number, 0.0)), False
+        return (lambda t, ops: (number, 0.0)), False
 
     def name(self, node: ast.Name) -> tuple[_Node, bool]:
         if node.id == VARIABLE:
-            return (lambda t: (t, 1.0)), True
+            return (lambda t, ops: (t, 1.0)), True
         if node.id in CONSTANTS:
             number = CONSTANTS[node.id]
-            return (lambda t: (number, 0.0)), False
+            return (lambda t, ops: (number, 0.0)), False
         if node.id in FUNCTIONS:
             raise self.fail(node, M("'{name}' is a function: call it, e.g. {name}(t)", name=node.id), kind=ParameterError)
         raise self.unknown(node, node.id)
@@ -331,8 +433,8 @@ class _Compiler:
     def unary(self, node: ast.UnaryOp, depth: int) -> tuple[_Node, bool]:
         operand, uses_t = self.compile(node.operand, depth + 1)
         if isinstance(node.op, ast.USub):
-            def negate(t: np.ndarray) -> _Pair:
-                u, du = operand(t)
+            def negate(t: np.ndarray | float, ops: Any) -> _Pair:
+                u, du = operand(t, ops)
                 return -u, -du
             return negate, uses_t
         if isinstance(node.op, ast.UAdd):
@@ -355,8 +457,8 @@ class _Compiler:
             self.check_exponent(node.right, right)
             rule = _power_constant
 
-        def apply(t: np.ndarray) -> _Pair:
-            return rule(left(t), right(t))
+        def apply(t: np.ndarray | float, ops: Any) -> _Pair:
+            return rule(ops, left(t, ops), right(t, ops))
 
         return apply, left_t or right_t
 
@@ -368,8 +470,7 @@ class _Compiler:
 
     def check_exponent(self, exponent: ast.AST, compiled: _Node) -> None:
         """A constant exponent must stay within MAX_EXPONENT (numpy would only give inf)."""
-        with np.errstate(all="ignore"):
-            value = float(np.asarray(compiled(np.zeros(1))[0]).ravel()[0])
+        value = float(compiled(0.0, _FLOATS)[0])
         if not abs(value) <= MAX_EXPONENT:
             raise self.fail(exponent, M("the exponent {value:g} is too large (at most {most:g})", value=value, most=MAX_EXPONENT))
 
@@ -398,43 +499,43 @@ class _Compiler:
         compiled = [self.compile(arg, depth + 1) for arg in node.args]
         parts = [c[0] for c in compiled]
 
-        def apply(t: np.ndarray) -> _Pair:
-            return rule(*(part(t) for part in parts))
+        def apply(t: np.ndarray | float, ops: Any) -> _Pair:
+            return rule(ops, *(part(t, ops) for part in parts))
 
         return apply, any(c[1] for c in compiled)
 
 
-def _add(a: _Pair, b: _Pair) -> _Pair:
+def _add(ops: Any, a: _Pair, b: _Pair) -> _Pair:
     return a[0] + b[0], a[1] + b[1]
 
 
-def _sub(a: _Pair, b: _Pair) -> _Pair:
+def _sub(ops: Any, a: _Pair, b: _Pair) -> _Pair:
     return a[0] - b[0], a[1] - b[1]
 
 
-def _mul(a: _Pair, b: _Pair) -> _Pair:
+def _mul(ops: Any, a: _Pair, b: _Pair) -> _Pair:
     return a[0] * b[0], a[1] * b[0] + a[0] * b[1]
 
 
-def _div(a: _Pair, b: _Pair) -> _Pair:
-    # np.divide, not '/': constants are Python floats, and 1/0 must give inf, not an exception
-    return np.divide(a[0], b[0]), np.divide(a[1] * b[0] - a[0] * b[1], np.multiply(b[0], b[0]))
+def _div(ops: Any, a: _Pair, b: _Pair) -> _Pair:
+    # ops.divide, not '/': constants are Python floats, and 1/0 must give inf, not an exception
+    return ops.divide(a[0], b[0]), ops.divide(a[1] * b[0] - a[0] * b[1], ops.multiply(b[0], b[0]))
 
 
-def _mod(a: _Pair, b: _Pair) -> _Pair:
-    return np.mod(a[0], b[0]), a[1] - b[1] * np.floor(np.divide(a[0], b[0]))
+def _mod(ops: Any, a: _Pair, b: _Pair) -> _Pair:
+    return ops.mod(a[0], b[0]), a[1] - b[1] * ops.floor(ops.divide(a[0], b[0]))
 
 
-def _power(a: _Pair, b: _Pair) -> _Pair:
-    value = np.power(a[0], b[0])
-    return value, value * (b[1] * np.log(a[0]) + b[0] * a[1] / a[0])
+def _power(ops: Any, a: _Pair, b: _Pair) -> _Pair:
+    value = ops.power(a[0], b[0])
+    return value, value * (b[1] * ops.log(a[0]) + ops.divide(b[0] * a[1], a[0]))
 
 
-def _power_constant(a: _Pair, b: _Pair) -> _Pair:
+def _power_constant(ops: Any, a: _Pair, b: _Pair) -> _Pair:
     exponent = b[0]
     if exponent == 0:
-        return np.power(a[0], 0.0), 0.0
-    return np.power(a[0], exponent), exponent * np.power(a[0], exponent - 1.0) * a[1]
+        return ops.power(a[0], 0.0), 0.0
+    return ops.power(a[0], exponent), exponent * ops.power(a[0], exponent - 1.0) * a[1]
 
 
 _BINARY = {ast.Add: _add, ast.Sub: _sub, ast.Mult: _mul, ast.Div: _div, ast.Mod: _mod, ast.Pow: _power}

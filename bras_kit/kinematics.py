@@ -10,8 +10,12 @@ from __future__ import annotations
 import math
 from collections.abc import Mapping, Sequence
 from dataclasses import dataclass
+from typing import TYPE_CHECKING
 
-import numpy as np
+if TYPE_CHECKING:
+    import numpy as np
+else:
+    from .lazy_numpy import np
 
 from .errors import ModelError, ParameterError, UnknownJointError
 from .message import M, Message
@@ -209,11 +213,16 @@ def _unit(axis: Sequence[float]) -> np.ndarray:
     return vector / norm
 
 
-def tf_tree(robot: Robot) -> TFTree:
-    """Compile the robot's links and joints into a :class:`TFTree`.
+def tree_structure(robot: Robot) -> tuple[list[str], list[Joint | None], list[int], dict[str, int],
+                                          list[tuple[int, float, float]]]:
+    """The links in topological order, the joint into each (None for the root), each one's parent
+    index, the index of each link's name, and what drives each link's joint (:func:`_driver`,
+    the root's (-1, 0, 0)): all of :func:`tf_tree` but its numbers, without numpy (``validate``
+    on a package asks only whether a formula's joint can move, BK623).
 
     Raises :class:`ModelError` (naming the elements and lines) when the links do not form
-    one tree: no links, unknown parent or child, a link with two parents, a cycle, several roots.
+    one tree: no links, unknown parent or child, a link with two parents, a cycle, several roots,
+    or a mimic joint following an unknown joint or a loop of them.
     """
     where = robot.path
     names = robot.link_names
@@ -265,10 +274,27 @@ def tf_tree(robot: Robot) -> TFTree:
         loop = sorted(set(names) - set(order))
         raise ModelError(M("links in a loop, not reachable from the root: {names}", names=", ".join(loop)),
                          path=where, hint=M("break the loop: one of these joints points back up the tree"))
-    movable = [j.name for j in robot.joints if j.movable and j.name]
+    dof_index = {name: k for k, name in enumerate(movable_names(robot))}
+    drivers = [(-1, 0.0, 0.0) if joint is None else _driver(robot, joint, dof_index) for joint in into]
+    return order, into, parents, index, drivers
+
+
+def movable_names(robot: Robot) -> list[str]:
+    """The joints a configuration sets (a :class:`TFTree`'s ``dof``), in the URDF's order."""
+    return [j.name for j in robot.joints if j.movable and j.name]
+
+
+def tf_tree(robot: Robot) -> TFTree:
+    """Compile the robot's links and joints into a :class:`TFTree`.
+
+    Raises :class:`ModelError` (naming the elements and lines) when the links do not form
+    one tree (:func:`tree_structure`).
+    """
+    order, into, parents, index, drivers = tree_structure(robot)
+    movable = movable_names(robot)
     dof_index = {name: k for k, name in enumerate(movable)}
     kinds, origins, axes, sources, gains, offsets = [], [], [], [], [], []
-    for incoming in into:
+    for incoming, (source, gain, offset) in zip(into, drivers):
         if incoming is None:
             kinds.append(_FIXED)
             origins.append(np.eye(4))
@@ -281,7 +307,6 @@ def tf_tree(robot: Robot) -> TFTree:
         axes.append(_unit(incoming.axis_or_default))
         kind = {"revolute": _REVOLUTE, "continuous": _REVOLUTE, "prismatic": _PRISMATIC,
                 "fixed": _FIXED}.get(incoming.type or "", _UNSUPPORTED)
-        source, gain, offset = _driver(robot, incoming, dof_index)
         if kind in (_REVOLUTE, _PRISMATIC) and source < 0:
             kind = _FIXED
         kinds.append(kind)

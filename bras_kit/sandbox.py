@@ -172,6 +172,12 @@ def run_limited(function: Callable[..., T], *args: Any, cpu_seconds: int = DEFAU
     return _fork_here(function, args, kwargs, cpu_seconds, memory_bytes, wall_seconds, what, contain, stop)
 
 
+def children_from_the_server() -> bool:
+    """Whether :func:`run_limited`'s children come from this process's fork server
+    (:func:`children_from_a_server`): a child forked otherwise, beside its threads, may hang."""
+    return _server is not None and os.getpid() == _server.owner
+
+
 def start_limited(function: Callable[..., T], *args: Any, cpu_seconds: int = DEFAULT_CPU_SECONDS,
                   memory_bytes: int = DEFAULT_MEMORY_BYTES, wall_seconds: float = DEFAULT_WALL_SECONDS,
                   what: Message | str | None = None, contain: Any = None) -> Pending[T]:

@@ -178,7 +178,11 @@ def test_the_tutorial_node_runs_the_same_contained(tmp_path):
     assert len(contained.messages) == 40  # 20 Hz for 2 s, the tutorial's timer
 
 
-def test_the_probe_names_the_step_the_kernel_refused(monkeypatch):
+def test_the_probe_names_the_step_the_kernel_refused(monkeypatch, tmp_path):
+    runtime = tmp_path / "runtime"
+    runtime.mkdir(mode=0o700)
+    monkeypatch.setenv("XDG_RUNTIME_DIR", str(runtime))  # no record of an earlier trial: this one runs
+
     def refused(flags: int) -> None:
         error = contain_module.ContainmentError(contain_module.M("test"))
         error.errno, error.step = errno.EPERM, "unshare"

@@ -93,8 +93,9 @@ def test_without_tmpdir_the_runtime_folder_is_taken_then_dev_shm(tmp_path, monke
 def test_validate_pkg_dir_makes_its_folders_in_the_scratch_folder_and_leaves_none(tmp_path):
     """The build and launch evaluation of `validate PKG_DIR` (its worker, the containment's
     trial, setup.py's and the launch file's children) makes its folders in the scratch folder
-    (here a runtime folder of the test's) and removes them. Oracle: every folder tempfile made,
-    noted by the process that made it, and the runtime folder's listing afterwards."""
+    (here a runtime folder of the test's) and removes them; the trial's record stays. Oracle:
+    every folder tempfile made, noted by the process that made it, and the runtime folder's
+    listing afterwards."""
     from bras_kit.scaffold import scaffold_package
 
     package = tmp_path / "bras_description"
@@ -114,7 +115,10 @@ def test_validate_pkg_dir_makes_its_folders_in_the_scratch_folder_and_leaves_non
     assert {os.path.basename(p).rsplit("-", 1)[0] for p in made} == \
         {"bras-kit-contain", "bras-kit-build", "bras-kit-setup", "bras-kit-launch"}
     assert {os.path.dirname(p) for p in made} == {where}
-    assert not [p for p in made if os.path.exists(p)] and os.listdir(runtime) == []
+    assert not [p for p in made if os.path.exists(p)]
+    # what stays is this boot's record of the containment's trial, in a folder of its own (contain.py)
+    assert os.listdir(runtime) == ["bras-kit"]
+    assert os.listdir(os.path.join(runtime, "bras-kit")) == ["containment-trial-passed"]
 
 
 NOTE_FOLDERS = """

@@ -7,11 +7,16 @@ samples, both ends included. Velocities are exact derivatives, not finite differ
 from __future__ import annotations
 
 import math
-from collections.abc import Callable
+from collections.abc import Callable, Sequence
 from dataclasses import dataclass, field
-from typing import Any
+from typing import TYPE_CHECKING, Any
 
-import numpy as np
+if TYPE_CHECKING:
+    import numpy as np
+
+    from ..model import Robot
+else:
+    from ..lazy_numpy import np
 
 from ..errors import ParameterError, UnknownJointError
 from ..kinematics import TFTree, movable_joints_hint
@@ -21,7 +26,7 @@ DEFAULT_RATE = 20.0  # Hz, like the tutorial's animation node (a 0.05 s timer)
 DEFAULT_DURATION = 10.0  # seconds, for motions without a natural end
 MAX_VALUES = 20_000_000  # samples x joints kept in memory
 
-Evaluate = Callable[[np.ndarray], "tuple[np.ndarray, np.ndarray]"]
+Evaluate = Callable[["np.ndarray"], "tuple[np.ndarray, np.ndarray]"]
 
 
 @dataclass
@@ -114,9 +119,15 @@ class Motion:
 
 def check_joint(tree: TFTree, name: str, path: str | None = None, line: int | None = None) -> None:
     """Raise unless ``name`` is a joint a motion can drive (movable, not a mimic)."""
-    if name in tree.dof:
+    check_joint_of(tree.robot, tree.dof, name, path, line)
+
+
+def check_joint_of(robot: Robot, dof: Sequence[str], name: str, path: str | None = None,
+                   line: int | None = None) -> None:
+    """:func:`check_joint` given the robot and its driven joints (a :class:`TFTree`'s ``dof``)."""
+    if name in dof:
         return
-    joint = tree.robot.joint(name)
+    joint = robot.joint(name)
     if joint is None:
         why = M("unknown joint '{name}'", name=name)
     elif joint.mimic is not None:
@@ -124,7 +135,7 @@ def check_joint(tree: TFTree, name: str, path: str | None = None, line: int | No
                 leader=joint.mimic.joint)
     else:
         why = M("joint '{name}' is {type} and cannot move", name=name, type=joint.type)
-    raise UnknownJointError(why, name, path=path, line=line, hint=movable_joints_hint(tree.dof))
+    raise UnknownJointError(why, name, path=path, line=line, hint=movable_joints_hint(dof))
 
 
 def sample_count(duration: float, rate: float) -> int:

@@ -10,8 +10,12 @@ import math
 import os
 from collections.abc import Mapping, Sequence
 from dataclasses import dataclass, field
+from typing import TYPE_CHECKING
 
-import numpy as np
+if TYPE_CHECKING:
+    import numpy as np
+else:
+    from ..lazy_numpy import np
 
 from ..errors import ParameterError
 from ..expr import compile_expression
@@ -21,7 +25,8 @@ from ..model import Joint, Robot
 from .core import JointStates, Motion, Track, check_joint
 from .interpolation import interpolator
 from .limits import joint_unit, speed_limit
-from .waypoints import WAYPOINT_SUFFIXES, read_waypoints
+from .specs import spec_kind, split_formula
+from .waypoints import read_waypoints
 
 
 @dataclass
@@ -120,19 +125,10 @@ def _tutorial_layer(tree: TFTree) -> _Layer:
     return _Layer(tracks, None, "tutorial")
 
 
-def _split_formula(spec: str) -> tuple[str, str, str]:
-    """``"epaule = 0.8*sin(t)"`` -> (joint, formula, the text before the formula)."""
-    name, sep, formula = spec.partition("=")
-    if not sep or not name.strip():
-        raise ParameterError(M("'{spec}' is not JOINT=FORMULA", spec=spec),
-                             hint=M("write e.g. epaule=0.8*sin(t) (the time is t, in seconds)"))
-    return name.strip(), formula, spec[: len(name) + 1]
-
-
 def _formula_layer(tree: TFTree, specs: Sequence[str]) -> _Layer:
     tracks: dict[str, Track] = {}
     for spec in specs:
-        name, formula, prefix = _split_formula(spec)
+        name, formula, prefix = split_formula(spec)
         check_joint(tree, name)
         if name in tracks:
             raise ParameterError(M("two formulas for joint '{name}'", name=name), hint=M("give each joint one formula"))
@@ -229,23 +225,6 @@ def _recorded_layer(tree: TFTree, states: JointStates, label: str) -> _Layer:
         values = np.asarray(states.positions, dtype=float)[first, k]
         tracks[joint] = Track(joint, interpolator(times, values, "linear"), label)
     return _Layer(tracks, float(times[-1]) if len(times) else 0.0, label)
-
-
-def spec_kind(spec: str) -> str:
-    """"tutorial", "file" (a waypoint file), "bag" (a ROS 2 bag) or "formula"; else a ParameterError."""
-    text = spec.strip()
-    if text.lower() == "tutorial":
-        return "tutorial"
-    if text.lower().rstrip("/").endswith((".mcap", ".db3", "metadata.yaml")) or (
-            "=" not in text and os.path.isfile(os.path.join(text, "metadata.yaml"))):
-        return "bag"
-    if text.lower().endswith(WAYPOINT_SUFFIXES):
-        return "file"
-    if "=" in text:
-        return "formula"
-    raise ParameterError(M("'{spec}' is not a motion", spec=spec),
-                         hint=M("give 'tutorial', JOINT=FORMULA (e.g. epaule=0.8*sin(t)), "
-                                "a waypoint file (.csv, .json, .yaml) or a ROS 2 bag (folder, .mcap, .db3)"))
 
 
 def motion_from_specs(robot: Robot, specs: Sequence[str], set_values: Mapping[str, float] | None = None,

@@ -5,8 +5,12 @@ from __future__ import annotations
 import math
 import os
 from dataclasses import dataclass
+from typing import TYPE_CHECKING
 
-import numpy as np
+if TYPE_CHECKING:
+    import numpy as np
+else:
+    from ..lazy_numpy import np
 
 from ..errors import ParameterError, os_reason
 from ..kinematics import TFTree, movable_joints_hint, tf_tree
@@ -15,8 +19,7 @@ from ..model import Robot
 from .core import Motion, Waypoints, check_joint
 from .interpolation import INTERPOLATIONS, segment_peaks
 from .limits import TOLERANCE, joint_unit, speed_limit
-
-WAYPOINT_SUFFIXES = (".csv", ".json", ".yaml", ".yml")
+from .specs import WAYPOINT_SUFFIXES
 
 
 def read_waypoints(path: str, tree: TFTree | Robot, interpolation: str | None = None) -> Waypoints:

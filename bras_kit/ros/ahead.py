@@ -53,15 +53,16 @@ def evaluate_ahead(paths: Iterable[str]) -> Callable[[str], Any]:
 
 def _evaluate_all(roots: list[str]) -> dict[str, Any]:
     """In the worker: each package evaluated, in order, up to the first that raises (the caller
-    meets that error again, in its place). The containment's trial runs in its throwaway child
-    while the worker imports what each launch file's child needs (its children start with it)."""
+    meets that error again, in its place). What each launch file's child needs is imported while
+    another child runs: the containment's trial, or, where this boot's record of a passed trial
+    spares it, setup.py's (:func:`.launched.launch_package`)."""
     from ..errors import BrasKitError
     from . import launched
     from .contain import available, begin_trial
     from .launching import preload_planning
 
-    begin_trial()
-    preload_planning()
+    if begin_trial():
+        preload_planning()
     available()
     out: dict[str, Any] = {}
     for root in roots:

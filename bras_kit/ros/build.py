@@ -21,6 +21,7 @@ from __future__ import annotations
 
 import os
 import sys
+from collections.abc import Callable
 from dataclasses import dataclass, field
 from typing import Any, cast
 
@@ -102,10 +103,12 @@ def _shown_name(name: str, root: str) -> str:
     return name if name and name_problem(name) is None else os.path.basename(root)
 
 
-def build_package(root: str, install_base: str) -> BuildRecord:
+def build_package(root: str, install_base: str, *, meanwhile: Callable[[], object] | None = None) -> BuildRecord:
     """Build the package at ``root`` into ``install_base/PKG`` (replacing what was there).
     Learner mistakes come back as ``record.failure``; only the sandbox's own limits raise.
-    Nothing ``setup.py`` returns is acted on before :func:`.setup_check.check_setup` passed it."""
+    Nothing ``setup.py`` returns is acted on before :func:`.setup_check.check_setup` passed it.
+    ``meanwhile`` is called while setup.py's child runs (the launch evaluation imports what its
+    own child needs then: :func:`.launching.preload_planning`)."""
     root = os.path.abspath(root)
     install_base = os.path.abspath(install_base)
     name, build_type = _manifest(root)
@@ -120,7 +123,7 @@ def build_package(root: str, install_base: str) -> BuildRecord:
     if not os.path.isfile(os.path.join(root, "setup.py")):
         record.failure = BuildFailure("no_setup", (), "setup.py")
         return record
-    called = _run_setup(root)
+    called = _run_setup(root, meanwhile)
     record.blocked = [a for a in called.get("blocked", []) if isinstance(a, Attempt)]
     if "error" in called:
         error = called["error"]
@@ -252,17 +255,26 @@ def _lay_out(record: BuildRecord, checked: CheckedSetup) -> BuildFailure | None:
 # ---------------------------------------------------------------- the child
 
 
-def _run_setup(root: str) -> dict[str, Any]:
+def _run_setup(root: str, meanwhile: Callable[[], object] | None = None) -> dict[str, Any]:
     from .. import scratch
-    from ..sandbox import ResourceLimitError, run_limited
+    from ..sandbox import ResourceLimitError, run_limited, start_limited
     from .contain import containment
 
     with scratch.folder("bras-kit-setup-") as workdir:
         # the learner's setup.py reads its package and writes nowhere (setup() is recorded)
         walls = containment("auto", workdir, (root,))
+        limits = {"cpu_seconds": SETUP_CPU_SECONDS, "memory_bytes": SETUP_MEMORY_BYTES,
+                  "wall_seconds": SETUP_WALL_SECONDS, "what": f"{root}/setup.py", "contain": walls}
         try:
-            return run_limited(_run_setup_here, root, walls, cpu_seconds=SETUP_CPU_SECONDS, memory_bytes=SETUP_MEMORY_BYTES,
-                               wall_seconds=SETUP_WALL_SECONDS, what=f"{root}/setup.py", contain=walls)
+            if meanwhile is None:
+                return run_limited(_run_setup_here, root, walls, **limits)  # type: ignore[arg-type]
+            pending = start_limited(_run_setup_here, root, walls, **limits)  # type: ignore[arg-type]
+            try:
+                meanwhile()
+            except BaseException:
+                pending.close()
+                raise
+            return pending.result()
         except ResourceLimitError as exc:  # a setup.py that never ends or eats the memory: as data
             return {"error": {"text": f"setup.py was stopped ({exc.kind} limit of the sandbox)", "line": 0}}
 

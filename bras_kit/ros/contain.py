@@ -147,8 +147,16 @@ class Containment:
         stays outside the new PID namespace: it forks the namespace's init, which returns from
         here and runs the code, waits for it and ends the way it ended (its exit status or its
         signal), so the caller of :func:`bras_kit.sandbox.run_limited` sees what it always saw.
-        Raises :class:`ContainmentError` when a step fails (nothing has run then).
+        Raises :class:`ContainmentError` when a step fails (nothing has run then); this boot's
+        record of a passed trial is then dropped (:func:`forget_trial`), as it no longer holds.
         """
+        try:
+            self._enter(keep)
+        except ContainmentError:
+            forget_trial()
+            raise
+
+    def _enter(self, keep: Sequence[int]) -> None:
         _close_fds_except({0, 1, 2, *keep})
         seccomp = _seccomp()  # loaded while ldconfig can still be asked where libseccomp is
         read, write = self.granted()
@@ -232,7 +240,8 @@ def _existing(paths: Iterable[str]) -> list[str]:
 
 @functools.lru_cache(maxsize=1)
 def available() -> Status:
-    """Whether this machine can contain a child, found by trying it in a throwaway child."""
+    """Whether this machine can contain a child, found by trying it in a throwaway child (or
+    read from this boot's record of a trial that passed, :func:`_passed_before`)."""
     try:
         _seccomp()  # imported here, once: every child forked from this process has it
     except ContainmentError:
@@ -245,8 +254,11 @@ def available() -> Status:
         return Status(False, M("{machine} is not a processor bras-kit knows the system calls of",
                                machine=platform.machine()),
                       M("the pivot_root system call number"), M("report it to bras-kit's maintainers"))
+    if _begun is None and "pyseccomp" in sys.modules and _passed_before():
+        return Status(True, M("user, mount, network and PID namespaces"))
     step, code = _trial()
     if not step:
+        _note_passed()
         return Status(True, M("user, mount, network and PID namespaces"))
     if step == "libseccomp":
         return Status(False, M("libseccomp was not found"), M("libseccomp (the seccomp filter library)"),
@@ -260,20 +272,120 @@ def available() -> Status:
                   M("mounts inside a user namespace"), _how_to_enable())
 
 
+_AVAILABLE = available  # the cached function itself, whatever later stands for `available`
+
+
+# --- the trial's record ----------------------------------------------------------------------
+# A trial costs each command a throwaway child (namespaces, mounts, pivot_root: 10 ms of CPU, and
+# `validate PKG_DIR` waits for it, issue 43). One that passed is noted for the rest of the boot in a
+# folder of this user's only, in memory, with what it depended on. Only a pass is ever noted, so the
+# record can never let code run without walls: read wrongly, it makes bras-kit try walls that then
+# fail, and a child whose walls fail runs nothing (Containment.enter raises before the code runs) and
+# removes the record, so the next command tries again. `bras-kit doctor` always tries for real.
+
+_RECORD = "containment-trial-passed"
+SHARED_MEMORY = "/dev/shm"  # the record's folder where the login manager made no runtime folder
+
+
+def _record_path(make: bool = False) -> str | None:
+    """The record's file: in ``$XDG_RUNTIME_DIR/bras-kit`` (the login manager's folder of this
+    user's, a tmpfs emptied at logout), else in ``/dev/shm/bras-kit-UID``; None where neither is
+    a folder of this user's only (``make``: the folder is made, 0700, when missing)."""
+    import stat
+
+    uid = os.getuid()
+    runtime = os.environ.get("XDG_RUNTIME_DIR", "")
+    for base, name in ((runtime, "bras-kit"), (SHARED_MEMORY, f"bras-kit-{uid}")):
+        try:
+            info = os.stat(base) if os.path.isabs(base) else None
+        except OSError:
+            info = None
+        if info is None or not stat.S_ISDIR(info.st_mode):
+            continue
+        if base == runtime and (info.st_uid != uid or info.st_mode & 0o077):
+            continue  # a runtime folder others may write: not the login manager's
+        if base != runtime and not (info.st_mode & stat.S_ISVTX):
+            continue  # shared memory must be sticky: no one else may rename what is made there
+        folder = os.path.join(base, name)
+        if make:
+            with contextlib.suppress(FileExistsError, OSError):
+                os.mkdir(folder, 0o700)
+        try:
+            own = os.lstat(folder)
+        except OSError:
+            return None
+        if stat.S_ISDIR(own.st_mode) and own.st_uid == uid and not own.st_mode & 0o077:
+            return os.path.join(folder, _RECORD)
+        return None  # made by someone else, or opened to others: no record at all
+    return None
+
+
+def _trial_key() -> str:
+    """What a trial's outcome depends on: the boot, the user, the namespaces this process is in,
+    the kernel's switches for unprivileged namespaces, the interpreter and this module."""
+    parts = [_read("/proc/sys/kernel/random/boot_id"), str(os.getuid()), sys.executable,
+             _read("/proc/sys/kernel/unprivileged_userns_clone"), _read("/proc/sys/user/max_user_namespaces"),
+             _read("/proc/sys/kernel/apparmor_restrict_unprivileged_userns")]
+    for kind in ("user", "mnt", "pid", "net"):
+        try:
+            parts.append(os.readlink(f"/proc/self/ns/{kind}"))
+        except OSError:
+            parts.append("")
+    try:
+        here = os.stat(__file__)
+        parts.append(f"{here.st_size}:{here.st_mtime_ns}")
+    except OSError:
+        parts.append("")
+    return "\n".join(parts) + "\n"
+
+
+def _passed_before() -> bool:
+    path = _record_path()
+    return path is not None and _read(path) + "\n" == _trial_key()
+
+
+def _note_passed() -> None:
+    path = _record_path(make=True)
+    if path is None:
+        return
+    try:
+        partial = f"{path}.{os.getpid()}"
+        with open(partial, "w") as handle:
+            handle.write(_trial_key())
+        os.replace(partial, path)
+    except OSError:
+        pass  # no record: the next command tries again
+
+
+def forget_trial() -> None:
+    """Drop this boot's record of a passed trial and this process's answer: the next
+    :func:`available` tries for real (``bras-kit doctor``; a child whose walls failed)."""
+    _AVAILABLE.cache_clear()
+    path = _record_path()
+    if path is not None:
+        with contextlib.suppress(OSError):
+            os.remove(path)
+
+
 _begun: tuple[int, int, str] | None = None  # the trial's child at work (begin_trial)
 
 
-def begin_trial() -> None:
+def begin_trial() -> bool:
     """Fork the throwaway child of :func:`available`'s trial now and go on: its answer is read when
     :func:`available` is first asked, so the trial can run on another core while this process
     imports (the worker of ``validate PKG_DIR``, :mod:`bras_kit.ros.ahead`, imports the launch
-    children's installer meanwhile)."""
+    children's installer meanwhile). False when no trial was begun (one is under way, the answer
+    is known, or this boot's record says a trial passed)."""
     global _begun
     if _begun is None and available.cache_info().currsize == 0 and sys.platform == "linux" \
             and platform.machine() in PIVOT_ROOT:
         with contextlib.suppress(ContainmentError):
             _seccomp()  # imported once, before the fork: the trial's child and this process both need it
+        if "pyseccomp" in sys.modules and _passed_before():
+            return False  # passed earlier in this boot: available() reads the record
         _begun = _trial_start()
+        return True
+    return False
 
 
 def _trial() -> tuple[str, int]:

@@ -15,7 +15,9 @@ from .launching import (
     LaunchPlan,
     PlannedNode,
     StartProblem,
+    begin_plan,
     plan_launch,
+    preload_planning,
     robot_state_publisher_start,
     ros_arguments_start,
 )
@@ -50,28 +52,47 @@ def share_files_named(build: BuildRecord, name: str) -> list[str]:
                   if i.target.startswith(f"share/{build.package}/") and os.path.basename(i.target) == wanted)
 
 
+def _read_plans() -> None:
+    """What this process needs to read a launch file's evaluation (the nodes' --ros-args), imported
+    while setup.py's child runs rather than after the launch file's."""
+    from . import names  # noqa: F401
+
+
 def launch_package(root: str, install_base: str, launch_file: str | None = None,
-                   arguments: dict[str, str] | None = None, *, prefixes: tuple[str, ...] = ()) -> Launched:
+                   arguments: dict[str, str] | None = None, *, prefixes: tuple[str, ...] = (),
+                   ahead: bool = False) -> Launched:
     """Build ``root`` into ``install_base`` and evaluate ``launch_file`` (a file's name anywhere in
     the package's share folder, default: the first installed launch file) as ``ros2 launch PKG
-    FILE`` would; ``prefixes``: the other packages of the workspace, built."""
-    build = build_package(root, install_base)
-    result = Launched(build)
-    if build.failure is not None:
-        return result
-    sources = launch_sources(build)
-    if launch_file is not None:
-        chosen = share_files_named(build, launch_file)
-        result.launch_file = chosen[0] if len(chosen) == 1 else launch_file
-    elif sources:
-        result.launch_file = sources[0]
-    if not result.launch_file:
-        return result
-    target = next((i.target for i in build.installed if i.source == result.launch_file), None)
-    if target is None:
-        return result
-    plan = plan_launch(os.path.join(build.prefix, target), [build.prefix, *prefixes], arguments,
-                       learner_roots=(root,))
+    FILE`` would; ``prefixes``: the other packages of the workspace, built. ``ahead``: the launch
+    file's child is forked and walled in while setup.py runs (:func:`.launching.begin_plan`; for an
+    ``install_base`` of bras-kit's own that holds nothing else)."""
+    early = begin_plan(install_base, list(prefixes), learner_roots=(root,)) if ahead else None
+    try:
+        # the launch file's child imports what it needs itself, or this process does while setup.py runs
+        build = build_package(root, install_base, meanwhile=_read_plans if early is not None else preload_planning)
+        result = Launched(build)
+        if build.failure is not None:
+            return result
+        sources = launch_sources(build)
+        if launch_file is not None:
+            chosen = share_files_named(build, launch_file)
+            result.launch_file = chosen[0] if len(chosen) == 1 else launch_file
+        elif sources:
+            result.launch_file = sources[0]
+        if not result.launch_file:
+            return result
+        target = next((i.target for i in build.installed if i.source == result.launch_file), None)
+        if target is None:
+            return result
+        path, chosen_prefixes = os.path.join(build.prefix, target), [build.prefix, *prefixes]
+        if early is not None:
+            told, early = early, None
+            plan = told.plan(path, chosen_prefixes, arguments)
+        else:
+            plan = plan_launch(path, chosen_prefixes, arguments, learner_roots=(root,))
+    finally:
+        if early is not None:
+            early.cancel()
     result.plan = plan
     for node in plan.nodes:
         result.start_problems += [(node, p) for p in ros_arguments_start(node)]
@@ -89,7 +110,7 @@ def evaluate_package(root: str) -> Launched | None:
     if not os.path.isfile(os.path.join(root, "package.xml")):
         return None
     with scratch.folder("bras-kit-build-") as base:
-        first = launch_package(root, os.path.join(base, "install"))
+        first = launch_package(root, os.path.join(base, "install"), ahead=True)
         if first.plan is not None:
             for other in launch_sources(first.build):
                 if other != first.launch_file:

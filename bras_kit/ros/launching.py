@@ -155,6 +155,108 @@ def plan_launch(launch_file: str, prefixes: list[str], arguments: dict[str, str]
                 "ResourceLimitError", f"the launch file was stopped ({exc.kind} limit of the sandbox)", "", 0, ""))
 
 
+class PlanAhead:
+    """A launch file's child forked and walled in before the package is built (:func:`begin_plan`):
+    it waits, contained, for what to evaluate, while setup.py's child runs beside it.
+
+    Only this process writes to the child's pipe: the launch file's path in the fresh install
+    tree, the prefixes and arguments, all bras-kit's own data. The child reads them, then runs the
+    launch file exactly as :func:`plan_launch`'s child does (:func:`_plan_here`)."""
+
+    def __init__(self, pending: Any, write: int, folder: Any, ros: str, cwd: str, roots: tuple[str, ...]) -> None:
+        self._pending, self._write, self._folder = pending, write, folder
+        self._ros, self._cwd, self._roots = ros, cwd, roots
+
+    def plan(self, launch_file: str, prefixes: list[str], arguments: dict[str, str] | None = None) -> LaunchPlan:
+        """The evaluation of ``launch_file`` (under the install base given to :func:`begin_plan`)."""
+        import pickle
+
+        from ..sandbox import ResourceLimitError
+
+        told = (os.path.abspath(launch_file), [*prefixes, self._ros], dict(arguments or {}), self._cwd,
+                (*self._roots, *prefixes))
+        try:
+            with os.fdopen(self._write, "wb") as pipe:
+                self._write = -1
+                pipe.write(pickle.dumps(told, protocol=pickle.HIGHEST_PROTOCOL))
+        except OSError:  # the child is gone: its end is reported by result()
+            pass
+        try:
+            return self._pending.result()  # type: ignore[no-any-return]
+        except ResourceLimitError as exc:  # a launch file that never ends: as data
+            return LaunchPlan(launch_file, failure=LaunchFailure(
+                "ResourceLimitError", f"the launch file was stopped ({exc.kind} limit of the sandbox)", "", 0, ""))
+        finally:
+            self._folder.cleanup()
+
+    def cancel(self) -> None:
+        """Nothing to evaluate (the build failed, no launch file): the child ends without running any."""
+        if self._write >= 0:
+            os.close(self._write)
+            self._write = -1
+        self._pending.close()
+        self._folder.cleanup()
+
+
+def begin_plan(install_base: str, prefixes: list[str], *, learner_roots: tuple[str, ...] = ()) -> PlanAhead | None:
+    """The child of :func:`plan_launch` for a package about to be built into ``install_base``,
+    forked and contained now: its namespaces, mounts and imports are made while setup.py runs.
+    It may read ``install_base`` (where the build lays the package out), the other ``prefixes``
+    and ``learner_roots``; ``install_base`` must be a folder of bras-kit's own holding nothing else
+    (validate's throwaway install tree). None where children come from a fork server."""
+    from dataclasses import replace
+
+    from .. import sandbox
+    from .contain import containment
+
+    if sandbox.children_from_the_server():  # a process with threads: plan_launch's child, after the build
+        return None
+    os.makedirs(install_base, exist_ok=True)
+    folder = scratch.folder("bras-kit-launch-")
+    workdir = folder.name
+    ros = simulated_ros_prefix(workdir)
+    cwd = os.path.join(workdir, "ws")
+    os.makedirs(cwd)
+    roots = tuple(os.path.abspath(r) for r in learner_roots)
+    walls = containment("auto", workdir, (*roots, *prefixes, os.path.abspath(install_base)))
+    read, write = os.pipe()
+    what = f"the launch file of {', '.join(learner_roots) or install_base}"
+    try:
+        kept = replace(walls, keep=(*walls.keep, read)) if walls is not None else None
+        pending = sandbox.start_limited(_plan_when_told, read, write, walls, cpu_seconds=PLAN_CPU_SECONDS,
+                                        memory_bytes=PLAN_MEMORY_BYTES, wall_seconds=PLAN_WALL_SECONDS + WAIT_SECONDS,
+                                        what=what, contain=kept)
+    except BaseException:
+        os.close(write)
+        folder.cleanup()
+        raise
+    finally:
+        os.close(read)
+    return PlanAhead(pending, write, folder, ros, cwd, roots)
+
+
+WAIT_SECONDS = 30.0  # how long the child of begin_plan may wait for the build (setup.py's own limit is 20 s)
+
+
+def _plan_when_told(read: int, write: int, walls: Any = None) -> LaunchPlan | None:
+    """In :func:`begin_plan`'s child: what to evaluate, from the pipe (None: nothing, the child ends).
+    Walled in, the child kept only the pipe's reading end; without walls it closes the writing end
+    it inherited, or it would wait for itself."""
+    import pickle
+
+    if walls is None:
+        os.close(write)
+    preload_planning()  # while setup.py runs, as the worker would have imported it for a child forked later
+    chunks = []
+    while chunk := os.read(read, 1 << 16):
+        chunks.append(chunk)
+    os.close(read)
+    if not chunks:
+        return None
+    launch_file, prefixes, arguments, cwd, roots = pickle.loads(b"".join(chunks))  # noqa: S301 - this process's parent wrote it
+    return _plan_here(launch_file, prefixes, arguments, cwd, tuple(roots), walls)
+
+
 def preload_planning() -> None:
     """Import, in this process, what every launch file's child imports before it installs the
     stand-in (the installer and the records it fills): children forked afterwards start with it.

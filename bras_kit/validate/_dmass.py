@@ -14,13 +14,18 @@ from __future__ import annotations
 
 import functools
 import math
+import sys
 from dataclasses import dataclass
+from typing import TYPE_CHECKING
 
-import numpy as np
+if TYPE_CHECKING:
+    import numpy as np
+else:
+    from ..lazy_numpy import np
 
 from ..model import Inertial, Origin
 
-EPSILON = np.finfo(float).eps
+EPSILON = sys.float_info.epsilon  # np.finfo(float).eps, without importing numpy
 TOLERANCE = 10.0  # IGN_MASSMATRIX3_DEFAULT_TOLERANCE
 
 

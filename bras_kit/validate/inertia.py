@@ -10,8 +10,12 @@ import math
 import sys
 from collections.abc import Iterator
 from dataclasses import dataclass
+from typing import TYPE_CHECKING
 
-import numpy as np
+if TYPE_CHECKING:
+    import numpy as np
+else:
+    from ..lazy_numpy import np
 
 from ..model import MOVABLE_TYPES, Inertial, Link
 from .context import Context

@@ -30,6 +30,12 @@ from .rules import PACKAGE_CHECKS  # importing registers the rules
 from .run_rules import RUN_CHECKS  # the rules over a run of the node (BK640-BK659)
 from .sources import Package
 
+# Rules that read nothing of the build and launch evaluation and take time (BK623 follows each
+# formula for a minute of motion): they run first, while ``validate PKG_DIR``'s worker is still
+# evaluating (BK600, the first of the others, waits for its answer). What they read (setup.py, the
+# launch files, the nodes, the URDF) BK600 reads too, so its findings do not depend on the order.
+BEFORE_THE_EVALUATION = ("BK623",)
+
 __all__ = ["Package", "find_packages", "installed_descriptions", "is_package", "launch_package", "validate_package"]
 
 
@@ -49,7 +55,7 @@ def validate_package(path: str, *, lang: str | None = None, select: Iterable[str
     if launch:
         package.evaluate = True  # the rules over whole launches (BK611, BK620...) read the evaluation too
     by_file: dict[str, list[Finding]] = {}
-    for chosen in select_rules(select, ignore):
+    for chosen in sorted(select_rules(select, ignore), key=lambda r: r.code not in BEFORE_THE_EVALUATION):
         check = PACKAGE_CHECKS.get(chosen.code)
         if chosen.code in RUN_CHECKS:
             continue  # only with a recording: run_findings

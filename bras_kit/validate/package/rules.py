@@ -593,20 +593,20 @@ def node_motion_outside_limits(pkg: Package) -> Iterator[Hit]:
 
 
 def _violations(robot: Any, formulas: dict[str, str]) -> Iterator[tuple[str, str, Any]]:
-    """Position limit violations of each formula, followed with the motion module's checks."""
+    """Position limit violations of each formula, as the motion module's sampling and checks find
+    them (followed with Python floats: validating a package needs no numpy, issue 43)."""
     if not formulas:
         return
     from ...errors import BrasKitError
-    from ...motion import check_limits, motion_from_specs, sample
+    from ...motion.formula_limits import formula_position_violations
 
     for joint, text in formulas.items():
         try:
-            states = sample(motion_from_specs(robot, [f"{joint}={text}"]), duration=MOTION_SECONDS)
+            violations = formula_position_violations(robot, joint, text, MOTION_SECONDS)
         except BrasKitError:
             continue  # not a formula the motion module accepts: not literal enough to judge
-        for violation in check_limits(robot, states):
-            if violation.kind == "position" and violation.joint == joint:
-                yield joint, text, violation
+        for violation in violations:
+            yield joint, text, violation
 
 
 @package_rule("BK614", "robot-description-not-given", ERROR)
