@@ -62,13 +62,19 @@ def _signed_zero(out: float, u: float) -> float:
 
 def _pole(a: float, b: float) -> float:
     """0 (or -0) to the negative power ``b``: C's pow gives an infinity signed by odd powers of -0."""
-    odd = b == math.floor(b) and math.fmod(b, 2.0) != 0
-    return math.copysign(math.inf, a) if odd else math.inf
+    return math.copysign(math.inf, a) if _odd(b) else math.inf
+
+
+def _odd(b: float) -> bool:
+    """Whether ``b`` is an odd integer (never an infinity: Python 3.10's pow(0, -inf) comes here)."""
+    return float(b).is_integer() and math.fmod(b, 2.0) != 0
 
 
 class _Floats:
     """numpy's functions of one float64, as :meth:`Expression.at` runs them: the same IEEE values
     where numpy (under ``errstate(all="ignore")``) gives inf or nan and Python's math raises.
+    ``**`` is C's ``pow`` (as numpy's, except that numpy 2.x takes a square root for a constant
+    exponent 0.5: (-0.0)**0.5 is -0.0 there, (-inf)**0.5 NaN, where C gives 0.0 and inf).
     Checked against numpy on the whole whitelist and its edge cases (tests/test_expr_floats.py)."""
 
     sin = _guarded(math.sin, lambda u: math.nan)  # sin(inf)
@@ -119,12 +125,10 @@ class _Floats:
 
     @staticmethod
     def power(a: float, b: float) -> float:
-        if b == 0.5:  # numpy takes a square root for a constant exponent 0.5: (-0.0)**0.5 is -0.0, (-inf)**0.5 nan
-            return a if a == 0 else math.nan if a < 0 else math.sqrt(a)
         try:
             return math.pow(a, b)
         except OverflowError:
-            return -math.inf if a < 0 and b == math.floor(b) and math.fmod(b, 2.0) != 0 else math.inf
+            return -math.inf if a < 0 and _odd(b) else math.inf
         except ValueError:  # a pole (0 to a negative power) or a negative base to a fraction
             return _pole(a, b) if a == 0 else math.nan
 

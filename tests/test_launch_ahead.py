@@ -75,12 +75,10 @@ def test_a_launch_file_chosen_by_name_with_arguments_is_evaluated_alike(tmp_path
 
 
 def _children() -> set[int]:
-    """This process's children, reaped or not (the kernel's list: a zombie is still there)."""
-    out: set[int] = set()
-    for task in os.listdir("/proc/self/task"):
-        with open(f"/proc/self/task/{task}/children") as handle:
-            out.update(int(pid) for pid in handle.read().split())
-    return out
+    """This process's children, reaped or not (a zombie is still one)."""
+    import psutil
+
+    return {child.pid for child in psutil.Process().children()}
 
 
 def _launch_folders() -> set[str]:
