@@ -143,6 +143,22 @@ def sample_count(duration: float, rate: float) -> int:
     return int(math.floor(duration * rate + 1e-9)) + 1
 
 
+def checked_count(duration: float, rate: float, joints: int) -> tuple[int, float]:
+    """How many samples :func:`sample` takes of ``joints`` joints over ``duration`` s at ``rate`` Hz,
+    and the rate as a float; ParameterError where either is not a time or a rate, or too many."""
+    duration, rate = float(duration), float(rate)
+    if not math.isfinite(duration) or duration < 0:
+        raise ParameterError(M("duration {duration:g} s is not a time", duration=duration),
+                             hint=M("give a duration of 0 s or more"))
+    if not math.isfinite(rate) or rate <= 0:
+        raise ParameterError(M("rate {rate:g} Hz is not a rate", rate=rate), hint=M("give samples per second above 0, e.g. 20"))
+    count = sample_count(duration, rate)
+    if count * max(joints, 1) > MAX_VALUES:
+        raise ParameterError(M("{count} samples of {joints} joints is too many", count=count, joints=joints),
+                             hint=M("lower --duration or --rate"))
+    return count, rate
+
+
 def sample(motion: Motion, duration: float | None = None, rate: float = DEFAULT_RATE) -> JointStates:
     """The motion at ``k / rate`` seconds for k = 0 .. floor(duration * rate) (both ends included).
 
@@ -151,16 +167,7 @@ def sample(motion: Motion, duration: float | None = None, rate: float = DEFAULT_
     """
     if duration is None:
         duration = motion.duration if motion.duration is not None else DEFAULT_DURATION
-    duration, rate = float(duration), float(rate)
-    if not math.isfinite(duration) or duration < 0:
-        raise ParameterError(M("duration {duration:g} s is not a time", duration=duration),
-                             hint=M("give a duration of 0 s or more"))
-    if not math.isfinite(rate) or rate <= 0:
-        raise ParameterError(M("rate {rate:g} Hz is not a rate", rate=rate), hint=M("give samples per second above 0, e.g. 20"))
-    count = sample_count(duration, rate)
-    if count * max(len(motion.names), 1) > MAX_VALUES:
-        raise ParameterError(M("{count} samples of {joints} joints is too many", count=count, joints=len(motion.names)),
-                             hint=M("lower --duration or --rate"))
+    count, rate = checked_count(duration, rate, len(motion.names))
     times = np.arange(count) / rate
     with np.errstate(all="ignore"):
         positions, velocities = motion.evaluate(times)

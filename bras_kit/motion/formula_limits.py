@@ -20,7 +20,7 @@ from ..expr import compile_expression
 from ..kinematics import movable_names, tree_structure
 from ..message import M
 from ..model import Robot
-from .core import DEFAULT_RATE, MAX_VALUES, check_joint_of, sample_count
+from .core import DEFAULT_RATE, check_joint_of, checked_count
 from .limits import TOLERANCE, LimitViolation, joint_unit
 from .specs import spec_kind, split_formula
 
@@ -41,12 +41,7 @@ def formula_position_violations(robot: Robot, joint: str, formula: str, duration
     dof = movable_names(robot)
     check_joint_of(robot, dof, name)
     expression = compile_expression(text, prefix=prefix)
-    duration, rate = float(duration), float(rate)
-    if not math.isfinite(duration) or duration < 0 or not math.isfinite(rate) or rate <= 0:
-        raise ParameterError(M("duration {duration:g} s is not a time", duration=duration))
-    count = sample_count(duration, rate)
-    if count * max(len(dof), 1) > MAX_VALUES:
-        raise ParameterError(M("{count} samples of {joints} joints is too many", count=count, joints=len(dof)))
+    count, rate = checked_count(duration, rate, len(dof))
     times = [k / rate for k in range(count)]
     values = [expression.at(t) for t in times]
     at = next((k for k, value in enumerate(values) if not math.isfinite(value)), None)

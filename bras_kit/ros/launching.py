@@ -138,9 +138,7 @@ def plan_launch(launch_file: str, prefixes: list[str], arguments: dict[str, str]
     from ..sandbox import ResourceLimitError, run_limited
 
     with scratch.folder("bras-kit-launch-") as workdir:
-        ros = simulated_ros_prefix(workdir)
-        cwd = os.path.join(workdir, "ws")
-        os.makedirs(cwd)
+        ros, cwd = _planning_folders(workdir)
         from .contain import containment
 
         roots = tuple(os.path.abspath(r) for r in learner_roots) + tuple(prefixes)
@@ -151,8 +149,22 @@ def plan_launch(launch_file: str, prefixes: list[str], arguments: dict[str, str]
                                cwd, roots, walls, cpu_seconds=PLAN_CPU_SECONDS, memory_bytes=PLAN_MEMORY_BYTES,
                                wall_seconds=PLAN_WALL_SECONDS, what=f"the launch file {launch_file}", contain=walls)
         except ResourceLimitError as exc:  # a launch file that never ends: as data
-            return LaunchPlan(launch_file, failure=LaunchFailure(
-                "ResourceLimitError", f"the launch file was stopped ({exc.kind} limit of the sandbox)", "", 0, ""))
+            return _stopped(launch_file, exc)
+
+
+def _planning_folders(workdir: str) -> tuple[str, str]:
+    """In a launch child's working folder: the simulated ROS install prefix, and the folder the
+    launch file runs in (``ros2 launch`` from a workspace)."""
+    ros = simulated_ros_prefix(workdir)
+    cwd = os.path.join(workdir, "ws")
+    os.makedirs(cwd)
+    return ros, cwd
+
+
+def _stopped(launch_file: str, exc: Any) -> LaunchPlan:
+    """A launch file the sandbox stopped (a limit), as the plan's failure."""
+    return LaunchPlan(launch_file, failure=LaunchFailure(
+        "ResourceLimitError", f"the launch file was stopped ({exc.kind} limit of the sandbox)", "", 0, ""))
 
 
 class PlanAhead:
@@ -184,8 +196,7 @@ class PlanAhead:
         try:
             return self._pending.result()  # type: ignore[no-any-return]
         except ResourceLimitError as exc:  # a launch file that never ends: as data
-            return LaunchPlan(launch_file, failure=LaunchFailure(
-                "ResourceLimitError", f"the launch file was stopped ({exc.kind} limit of the sandbox)", "", 0, ""))
+            return _stopped(launch_file, exc)
         finally:
             self._folder.cleanup()
 
@@ -213,12 +224,9 @@ def begin_plan(install_base: str, prefixes: list[str], *, learner_roots: tuple[s
         return None
     os.makedirs(install_base, exist_ok=True)
     folder = scratch.folder("bras-kit-launch-")
-    workdir = folder.name
-    ros = simulated_ros_prefix(workdir)
-    cwd = os.path.join(workdir, "ws")
-    os.makedirs(cwd)
+    ros, cwd = _planning_folders(folder.name)
     roots = tuple(os.path.abspath(r) for r in learner_roots)
-    walls = containment("auto", workdir, (*roots, *prefixes, os.path.abspath(install_base)))
+    walls = containment("auto", folder.name, (*roots, *prefixes, os.path.abspath(install_base)))
     read, write = os.pipe()
     what = f"the launch file of {', '.join(learner_roots) or install_base}"
     try:
