@@ -20,9 +20,9 @@ median) are printed: the CPU column stays meaningful on a machine others share. 
 what `bras-kit validate PKG_DIR` spends its time on now, phase by phase, one after the other in a
 fresh process (``--phases PKG_DIR`` alone prints that table). The command itself runs the worker's
 phases beside its own (bras_kit.ros.ahead.evaluate_ahead): on two cores its wall time is about
-the longer of the two sides, plus Python's start and what both import before the fork; the ratio
-to round 3 is printed as well, since the 0.5 s target was set on a machine where round 3 took
-0.44-0.52 s. On one core the two sides add up instead: ``taskset -c 0 python benchmarks/...``
+the longer of the two sides, plus Python's start and what both import before the fork. The 0.5 s
+target was set on a machine where round 3 took 0.44-0.52 s: the ratio to round 3 (median wall) is
+printed, with what it makes of that range, and the target is judged on the range's upper end. On one core the two sides add up instead: ``taskset -c 0 python benchmarks/...``
 gives that figure.
 
 The untimed first run of each tree leaves what a learner's first command leaves: this boot's
@@ -47,6 +47,7 @@ from _process import environment  # noqa: E402
 from validate_speed import chain_urdf  # noqa: E402
 
 TARGET_PACKAGE = 0.5  # seconds, whole process, `bras-kit validate PKG_DIR`
+ROUND3_ON_TARGET_MACHINE = (0.44, 0.52)  # seconds: round 3 on the machine where the target was set
 LINKS = 17_133
 
 
@@ -170,9 +171,12 @@ def main() -> int:
     package_now = next(r for r in rows if r[1] == "now" and "PKG_DIR" in r[0])
     large = {r[1]: r for r in rows if "chain" in r[0]}
     package_then = next(r for r in rows if r[1] == "round 3" and "PKG_DIR" in r[0])
-    print(f"\nvalidate PKG_DIR now: best {package_now[2]:.3f} s (target < {TARGET_PACKAGE} s: "
-          f"{'met' if package_now[2] < TARGET_PACKAGE else 'MISSED'}); now / round 3: "
-          f"{package_now[3] / package_then[3]:.2f} (median wall), {package_now[4] / package_then[4]:.2f} (cpu)")
+    ratio = package_now[3] / package_then[3]
+    scaled = tuple(ratio * seconds for seconds in ROUND3_ON_TARGET_MACHINE)
+    print(f"\nvalidate PKG_DIR now: best {package_now[2]:.3f} s here; now / round 3: {ratio:.2f} (median "
+          f"wall), {package_now[4] / package_then[4]:.2f} (cpu). Where round 3 took "
+          f"{ROUND3_ON_TARGET_MACHINE[0]}-{ROUND3_ON_TARGET_MACHINE[1]} s, that is {scaled[0]:.2f}-"
+          f"{scaled[1]:.2f} s (target < {TARGET_PACKAGE} s: {'met' if scaled[1] < TARGET_PACKAGE else 'MISSED'})")
     print(f"large file now / round 3: {large['now'][3] / large['round 3'][3]:.2f} (median wall), "
           f"{large['now'][4] / large['round 3'][4]:.2f} (cpu)")
     return 0

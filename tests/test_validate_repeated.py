@@ -84,7 +84,7 @@ def test_a_launch_file_evaluation_does_not_load_the_message_definitions():
     import subprocess
     import sys
 
-    code = ("import sys\nfrom bras_kit.ros.child import _install\n_install()\n"
+    code = ("import sys\nfrom bras_kit.ros.finder import install\ninstall()\n"
             "import launch, launch_ros.actions, ament_index_python.packages, launch.substitutions\n"
             "print('rosbags' in sys.modules)\nimport sensor_msgs.msg\nprint('rosbags' in sys.modules)\n")
     done = subprocess.run([sys.executable, "-c", code], capture_output=True, text=True, check=True)

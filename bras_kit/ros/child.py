@@ -7,74 +7,17 @@ hook, the patched ``time`` functions and the working folder belong to the child 
 from __future__ import annotations
 
 import importlib
-import importlib.machinery
 import io
 import os
 import sys
 import traceback
 from typing import Any
 
+from .finder import STANDIN, install
 from .locate import Target
 from .recording import Endpoint, Frame, NodeFailure, Published, Recording, SplitString, TimerInfo
 
-STANDIN = os.path.join(os.path.dirname(os.path.abspath(__file__)), "standin")
-SIMULATED = ("rclpy", "tf2_ros", "_bras_sim", "_messages")
-# the stand-in's own packages (folders of standin/), none of them a message package
-STANDIN_PACKAGES = frozenset(name for name in os.listdir(STANDIN) if os.path.isdir(os.path.join(STANDIN, name))
-                             and not name.startswith(("_", ".")))
-# other ROS 2 Python packages a node may import: refused with a clear message, never taken
-# from a real install (the stand-in's rclpy cannot drive them)
-ROS_PACKAGES = ("launch", "launch_ros", "ament_index_python", "tf2_py", "tf_transformations",
-                "rosidl_runtime_py", "rclpy_message_converter", "message_filters", "rosbag2_py",
-                "rcl_interfaces", "action_msgs", "robot_state_publisher", "urdf_parser_py", "xacro")
-ROS_SUFFIXES = ("_msgs", "_srvs", "_interfaces", "_actions")
 MAX_OUTPUT = 200_000  # characters of the node's own prints kept when not shown live
-
-
-def is_ros_name(top: str) -> bool:
-    return top in SIMULATED or top in ROS_PACKAGES or top.endswith(ROS_SUFFIXES)
-
-
-def _message_spec(fullname: str) -> Any:
-    """Message packages (sensor_msgs, rcl_interfaces, tf2_msgs...) come from Jazzy's definitions."""
-    import _messages
-
-    return _messages.find_spec(fullname)
-
-
-class StandinFinder:
-    """First on sys.meta_path in the child: ROS names come from the stand-in folder or stop.
-    (A finder needs only ``find_spec``: not deriving from ``importlib.abc.MetaPathFinder`` spares
-    every child importing ``importlib.resources``, tempfile and shutil with it, 6 ms.)"""
-
-    def find_spec(self, fullname: str, path: Any = None, target: Any = None) -> Any:
-        top = fullname.partition(".")[0]
-        if not is_ros_name(top):
-            return None
-        if top not in SIMULATED and top not in STANDIN_PACKAGES:
-            # only a message package reads Jazzy's definitions (rosbags' whole store, about 0.2 s):
-            # launch, launch_ros, xacro... are the stand-in's own folders
-            spec = _message_spec(fullname)
-            if spec is not None:
-                return spec
-            if "." in fullname and _message_spec(fullname.rpartition(".")[0]) is not None:
-                # `from std_msgs.msg import JointState` looks for a submodule last (importlib
-                # _handle_fromlist): none, and Python raises the ImportError Jazzy raises
-                return None
-        search = [STANDIN] if path is None or "." not in fullname else path
-        spec = importlib.machinery.PathFinder.find_spec(fullname, search)
-        if spec is None:
-            import _bras_sim
-
-            raise _bras_sim.NotSimulated(fullname)
-        return spec
-
-
-def _install() -> None:
-    for name in list(sys.modules):
-        if is_ros_name(name.partition(".")[0]):
-            del sys.modules[name]
-    sys.meta_path.insert(0, StandinFinder())
 
 
 def _patch_time(sim: Any) -> dict[str, Any]:
@@ -286,7 +229,7 @@ def run_node_here(target: Target, duration: float, echo: bool, workdir: str, wat
     wall = time.perf_counter
     started = wall()
     os.chdir(workdir)
-    _install()
+    install()
     import _bras_sim as sim
 
     sim.STATE.end_ns = int(round(duration * 1e9))

@@ -48,10 +48,12 @@ import contextlib
 import ctypes
 import errno
 import functools
+import mmap
 import os
 import platform
 import select
 import signal
+import struct
 import sys
 import sysconfig
 from collections.abc import Iterable, Sequence
@@ -158,7 +160,7 @@ class Containment:
 
     def _enter(self, keep: Sequence[int]) -> None:
         _close_fds_except({0, 1, 2, *keep})
-        seccomp = _seccomp()  # loaded while ldconfig can still be asked where libseccomp is
+        seccomp = _seccomp()  # loaded before the walls: find_library may ask ldconfig, which is not inside them
         read, write = self.granted()
         uid, gid = os.getuid(), os.getgid()
         identity = _identity(uid, gid)
@@ -708,12 +710,44 @@ def _become(identity: tuple[int, int]) -> int:
 def _seccomp() -> object:
     """pyseccomp (libseccomp through ctypes), or a :class:`ContainmentError` naming the step."""
     try:
-        import pyseccomp
+        pyseccomp = _import_pyseccomp()
     except (ImportError, RuntimeError, OSError) as exc:  # RuntimeError: libseccomp.so.2 not found
         error = ContainmentError(M("the containment could not be set up: {step} failed ({reason})",
                                    step="libseccomp", reason=str(exc)))
         error.errno, error.step = errno.ENOENT, "libseccomp"  # type: ignore[attr-defined]
         raise error from None
+    return pyseccomp
+
+
+# the libraries pyseccomp asks ctypes.util.find_library for, by the names the dynamic loader knows
+# them by (glibc's C library; libseccomp's one ABI since version 2.0)
+SONAMES = {"c": "libc.so.6", "seccomp": "libseccomp.so.2"}
+
+
+def _import_pyseccomp() -> Any:
+    """``import pyseccomp``, whose two libraries are first looked for by their :data:`SONAMES`:
+    ``find_library`` runs ``ldconfig -p`` for each (5 ms, on the way to every contained child of
+    ``validate PKG_DIR``). Where the loader does not know a soname (another C library, a
+    libseccomp of another ABI), ``find_library`` answers as before."""
+    import ctypes.util
+
+    looked_up = ctypes.util.find_library
+
+    def find_library(name: str) -> str | None:
+        soname = SONAMES.get(name)
+        if soname is not None:
+            try:
+                ctypes.CDLL(soname)
+                return soname
+            except OSError:
+                pass
+        return looked_up(name)
+
+    ctypes.util.find_library = find_library
+    try:
+        import pyseccomp
+    finally:
+        ctypes.util.find_library = looked_up
     return pyseccomp
 
 
@@ -780,9 +814,6 @@ def _count_processes(most: int) -> None:
     memory they all share, checked by an audit hook before each fork or spawn, so that Python's
     own calls fail at the learner's line with words of ours. The kernel's ``RLIMIT_NPROC`` (the
     code never runs as root, see :func:`_identity`) is what holds against ``ctypes``."""
-    import mmap
-    import struct
-
     counter = mmap.mmap(-1, 8)
 
     def hook(event: str, args: tuple[object, ...]) -> None:
@@ -825,7 +856,10 @@ def containment(mode: str, workdir: str, readable: Iterable[str] = ()) -> Contai
         return None
     if mode == "require":
         containment_required()
-    return Containment(workdir, tuple(readable)) if available().ok else None
+    if not available().ok:
+        return None
+    _installation()  # worked out here, once: every child forked to enter this containment has it
+    return Containment(workdir, tuple(readable))
 
 
 def containment_required() -> None:

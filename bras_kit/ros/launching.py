@@ -255,6 +255,7 @@ def _plan_when_told(read: int, write: int, walls: Any = None) -> LaunchPlan | No
     if walls is None:
         os.close(write)
     preload_planning()  # while setup.py runs, as the worker would have imported it for a child forked later
+    _install_launch()  # and launch's own modules: what is left once told is the launch file's own work
     chunks = []
     while chunk := os.read(read, 1 << 16):
         chunks.append(chunk)
@@ -262,29 +263,46 @@ def _plan_when_told(read: int, write: int, walls: Any = None) -> LaunchPlan | No
     if not chunks:
         return None
     launch_file, prefixes, arguments, cwd, roots = pickle.loads(b"".join(chunks))  # noqa: S301 - this process's parent wrote it
-    return _plan_here(launch_file, prefixes, arguments, cwd, tuple(roots), walls)
+    return _plan_here(launch_file, prefixes, arguments, cwd, tuple(roots), walls, installed=True)
 
 
 def preload_planning() -> None:
     """Import, in this process, what every launch file's child imports before it installs the
-    stand-in (the installer and the records it fills): children forked afterwards start with it.
-    What only some launch files need (the real xacro, PyYAML) each child imports when it does."""
-    from . import child  # noqa: F401
+    stand-in (its import hook): children forked afterwards start with it. What only some launch
+    files need (the real xacro, PyYAML) each child imports when it does."""
+    from . import finder  # noqa: F401
+
+
+def _install_launch() -> None:
+    """The stand-in installed in this (launch file's) child, and the modules every evaluation runs
+    imported: launch's, ament_index_python's (``ros2 launch`` imports both before any launch file,
+    ros2launch/api/api.py) and launch_ros's, which nearly every launch file imports. None of them
+    reads the environment or the current folder at import."""
+    from .finder import install
+
+    install()
+    import ament_index_python.packages  # noqa: F401
+    import launch._actions  # noqa: F401
+    import launch._core  # noqa: F401
+    import launch._events  # noqa: F401
+    import launch._plan  # noqa: F401
+    import launch._sources  # noqa: F401
+    import launch_ros  # noqa: F401
 
 
 def _plan_here(launch_file: str, prefixes: list[str], arguments: dict[str, str], cwd: str,
-               roots: tuple[str, ...], walls: Any = None) -> LaunchPlan:
-    """In the child: the stand-in installed, the launch description visited; contained
-    (``walls``), what the walls stopped is watched from the first prefix (the package's)."""
+               roots: tuple[str, ...], walls: Any = None, installed: bool = False) -> LaunchPlan:
+    """In the child: the stand-in installed (already, where ``installed``: :func:`_install_launch`),
+    the launch description visited; contained (``walls``), what the walls stopped is watched from
+    the first prefix (the package's)."""
     import sys
     import traceback
     import warnings
 
     os.environ["AMENT_PREFIX_PATH"] = os.pathsep.join(prefixes)
     os.chdir(cwd)
-    from .child import _install
-
-    _install()  # the real xacro, if imported before, is set aside: the stand-in's imports it when it expands
+    if not installed:
+        _install_launch()
     import launch._plan as record
     from launch._actions import IncludeLaunchDescription
     from launch._core import LaunchContext, LaunchDescription, visit_all

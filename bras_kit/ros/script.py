@@ -56,7 +56,8 @@ def _run_here(target: Target, argv: list[str], workdir: str, walls: Any) -> Scri
     import runpy
     import sys
 
-    from .child import _install, _learner_frames
+    from .child import _learner_frames
+    from .finder import install
 
     watcher = None
     if walls is not None:
@@ -66,7 +67,7 @@ def _run_here(target: Target, argv: list[str], workdir: str, walls: Any) -> Scri
         watcher = Watcher(target.root, tuple(write), tuple(read))
         watcher.install()
     os.chdir(workdir)
-    _install()
+    install()
     sys.path.insert(0, target.root)
     sys.argv = [target.path, *argv]
     output = io.StringIO()

@@ -28,7 +28,7 @@ def _ours() -> dict[str, Any]:
 def _load_real() -> None:
     """Import the real xacro (and xacro.substitution_args, which bras-kit's expansion reads) with the
     stand-in's hook set aside, keep its modules in ``_REAL``, and put the stand-in's back."""
-    from bras_kit.ros.child import StandinFinder
+    from bras_kit.ros.finder import StandinFinder
 
     ours = _ours()
     hooks = [finder for finder in sys.meta_path if isinstance(finder, StandinFinder)]
