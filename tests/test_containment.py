@@ -220,3 +220,38 @@ def test_tokens_in_the_environment_stay_outside(walls, monkeypatch):
     assert "GITHUB_TOKEN" not in inside
     assert inside["ROS_DOMAIN_ID"] == "7" and inside["PATH"] == os.environ["PATH"]
     assert inside["TMPDIR"] == walls.workdir
+
+
+IMPORT_PYSECCOMP = """
+import ctypes.util, json, sys
+spawned = []
+sys.addaudithook(lambda event, args: spawned.append(str(args[1])) if event == "subprocess.Popen" else None)
+from bras_kit.ros import contain
+contain.SONAMES.update(json.loads(sys.argv[1]))
+looked_up = ctypes.util.find_library
+contain._import_pyseccomp()
+with open("/proc/self/maps") as maps:
+    mapped = sorted({line.split()[-1].rsplit("/", 1)[-1] for line in maps if "libseccomp" in line})
+print(json.dumps({"spawned": spawned, "mapped": mapped, "restored": ctypes.util.find_library is looked_up}))
+"""
+
+
+@pytest.mark.parametrize("sonames, asks_ldconfig", [
+    ({}, False),  # the sonames the loader knows: no ldconfig on the way to every contained child
+    ({"c": "libc.so.0-none", "seccomp": "libseccomp.so.0-none"}, True),  # unknown ones: find_library as before
+])
+def test_libseccomp_is_loaded_by_soname_or_found_as_before(sonames, asks_ldconfig):
+    """Oracles: the kernel's map of the process (libseccomp loaded) and the interpreter's audit
+    events (whether a process was spawned to find it)."""
+    import json
+    import subprocess
+
+    done = subprocess.run([sys.executable, "-c", IMPORT_PYSECCOMP, json.dumps(sonames)],
+                          capture_output=True, text=True, timeout=60)
+    assert done.returncode == 0, done.stderr
+    seen = json.loads(done.stdout)
+    assert seen["mapped"] and all(name.startswith("libseccomp.so.2") for name in seen["mapped"]), seen
+    assert seen["restored"]
+    assert bool(seen["spawned"]) is asks_ldconfig, seen
+    if asks_ldconfig:
+        assert any("ldconfig" in argv for argv in seen["spawned"]), seen
