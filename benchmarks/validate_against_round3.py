@@ -22,8 +22,8 @@ fresh process (``--phases PKG_DIR`` alone prints that table). The command itself
 phases beside its own (bras_kit.ros.ahead.evaluate_ahead): on two cores its wall time is about
 the longer of the two sides, plus Python's start and what both import before the fork. The 0.5 s
 target was set on a machine where round 3 took 0.44-0.52 s: the ratio to round 3 (median wall) is
-printed, with what it makes of that range, and the target is judged on the range's upper end. On one core the two sides add up instead: ``taskset -c 0 python benchmarks/...``
-gives that figure.
+printed, with what it makes of that range, and the target is judged on the range's upper end. On
+one core the two sides add up instead: ``taskset -c 0 python benchmarks/...`` gives that figure.
 
 The untimed first run of each tree leaves what a learner's first command leaves: this boot's
 record of the containment's trial (bras_kit.ros.contain), read by every later command instead of

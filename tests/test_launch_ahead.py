@@ -9,6 +9,7 @@ from __future__ import annotations
 
 import os
 import shutil
+import tempfile
 from pathlib import Path
 
 import pytest
@@ -82,7 +83,7 @@ def _children() -> set[int]:
 
 
 def _launch_folders() -> set[str]:
-    root = scratch.scratch_root() or __import__("tempfile").gettempdir()
+    root = scratch.scratch_root() or tempfile.gettempdir()
     return {name for name in os.listdir(root) if name.startswith("bras-kit-launch-")}
 
 

@@ -60,6 +60,7 @@ from collections.abc import Iterable, Sequence
 from dataclasses import dataclass, field
 from typing import Any
 
+from .. import scratch
 from ..errors import BrasKitError
 from ..message import M, Message
 
@@ -291,23 +292,16 @@ SHARED_MEMORY = "/dev/shm"  # the record's folder where the login manager made n
 
 def _record_path(make: bool = False) -> str | None:
     """The record's file: in ``$XDG_RUNTIME_DIR/bras-kit`` (the login manager's folder of this
-    user's, a tmpfs emptied at logout), else in ``/dev/shm/bras-kit-UID``; None where neither is
-    a folder of this user's only (``make``: the folder is made, 0700, when missing)."""
+    user's, a tmpfs emptied at logout), else in ``SHARED_MEMORY/bras-kit-UID``, the first whose
+    base :func:`bras_kit.scratch.usable` takes (a folder this user writes and no one else may empty);
+    None where the record's folder is not this user's only (``make``: made, 0700, when missing)."""
     import stat
 
     uid = os.getuid()
     runtime = os.environ.get("XDG_RUNTIME_DIR", "")
     for base, name in ((runtime, "bras-kit"), (SHARED_MEMORY, f"bras-kit-{uid}")):
-        try:
-            info = os.stat(base) if os.path.isabs(base) else None
-        except OSError:
-            info = None
-        if info is None or not stat.S_ISDIR(info.st_mode):
+        if not os.path.isabs(base) or not scratch.usable(base, min_free=0):
             continue
-        if base == runtime and (info.st_uid != uid or info.st_mode & 0o077):
-            continue  # a runtime folder others may write: not the login manager's
-        if base != runtime and not (info.st_mode & stat.S_ISVTX):
-            continue  # shared memory must be sticky: no one else may rename what is made there
         folder = os.path.join(base, name)
         if make:
             with contextlib.suppress(FileExistsError, OSError):
@@ -399,8 +393,6 @@ def _trial() -> tuple[str, int]:
 
 def _trial_start() -> tuple[int, int, str]:
     import json
-
-    from .. import scratch
 
     workdir = scratch.mkdtemp("bras-kit-contain-")
     _installation()  # worked out once, here: the trial's child and every child forked later have it

@@ -254,8 +254,7 @@ def _plan_when_told(read: int, write: int, walls: Any = None) -> LaunchPlan | No
 
     if walls is None:
         os.close(write)
-    preload_planning()  # while setup.py runs, as the worker would have imported it for a child forked later
-    _install_launch()  # and launch's own modules: what is left once told is the launch file's own work
+    _install_launch()  # while setup.py runs: what is left once told is the launch file's own work
     chunks = []
     while chunk := os.read(read, 1 << 16):
         chunks.append(chunk)
