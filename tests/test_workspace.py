@@ -113,6 +113,27 @@ def test_a_failed_build_claims_no_install_tree(workspace):
     assert "install tree" not in code.stdout
 
 
+@pytest.mark.parametrize(("lang", "command", "below", "said"), [
+    ("en", ("build",), "", "have one name"),
+    ("fr", ("build",), "src/bras_description/urdf", "portent le même nom"),
+    ("en", ("launch", "bras_description", "affichage.launch.py", "--no-browser"), "src", "have one name"),
+    ("fr", ("run", "bras_description", "animation", "--duration", "1"), "", "portent le même nom"),
+])
+def test_two_packages_of_one_name_are_refused_as_colcon_refuses_them(workspace, lang, command, below, said):
+    """A copy of bras_description kept in src/ beside it (colcon-core's get_packages: "Duplicate
+    package names not supported", listing each folder; it builds none of them). With an empty
+    COLCON_IGNORE in the copy, the workspace builds again."""
+    shutil.copytree(TUTORIAL, workspace / "src" / "bras_description_copie")
+    code = _cli(workspace / below, *command, "--lang", lang)
+    assert code.returncode == 2, code.stdout + code.stderr
+    assert said in code.stderr and "Traceback" not in code.stderr
+    assert "bras_description (src/bras_description, src/bras_description_copie)" in code.stderr
+    assert "COLCON_IGNORE" in code.stderr
+    assert not (workspace / "install").exists()
+    (workspace / "src" / "bras_description_copie" / "COLCON_IGNORE").touch()
+    assert _cli(workspace / below, "build", "--lang", lang).returncode == 0
+
+
 # ------------------------------------------------------------------ bras-kit launch PKG FILE
 
 

@@ -153,7 +153,28 @@ def find_workspace(start: str = ".") -> Workspace | None:
     root = workspace_root(start)
     if root is None:
         return None
-    return Workspace(root, tuple(build_order(read_packages(os.path.join(root, "src")))))
+    packages = read_packages(os.path.join(root, "src"))
+    _refuse_duplicates(root, packages)
+    return Workspace(root, tuple(build_order(packages)))
+
+
+def _refuse_duplicates(root: str, packages: list[WorkspacePackage]) -> None:
+    """colcon builds nothing in a workspace where two packages have one name ("Duplicate package
+    names not supported", whichever verb): neither does bras-kit, which would build one of them
+    without a word (a copy kept as a backup in ``src/``, say, instead of the one being edited)."""
+    folders: dict[str, list[str]] = {}
+    for package in packages:
+        folders.setdefault(package.name, []).append(os.path.relpath(package.folder, root))
+    twice = {name: sorted(found) for name, found in sorted(folders.items()) if len(found) > 1}
+    if twice:
+        first = next(iter(twice.values()))
+        raise ParameterError(
+            M("two packages of the workspace {root} have one name: {names}", root=root,
+              names="; ".join(f"{name} ({', '.join(found)})" for name, found in twice.items())),
+            path=os.path.join(root, first[-1], "package.xml"), element="name",
+            hint=M("colcon builds none of them (Duplicate package names not supported): keep one folder per name, "
+                   "by moving the other out of src/, giving it a name of its own in its package.xml, or putting an "
+                   "empty file named COLCON_IGNORE in it"))
 
 
 def sourced_workspace(environ: Any = None) -> Workspace | None:
