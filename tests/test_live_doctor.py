@@ -75,7 +75,7 @@ def scenario(name: str, nodes: list[list[str]], doctors: list[list[str]] | None 
     return mark
 
 
-def _run(nodes: list[list[str]], doctors: list[list[str]], doctor_env: str = "") -> list[tuple[int, str]]:
+def _run(nodes: list[list[str]], doctors: list[list[str]], doctor_env: str = "") -> tuple[list[tuple[int, str]], str]:
     python = oracle_python()
     with subprocess.Popen(shell_in_loopback_namespace(_script(nodes, doctors, python, doctor_env)), cwd=DATA,
                           env=graph_env(new_domain(), BRAS_KIT_ROS_PYTHON=python), stdout=subprocess.PIPE,
@@ -92,7 +92,7 @@ def _run(nodes: list[list[str]], doctors: list[list[str]], doctor_env: str = "")
         code, _, text = body.partition("\n")
         out.append((int(code), text))
     assert len(out) == len(doctors), stdout
-    return out
+    return out, "--- node" + stdout.split("--- node", 1)[1] if "--- node" in stdout else ""
 
 
 @pytest.fixture(scope="module")
@@ -106,7 +106,11 @@ def graphs(request):
 
 
 def run_scenario(graphs, name: str) -> list[tuple[int, str]]:
-    return graphs[name].result()
+    """Each doctor's exit code and output; the nodes' last lines go to the test's captured output
+    (pytest shows them when the test fails)."""
+    out, nodes = graphs[name].result()
+    print(nodes)
+    return out
 
 
 def _json(output: str) -> dict:
@@ -306,6 +310,26 @@ def test_an_empty_graph_says_so_and_exits_1(graphs):
     (code, out), = run_scenario(graphs, "empty")
     document = _json(out)
     assert code == 1 and _codes(document) == ["BK800"] and document["elsewhere"] == []
+
+
+@scenario("late-node", [ANIMATION + ["--late", "6"]], JSON_ONLY)
+def test_a_node_that_shows_after_the_first_seconds_is_waited_for_not_called_absent(graphs):
+    # its process is on the domain from the start (a participant, ports bound), the node itself
+    # shows 6 s later: what a busy computer's discovery does to a node that was there all along
+    (code, out), = run_scenario(graphs, "late-node")
+    document = _json(out)
+    assert "BK800" not in _codes(document) and document["nodes"] == ["/animation_bras"]
+    assert document["seconds"] >= 6 and document["joint_states_received"] > 0
+    assert "BK801" in _codes(document, "error")  # what is really missing: no robot_state_publisher
+
+
+@scenario("hidden-only", [ANIMATION + ["--late", "60"]], JSON_ONLY)
+def test_a_domain_held_by_a_hidden_node_only_is_empty_after_the_longer_wait(graphs):
+    # the ros2 daemon is such a node: the wait for a first node has an end
+    (code, out), = run_scenario(graphs, "hidden-only")
+    document = _json(out)
+    assert code == 1 and _codes(document) == ["BK800"]
+    assert 9.5 <= document["seconds"] < 15
 
 
 def test_without_rclpy_one_line_says_how_to_get_it_and_exit_3(tmp_path):

@@ -5,7 +5,9 @@ extra's wheels); it imports nothing of bras-kit, so bras-kit's own venv never lo
 (their ``.pth`` re-executes every Python process of their venv once). The domain, discovery range
 and RMW come from the environment, as ``ros2`` takes them.
 
-    python _probe.py snapshot SECONDS   one JSON object on stdout: the graph watched for SECONDS
+    python _probe.py snapshot SECONDS [WAIT]
+                                        one JSON object on stdout: the graph watched for SECONDS,
+                                        WAIT at most for its first node (default DISCOVERY_FLOOR)
     python _probe.py census SECONDS     the node names only, once they stop joining (other domains)
     python _probe.py stream SECONDS     JSON lines until stdin closes: the description and each
                                         JointState as they arrive, a graph every SECONDS
@@ -254,12 +256,13 @@ DISCOVERY_FLOOR = 3.5
 STABLE_GRACE = 3.0
 
 
-def snapshot(seconds: float) -> int:
-    """Watch ``seconds`` (at least the discovery floor), and longer while nodes are still being
-    discovered: the rate and the publishers are measured over the whole window."""
+def snapshot(seconds: float, wait: float = DISCOVERY_FLOOR) -> int:
+    """Watch ``seconds`` (at least the discovery floor, or ``wait`` for a first node), and longer
+    while nodes are still being discovered: the rate and the publishers are measured over the
+    whole window."""
     probe = Probe()
     try:
-        probe.spin_for(max(seconds, DISCOVERY_FLOOR), until=lambda: bool(probe.nodes()))
+        probe.spin_for(max(seconds, DISCOVERY_FLOOR, wait), until=lambda: bool(probe.nodes()))
         if probe.nodes():  # then at least 2 s of messages, to measure a rate, and until no node
             # has joined for a second (nodes started together are discovered over 1-2.5 s)
             seen, changed = [probe.nodes()], [time.monotonic()]
@@ -349,11 +352,11 @@ def stream(every: float) -> int:
 
 
 def main(argv: list[str]) -> int:
-    if len(argv) != 2 or argv[0] not in ("snapshot", "census", "stream"):
-        print("usage: _probe.py snapshot|census|stream SECONDS", file=sys.stderr)
+    if not 2 <= len(argv) <= (3 if argv[:1] == ["snapshot"] else 2) or argv[0] not in ("snapshot", "census", "stream"):
+        print("usage: _probe.py snapshot SECONDS [WAIT] | census SECONDS | stream SECONDS", file=sys.stderr)
         return 2
-    seconds = max(0.1, min(float(argv[1]), 600.0))
-    return {"snapshot": snapshot, "census": census, "stream": stream}[argv[0]](seconds)
+    seconds = [max(0.1, min(float(arg), 600.0)) for arg in argv[1:]]
+    return {"snapshot": snapshot, "census": census, "stream": stream}[argv[0]](*seconds)
 
 
 if __name__ == "__main__":

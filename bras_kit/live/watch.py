@@ -27,6 +27,7 @@ from typing import IO, Any
 
 from ..errors import BrasKitError
 from ..message import M
+from ..ros.bus import domain_id
 from .snapshot import Elsewhere, Snapshot, snapshot_from_json
 
 NO_ROS_EXIT = 3  # could not look: no rclpy to join the graph with
@@ -36,6 +37,12 @@ RANGES = ("LOCALHOST", "SUBNET")
 # RTPS's default ports (DDSI-RTPS 2.5, 9.6.1 "Default Port Numbers"): PB 7400 + DG 250 x domain; every participant
 # of a domain binds ports in its block, so the blocks in use name the domains of this computer
 PORT_BASE, DOMAIN_GAIN, MAX_DOMAIN = 7400, 250, 232
+# How long a look waits for a first node on a domain some process here already takes part in (its
+# ports are bound): Fast DDS repeats a discovery exchange it missed about 2.3 s later, and on a busy
+# computer it misses some (first node after 0-0.1 s or 2.2-2.5 s, measured in a loopback namespace
+# beside 8 busy processes on 2 cores; CI once saw none in 3.5 s). Ten seconds outlast three misses;
+# a look stops waiting as soon as a node shows, and an empty domain keeps the probe's 3.5 s.
+OCCUPIED_WAIT = 10.0
 
 
 class RosUnavailable(BrasKitError):
@@ -96,10 +103,12 @@ def probe_env(domain: int | None = None, discovery_range: str | None = None) -> 
     return env
 
 
-def _run_probe(python: str, mode: str, seconds: float, env: Mapping[str, str]) -> dict[str, Any]:
+def _run_probe(python: str, mode: str, seconds: float, env: Mapping[str, str], wait: float | None = None
+               ) -> dict[str, Any]:
+    argv = [python, PROBE, mode, f"{seconds:g}"] + ([f"{wait:g}"] if wait is not None else [])
     try:
-        done = subprocess.run([python, PROBE, mode, f"{seconds:g}"], env=dict(env), capture_output=True, text=True,
-                              timeout=seconds + START_SLACK, stdin=subprocess.DEVNULL)
+        done = subprocess.run(argv, env=dict(env), capture_output=True, text=True,
+                              timeout=max(seconds, wait or 0.0) + START_SLACK, stdin=subprocess.DEVNULL)
     except subprocess.TimeoutExpired as exc:
         raise ProbeFailed(M("the ROS 2 probe did not answer in {seconds:.0f} s", seconds=exc.timeout),
                           hint=M("run again; if it persists, try 'ros2 node list' in the same terminal")) from None
@@ -124,7 +133,10 @@ def look(seconds: float, python: str | None = None) -> dict[str, Any]:
     """Watch this terminal's ROS 2 graph for ``seconds``: the probe's JSON object; when the graph
     is empty, with ``elsewhere``: the nodes found on other domains or with the other range."""
     python = python or ros_python()
-    data = _run_probe(python, "snapshot", seconds, probe_env())
+    env = probe_env()
+    # someone is on this domain already: the look gives discovery time to find them
+    occupied = domain_id(env) in domains_in_use()
+    data = _run_probe(python, "snapshot", seconds, env, OCCUPIED_WAIT if occupied else None)
     if not snapshot_from_json(data).nodes:
         data["elsewhere"] = [{"domain": e.domain, "range": e.discovery_range, "nodes": list(e.nodes)}
                              for e in look_elsewhere(python, snapshot_from_json(data))]
@@ -169,6 +181,7 @@ def domains_in_use(own: int | None = None) -> list[int]:
 
 
 def _census(python: str, env: Mapping[str, str], seconds: float) -> dict[str, Any] | None:
+    """The nodes of the domain and range ``env`` gives, waiting ``seconds`` at most for a first one."""
     try:
         return _run_probe(python, "census", seconds, env)
     except BrasKitError:
@@ -180,11 +193,12 @@ def look_elsewhere(python: str, snapshot: Snapshot, seconds: float = 3.0) -> Ite
     discovery range on this domain (one short probe each, in parallel)."""
     ours = snapshot.discovery_range.upper() or "SUBNET"
     other_range = "SUBNET" if ours == "LOCALHOST" else "LOCALHOST"
-    tries: list[tuple[int, str]] = [(d, ours) for d in domains_in_use(snapshot.domain)][:8]
-    tries.append((snapshot.domain, other_range))
+    # a domain whose ports are bound has someone on it: as long a wait as for the terminal's own
+    tries: list[tuple[int, str, float]] = [(d, ours, OCCUPIED_WAIT) for d in domains_in_use(snapshot.domain)][:8]
+    tries.append((snapshot.domain, other_range, seconds))
     with concurrent.futures.ThreadPoolExecutor(max_workers=len(tries)) as pool:
-        futures = [pool.submit(_census, python, probe_env(domain, rng), seconds) for domain, rng in tries]
-        for (domain, rng), future in zip(tries, futures):
+        futures = [pool.submit(_census, python, probe_env(domain, rng), wait) for domain, rng, wait in tries]
+        for (domain, rng, _), future in zip(tries, futures):
             found = future.result()
             nodes = found.get("nodes") if found else None
             if isinstance(nodes, list) and nodes:
