@@ -352,11 +352,12 @@ def stream(every: float) -> int:
 
 
 def main(argv: list[str]) -> int:
-    if not 2 <= len(argv) <= (3 if argv[:1] == ["snapshot"] else 2) or argv[0] not in ("snapshot", "census", "stream"):
+    modes = {"snapshot": (snapshot, 2), "census": (census, 1), "stream": (stream, 1)}  # mode: its most numbers
+    mode, most = modes.get(argv[0] if argv else "", (None, 0))
+    if mode is None or not 1 <= len(argv) - 1 <= most:
         print("usage: _probe.py snapshot SECONDS [WAIT] | census SECONDS | stream SECONDS", file=sys.stderr)
         return 2
-    seconds = [max(0.1, min(float(arg), 600.0)) for arg in argv[1:]]
-    return {"snapshot": snapshot, "census": census, "stream": stream}[argv[0]](*seconds)
+    return mode(*(max(0.1, min(float(arg), 600.0)) for arg in argv[1:]))
 
 
 if __name__ == "__main__":
