@@ -7,10 +7,13 @@ terminal's report, each finding's code printed by the terminal against those the
 
 from __future__ import annotations
 
+import json
 import os
 import re
 import shutil
 import signal
+import subprocess
+import sys
 import time
 from pathlib import Path
 
@@ -161,6 +164,88 @@ def test_without_joint_state_publisher_the_page_has_no_sliders(browser, tmp_path
     assert "Traceback" not in err
     assert "BK620" in codes
     assert sorted(FINDING.findall(out)) == codes, out
+
+
+# bras-kit launch with the learner's Ctrl-C at the instant the page is told the checks: what the
+# page would list is kept, and what the terminal printed before it
+CTRL_C_AS_THE_PAGE_SHOWS_THE_CHECKS = """
+import json, sys
+from bras_kit.view.viewer import Viewer
+shown = []
+def show_checks(self):
+    shown.append(sorted(finding.code for _, finding in self.launch.findings()))
+    raise KeyboardInterrupt
+Viewer.show_checks = show_checks
+from bras_kit.cli import main
+code = main(sys.argv[1:])
+sys.stdout.flush()
+print("PAGE " + json.dumps(shown))
+sys.exit(code)
+"""
+
+
+def test_the_terminal_has_said_the_findings_before_the_page_shows_them(tmp_path):
+    """A Ctrl-C as the checks reach the page (the learner has seen them there) loses none of them in
+    the terminal: each code the page is given was printed before it."""
+    package = _copy_tutorial(tmp_path)
+    _without_lines(package / "launch" / "affichage.launch.py", "joint_state_publisher_gui")
+    env = {k: v for k, v in os.environ.items() if k not in ("DISPLAY", "WAYLAND_DISPLAY")}
+    (tmp_path / "runtime").mkdir(mode=0o700)
+    env["XDG_RUNTIME_DIR"] = str(tmp_path / "runtime")  # its own bus
+    done = subprocess.run([sys.executable, "-c", CTRL_C_AS_THE_PAGE_SHOWS_THE_CHECKS, "launch", str(package),
+                           "--port", str(_free_port()), "--duration", "1", "--lang", "en"],
+                          capture_output=True, text=True, timeout=240, env=env)
+    assert done.returncode == 0 and "Traceback" not in done.stderr, done.stderr
+    out, _, page = done.stdout.rpartition("PAGE ")
+    (codes,) = json.loads(page)
+    assert "BK620" in codes
+    assert sorted(FINDING.findall(out)) == codes, out
+
+
+# bras-kit launch whose page is told the checks only once the file RELEASE exists: the page as it
+# is while the package's checks still run
+CHECKS_HELD = """
+import os, sys, time
+from bras_kit.view.viewer import Viewer
+told = Viewer.show_checks
+def show_checks(self):
+    while not os.path.exists(os.environ["RELEASE"]):
+        time.sleep(0.05)
+    told(self)
+Viewer.show_checks = show_checks
+from bras_kit.cli import main
+sys.exit(main(sys.argv[1:]))
+"""
+
+
+def test_while_the_checks_run_the_page_says_so_and_claims_no_finding(browser, tmp_path):
+    """Before the terminal has the package's findings, the page says the package is being checked:
+    neither "No finding" nor "0 findings"; then it lists what the terminal printed."""
+    package = _copy_tutorial(tmp_path)
+    _without_lines(package / "launch" / "affichage.launch.py", "joint_state_publisher_gui")
+    env = {k: v for k, v in os.environ.items() if k not in ("DISPLAY", "WAYLAND_DISPLAY")}
+    (tmp_path / "runtime").mkdir(mode=0o700)
+    env.update(XDG_RUNTIME_DIR=str(tmp_path / "runtime"), RELEASE=str(tmp_path / "release"))
+    errors = tmp_path / "stderr.txt"
+    with open(errors, "w") as stderr:
+        process = subprocess.Popen([sys.executable, "-c", CHECKS_HELD, "launch", str(package), "--port",
+                                    str(_free_port()), "--duration", "1", "--lang", "en"],
+                                   stdout=subprocess.PIPE, stderr=stderr, text=True, env=env)
+    page = browser.new_page(viewport={"width": 1000, "height": 700})
+    try:
+        page.goto(_url(process, errors))
+        page.wait_for_selector("[data-banner='count']", timeout=60_000)
+        text = page.inner_text("body")
+        assert "checking the package..." in text and "No finding" not in text and "0 findings" not in text, text
+        (tmp_path / "release").touch()
+        assert _wait(lambda: page.locator("[data-finding]").count() > 0, 120), page.inner_text("body")
+        assert "checking the package..." not in page.inner_text("body")
+        codes = sorted(page.locator("[data-finding]").evaluate_all("(all) => all.map(e => e.dataset.finding)"))
+    finally:
+        page.close()
+        process.send_signal(signal.SIGINT)
+        out, _ = process.communicate(timeout=60)
+    assert "BK620" in codes and sorted(FINDING.findall(out)) == codes, out
 
 
 def test_a_rebuild_shows_what_the_install_tree_now_holds(browser, tmp_path):

@@ -95,6 +95,8 @@ def run(args: argparse.Namespace) -> int:
         try:
             launched = _launch(args, launch_file, arguments, lang, page_shown=shown)
             code = _report(args, launched, lang)
+            if launched.page is not None:  # the terminal first: a Ctrl-C as the page shows them loses nothing
+                launched.page[0].show_checks()
             if launched.description is None:
                 return code
             if launched.page is None:  # no robot file the page could show
@@ -117,6 +119,7 @@ def _report(args: argparse.Namespace, launched: _Launched, lang: str) -> int:
         sys.stdout.write(format_json(launched.results, lang=lang))
     else:
         sys.stdout.write(format_text(launched.results, lang))
+    sys.stdout.flush()
     return exit_code(launched.results)
 
 
@@ -222,10 +225,7 @@ def _launch(args: argparse.Namespace, launch_file: str | None, arguments: dict[s
             viewer.show_launch(evaluation, package_paths)
         check_launch(evaluation, package, package_paths)
         evaluation.results = merge(evaluation.results, _node_results(args, nodes, evaluation.robot, evaluation.package))
-        evaluation.checked = True
-        shown_in = page[0] if page is not None else viewer
-        if shown_in is not None:
-            shown_in.show_checks()
+        evaluation.checked = True  # the page shows them once the terminal has said them (run, _live)
     return _Launched(package, evaluation, nodes, page)
 
 
@@ -356,6 +356,7 @@ def _live(args: argparse.Namespace, launch_file: str | None, arguments: dict[str
                 continue
             sys.stdout.write(format_text(relaunched.results, lang))
             sys.stdout.flush()
+            viewer.show_checks()  # once the terminal has said them, as the first time
             start(relaunched)
             stamps = package_stamps(args.target)  # what the build and the nodes wrote is not a save
     except KeyboardInterrupt:  # during a rebuild: the same stop as during the wait

@@ -26,9 +26,9 @@ def axes_legend(lang: str) -> str:
     return f"<small data-legend='axes'>{html.escape(say(M('Axes:'), lang))} {' · '.join(parts)}</small>"
 
 
-def banner(error: Any, findings: Sequence[Any], lang: str) -> str:
+def banner(error: Any, findings: Sequence[Any], lang: str, checking: bool = False) -> str:
     """The top of the panel: a red banner while the saved file does not read (file, line, message),
-    then the number of findings (and of errors among them)."""
+    then the number of findings (and of errors among them), or ``checking`` that they are not in yet."""
     out = []
     if error is not None:
         path = getattr(error, "path", None)
@@ -49,6 +49,9 @@ def banner(error: Any, findings: Sequence[Any], lang: str) -> str:
             + (f"<br><i>{html.escape(say(hint, lang))}</i>" if hint else "")
             + f"<br><small>{html.escape(say(M('the last good model stays on screen until the file reads again'), lang))}"
               "</small></div>")
+    if checking:
+        out.append(f"<small data-banner='count'><i>{html.escape(say(M('checking the package...'), lang))}</i></small>")
+        return "".join(out)
     errors = sum(1 for f in findings if getattr(f, "severity", "") == "error")
     count: Message = Mn("{n} finding", "{n} findings", len(findings))
     text = say(count, lang)

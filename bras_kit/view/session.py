@@ -453,7 +453,8 @@ class Session:
         shown = "" if blank is None else (
             f"<div data-banner='blank' style='background:#fff3e0;border-left:4px solid #e65100;padding:6px 8px;"
             f"margin:0 0 6px 0'><b>{self.w(M('RViz shows nothing'))}</b><br>{self.w(blank)}</div>")
-        self.banner.content = shown + banner(viewer.error, viewer.findings, self.lang)
+        checking = viewer.checking
+        self.banner.content = shown + banner(viewer.error, viewer.findings, self.lang, checking)
         rows = []
         if viewer.error is not None:
             rows.append(f"<p style='color:{ERROR_RED}'><b>{self.w(M('The file cannot be read'))}</b>: "
@@ -465,11 +466,11 @@ class Session:
             rows.append(f"<p style='margin:2px 0' data-finding='{finding.code}'><b style='color:{colour}'>"
                         f"{finding.code}</b>{'' if file else line} {place}"
                         f"{html.escape(say(finding.message, self.lang))}</p>")
-        if not rows:
+        if checking:  # a launch's checks still running: neither "No finding" nor a count yet
+            rows = [f"<p><i>{self.w(M('checking the package...'))}</i></p>"]
+        elif not rows:
             rows.append(f"<p style='color:#2e7d32'>{self.w(M('No finding'))}</p>")
         self.findings.content = "".join(rows)
-        if viewer.launch is not None and not viewer.launch.checked:
-            rows = [f"<p><i>{self.w(M('checking the package...'))}</i></p>"]
         stamp = time.strftime("%H:%M:%S", time.localtime(viewer.loaded_at))
         self.status.content = (f"<small><b>{html.escape(self.model.robot.name or 'robot')}</b> · "
                                f"{html.escape(say(viewer.source_label, self.lang))} · "

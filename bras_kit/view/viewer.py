@@ -83,6 +83,7 @@ class Viewer:
         self.loop_seconds = loop_seconds
         self.error: BaseException | None = None  # why the saved file does not read, while it does not
         self.checks: list[tuple[str, Any]] = []  # (file, finding): the file is "" for the model's own
+        self.checking = False  # a launch's checks not shown yet: the terminal says them first (show_checks)
         # bras-kit launch: the one evaluation the terminal printed, shown as RViz would show it
         # (its robot, findings, Fixed Frame and slider window); None for bras-kit view
         self.launch: LaunchEvaluation | None = None
@@ -158,15 +159,18 @@ class Viewer:
         self.launch = launch
         self.fixed_frame = launch.fixed_frame
         self.checks = launch.findings()
+        self.checking = not launch.checked
         self.error = None
         if launch.robot_file is not None:
             self.source_label = launch.robot_file
 
     def show_checks(self) -> None:
-        """The launch's findings are in (its checks run once the page is open): every page shows them."""
+        """The launch's findings are in (its checks run once the page is open) and said in the
+        terminal: every page shows them."""
         with self._lock:
             if self.launch is not None:
                 self.checks = self.launch.findings()
+            self.checking = False
             for session in list(self.sessions.values()):
                 session.show_checks()
 
