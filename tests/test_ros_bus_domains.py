@@ -23,6 +23,7 @@ from pathlib import Path
 
 import pytest
 from test_ros_bus import private_runtime  # noqa: F401 - the fixture
+from test_view import _ended
 
 DATA = Path(__file__).parent / "data"
 TUTORIAL = DATA / "launch" / "tutorial" / "bras_description"
@@ -212,15 +213,21 @@ def _free_port() -> int:
 
 
 def _lines_until(stream, pattern: str, seconds: float) -> str:  # type: ignore[no-untyped-def]
-    """What ``stream`` says until a line matches ``pattern`` (or ``seconds`` pass)."""
+    """What ``stream`` says until a line matches ``pattern`` (or ``seconds`` pass). Read from its
+    descriptor, never through the text stream: a ``readline`` reads ahead into the stream's buffer,
+    where ``select`` no longer sees the lines waiting (and a later read through the stream still finds
+    what is not read here)."""
+    import codecs
+
+    decoder = codecs.getincrementaldecoder("utf-8")(errors="replace")
     said = ""
     end = time.monotonic() + seconds
     while time.monotonic() < end:
-        ready, _, _ = select.select([stream], [], [], 0.5)
+        ready, _, _ = select.select([stream.fileno()], [], [], 0.5)
         if ready:
-            line = stream.readline()
-            said += line
-            if re.search(pattern, line) or not line:
+            chunk = os.read(stream.fileno(), 65536)
+            said += decoder.decode(chunk, final=not chunk)
+            if not chunk or any(re.search(pattern, line) for line in said.splitlines()):
                 break
     return said
 
@@ -273,7 +280,7 @@ def test_two_launches_beside_a_batch_run_and_a_live_run(private_runtime, tmp_pat
                 assert _wait(lambda: len(received) > count, 5), "it still publishes after 10 s"
             finally:
                 live.send_signal(signal.SIGINT)
-                out, err = live.communicate(timeout=60)
+                out, err = _ended(live)
             assert live.returncode == 0, err
             assert "stopped by Ctrl-C" in err and "Traceback" not in err
         for launch in (first, second):
@@ -281,7 +288,7 @@ def test_two_launches_beside_a_batch_run_and_a_live_run(private_runtime, tmp_pat
     finally:
         for launch in (first, second):
             launch.send_signal(signal.SIGINT)
-        ends = [launch.communicate(timeout=60) for launch in (first, second)]
+        ends = [_ended(launch) for launch in (first, second)]
     for launch, (_, err) in zip((first, second), ends):
         assert launch.returncode == 0, err
         assert "ZError" not in err and "Traceback" not in err, err
