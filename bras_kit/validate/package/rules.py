@@ -170,11 +170,36 @@ def _module_file(module: str) -> str:
 
 def _not_written(pkg: Package, module: str) -> bool:
     """An entry's module that does not exist while no node of the package is left without an
-    entry: the node is still to write. Beside a node no entry runs, it is a misspelling (BK622)."""
-    if os.path.exists(os.path.join(pkg.root, _module_file(module))):
+    entry and no file of its name sits elsewhere: the node is still to write. Beside a node no
+    entry runs, it is a misspelling; a file of its name elsewhere, a misplaced node (BK622)."""
+    if _module_written(pkg, module) or _misplaced(pkg, module):
         return False
     listed = {s.module for s in (pkg.setup.scripts if pkg.setup is not None else None) or []}
     return not any(p.has_main and p.module not in listed for p in pkg.publishers)
+
+
+def _module_written(pkg: Package, module: str) -> bool:
+    """The module's file is where the import looks for it, in this very case: Python's import
+    compares names exactly, even on a file system that does not (macOS, Windows)."""
+    folder = pkg.root
+    for part in _module_file(module).split("/"):
+        try:
+            if part not in os.listdir(folder):
+                return False
+        except OSError:
+            return False
+        folder = os.path.join(folder, part)
+    return os.path.isfile(folder)
+
+
+def _misplaced(pkg: Package, module: str) -> list[str]:
+    """The package's files named as the entry's module file (in any case, or without ``.py``) in
+    another folder than the one the entry names. setuptools' ``packages=[package_name]`` installs
+    the package folder's own ``.py`` files and nothing else: a file at the root, in launch/, in a
+    subfolder or in a folder of another name is not importable once installed."""
+    own = _module_file(module)
+    wanted = {own.rsplit("/", 1)[-1].casefold(), module.rsplit(".", 1)[-1].casefold()}
+    return [f for f in pkg.source_files if f != own and f.rsplit("/", 1)[-1].casefold() in wanted]
 
 
 @package_rule("BK602", "launch-opens-uninstalled-file", ERROR)
@@ -556,7 +581,11 @@ def node_entry_point_missing(pkg: Package) -> Iterator[Hit]:
             yield _at(path, node.line, "launch", executable=node.executable, package=pkg.name,
                       entry=_entry_text(node.executable, f"{pkg.name}.{node.executable}"))
     listed = {s.module for s in setup.scripts}
+    misplaced = {script.module: _misplaced(pkg, script.module) for script in setup.scripts
+                 if not _module_written(pkg, script.module)}
     for publisher in pkg.publishers:
+        if any(publisher.path in files for files in misplaced.values()):
+            continue  # the node an entry names, in the wrong folder: said below
         if publisher.has_main and publisher.module not in listed:
             executable = publisher.module.rsplit(".", 1)[-1]
             yield _at(SETUP_PY, setup.scripts_line, "node", module=publisher.module, node_file=publisher.path,
@@ -564,6 +593,11 @@ def node_entry_point_missing(pkg: Package) -> Iterator[Hit]:
     for script in setup.scripts:
         if _not_written(pkg, script.module):
             continue  # BK608: the node is the learner's next step
+        if misplaced.get(script.module):
+            yield _at(SETUP_PY, script.line, "elsewhere", executable=script.name, module=script.module,
+                      node_file=_module_file(script.module), found=misplaced[script.module],
+                      moved=misplaced[script.module][0], package=pkg.name)
+            continue
         tree = pkg.module_tree(script.module)
         if tree is None:
             yield _at(SETUP_PY, script.line, "module", executable=script.name, module=script.module)

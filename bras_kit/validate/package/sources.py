@@ -30,6 +30,8 @@ from .staticpy import (
 PACKAGE_XML = "package.xml"
 SETUP_PY = "setup.py"
 INDEX_FOLDER = "share/ament_index/resource_index/packages"
+NOT_SOURCE_FOLDERS = ("build", "install", "log", "__pycache__")  # colcon's own, and Python's cache
+SOURCE_FILES_LIMIT = 20000
 DESCRIPTION_SUFFIXES = (".urdf", ".xacro")
 JOINT_STATE_PUBLISHERS = ("joint_state_publisher", "joint_state_publisher_gui")
 
@@ -245,6 +247,21 @@ class Package:
                 target = f"{folder}/{os.path.basename(source)}" if folder else os.path.basename(source)
                 out.setdefault(target, source)
         return out
+
+    @cached_property
+    def source_files(self) -> list[str]:
+        """Every file of the package folder (relative, sorted), out of colcon's build, install and log
+        folders (a build run in the package folder), caches and hidden folders; at most
+        SOURCE_FILES_LIMIT entries are looked at (a package holds tens)."""
+        out: list[str] = []
+        seen = 0
+        for folder, dirs, names in os.walk(self.root):
+            dirs[:] = sorted(d for d in dirs if not d.startswith(".") and d not in NOT_SOURCE_FOLDERS)
+            seen += len(dirs) + len(names)
+            out += [relative(self.root, os.path.join(folder, n)) for n in names]
+            if seen > SOURCE_FILES_LIMIT:
+                break
+        return sorted(out)
 
     def files(self, folder: str, suffixes: tuple[str, ...]) -> list[str]:
         """Files of ``folder`` (relative) ending with one of ``suffixes``, sorted."""

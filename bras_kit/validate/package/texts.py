@@ -132,7 +132,9 @@ files one step at a time: the robot description (step 3), the launch file (step 
 not written yet is the next step, not a mistake: this finding names it (info), and the rules
 that check a file start once it exists. A `console_scripts` entry whose module file is missing
 is reported here rather than as BK622, since `colcon build` succeeds and only
-`ros2 run` fails, until the file is written.""",
+`ros2 run` fails, until the file is written. A file of that name elsewhere in the package (beside
+`setup.py`, in another folder, in another case) is written, in the wrong place: BK622 says so,
+as an error.""",
 )
 describe(
     "BK606",
@@ -271,18 +273,25 @@ describe(
         "node": "{node_file} publishes JointState and has main(), but no console_scripts entry runs it",
         "module": "console_scripts entry '{executable}' points to {module}, which does not exist",
         "function": "console_scripts entry '{executable}' points to {module}:{function}, which is not defined",
+        "elsewhere": "console_scripts entry '{executable}' runs {node_file}, found elsewhere ({found}), where colcon "
+                     "does not install it: 'ros2 run {package} {executable}' fails with ModuleNotFoundError",
         "": "a node has no console_scripts entry point",
     },
     hint={
         "launch": "add {entry} to entry_points['console_scripts'] in setup.py",
         "node": "add {entry} to entry_points['console_scripts'] in setup.py",
+        "elsewhere": "move {moved} to {node_file}, the file the entry {module} names, then run colcon build again",
         "": "point the entry at an existing module and function (module.path:main)",
     },
     explanation="""\
 `ros2 run PKG NAME` and a launch file's `Node(package=PKG, executable=NAME)` run the programs
 that `setup.py` declares under `entry_points['console_scripts']` (`'NAME = PKG.module:main'`).
 A node without an entry is never installed as a program: "No executable found", and the robot
-does not move.""",
+does not move. An entry `PKG.module` runs the file `PKG/module.py`, in that folder and with that
+case: setuptools' `packages=[package_name]` installs the `.py` files of the package folder and
+nothing else, so a node saved beside `setup.py`, in `launch/`, in a subfolder, in a folder of
+another name or as `Module.py` builds without a word and `ros2 run` fails with
+ModuleNotFoundError. This finding then says where the file is and where it must go.""",
 )
 describe(
     "BK623",
