@@ -497,6 +497,14 @@ def near_names(type_name: str) -> list[str]:
     return [every[name].replace("/", ".") for name in close]
 
 
+def near_packages(package: str, others: Set[str] = frozenset()) -> list[str]:
+    """Jazzy's interface packages whose name is close to ``package`` ("sensors_msgs" -> ["sensor_msgs"]):
+    those bras-kit holds the definitions of, and ``others``."""
+    import difflib
+
+    return difflib.get_close_matches(package, sorted(packages() | set(others)), n=3, cutoff=0.8)
+
+
 def homes_of(type_name: str) -> list[str]:
     """The interface modules of Jazzy that define ``type_name`` ("JointState" -> ["sensor_msgs.msg"])."""
     found = {f"{t.split('/')[0]}.msg" for t in definitions() if t.rsplit("/", 1)[-1] == type_name}

@@ -282,6 +282,12 @@ def beginner_mistake(r: Recording) -> tuple[str, str, int | None, dict[str, Any]
                 home, _, close = near[0].rpartition(".")
                 return "misspelt_import", *here, {"type": name, "module": module, "home": home, "close": close}
             return "unknown_import", *here, {"type": name, "module": module}
+        if failure.kind == "ModuleNotFoundError" and context.get("near_packages") is not None:
+            module = detail.split("'")[1] if detail.count("'") >= 2 else "?"
+            near = context["near_packages"]
+            if near:
+                return "misspelt_package", *here, {"module": module, "close": near[0]}
+            return "unknown_package", *here, {"module": module}
         if failure.kind == "RCLError" and "rcl_shutdown already called" in detail:
             return "shutdown_twice", *here, {"detail": detail}
         if failure.kind == "TypeError" and "does not support the context manager protocol" in detail:

@@ -334,7 +334,11 @@ The stand-in follows rclpy 7.1 (Jazzy) where beginner nodes use it: `rclpy.init/
 spin_once/shutdown/try_shutdown`, `Node` with publishers, subscriptions, timers, rates, the
 parameters API, clock and logger, executors and callback groups, threads, QoS profiles, tf2_ros,
 and every message package of Jazzy's definitions. Services, actions and a few rarer calls are
-not simulated: the run stops there rather than pretend.""",
+not simulated: the run stops there rather than pretend. A message package is one of those
+definitions, whatever a name says: a module of yours named like one (`test_from_std_msgs.py`, a
+package `bras_msgs`) runs as your code; a package of Jazzy bras-kit holds no definitions of
+(`control_msgs`, `turtlesim`) or one a ROS install generated is not simulated (this finding); any
+other name fails as on Jazzy, with ModuleNotFoundError (BK652).""",
 )
 describe(
     "BK642",
@@ -553,6 +557,10 @@ describe(
         "wrong_import": "'from {module} import {type}' fails: {type} is not in {module} but in {home}",
         "unknown_import": "'from {module} import {type}' fails: ROS 2 Jazzy has no message {type} in {module}",
         "misspelt_import": "'from {module} import {type}' fails: ROS 2 Jazzy has no {type}; the closest is {close}, in {home}",
+        "misspelt_package": "'{module}' is no interface package of ROS 2 Jazzy (the closest is {close}): the import "
+                            "fails with ModuleNotFoundError",
+        "unknown_package": "'{module}' is no interface package bras-kit knows of ROS 2 Jazzy, nor a module of yours: "
+                           "the import fails with ModuleNotFoundError, as with ros2 run on a machine without it",
         "shutdown_twice": "rclpy.shutdown() after Ctrl-C raised '{detail}': rclpy's Ctrl-C handler had already shut the context down",
         "with_node": "'with {cls}() as node:' fails: a Node of rclpy 7.1 (Jazzy) is not a context manager",
         "spin_forgotten": "main() returned at t = 0 s without spinning: the timer created here never fired",
@@ -569,6 +577,9 @@ describe(
         "wrong_import": "import it from its package: from {home} import {type} (and add the package to package.xml's <depend>)",
         "unknown_import": "check the type's name and package (ros2 interface list on a ROS 2 machine)",
         "misspelt_import": "write from {home} import {close}",
+        "misspelt_package": "write {close}",
+        "unknown_package": "check the package's name (ros2 interface packages on a ROS 2 machine); a package of your "
+                           "workspace is found once built and sourced (source install/setup.bash)",
         "shutdown_twice": "end main() with rclpy.try_shutdown() (or 'if rclpy.ok(): rclpy.shutdown()')",
         "with_node": "write node = {cls}() then node.destroy_node() at the end (an executor, not a Node, can be used with 'with')",
         "spin_forgotten": "call rclpy.spin(node) after creating the node: spin is what runs the timers",
@@ -587,7 +598,9 @@ that says little about the cause. bras-kit recognises each from what the run did
 the line to change: the `def`, the `create_timer` call, the class. On Jazzy, message setters no
 longer check types (rosidl_python 0.18+): a wrong type is only found when the message is
 published, by the C conversion, and the process aborts without a Python traceback. After
-Ctrl-C, rclpy has already shut its context down: a second `rclpy.shutdown()` raises.""",
+Ctrl-C, rclpy has already shut its context down: a second `rclpy.shutdown()` raises. An
+interface package Jazzy does not have (`sensors_msgs`) stops the node at its import with
+ModuleNotFoundError: the closest package name is given when there is one.""",
 )
 describe(
     "BK627",
