@@ -174,10 +174,11 @@ def _context(exc: BaseException, target: Target, sim: Any) -> dict[str, Any]:
 
         out["homes"] = _messages.homes_of(str(exc).split("'")[1])
         out["near"] = _messages.near_names(str(exc).split("'")[1])
-    if isinstance(exc, ModuleNotFoundError) and (exc.name or "").partition(".")[0].endswith(ROS_SUFFIXES):
+    missing = (exc.name or "").partition(".")[0] if isinstance(exc, ModuleNotFoundError) else ""
+    if missing.endswith(ROS_SUFFIXES):
         import _messages  # `import sensors_msgs`: the interface packages of Jazzy named alike
 
-        out["near_packages"] = _messages.near_packages(exc.name.partition(".")[0], JAZZY_UNSIMULATED)
+        out["near_packages"] = _messages.near_packages(missing, JAZZY_UNSIMULATED)
     node_class = _uninitialised_node(exc)
     if node_class is not None:
         out["node_class"] = node_class.__name__
