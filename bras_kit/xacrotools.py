@@ -219,12 +219,17 @@ def _is_builtin_template(path: str) -> bool:
 
 
 _FORBIDDEN_TREES = ("/proc", "/sys", "/dev")
+# the folder in memory where bras-kit builds a package to evaluate it (scratch.IN_MEMORY): its
+# regular files are files like any other (a device there is refused below, as anywhere)
+_SHARED_MEMORY = "/dev/shm"
 
 
 def check_readable_file(path: str) -> None:
-    """Raise unless ``path`` is a regular file of at most :data:`MAX_FILE_BYTES` outside /proc, /sys, /dev."""
+    """Raise unless ``path`` is a regular file of at most :data:`MAX_FILE_BYTES` outside /proc, /sys,
+    /dev (its /dev/shm folder in memory excepted)."""
     real = os.path.realpath(path)
-    if any(real == tree or real.startswith(tree + os.sep) for tree in _FORBIDDEN_TREES):
+    system = any(real == tree or real.startswith(tree + os.sep) for tree in _FORBIDDEN_TREES)
+    if system and not real.startswith(_SHARED_MEMORY + os.sep):
         raise XacroError(M("refused to read {path}: it is a system file, not a robot description", path=path),
                          hint=M("include only files of your robot's packages"))
     try:

@@ -198,7 +198,8 @@ def test_launch_folder_not_installed(tmp_path):
 
 def test_rviz_config_not_installed(tmp_path):
     (finding,) = check_defect("rviz_config_not_installed", tmp_path)
-    assert "rviz/bras_description.rviz exists" in finding.text("en")
+    assert finding.severity == "info"
+    assert "rviz/bras_description.rviz, which setup.py does not install" in finding.text("en")
 
 
 def test_launch_opens_misspelled_urdf(tmp_path):

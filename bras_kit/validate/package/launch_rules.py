@@ -131,7 +131,7 @@ def _launch_variant(pkg: Package, result: Launched, message: str) -> tuple[str, 
         return "executable", {"executable": executable, "names": ", ".join(names) or "-"}
     found = _NO_FILE.search(message)
     if found:
-        path = found.group(1)
+        path = os.path.normpath(found.group(1)) if os.path.isabs(found.group(1)) else found.group(1)
         if not os.path.isabs(path):
             return "relative", {"path": path, "package": result.build.package,
                                 "fixed": f"os.path.join(get_package_share_directory('{result.build.package}'), "

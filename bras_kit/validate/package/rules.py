@@ -213,10 +213,10 @@ def launch_opens_uninstalled_file(pkg: Package) -> Iterator[Hit]:
         folder = os.path.dirname(share.relative)
         if folder in dict(REQUIRED_FOLDERS) and not any(k.startswith(folder + "/") for k in installed):
             continue  # BK601 already says the whole folder is not installed
+        if share.relative.endswith(".rviz"):
+            continue  # given to rviz2 -d: RViz logs that it cannot load it and opens its defaults (BK613)
         there = sorted(k for k in installed if os.path.dirname(k) == folder)
         exists = os.path.isfile(os.path.join(pkg.root, share.relative))
-        if share.relative.endswith(".rviz") and not exists:
-            continue  # not an error: RViz opens its default configuration (BK613 says so)
         yield _at(launch.path, line, "exists" if exists else ("other" if there else ""),
                   path=share.relative, package=pkg.name, installed=there or ["-"], folder=folder or ".")
 
@@ -427,13 +427,16 @@ def rviz_no_tf_display(pkg: Package) -> Iterator[Hit]:
 
 @package_rule("BK613", "rviz-without-configuration", INFO)
 def rviz_without_configuration(pkg: Package) -> Iterator[Hit]:
+    installed = pkg.installed()
     for path, node in _rviz_starts(pkg):
         target = _config_argument(node)
-        if isinstance(target, ShareFile) and target.package == pkg.name and target.relative.endswith(".rviz") \
-                and not os.path.isfile(os.path.join(pkg.root, target.relative)):
+        if isinstance(target, ShareFile) and target.package == pkg.name and target.relative.endswith(".rviz"):
             # not an error: rviz2 cannot load it and opens its default configuration
             # (rviz_common visualization_frame.cpp:675, loadDisplayConfig: a missing file loads default.rviz)
-            yield _at(path, node.line, "missing", config=target.relative, package=pkg.name)
+            if not os.path.isfile(os.path.join(pkg.root, target.relative)):
+                yield _at(path, node.line, "missing", config=target.relative, package=pkg.name)
+            elif installed is not None and target.relative not in installed:
+                yield _at(path, node.line, "not_installed", config=target.relative, package=pkg.name)
             continue
         if not known(node.arguments) or target is not None:
             continue
@@ -458,7 +461,9 @@ def _rviz_configs_missing_in_front_end_files(pkg: Package) -> Iterator[Hit]:
             # the install tree is gone once evaluated: what the build installed says whether it is there
             if config and config.startswith(share) and config.endswith(".rviz") and result.build.source_of(config) is None:
                 file, line = place(result, node.file, node.line)
-                yield _at(file, line or None, "missing", config=config[len(share):], package=pkg.name)
+                inside = config[len(share):]
+                variant = "not_installed" if os.path.isfile(os.path.join(pkg.root, inside)) else "missing"
+                yield _at(file, line or None, variant, config=inside, package=pkg.name)
 
 
 # ---------------------------------------------------------------- "le robot ne bouge pas"

@@ -14,6 +14,7 @@ from __future__ import annotations
 import ast
 import glob as globmod
 import os
+import posixpath
 from collections.abc import Iterator, Mapping
 from dataclasses import dataclass
 from typing import Any
@@ -323,17 +324,29 @@ def _only_raises(statement: ast.If) -> bool:
 
 
 def join_paths(parts: list[Any]) -> Any:
-    """``os.path.join`` over strings, or a :class:`ShareFile` when the first part is a :class:`Share`."""
+    """``os.path.join`` over strings (``PathJoinSubstitution`` performs it too), or a :class:`ShareFile`
+    when the first part is a :class:`Share`: a path compared as the system opens it, never as text
+    (``join(join(share), 'urdf')``, 'urdf/', './urdf', 'launch/../urdf' and a doubled slash all name
+    share/PKG/urdf). As ``os.path.join`` does, an absolute part drops the parts before it."""
     if not parts:
         return UNKNOWN
+    absolute = [k for k, p in enumerate(parts) if isinstance(p, str) and p.startswith("/")]
+    parts = parts[absolute[-1]:] if absolute else parts
     head, rest = parts[0], parts[1:]
-    if isinstance(head, Share) and all(isinstance(p, str) for p in rest):
-        return ShareFile(head.package, "/".join(p.strip("/") for p in rest if p))
-    if isinstance(head, ShareFile) and all(isinstance(p, str) for p in rest):
-        return ShareFile(head.package, "/".join([head.relative, *(p.strip("/") for p in rest if p)]))
+    if isinstance(head, (Share, ShareFile)) and all(isinstance(p, str) for p in rest):
+        return share_file(head.package, posixpath.join(head.relative if isinstance(head, ShareFile) else "", *rest))
     if all(isinstance(p, str) for p in parts):
         return os.path.join(*parts).replace(os.sep, "/")
     return UNKNOWN
+
+
+def share_file(package: str, relative: str) -> Any:
+    """``relative`` (below share/PACKAGE) normalised as the system resolves it; UNKNOWN when its '..'
+    leave the share folder (where they land depends on how the workspace was installed)."""
+    normal = posixpath.normpath(relative) if relative else "."
+    if normal == ".." or normal.startswith("../"):
+        return UNKNOWN
+    return ShareFile(package, "" if normal == "." else normal)
 
 
 def call_name(func: ast.expr) -> str:

@@ -62,10 +62,12 @@ describe(
     },
     explanation="""\
 The launch file builds paths in the installed share folder (`get_package_share_directory`,
-`FindPackageShare`) and opens them, or passes them to a node (RViz's `-d`). Such a path must
-name a file that `setup.py` installs there, with the same folder and name: otherwise launching
-fails with "file not found" (or RViz opens with no configuration). A renamed URDF or a typo
-in the launch file is the usual cause.""",
+`FindPackageShare`) and opens them, or passes them to a node. Such a path must name a file that
+`setup.py` installs there, with the same folder and name: otherwise launching fails with "file
+not found". A renamed URDF or a typo in the launch file is the usual cause. Paths are compared
+as the system resolves them: `os.path.join(get_package_share_directory(PKG))`, 'urdf/', './',
+a doubled slash or a '..' that stays inside the share folder name the same file. RViz's `-d` is
+not judged here: RViz opens its default configuration when it cannot load one (BK613).""",
 )
 describe(
     "BK603",
@@ -210,17 +212,23 @@ describe(
         "unused": "rviz2 is started without -d, so {config} is not used: RViz opens empty",
         "missing": "rviz2 is given -d {config}, which the package does not have: RViz opens its default "
                    "configuration, empty",
+        "not_installed": "rviz2 is given -d {config}, which setup.py does not install: RViz says it cannot load it "
+                         "and opens its default configuration, empty",
         "": "rviz2 is started without a configuration: RViz opens empty",
     },
     hint={
         "missing": "save RViz's configuration as {config} (File > Save Config As), install it, or correct the name",
+        "not_installed": "add {config} to data_files in setup.py, then run colcon build again",
         "unused": "pass arguments=['-d', os.path.join(get_package_share_directory('{package}'), '{config}')]",
         "": "save a configuration to rviz/{package}.rviz, install it, and pass it with arguments=['-d', ...]",
     },
     explanation="""\
 Started with no `-d`, RViz opens its default configuration: Fixed Frame `map`, no robot model.
 The tutorial then sets Fixed Frame and adds RobotModel by hand, at every launch. Saving that
-configuration in the package, installing it and passing it with `-d` shows the arm at once.""",
+configuration in the package, installing it and passing it with `-d` shows the arm at once.
+Given with `-d` a file it cannot find (not in the package, or not installed by `setup.py`), RViz
+logs an error and opens its default configuration: the launch starts, which is why this is
+advice (info), not an error.""",
 )
 describe(
     "BK620",
