@@ -166,3 +166,15 @@ def test_a_device_is_still_refused(tmp_path):
     for path in ("/dev/null", "/proc/self/status"):
         with pytest.raises(BrasKitError):
             check_readable_file(path)
+
+
+def test_a_file_missing_behind_a_doubled_slash_is_named_as_a_package_path(tmp_path):
+    """Jazzy fails on a file that is nowhere (FileNotFoundError), doubled slash or not: BK631 names
+    it as the package path to check, urdf/absente.urdf, not '/urdf/absente.urdf'."""
+    launch = tmp_path / "absente.launch.py"
+    launch.write_text((PACKAGE / "launch" / "trailing_slashes.launch.py").read_text(encoding="utf-8")
+                      .replace("os.path.join(share, 'urdf/', 'bras.urdf')", "share + '/urdf/absente.urdf'"),
+                      encoding="utf-8")
+    root = package_with(tmp_path, "absente.launch.py", tmp_path)
+    (finding,) = [f for r in validate_package(str(root), launch=True) for f in r.findings if f.code == "BK631"]
+    assert finding.variant == "no_file" and finding.data["path"] == "urdf/absente.urdf"
