@@ -169,3 +169,25 @@ def test_validate_exits_non_zero_and_names_the_places(tmp_path):
                               capture_output=True, text=True, encoding="utf-8", timeout=120)
         assert done.returncode == 1 and "Traceback" not in done.stderr
         assert "BK622" in done.stdout and "BK608" not in done.stdout and words in done.stdout
+
+
+def test_bras_kit_run_says_where_the_node_must_go(tmp_path):
+    """bras-kit run PKG, the counterpart of ros2 run: the same mistake, the same two places."""
+    root = _package(tmp_path, "scaffold")
+    _place(root, "launch/animation.py", ())
+    for lang, words in (("en", "move launch/animation.py to bras_description/animation.py"),
+                        ("fr", "déplacez launch/animation.py vers bras_description/animation.py")):
+        done = subprocess.run([sys.executable, "-m", "bras_kit", "run", "--lang", lang, str(root)],
+                              capture_output=True, text=True, encoding="utf-8", timeout=120)
+        assert done.returncode == 2 and "Traceback" not in done.stderr
+        assert words in done.stderr
+
+
+def test_bras_kit_run_refuses_a_module_file_in_another_case(tmp_path):
+    """Python's import compares the name exactly: bras_description/Animation.py is not the module
+    bras_description.animation, whatever the file system (macOS and Windows would open it)."""
+    root = _package(tmp_path, "scaffold")
+    _place(root, f"{PKG}/Animation.py", ())
+    done = subprocess.run([sys.executable, "-m", "bras_kit", "run", "--lang", "en", str(root)],
+                          capture_output=True, text=True, encoding="utf-8", timeout=120)
+    assert done.returncode == 2 and f"move {PKG}/Animation.py to {NODE}" in done.stderr

@@ -84,10 +84,14 @@ def _from_package(where: str, executable: str | None) -> Target:
                                  hint=M("the executables are {names}", names=_names(scripts)))
         entry = found[0]
     module_path = os.path.join(package.root, *entry.module.split(".")) + ".py"
-    if not entry.module or not entry.function or not os.path.isfile(module_path):
+    if not entry.module or not entry.function or not package.module_written(entry.module):
+        expected = os.path.relpath(module_path, package.root)
+        elsewhere = package.misplaced(entry.module) if entry.module else []
         raise ParameterError(M("the entry point '{entry}' names no module file of the package",
                                entry=f"{entry.module}:{entry.function}"),
                              path=setup_path, line=entry.line,
-                             hint=M("expected {file}", file=os.path.relpath(module_path, package.root)))
+                             hint=M("move {found} to {file}: ros2 run imports the entry's module from there",
+                                    found=elsewhere[0], file=expected) if elsewhere
+                             else M("expected {file}", file=expected))
     return Target(package.root, entry.module, entry.function, module_path,
                   f"{package.name} {entry.name}", where)

@@ -179,27 +179,11 @@ def _not_written(pkg: Package, module: str) -> bool:
 
 
 def _module_written(pkg: Package, module: str) -> bool:
-    """The module's file is where the import looks for it, in this very case: Python's import
-    compares names exactly, even on a file system that does not (macOS, Windows)."""
-    folder = pkg.root
-    for part in _module_file(module).split("/"):
-        try:
-            if part not in os.listdir(folder):
-                return False
-        except OSError:
-            return False
-        folder = os.path.join(folder, part)
-    return os.path.isfile(folder)
+    return pkg.module_written(module)
 
 
 def _misplaced(pkg: Package, module: str) -> list[str]:
-    """The package's files named as the entry's module file (in any case, or without ``.py``) in
-    another folder than the one the entry names. setuptools' ``packages=[package_name]`` installs
-    the package folder's own ``.py`` files and nothing else: a file at the root, in launch/, in a
-    subfolder or in a folder of another name is not importable once installed."""
-    own = _module_file(module)
-    wanted = {own.rsplit("/", 1)[-1].casefold(), module.rsplit(".", 1)[-1].casefold()}
-    return [f for f in pkg.source_files if f != own and f.rsplit("/", 1)[-1].casefold() in wanted]
+    return pkg.misplaced(module)
 
 
 @package_rule("BK602", "launch-opens-uninstalled-file", ERROR)

@@ -132,6 +132,11 @@ class Publisher:
     degrees: list[tuple[int, str]] = field(default_factory=list)  # (line, what) of angles written in degrees
 
 
+def module_file(module: str) -> str:
+    """The file of a dotted module name, relative to the folder on sys.path: a/b.py for a.b."""
+    return module.replace(".", "/") + ".py"
+
+
 def relative(root: str, path: str) -> str:
     return os.path.relpath(path, root).replace(os.sep, "/")
 
@@ -310,6 +315,28 @@ class Package:
                 continue
             out += [f"{entry}/{f}" for f in sorted(os.listdir(folder)) if f.endswith(".py")]
         return out
+
+    def module_written(self, module: str) -> bool:
+        """The module's file is where the import looks for it, in this very case: Python's import
+        compares names exactly, even on a file system that does not (macOS, Windows)."""
+        folder = self.root
+        for part in module_file(module).split("/"):
+            try:
+                if part not in os.listdir(folder):
+                    return False
+            except OSError:
+                return False
+            folder = os.path.join(folder, part)
+        return os.path.isfile(folder)
+
+    def misplaced(self, module: str) -> list[str]:
+        """The package's files named as the module's file (in any case, or without ``.py``) in another
+        folder than the one the module names. setuptools' ``packages=[package_name]`` installs the
+        package folder's own ``.py`` files and nothing else: a file at the root, in launch/, in a
+        subfolder or in a folder of another name is not importable once installed."""
+        own = module_file(module)
+        wanted = {own.rsplit("/", 1)[-1].casefold(), module.rsplit(".", 1)[-1].casefold()}
+        return [f for f in self.source_files if f != own and f.rsplit("/", 1)[-1].casefold() in wanted]
 
     def module_tree(self, module: str) -> ast.Module | None:
         rel = module.replace(".", "/") + ".py"
