@@ -83,7 +83,7 @@ def beneath(root: str, path: str, *, want: str = FILE, must_exist: bool = True) 
         raise Outside("empty", text, root)
     top = os.path.realpath(root)
     joined = os.path.join(top, text)
-    resolved = os.path.realpath(joined)
+    resolved = _realpath(joined, text, root)
     if not _inside(resolved, top):
         # the words say which trick: the path itself leaves, or a link inside it points out
         raise Outside("outside" if not _inside(os.path.normpath(joined), top) else "link_out", text, root)
@@ -99,6 +99,18 @@ def beneath(root: str, path: str, *, want: str = FILE, must_exist: bool = True) 
     if kind:
         raise Outside(kind, text, root)
     return resolved
+
+
+def _realpath(joined: str, text: str, root: str) -> str:
+    """os.path.realpath, which raises when a link it met is swapped while it reads it (lstat, then
+    readlink): looked at again, then refused as missing. The answer is a check only: what is read
+    is opened with :func:`open_beneath`."""
+    for _ in range(3):
+        try:
+            return os.path.realpath(joined)
+        except OSError:
+            continue
+    raise Outside("missing", text, root)
 
 
 def beneath_any(roots: tuple[str, ...] | list[str], path: str, *, want: str = FILE) -> str:
@@ -318,10 +330,15 @@ def _walk(root: str, top: int, parts: list[str], want: str, text: str) -> int:
 def open_any_beneath(roots: tuple[str, ...] | list[str], path: str, *, want: str = FILE) -> tuple[int, str]:
     """:func:`open_beneath` for the first of ``roots`` that holds ``path``, with that root; the
     refusal as :func:`beneath_any` chooses it otherwise."""
-    refusal = Outside("outside", os.fspath(path))
+    text = os.fspath(path)
+    refusal = Outside("outside", text)
     for root in roots:
+        given = text
+        if not os.path.isabs(text) and not os.path.isabs(root) and _inside(os.path.normpath(text), root) \
+                and os.path.normpath(root) != ".":
+            given = os.path.abspath(text)  # both named from the current folder: "pkg" and "pkg/setup.py"
         try:
-            return open_beneath(root, path, want=want), root
+            return open_beneath(root, given, want=want), root
         except Outside as exc:
             if exc.kind not in ("outside", "link_out") or refusal.kind in ("outside", "link_out"):
                 refusal = exc

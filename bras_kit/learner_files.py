@@ -168,9 +168,13 @@ def _parent_fd(root: str, relative: str, *, make: bool) -> tuple[int, str]:
         os.close(top)
 
 
-def _write_new(fd: int, name: str, chunks: Iterator[bytes], mode: int) -> None:
-    out = os.open(name, os.O_WRONLY | os.O_CREAT | os.O_EXCL | os.O_NOFOLLOW | os.O_CLOEXEC, mode, dir_fd=fd)
+def _write_new(fd: int, name: str, chunks: Iterator[bytes], mode: int | None) -> None:
+    """A new file (never an existing one, never through a link); ``mode`` exactly, or 0o666 less the umask."""
+    out = os.open(name, os.O_WRONLY | os.O_CREAT | os.O_EXCL | os.O_NOFOLLOW | os.O_CLOEXEC, 0o666 if mode is None
+                  else mode & 0o700, dir_fd=fd)
     try:
+        if mode is not None:
+            os.fchmod(out, mode)
         with os.fdopen(out, "wb", closefd=False) as sink:
             for chunk in chunks:
                 sink.write(chunk)
@@ -178,13 +182,13 @@ def _write_new(fd: int, name: str, chunks: Iterator[bytes], mode: int) -> None:
         os.close(out)
 
 
-def write_file(root: str, relative: str, data: bytes, *, mode: int = 0o666, replace: bool = True) -> str:
+def write_file(root: str, relative: str, data: bytes, *, mode: int | None = None, replace: bool = True) -> str:
     """``data`` as the file ``relative`` under ``root``, its folders made on the way, without
     following a link out of ``root``: written whole to a new temporary beside it (``O_EXCL |
     O_NOFOLLOW``: a link planted under that name is never written through) then moved over the
     old file with ``os.replace`` in the folder's descriptor (a link in its place is replaced,
-    never followed). ``replace=False`` refuses an existing entry (FileExistsError). The path
-    written."""
+    never followed). ``replace=False`` refuses an existing entry (FileExistsError). ``mode``:
+    the file's mode exactly (default: 0o666 less the umask). The path written."""
     fd, name = _parent_fd(root, relative, make=True)
     try:
         if not replace:
@@ -204,7 +208,7 @@ def write_file(root: str, relative: str, data: bytes, *, mode: int = 0o666, repl
 
 
 def copy_file(path: str, roots: tuple[str, ...] | list[str], target: str, *, limit: int = MAX_COPY_BYTES,
-              target_root: str | None = None, replace: bool = False, mode: int = 0o666) -> None:
+              target_root: str | None = None, replace: bool = False, mode: int | None = None) -> None:
     """Copy the file to ``target`` when bras-kit may read it, reading from the descriptor the
     walk opened. The target is made under ``target_root`` (default: the folder holding it) with
     no link followed there either: a new file (``O_EXCL``), or, with ``replace``, a temporary
