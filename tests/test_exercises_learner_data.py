@@ -64,6 +64,20 @@ def test_reset_refuses_a_linked_exercise_folder_out_of_the_track(track):
     outside_unchanged(mine)  # it created bras.urdf there before
 
 
+def test_reset_refuses_a_linked_folder_inside_an_exercise_before_writing_any_file(track):
+    folder, mine = track
+    sixth = TRACK.exercises[5]
+    launch = folder / sixth.id / "bras_description" / "launch"
+    shutil.rmtree(launch)
+    launch.symlink_to(mine)
+    setup = folder / sixth.id / "bras_description" / "setup.py"
+    setup.write_text("# mine\n")
+    done = bras_kit("exercises", "reset", "6", "--force", "-C", str(folder), cwd=folder)
+    assert done.returncode == 2 and "leads out of the track" in done.stderr, done
+    assert setup.read_text() == "# mine\n"  # nothing was reset half-way
+    outside_unchanged(mine)
+
+
 def test_reset_follows_a_linked_exercise_folder_that_stays_in_the_track(track):
     folder, _ = track
     first = TRACK.exercises[0].id

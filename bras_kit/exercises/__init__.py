@@ -79,8 +79,11 @@ def copy_files(exercise: Exercise, target: str | os.PathLike[str], which: str = 
     if root is None:
         os.makedirs(base, exist_ok=True)  # the folder named: made as a learner would make it
     inner = os.path.relpath(os.path.abspath(target), os.path.abspath(base))
+    names = start_files(exercise, which)
+    for folder in sorted({os.path.dirname(os.path.normpath(os.path.join(inner, n))) for n in names}):
+        _writable(base, folder)  # every folder refused before any file is written: no half-reset
     written = []
-    for name in start_files(exercise, which):
+    for name in names:
         relative = os.path.normpath(os.path.join(inner, name))
         try:
             data = read_bytes(str(exercise.folder / which / name), (str(exercise.folder),))
@@ -89,6 +92,19 @@ def copy_files(exercise: Exercise, target: str | os.PathLike[str], which: str = 
             raise _refused(str(base / relative), exc) from None
         written.append(Path(target) / name)
     return written
+
+
+def _writable(base: Path, folder: str) -> None:
+    """A folder of the track that :func:`copy_files` may write into (or make); else the refusal."""
+    from ..beneath import FOLDER, Outside, open_beneath
+
+    if folder in ("", "."):
+        return
+    try:
+        os.close(open_beneath(str(base), folder, want=FOLDER))
+    except Outside as exc:
+        if exc.kind != "missing":
+            raise _refused(str(base / folder), exc) from None
 
 
 def exercise_files(folder: str | os.PathLike[str], exercise: Exercise) -> list[Path]:
