@@ -14,14 +14,22 @@ the project's machinery (:mod:`.checks`), progress lives beside the exercises (:
 from __future__ import annotations
 
 import os
-import shutil
 from pathlib import Path
+from typing import Any
 
 from ..errors import BrasKitError
 from ..message import M
 from .checks import BROKEN, CHECKS, FAILED, PASSED, Outcome, run_checks
 from .manifest import BUILTIN, START, Exercise, Track, load_track
-from .progress import PROGRESS_FILE, Progress, find_track_folder, now, read_progress, write_progress
+from .progress import (
+    PROGRESS_FILE,
+    Progress,
+    find_track_folder,
+    now,
+    read_progress,
+    update_progress,
+    write_progress,
+)
 
 __all__ = ["BROKEN", "BUILTIN", "CHECKS", "FAILED", "PASSED", "PROGRESS_FILE", "Exercise", "Outcome", "Progress",
            "Track", "check_exercise", "copy_files", "current_exercise", "exercise_files", "find_track_folder",
@@ -29,26 +37,74 @@ __all__ = ["BROKEN", "BUILTIN", "CHECKS", "FAILED", "PASSED", "PROGRESS_FILE", "
 
 
 def start_files(exercise: Exercise, which: str = START) -> list[str]:
-    """The files of the exercise's ``start/`` (or ``solution/``) folder, relative to it."""
+    """The files of the exercise's ``start/`` (or ``solution/``) folder, relative to it, listed
+    through the one reader (no link followed out of the exercise's folder)."""
+    from ..learner_files import Unreadable, walk
+
     root = exercise.folder / which
     out: list[str] = []
-    for folder, dirs, files in os.walk(root):
-        dirs[:] = sorted(d for d in dirs if d != "__pycache__")
-        out.extend(os.path.relpath(os.path.join(folder, f), root) for f in sorted(files) if not f.endswith(".pyc"))
+    try:
+        for folder, dirs, files in walk(str(root), (str(exercise.folder),)):
+            dirs[:] = sorted(d for d in dirs if d != "__pycache__")
+            out.extend(os.path.relpath(os.path.join(folder, f), root) for f in sorted(files) if not f.endswith(".pyc"))
+    except Unreadable as exc:
+        if exc.kind != "missing":
+            raise _refused(str(root), exc) from None
     return out
 
 
-def copy_files(exercise: Exercise, target: str | os.PathLike[str], which: str = START) -> list[Path]:
-    """``start/`` (or ``solution/``) of the exercise copied into ``target`` (its folder in the track)."""
+def _refused(path: str, exc: OSError) -> BrasKitError:
+    from ..beneath import Outside
+
+    if isinstance(exc, Outside) and exc.kind in ("link_out", "outside"):
+        return BrasKitError(M("'{path}' leads out of the track through a symbolic link: bras-kit reads and writes "
+                              "nothing through it", path=exc.path), path=path,
+                            hint=M("replace the link with a folder of the track (or remove it), then run the "
+                                   "command again"))
+    reason = exc.strerror or str(exc)
+    return BrasKitError(M("'{path}' cannot be used ({reason})", path=getattr(exc, "path", path), reason=reason),
+                        path=path)
+
+
+def copy_files(exercise: Exercise, target: str | os.PathLike[str], which: str = START, *,
+               root: str | os.PathLike[str] | None = None) -> list[Path]:
+    """``start/`` (or ``solution/``) of the exercise copied into ``target`` (its folder in the
+    track), each file read through the one reader and written under ``root`` (default:
+    ``target``) without following a link out of it: a file replaced whole (a temporary beside
+    it, then renamed), never written through a link."""
+    from ..beneath import Outside
+    from ..learner_files import read_bytes, write_file
+
+    base = Path(root) if root is not None else Path(target)
+    if root is None:
+        os.makedirs(base, exist_ok=True)  # the folder named: made as a learner would make it
+    inner = os.path.relpath(os.path.abspath(target), os.path.abspath(base))
+    names = start_files(exercise, which)
+    for folder in sorted({os.path.dirname(os.path.normpath(os.path.join(inner, n))) for n in names}):
+        _writable(base, folder)  # every folder refused before any file is written: no half-reset
     written = []
-    for name in start_files(exercise, which):
-        destination = Path(target) / name
-        destination.parent.mkdir(parents=True, exist_ok=True)
-        if destination.is_symlink():
-            destination.unlink()
-        shutil.copyfile(exercise.folder / which / name, destination)
-        written.append(destination)
+    for name in names:
+        relative = os.path.normpath(os.path.join(inner, name))
+        try:
+            data = read_bytes(str(exercise.folder / which / name), (str(exercise.folder),))
+            write_file(str(base), relative, data)
+        except (Outside, OSError) as exc:
+            raise _refused(str(base / relative), exc) from None
+        written.append(Path(target) / name)
     return written
+
+
+def _writable(base: Path, folder: str) -> None:
+    """A folder of the track that :func:`copy_files` may write into (or make); else the refusal."""
+    from ..beneath import FOLDER, Outside, open_beneath
+
+    if folder in ("", "."):
+        return
+    try:
+        os.close(open_beneath(str(base), folder, want=FOLDER))
+    except Outside as exc:
+        if exc.kind != "missing":
+            raise _refused(str(base / folder), exc) from None
 
 
 def exercise_files(folder: str | os.PathLike[str], exercise: Exercise) -> list[Path]:
@@ -73,7 +129,7 @@ def init_track(folder: str | os.PathLike[str], source: str = BUILTIN, lang: str 
                            hint=M("choose another folder: bras-kit exercises init exos"))
     root.mkdir(parents=True, exist_ok=True)
     for exercise in track.exercises:
-        copy_files(exercise, root / exercise.id)
+        copy_files(exercise, root / exercise.id, root=root)
     source_text = BUILTIN if str(source) == BUILTIN else str(Path(source).resolve())
     write_progress(Progress(root, source_text, track.exercises[0].id, {}, lang))
     return track
@@ -85,7 +141,7 @@ def open_track(folder: str | os.PathLike[str] | None = None) -> tuple[Track, Pro
     if found is None:
         raise BrasKitError(M("no exercise track in this folder or above it"),
                            hint=M("lay one out with 'bras-kit exercises init DIR', then run the command in DIR"))
-    progress = read_progress(found)
+    progress = read_progress(found, keep_aside=True)
     return load_track(progress.set), progress
 
 
@@ -105,36 +161,47 @@ def check_exercise(track: Track, progress: Progress, exercise: Exercise, lang: s
 
     outcome = run_checks(progress.folder / exercise.id, exercise.checks, lang or current_language())
     if record:
-        entry = progress.entry(exercise.id)
-        entry["checks"] = int(entry.get("checks", 0)) + 1
-        if outcome.state == PASSED:
-            if not entry.get("passed"):
-                entry["passed_at"] = now()
-            entry["passed"] = True
-            if progress.current in ("", exercise.id):
-                following = [e for e in track.exercises if e.number > exercise.number and not progress.passed(e.id)]
-                progress.current = following[0].id if following else ""
-        else:
-            entry["passed"] = False
-        write_progress(progress)
+        update_progress(progress, lambda fresh: _record_check(track, fresh, exercise, outcome))
     return outcome
+
+
+def _record_check(track: Track, progress: Progress, exercise: Exercise, outcome: Outcome) -> None:
+    entry = progress.entry(exercise.id)
+    entry["checks"] = int(entry.get("checks", 0)) + 1
+    if outcome.state == PASSED:
+        if not entry.get("passed"):
+            entry["passed_at"] = now()
+        entry["passed"] = True
+        if progress.current in ("", exercise.id):
+            following = [e for e in track.exercises if e.number > exercise.number and not progress.passed(e.id)]
+            progress.current = following[0].id if following else ""
+    else:
+        entry["passed"] = False
 
 
 def reveal_hint(progress: Progress, exercise: Exercise, shown: int = 0) -> int:
     """The next hint of the exercise is shown (the one after those seen and after ``shown``, the
     hint already on screen): the number of hints seen now (at most 3)."""
-    entry = progress.entry(exercise.id)
-    entry["hints"] = min(3, max(int(entry.get("hints", 0)), shown) + 1)
-    write_progress(progress)
-    return int(entry["hints"])
+
+    def reveal(fresh: Progress) -> int:
+        entry = fresh.entry(exercise.id)
+        entry["hints"] = min(3, max(int(entry.get("hints", 0)), shown) + 1)
+        return int(entry["hints"])
+
+    seen: int = update_progress(progress, reveal)
+    return seen
 
 
 def reset_exercise(progress: Progress, exercise: Exercise) -> list[Path]:
-    """The exercise's starting files laid out again over the learner's (the caller asked first)."""
-    written = copy_files(exercise, progress.folder / exercise.id)
-    entry = progress.entry(exercise.id)
-    entry["passed"] = False
-    entry.pop("passed_at", None)
-    progress.current = exercise.id
-    write_progress(progress)
+    """The exercise's starting files laid out again over the learner's (the caller asked first),
+    never through a link out of the track."""
+    written = copy_files(exercise, progress.folder / exercise.id, root=progress.folder)
+
+    def reset(fresh: Progress) -> Any:
+        entry = fresh.entry(exercise.id)
+        entry["passed"] = False
+        entry.pop("passed_at", None)
+        fresh.current = exercise.id
+
+    update_progress(progress, reset)
     return written

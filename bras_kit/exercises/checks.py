@@ -185,11 +185,14 @@ def _package_results(path: Path) -> list[tuple[str, list[Any]]]:
     # launch files run, contained, and what they tried is judged with the rest
     for result in validate_package(str(path), launch=True):
         out.append((os.path.relpath(result.path, base), list(result.findings)))
-    for folder, dirs, files in os.walk(path):
+    from ..learner_files import is_file, walk
+
+    roots = (str(base),)  # listed through the one reader: no link followed out of the exercise's folder
+    for folder, dirs, files in walk(str(path), roots):
         dirs[:] = sorted(d for d in dirs if not d.startswith("."))
         for file in sorted(files):
-            if file.endswith((".urdf", ".xacro")):
-                full = os.path.join(folder, file)
+            full = os.path.join(folder, file)
+            if file.endswith((".urdf", ".xacro")) and is_file(full, roots):
                 out.append((os.path.relpath(full, base), validate_path(full)))
     return out
 

@@ -117,14 +117,23 @@ def lesson_link(track: Track, exercise: Exercise, lang: str, start: str | os.Pat
     return os.path.relpath(full, here)
 
 
-def _read_manifest(path: Path) -> dict[str, Any]:
+def _read_manifest(path: Path, root: Path) -> dict[str, Any]:
     import yaml
 
-    try:
-        if path.stat().st_size > MAX_MANIFEST_BYTES:
-            raise BrasKitError(M("the manifest is too large"), path=str(path))
-        with open(path, encoding="utf-8") as stream:
-            data = yaml.safe_load(stream)
+    from ..learner_files import Unreadable, read_text
+
+    try:  # the one reader, inside the set's folder: no link out, no pipe, no device, no file past the bound
+        text = read_text(str(path), (str(root),), limit=MAX_MANIFEST_BYTES)
+        data = yaml.safe_load(text)
+    except Unreadable as exc:
+        if exc.kind == "too_large":
+            raise BrasKitError(M("the manifest is too large"), path=str(path)) from None
+        if exc.kind != "missing":
+            raise BrasKitError(M("the manifest cannot be read ({reason})", reason=exc.strerror or str(exc)),
+                               path=str(path)) from None
+        raise BrasKitError(M("the manifest is missing"), path=str(path),
+                           hint=M("an exercise set is a folder with track.yaml and one folder per exercise "
+                                  "holding exercise.yaml")) from None
     except FileNotFoundError:
         raise BrasKitError(M("the manifest is missing"), path=str(path),
                            hint=M("an exercise set is a folder with track.yaml and one folder per exercise "
@@ -160,7 +169,7 @@ def _inside(name: Any, path: Path) -> str:
 
 def load_exercise(folder: Path, number: int) -> Exercise:
     path = folder / EXERCISE_FILE
-    data = _read_manifest(path)
+    data = _read_manifest(path, folder.parent)
     files = data.get("files")
     if not isinstance(files, list) or not files:
         raise BrasKitError(M("'files' must list the learner's files"), path=str(path))
@@ -196,7 +205,7 @@ def load_track(source: str | os.PathLike[str] = BUILTIN) -> Track:
     """The built-in track (``"builtin"``) or a teacher's set (its folder)."""
     folder = BUILTIN_DIR if str(source) == BUILTIN else Path(source)
     path = folder / TRACK_FILE
-    data = _read_manifest(path)
+    data = _read_manifest(path, folder)
     ids = data.get("exercises")
     if not isinstance(ids, list) or not ids or not all(isinstance(i, (str, int)) for i in ids):
         raise BrasKitError(M("'exercises' must list the exercise folders in order"), path=str(path))

@@ -24,7 +24,7 @@ from ..message import M
 from . import check_exercise, current_exercise, open_track, reveal_hint
 from .checks import Outcome
 from .manifest import Exercise, Track
-from .progress import Progress
+from .progress import Progress, reload_if_changed
 from .screen import Style, done_lines, exercise_lines, keys_line, list_lines, wants_colour
 
 POLL_SECONDS = 0.2
@@ -34,15 +34,18 @@ CLEAR = "\x1b[H\x1b[2J\x1b[3J"
 def snapshot(folder: Path, exercise: Exercise) -> tuple[tuple[str, int, int], ...]:
     """(path, mtime_ns, size) of every file of the exercise's folder (a file being written
     changes one of them; a missing file is a state too)."""
+    from ..learner_files import walk
+
     out = []
     root = folder / exercise.id
-    for place, dirs, files in os.walk(root):
-        dirs[:] = sorted(d for d in dirs if not d.startswith(".") and d != "__pycache__")
-        for name in sorted(files):
-            path = os.path.join(place, name)
-            with contextlib.suppress(OSError):
-                info = os.stat(path)
-                out.append((path, info.st_mtime_ns, info.st_size))
+    with contextlib.suppress(OSError):  # listed through the one reader: no link followed out of the track
+        for place, dirs, files in walk(str(root), (str(folder),)):
+            dirs[:] = sorted(d for d in dirs if not d.startswith(".") and d != "__pycache__")
+            for name in sorted(files):
+                path = os.path.join(place, name)
+                with contextlib.suppress(OSError):
+                    info = os.stat(path)
+                    out.append((path, info.st_mtime_ns, info.st_size))
     return tuple(out)
 
 
@@ -113,6 +116,15 @@ class Watcher:
             if self.exercise is not None:
                 self.check()
 
+    def noticed(self) -> None:
+        """progress.json was changed by another process: its record is shown (the counter, the
+        list), and the watch moves on when that process passed the exercise on screen."""
+        following = current_exercise(self.track, self.progress)
+        if following is not None and following != self.exercise:
+            self.exercise, self.outcome, self.note = following, None, ""
+            self.check()
+        self.draw(force=True)
+
     def screen(self, checking: bool = False) -> list[str]:
         width = self.width()
         if self.exercise is None:
@@ -166,6 +178,9 @@ class Watcher:
                     fitting = self.outcome.hint if self.outcome is not None and self.outcome.state == "failed" else 0
                     reveal_hint(self.progress, self.exercise, fitting)
                     self.draw()
+                    continue
+                if reload_if_changed(self.progress):  # a check or a hint in another terminal
+                    self.noticed()
                     continue
                 if self.exercise is not None and (key == "c" or snapshot(self.progress.folder, self.exercise)
                                                   != self.seen):

@@ -11,13 +11,15 @@ MAX_DEPTH = 3  # progress.json is looked for in the submission and up to three f
 def find_progress(root: str) -> str | None:
     """The folder of the first ``progress.json`` in ``root`` or below it (hidden folders skipped)."""
     from ..exercises.progress import PROGRESS_FILE
+    from ..learner_files import is_file, is_folder, walk
 
-    if not os.path.isdir(root):
+    if not is_folder(root, (root,)):
         return None
-    base = root.rstrip(os.sep).count(os.sep)
-    for folder, dirs, files in os.walk(root):
-        dirs[:] = sorted(d for d in dirs if not d.startswith(".") and not os.path.islink(os.path.join(folder, d)))
-        if PROGRESS_FILE in files and not os.path.islink(os.path.join(folder, PROGRESS_FILE)):
+    base = os.path.normpath(root).count(os.sep)
+    # listed through the one reader: links to folders are not walked into, a pipe is no file
+    for folder, dirs, files in walk(root, (root,)):
+        dirs[:] = sorted(d for d in dirs if not d.startswith("."))
+        if PROGRESS_FILE in files and is_file(os.path.join(folder, PROGRESS_FILE), (root,)):
             return folder
         if folder.count(os.sep) - base >= MAX_DEPTH:
             dirs[:] = []

@@ -215,7 +215,7 @@ def _clear_prefix(record: BuildRecord) -> BuildFailure | None:
 def _lay_out(record: BuildRecord, checked: CheckedSetup) -> BuildFailure | None:
     """The install tree from the checked record: every source read through the one reader
     (:mod:`bras_kit.learner_files`), every target a new file under the fresh prefix."""
-    from ..learner_files import Unreadable, copy_file
+    from ..learner_files import Unreadable, copy_file, write_file
 
     refused = _clear_prefix(record)
     if refused is not None:
@@ -223,25 +223,18 @@ def _lay_out(record: BuildRecord, checked: CheckedSetup) -> BuildFailure | None:
     roots = (record.root,)
     try:
         os.makedirs(record.prefix)
-        # colcon's marker first: a build stopped half-way leaves a prefix the next build may replace
-        colcon = os.path.join(record.prefix, COLCON_MARKER, record.package)
-        os.makedirs(os.path.dirname(colcon))
-        open(colcon, "w").close()
+        # colcon's marker first: a build stopped half-way leaves a prefix the next build may replace.
+        # Every file below the prefix is made through its descriptor, no link followed (learner_files)
+        write_file(record.prefix, os.path.join(COLCON_MARKER, record.package), b"")
         for item in (*checked.installed, *checked.modules, *checked.executables):
-            target = os.path.join(record.prefix, item.target)
-            os.makedirs(os.path.dirname(target), exist_ok=True)
-            if os.path.lexists(target):  # two entries install the same file: the last wins, as in setuptools
-                os.remove(target)
-            copy_file(os.path.join(record.root, item.source), roots, target)
-            if item in checked.executables:
-                os.chmod(target, 0o755)
+            # two entries install the same file: the last wins, as in setuptools (replace)
+            copy_file(os.path.join(record.root, item.source), roots, os.path.join(record.prefix, item.target),
+                      target_root=record.prefix, replace=True,
+                      mode=0o755 if item in checked.executables else None)
         for name, module, function in checked.console_scripts:
-            path = os.path.join(record.prefix, "lib", record.package, name)
-            os.makedirs(os.path.dirname(path), exist_ok=True)
-            with open(path, "w", encoding="utf-8") as handle:
-                handle.write(SCRIPT.format(dist=record.package, name=name, module=module,
-                                           head=function.partition(".")[0], function=function))
-            os.chmod(path, 0o755)
+            script = SCRIPT.format(dist=record.package, name=name, module=module,
+                                   head=function.partition(".")[0], function=function)
+            write_file(record.prefix, os.path.join("lib", record.package, name), script.encode("utf-8"), mode=0o755)
     except Unreadable as exc:  # changed between the check and the copy, or too large
         return BuildFailure(f"source_{exc.kind}", (), "setup.py", record.data_files_line,
                             source=os.path.relpath(exc.path, record.root), detail=exc.path)

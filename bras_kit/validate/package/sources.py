@@ -168,15 +168,19 @@ class Package:
     @cached_property
     def manifest(self) -> Manifest | None:
         from ...errors import BrasKitError
-        from ...xmlio import read_xml
+        from ...learner_files import Unreadable, read_bytes
+        from ...xmlio import parse_xml
 
         full = os.path.join(self.root, PACKAGE_XML)
-        if not os.path.isfile(full):
+        if not os.path.lexists(full):
             self._problem(PACKAGE_XML, None, "missing")
             return None
         self.read.add(PACKAGE_XML)
-        try:
-            root = read_xml(full)
+        try:  # the one reader: a package.xml linked out of the package is not read
+            root = parse_xml(read_bytes(full, (self.root,)), self.path(PACKAGE_XML))
+        except Unreadable as exc:
+            self._problem(PACKAGE_XML, None, f"refused: {exc.strerror or exc}")
+            return None
         except BrasKitError as exc:
             self._problem(PACKAGE_XML, exc.line, str(exc.message))
             return None
@@ -198,7 +202,7 @@ class Package:
     @cached_property
     def setup(self) -> Setup | None:
         full = os.path.join(self.root, SETUP_PY)
-        if not os.path.isfile(full):
+        if not os.path.lexists(full):
             self._problem(SETUP_PY, None, "missing")
             return None
         self.read.add(SETUP_PY)
@@ -270,11 +274,15 @@ class Package:
 
     def files(self, folder: str, suffixes: tuple[str, ...]) -> list[str]:
         """Files of ``folder`` (relative) ending with one of ``suffixes``, sorted."""
+        from ...learner_files import Unreadable, is_file, list_folder
+
         full = os.path.join(self.root, folder)
-        if not os.path.isdir(full):
+        try:  # listed through the folder's descriptor: a folder linked out of the package lists nothing
+            entries = list_folder(full, (self.root,))
+        except Unreadable:
             return []
-        return sorted(f"{folder}/{f}" for f in os.listdir(full)
-                      if f.endswith(suffixes) and os.path.isfile(os.path.join(full, f)))
+        return sorted(f"{folder}/{name}" for name, kind in entries if name.endswith(suffixes) and kind in (
+            "file", "link") and is_file(os.path.join(full, name), (self.root,)))
 
     # ------------------------------------------------------------ launch files
 
@@ -308,12 +316,19 @@ class Package:
         return out
 
     def python_modules(self) -> list[str]:
+        from ...learner_files import Unreadable, is_file, list_folder
+
         out = []
-        for entry in sorted(os.listdir(self.root)):
+        roots = (self.root,)
+        for entry, _kind in list_folder(self.root, roots):
             folder = os.path.join(self.root, entry)
-            if entry.startswith((".", "test")) or not os.path.isfile(os.path.join(folder, "__init__.py")):
+            if entry.startswith((".", "test")) or not is_file(os.path.join(folder, "__init__.py"), roots):
                 continue
-            out += [f"{entry}/{f}" for f in sorted(os.listdir(folder)) if f.endswith(".py")]
+            try:
+                out += [f"{entry}/{f}" for f, kind in list_folder(folder, roots) if f.endswith(".py")
+                        and kind in ("file", "link")]
+            except Unreadable:
+                continue
         return out
 
     def module_written(self, module: str) -> bool:
@@ -339,9 +354,11 @@ class Package:
         return [f for f in self.source_files if f != own and f.rsplit("/", 1)[-1].casefold() in wanted]
 
     def module_tree(self, module: str) -> ast.Module | None:
+        from ...learner_files import is_file
+
         rel = module.replace(".", "/") + ".py"
         full = os.path.join(self.root, rel)
-        if not os.path.isfile(full):
+        if not is_file(full, (self.root,)):
             return None
         return parse_python(full, self.root)[0]
 
@@ -350,12 +367,14 @@ class Package:
     def description_source(self) -> str | None:
         """The robot description the launch file reads (its source in the package), else the
         first ``urdf/*.urdf``, else the first ``urdf/*.xacro``."""
+        from ...learner_files import is_file
+
         installed = self.installed() or {}
         for launch in self.launch_files:
             for share, _ in launch.share_files:
                 if share.package == self.name and share.relative.endswith(DESCRIPTION_SUFFIXES):
                     source = installed.get(share.relative, share.relative)
-                    if os.path.isfile(os.path.join(self.root, source)):
+                    if is_file(os.path.join(self.root, source), (self.root,)):
                         return source
         for suffix in DESCRIPTION_SUFFIXES:
             found = self.files("urdf", (suffix,))
