@@ -30,7 +30,16 @@ from typing import Any
 
 from .attempts import Attempt
 from .names import is_full_topic_name, is_interface_type, is_node_name
-from .recording import Endpoint, Frame, NodeFailure, Published, Recording, Refusal, SplitString, TimerInfo
+from .recording import (
+    Endpoint,
+    Frame,
+    NodeFailure,
+    Published,
+    Recording,
+    Refusal,
+    SplitString,
+    TimerInfo,
+)
 
 MAX_RECORD_BYTES = 48 << 20  # the whole record, as the parent reads it
 MAX_MESSAGE_BYTES = 32 << 20  # the messages' lines, kept by the child (more are counted)
