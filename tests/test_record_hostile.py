@@ -100,6 +100,13 @@ def test_a_replaced_record_writer_cannot_plant_names_paths_or_sizes():
     assert all(clean(text) for text in shown(r))
 
 
+def test_entries_past_the_bound_of_a_list_are_counted():
+    r = run_node(str(CORPUS / "many_publishers.py"), duration=1.0, contain=CONTAIN)
+    assert [p.topic for p in r.publishers] == [f"/topic_{k}" for k in range(1000)]
+    assert r.overflow == {"entries": 4000}
+    assert "pieces of the record of the run past its bounds (entries): 4000" in codes(r)["BK657"]
+
+
 def test_a_replaced_pickle_sending_objects_is_no_record():
     with pytest.raises(BrasKitError) as caught:
         run_node(str(CORPUS / "replace_pickle.py"), duration=1.0, contain=CONTAIN)

@@ -312,7 +312,9 @@ def run_node_here(target: Target, duration: float, echo: bool, workdir: str, wat
         "output_dropped_lines": printed.dropped_lines,
         "split_strings": _split_strings(state.split_strings, target)[:record_wire.MAX_ENTRIES],
         "blocked": [[a.kind, a.detail, a.path, a.line] for a in attempts],
-        "overflow": {"logs": state.logs_dropped, "too_big": state.too_big, "messages": state.bytes_dropped},
+        "overflow": {"logs": state.logs_dropped, "too_big": state.too_big, "messages": state.bytes_dropped,
+                     "entries": sum(max(0, len(entries) - record_wire.MAX_ENTRIES) for entries in (
+                         state.publishers, state.subscriptions, state.timers, state.node_names))},
     }
     return record_wire.write_record(summary, state.messages, state.logs)
 

@@ -5,9 +5,10 @@ import json
 
 import _bras_sim
 import rclpy
-from bras_kit.ros import record_wire
 from rclpy.node import Node
 from sensor_msgs.msg import JointState
+
+from bras_kit.ros import record_wire
 
 PLANTED = "\x1b]0;pwned\x07"
 

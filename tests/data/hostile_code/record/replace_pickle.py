@@ -4,6 +4,7 @@ message and a planted node name."""
 import pickle
 
 import rclpy
+
 from bras_kit.ros.recording import Published, Recording
 
 real_dumps = pickle.dumps
