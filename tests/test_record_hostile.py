@@ -31,6 +31,7 @@ CORPUS = Path(__file__).parent / "data" / "hostile_code" / "record"
 CONTAIN = "require" if available().ok else "off"
 PLANTED = ("\x1b", "\x07", "\u202e")
 MIB = 1 << 20
+RULES_SHOWN = ("BK657", "BK658")  # the run rules these nodes trigger (each asserted below)
 
 
 def clean(text: str) -> bool:
