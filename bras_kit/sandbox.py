@@ -155,21 +155,24 @@ def _rebuild_error(module: str, name: str, fields: dict[str, Any]) -> BrasKitErr
 
 def run_limited(function: Callable[..., T], *args: Any, cpu_seconds: int = DEFAULT_CPU_SECONDS,
                 memory_bytes: int = DEFAULT_MEMORY_BYTES, wall_seconds: float = DEFAULT_WALL_SECONDS,
-                what: Message | str | None = None, contain: Any = None, stop: Any = None, **kwargs: Any) -> T:
+                what: Message | str | None = None, contain: Any = None, stop: Any = None,
+                result_bytes: int = MAX_RESULT_BYTES, **kwargs: Any) -> T:
     """``function(*args, **kwargs)`` in a child process under limits; its result or its error.
 
     ``what`` names the work in messages (``M("expanding {path}", path=...)``; "this file" unless told).
     ``contain`` (a :class:`bras_kit.ros.contain.Containment`) walls the child in before the
     function runs: its result is then read as data from a stranger (:class:`_DataUnpickler`).
     ``stop`` (a :class:`threading.Event`): once set, the child is killed and :class:`Stopped` raised.
+    ``result_bytes``: the most this process reads of the child's answer (larger: a "size" limit).
     Inside :func:`children_from_a_server`, the child is forked by that server when the call can be
     sent to it (no ``stop``, no keyword arguments for the function).
     """
     server = _server
     if server is not None and stop is None and not kwargs and os.getpid() == server.owner:
         return server.run(function, *args, cpu_seconds=cpu_seconds, memory_bytes=memory_bytes,
-                          wall_seconds=wall_seconds, what=what, contain=contain)
-    return _fork_here(function, args, kwargs, cpu_seconds, memory_bytes, wall_seconds, what, contain, stop)
+                          wall_seconds=wall_seconds, what=what, contain=contain, result_bytes=result_bytes)
+    return _fork_here(function, args, kwargs, cpu_seconds, memory_bytes, wall_seconds, what, contain, stop,
+                      result_bytes)
 
 
 def children_from_the_server() -> bool:
@@ -192,13 +195,16 @@ def start_limited(function: Callable[..., T], *args: Any, cpu_seconds: int = DEF
 
 
 def _fork_here(function: Callable[..., T], args: tuple[Any, ...], kwargs: dict[str, Any], cpu_seconds: int,
-               memory_bytes: int, wall_seconds: float, what: Message | str | None, contain: Any, stop: Any) -> T:
+               memory_bytes: int, wall_seconds: float, what: Message | str | None, contain: Any, stop: Any,
+               result_bytes: int = MAX_RESULT_BYTES) -> T:
     """:func:`run_limited`, the child forked by this process."""
-    return _start(function, args, kwargs, cpu_seconds, memory_bytes, wall_seconds, what, contain, stop).result()
+    return _start(function, args, kwargs, cpu_seconds, memory_bytes, wall_seconds, what, contain, stop,
+                  result_bytes).result()
 
 
 def _start(function: Callable[..., T], args: tuple[Any, ...], kwargs: dict[str, Any], cpu_seconds: int,
-           memory_bytes: int, wall_seconds: float, what: Message | str | None, contain: Any, stop: Any) -> Pending[T]:
+           memory_bytes: int, wall_seconds: float, what: Message | str | None, contain: Any, stop: Any,
+           result_bytes: int = MAX_RESULT_BYTES) -> Pending[T]:
     if not available():
         if contain is not None:
             raise BrasKitError(M("this system cannot fork a contained child process"))
@@ -211,7 +217,8 @@ def _start(function: Callable[..., T], args: tuple[Any, ...], kwargs: dict[str, 
         os.close(read_fd)
         _child(write_fd, function, args, kwargs, cpu_seconds, memory_bytes, contain)
     os.close(write_fd)
-    limits = (M("this file") if what is None else what, cpu_seconds, memory_bytes, wall_seconds, contain, stop)
+    limits = (M("this file") if what is None else what, cpu_seconds, memory_bytes, wall_seconds, contain, stop,
+              result_bytes)
     return Pending(child=(pid, read_fd), deadline=time.monotonic() + wall_seconds, limits=limits)
 
 
@@ -243,7 +250,7 @@ class Pending(Generic[T]):
         if self._child is None:
             raise RuntimeError("the answer was already read, or the child was closed")
         (pid, read_fd), self._child = self._child, None
-        what, cpu_seconds, memory_bytes, wall_seconds, contain, stop = self._limits
+        what, cpu_seconds, memory_bytes, wall_seconds, contain, stop, most = self._limits
         chunks: list[bytes] = []
         size = 0
         deadline = self._deadline
@@ -265,7 +272,7 @@ class Pending(Generic[T]):
                 if not chunk:
                     break
                 size += len(chunk)
-                if size > MAX_RESULT_BYTES:
+                if size > most:
                     too_big = True
                     break
                 chunks.append(chunk)
@@ -283,7 +290,7 @@ class Pending(Generic[T]):
                                hint=M("the file may loop or recurse without end; simplify it"))
         if too_big:
             raise _limit_error("size", M("{what} made a result larger than {most} MiB and was stopped", what=what,
-                                         most=MAX_RESULT_BYTES >> 20))
+                                         most=most >> 20))
         if os.WIFSIGNALED(status):
             sig = os.WTERMSIG(status)
             if sig in (signal.SIGXCPU, signal.SIGKILL):
@@ -395,10 +402,11 @@ class ForkServer:
 
     def run(self, function: Callable[..., T], *args: Any, cpu_seconds: int = DEFAULT_CPU_SECONDS,
             memory_bytes: int = DEFAULT_MEMORY_BYTES, wall_seconds: float = DEFAULT_WALL_SECONDS,
-            what: Message | str | None = None, contain: Any = None) -> T:
+            what: Message | str | None = None, contain: Any = None, result_bytes: int = MAX_RESULT_BYTES) -> T:
         """:func:`run_limited` with the child forked by the server."""
         limits: dict[str, Any] = {"cpu_seconds": cpu_seconds, "memory_bytes": memory_bytes,
-                                  "wall_seconds": wall_seconds, "what": what, "contain": contain}
+                                  "wall_seconds": wall_seconds, "what": what, "contain": contain,
+                                  "result_bytes": result_bytes}
         request = _pickled((function, args, limits)) if self._pid and os.getpid() == self._owner else None
         if request is not None:  # None: no server, or a call that cannot be sent (forked from here)
             try:
@@ -413,7 +421,8 @@ class ForkServer:
                     return value  # type: ignore[no-any-return]
                 raise _rebuild_error(*value)
             self.close()  # gone or stuck: fork from here from now on
-        return _fork_here(function, args, {}, cpu_seconds, memory_bytes, wall_seconds, what, contain, None)
+        return _fork_here(function, args, {}, cpu_seconds, memory_bytes, wall_seconds, what, contain, None,
+                          result_bytes)
 
     @property
     def owner(self) -> int:

@@ -141,7 +141,10 @@ def bras_kit_run(target: Path, tmp: Path) -> tuple[subprocess.CompletedProcess, 
     ("fill_folder.py", "OSError: [Errno 28] No space left on device"),
     ("many_files.py", "No space left on device"),
     ("memory_bomb.py", "MemoryError"),
-    ("output_flood.py", "the node needed more than 1024 MiB of memory"),
+    # its prints kept as a bounded head and tail (bras_kit.ros.capture): what stops it is its loop
+    # without sleep, at the CPU limit, or at the wall-clock one on a busy machine; never memory
+    ("output_flood.py", ("the node used 20 s of CPU while its simulated clock stood still",
+                         "the node took more than 60 s of real time (simulated clock at t=0 s)")),
     ("ctypes_fork_bomb.py", "the node returned from main()"),  # once the kernel refused a process
 ])
 def test_bras_kit_stays_small_and_its_folder_empty_while_a_node_misbehaves(node, said, tmp_path):
@@ -149,7 +152,7 @@ def test_bras_kit_stays_small_and_its_folder_empty_while_a_node_misbehaves(node,
     assert well.returncode == 0, well.stderr
     done, memory, disk = bras_kit_run(NODES / node, tmp_path / "bad")
     assert done.returncode in (1, 2) and "Traceback" not in done.stderr, done.stderr
-    assert said in done.stdout + done.stderr
+    assert any(text in done.stdout + done.stderr for text in ((said,) if isinstance(said, str) else said))
     # the node's gigabyte stays in its own child, its files in its own tmpfs: bras-kit's own
     # process is no larger than for the tutorial's node, and nothing reached the disk
     assert memory <= well_memory + (16 << 20), (memory, well_memory)

@@ -51,6 +51,22 @@ class BusJointState:
     stamp: float  # seconds, the message's header.stamp
 
 
+MAX_PAYLOAD_BYTES = 1 << 20  # one joint state on the bus (a 2,000-joint one is about 70 KiB)
+MAX_JOINTS = 10_000
+
+
+def joint_state_of(data: Any) -> BusJointState:
+    """A joint state read from the bus, typed: names as text, positions as numbers, at most
+    :data:`MAX_JOINTS` of them; ValueError (or KeyError, TypeError) for anything else."""
+    names, position, stamp = data["name"], data["position"], data.get("stamp", 0.0)
+    if not (isinstance(names, list) and isinstance(position, list)) or max(len(names), len(position)) > MAX_JOINTS:
+        raise ValueError("not a joint state")
+    if not all(isinstance(n, str) for n in names) or isinstance(stamp, bool) or \
+            not all(isinstance(p, (int, float)) and not isinstance(p, bool) for p in position):
+        raise ValueError("not a joint state")
+    return BusJointState(list(names), [float(p) for p in position], float(stamp))
+
+
 @dataclass(frozen=True)
 class LaunchRobot:
     """What a listening launch shows: its package and its robot's movable joints."""
@@ -261,10 +277,11 @@ class Bus:
     def on_joint_state(self, callback: Callable[[BusJointState], None]) -> None:
         def receive(sample: Any) -> None:
             try:
-                data = json.loads(bytes(sample.payload.to_bytes()))
-                state = BusJointState([str(n) for n in data["name"]], [float(p) for p in data["position"]],
-                                      float(data.get("stamp", 0.0)))
-            except (ValueError, KeyError, TypeError):
+                payload = sample.payload
+                if len(payload) > MAX_PAYLOAD_BYTES:  # its size, before a byte of it is copied
+                    return
+                state = joint_state_of(json.loads(bytes(payload.to_bytes())))
+            except (ValueError, KeyError, TypeError, AttributeError, RecursionError):
                 return  # not a joint state of ours: ignored
             callback(state)
 

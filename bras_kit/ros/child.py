@@ -7,17 +7,16 @@ hook, the patched ``time`` functions and the working folder belong to the child 
 from __future__ import annotations
 
 import importlib
-import io
 import os
 import sys
 import traceback
 from typing import Any
 
+from . import record_wire
+from .capture import HeadTail
 from .finder import JAZZY_UNSIMULATED, ROS_SUFFIXES, STANDIN, install
 from .locate import Target
-from .recording import Endpoint, Frame, NodeFailure, Published, Recording, SplitString, TimerInfo
-
-MAX_OUTPUT = 200_000  # characters of the node's own prints kept when not shown live
+from .recording import Frame, NodeFailure
 
 
 def _patch_time(sim: Any) -> dict[str, Any]:
@@ -227,8 +226,11 @@ def _place(path: str, line: int, target: Target) -> tuple[str, int]:
 
 
 def run_node_here(target: Target, duration: float, echo: bool, workdir: str, watch: Any = None,
-                  parameters: dict[str, Any] | None = None, robot: list[dict[str, Any]] | None = None) -> Recording:
-    """Run the node in this (child) process and return what it did."""
+                  parameters: dict[str, Any] | None = None, robot: list[dict[str, Any]] | None = None,
+                  blocked: Any = None) -> bytes:
+    """Run the node in this (child) process and return what it did: the record's bytes
+    (:func:`bras_kit.ros.record_wire.write_record`), read back by :func:`~bras_kit.ros.record_wire.read_record`.
+    ``blocked`` (called at the end) gives what the walls stopped, as :class:`~bras_kit.ros.attempts.Attempt`."""
     import time
 
     wall = time.perf_counter
@@ -245,7 +247,7 @@ def run_node_here(target: Target, duration: float, echo: bool, workdir: str, wat
         sim.STATE.on_advance = watch
     sys.path.insert(0, target.root)
     sys.argv = [target.path]
-    output = io.StringIO()
+    output = HeadTail()  # the first and last 64 KiB of what the node prints (bras_kit.ros.capture)
     saved_stdout, saved_stderr = sys.stdout, sys.stderr
     if not echo:
         sys.stdout = output
@@ -297,22 +299,39 @@ def run_node_here(target: Target, duration: float, echo: bool, workdir: str, wat
                 ended, failure = "error", _failure(raised, target, sim, t_ns, thread=name)
                 break
     state = sim.STATE
-    return Recording(
-        target=target.shown, source=os.path.relpath(target.path, target.root).replace(os.sep, "/"),
-        function=target.function, duration=duration, end=state.now_ns / 1e9, ended=ended, failure=failure,
-        messages=[Published(t / 1e9, node, topic, kind, fields) for t, node, topic, kind, fields in state.messages],
-        dropped=state.dropped, logs=[(t / 1e9, level, node, text) for t, level, node, text in state.logs],
-        publishers=[Endpoint(n, topic, kind, *_place(path, line, target)) for n, topic, kind, path, line in state.publishers],
-        subscriptions=[Endpoint(n, topic, kind, *_place(path, line, target))
-                       for n, topic, kind, path, line in state.subscriptions],
-        timers=[TimerInfo(n, period, *_place(path, line, target)) for n, period, path, line in state.timers],
-        nodes=[node.get_name() for node in state.nodes], rate_sleeps=state.rate_sleeps,
-        wall_seconds=wall() - started, start_ns=sim.START_NS, output=output.getvalue()[:MAX_OUTPUT],
-        split_strings=_split_strings(state.split_strings, target),
-    )
+    printed = output.kept()
+    attempts = list(blocked() if blocked is not None else [])[:record_wire.MAX_ENTRIES]
+    summary = {
+        "target": target.shown, "source": os.path.relpath(target.path, target.root).replace(os.sep, "/"),
+        "function": target.function, "duration": duration, "end": state.now_ns / 1e9, "ended": ended,
+        "failure": _failure_data(failure), "dropped": state.dropped,
+        "publishers": [[n, topic, kind, *_place(path, line, target)]
+                       for n, topic, kind, path, line in state.publishers[:record_wire.MAX_ENTRIES]],
+        "subscriptions": [[n, topic, kind, *_place(path, line, target)]
+                          for n, topic, kind, path, line in state.subscriptions[:record_wire.MAX_ENTRIES]],
+        "timers": [[n, period, *_place(path, line, target)]
+                   for n, period, path, line in state.timers[:record_wire.MAX_ENTRIES]],
+        "nodes": list(state.node_names[:record_wire.MAX_ENTRIES]), "rate_sleeps": state.rate_sleeps,
+        "wall_seconds": wall() - started, "start_ns": sim.START_NS,
+        "output": printed.head, "output_tail": printed.tail, "output_dropped": printed.dropped_chars,
+        "output_dropped_lines": printed.dropped_lines,
+        "split_strings": _split_strings(state.split_strings, target)[:record_wire.MAX_ENTRIES],
+        "blocked": [[a.kind, a.detail, a.path, a.line] for a in attempts],
+        "overflow": {"logs": state.logs_dropped, "too_big": state.too_big, "messages": state.bytes_dropped,
+                     "entries": sum(max(0, len(entries) - record_wire.MAX_ENTRIES) for entries in (
+                         state.publishers, state.subscriptions, state.timers, state.node_names))},
+    }
+    return record_wire.write_record(summary, state.messages, state.logs)
 
 
-def _split_strings(found: list[tuple[str, str, str, str, str, int]], target: Target) -> list[SplitString]:
+def _failure_data(failure: NodeFailure | None) -> dict[str, Any] | None:
+    if failure is None:
+        return None
+    return {"kind": failure.kind, "detail": failure.detail, "time": failure.time, "context": failure.context,
+            "frames": [[f.path, f.line, f.function, f.text] for f in failure.frames[:100]]}
+
+
+def _split_strings(found: list[tuple[str, str, str, str, str, int]], target: Target) -> list[list[Any]]:
     """One per place and field (the first value), with how many messages were sent so."""
     counts: dict[tuple[str, str, str, str, int], int] = {}
     values: dict[tuple[str, str, str, str, int], str] = {}
@@ -320,5 +339,5 @@ def _split_strings(found: list[tuple[str, str, str, str, str, int]], target: Tar
         key = (node, topic, field, *_place(path, line, target))
         counts[key] = counts.get(key, 0) + 1
         values.setdefault(key, value)
-    return [SplitString(node, topic, field, values[key], path, line, counts[key])
+    return [[node, topic, field, values[key], path, line, counts[key]]
             for key in counts for node, topic, field, path, line in [key]]

@@ -177,3 +177,30 @@ def node_identity(name: str, namespace: str, local: list[RemapRule],
                 continue
             found[rule.kind] = rule.replacement
     return found.get("node", name), found.get("namespace", namespace or "/")
+
+
+NODE_NAME_MAX = 255  # rmw/include/rmw/validate_node_name.h: RMW_NODE_NAME_MAX_NAME_LENGTH
+TOPIC_NAME_MAX = 255 - 8  # rmw/include/rmw/validate_full_topic_name.h: RMW_TOPIC_MAX_NAME_LENGTH
+
+
+def is_node_name(text: object) -> bool:
+    """rmw_validate_node_name: ASCII letters, digits and '_', not starting with a digit, 1 to 255 long."""
+    return (isinstance(text, str) and 0 < len(text) <= NODE_NAME_MAX and text.isascii() and not text[0].isdigit()
+            and all(c.isalnum() or c == "_" for c in text))
+
+
+def is_full_topic_name(text: object) -> bool:
+    """rmw_validate_full_topic_name: absolute ('/' first), not ending in '/', no '//', every token
+    ASCII letters, digits and '_' not starting with a digit, at most 247 characters."""
+    if not (isinstance(text, str) and 1 < len(text) <= TOPIC_NAME_MAX and text.startswith("/")):
+        return False
+    return all(token and is_node_name(token) for token in text[1:].split("/"))
+
+
+def is_interface_type(text: object) -> bool:
+    """A message type as rosidl names it: ``package/msg/Name`` (package: lower case, digits, '_')."""
+    if not isinstance(text, str) or len(text) > NODE_NAME_MAX or text.count("/") != 2:
+        return False
+    package, kind, name = text.split("/")
+    return (kind in ("msg", "srv", "action") and is_node_name(package) and package == package.lower()
+            and is_node_name(name) and name[0].isupper())

@@ -83,6 +83,15 @@ class SplitString:
     count: int  # messages sent so
 
 
+@dataclass(frozen=True)
+class Refusal:
+    """A piece of a run's record that bras-kit's process left out: not what the stand-in makes
+    (a node name outside ROS 2's rules, a field of the wrong type...). ``detail``: a short inert sample."""
+
+    what: str
+    detail: str
+
+
 @dataclass
 class Recording:
     target: str  # what ran: "bras_description animation" or a file
@@ -102,10 +111,17 @@ class Recording:
     rate_sleeps: int = 0
     wall_seconds: float = 0.0
     start_ns: int = 0  # the simulated wall clock at t = 0 (header stamps count from it)
-    output: str = ""  # what the node printed, when not shown live
+    output: str = ""  # what the node printed, when not shown live: its first 64 KiB (bras_kit.ros.capture)
+    output_tail: str = ""  # ... and its last 64 KiB, when more was printed
+    output_dropped: int = 0  # characters printed between the two, not kept
+    output_dropped_lines: int = 0
     blocked: list[Attempt] = field(default_factory=list)  # what the containment stopped (contained runs)
     build_blocked: list[Attempt] = field(default_factory=list)  # what the package's setup.py tried (BK639)
     split_strings: list[SplitString] = field(default_factory=list)
+    # what bras-kit's process left out of the record the node's process sent (bras_kit.ros.record_wire)
+    refused: list[Refusal] = field(default_factory=list)  # the first ones, with a sample
+    refused_count: int = 0
+    overflow: dict[str, int] = field(default_factory=dict)  # past a bound: "messages", "logs", "line"...
 
     def topics(self) -> dict[str, int]:
         """Messages published per topic, in order of first publication."""

@@ -26,8 +26,9 @@ from .recording import NodeFailure
 class ScriptRun:
     failure: NodeFailure | None
     blocked: list[Attempt] = field(default_factory=list)
-    output: str = ""
+    output: str = ""  # the first and last 64 KiB of what it printed
     contained: bool = False
+    dropped: int = 0  # characters printed between the two, not kept
 
 
 def run_script(path: str, *, root: str | None = None, call: str | None = None, argv: tuple[str, ...] = (),
@@ -52,10 +53,10 @@ def run_script(path: str, *, root: str | None = None, call: str | None = None, a
 
 def _run_here(target: Target, argv: list[str], workdir: str, walls: Any) -> ScriptRun:
     import contextlib
-    import io
     import runpy
     import sys
 
+    from .capture import HeadTail
     from .child import _learner_frames
     from .finder import install
 
@@ -70,7 +71,7 @@ def _run_here(target: Target, argv: list[str], workdir: str, walls: Any) -> Scri
     install()
     sys.path.insert(0, target.root)
     sys.argv = [target.path, *argv]
-    output = io.StringIO()
+    output = HeadTail()  # its first and last 64 KiB (bras_kit.ros.capture), never the whole
     failure = None
     try:
         with contextlib.redirect_stdout(output):
@@ -83,4 +84,5 @@ def _run_here(target: Target, argv: list[str], workdir: str, walls: Any) -> Scri
     except BaseException as exc:  # noqa: BLE001 - the learner's error, reported as data
         failure = NodeFailure(type(exc).__name__, str(exc)[:2000], _learner_frames(exc, target), 0.0)
     blocked = watcher.finish() if watcher is not None else []
-    return ScriptRun(failure, blocked, output.getvalue()[:200_000], watcher is not None)
+    printed = output.kept()
+    return ScriptRun(failure, blocked, printed.head + printed.tail, watcher is not None, printed.dropped_chars)

@@ -39,6 +39,8 @@ MAX_DURATION = 3600.0
 CPU_SECONDS = 20
 WALL_SECONDS = 60.0
 MEMORY_BYTES = 1 << 30
+MAX_LIVE_LINE = 1 << 20  # one JointState line from a live node to the relay (a 2,000-joint one is 70 KiB)
+RESULT_BYTES = 64 << 20  # the most of a run's record this process reads (bras_kit.ros.record_wire)
 
 
 class NodeRunError(BrasKitError):
@@ -72,12 +74,12 @@ def _child(target: Target, duration: float, echo: bool, workdir: str, shared: mm
         read, write = walls.granted()
         watcher = Watcher(target.root, tuple(write), tuple(read))
         watcher.install()
-    recording = run_node_here(target, duration, echo, workdir, watch, parameters, robot)
-    if forward is not None:
-        forward(0)  # what was published at the last instant
-    if watcher is not None:
-        recording.blocked = watcher.finish()
-    return recording
+    def last() -> list[Any]:
+        if forward is not None:
+            forward(0)  # what was published at the last instant
+        return watcher.finish() if watcher is not None else []
+
+    return run_node_here(target, duration, echo, workdir, watch, parameters, robot, blocked=last)
 
 
 def _live_forwarder(fd: int, keep: bool = True):  # type: ignore[no-untyped-def]
@@ -99,10 +101,14 @@ def _live_forwarder(fd: int, keep: bool = True):  # type: ignore[no-untyped-def]
         nonlocal sent
         import _bras_sim
 
-        messages = _bras_sim.STATE.messages
+        messages = _bras_sim.STATE.messages  # the record's lines (bras_kit.ros.record_wire)
         while sent < len(messages):
-            _, _, topic, kind, fields = messages[sent]
-            sent += 1
+            try:
+                _, _, _, topic, kind, fields = json.loads(messages[sent])
+            except (ValueError, TypeError):
+                continue
+            finally:
+                sent += 1
             if topic == JOINT_STATES and kind == JOINT_STATE_TYPE:
                 line = json.dumps({"name": [str(n) for n in fields.get("name", [])],
                                    "position": [float(p) for p in fields.get("position", [])],
@@ -110,7 +116,7 @@ def _live_forwarder(fd: int, keep: bool = True):  # type: ignore[no-untyped-def]
                 os.write(fd, line.encode())
         if not keep:
             del messages[:sent], _bras_sim.STATE.logs[:]
-            sent = 0
+            _bras_sim.STATE.message_bytes = _bras_sim.STATE.log_bytes = sent = 0
         ahead = t_ns / 1e9 - (clock() - start)
         if ahead > 0:
             sleep(ahead)
@@ -124,7 +130,7 @@ def _relay(fd: int, deliver: Any = None) -> Any:
     import json
     import threading
 
-    from ..ros.bus import Bus, BusJointState
+    from ..ros.bus import Bus, joint_state_of
 
     bus: Any = None
     if deliver is None:
@@ -136,14 +142,21 @@ def _relay(fd: int, deliver: Any = None) -> Any:
             deliver = bus.publish_joint_state
 
     def pump() -> None:
-        with open(fd, "rb", buffering=0) as stream:
-            for line in iter(stream.readline, b""):
+        with open(fd, "rb") as stream:
+            while True:
+                # a line is read up to MAX_LIVE_LINE bytes; the rest of a longer one is drained, never held
+                line = stream.readline(MAX_LIVE_LINE + 1)
+                if not line:
+                    break
+                if len(line) > MAX_LIVE_LINE:
+                    while line and not line.endswith(b"\n"):
+                        line = stream.readline(MAX_LIVE_LINE)
+                    continue
                 if deliver is None:
                     continue  # drained all the same: the child never blocks on a full pipe
                 try:
-                    data = json.loads(line)
-                    state = BusJointState(data["name"], data["position"], data["stamp"])
-                except (ValueError, KeyError, TypeError):
+                    state = joint_state_of(json.loads(line))
+                except (ValueError, KeyError, TypeError, RecursionError):
                     continue
                 try:
                     deliver(state)
@@ -234,10 +247,11 @@ def run_node(where: str, executable: str | None = None, *, duration: float = DEF
                 if walls is not None:  # the pipe to the relay is the one way out the contained node keeps
                     walls = dataclasses.replace(walls, keep=(write_end,))
             try:
-                recording: Recording = run_limited(
+                wire = run_limited(
                     _child, target, duration, echo, workdir, shared, dict(parameters or {}), walls, joints, prefixes,
                     write_end, keep, cpu_seconds=cpu_seconds, contain=walls, stop=stop, memory_bytes=memory_bytes,
-                    wall_seconds=wall, what=f"the node {target.shown}")
+                    wall_seconds=wall, what=f"the node {target.shown}", result_bytes=RESULT_BYTES)
+                recording = _checked(wire, target)
                 recording.build_blocked = build_blocked
                 return recording
             except ResourceLimitError as exc:
@@ -249,6 +263,19 @@ def run_node(where: str, executable: str | None = None, *, duration: float = DEF
                     relay.join(10)
     finally:
         shared.close()
+
+
+def _checked(wire: Any, target: Target) -> Recording:
+    """The record the node's process sent, read as a stranger's claim (typed, bounded, names re-checked)."""
+    from ..ros.record_wire import WireError, read_record
+
+    try:
+        return read_record(wire)
+    except WireError:
+        raise NodeRunError(M("the node's process sent back no record bras-kit can read: it may have replaced "
+                             "parts of the stand-in for rclpy"),
+                           hint=M("a node publishes and logs through rclpy; it does not change rclpy itself"),
+                           kind="record", path=target.path) from None
 
 
 def _robot_joints(where: str) -> Any:

@@ -53,6 +53,8 @@ def summary(recording: Recording) -> list[Message]:
         lines.append(M("nothing was published"))
     if r.dropped:
         lines.append(M("{n} more messages were published and counted, not kept", n=r.dropped))
+    if r.output_dropped:
+        lines.append(not_shown(r))
     lines.append(M("the node {ending}", ending=ending(r)))
     return lines
 
@@ -71,3 +73,21 @@ def failure_lines(recording: Recording) -> list[str]:
             out.append(f"    {frame.text}")
     out.append(f"{failure.kind}: {failure.detail}" if failure.detail else failure.kind)
     return [for_terminal(line) for line in out]
+
+
+def not_shown(recording: Recording) -> Message:
+    """What the node printed beyond the first and last 64 KiB kept (bras_kit.ros.capture)."""
+    return Mn("the node printed more than was kept: {size} ({n} line) between its first and last 64 KiB "
+              "not shown", "the node printed more than was kept: {size} ({n} lines) between its first and last "
+              "64 KiB not shown", recording.output_dropped_lines, size=size_text(recording.output_dropped))
+
+
+def size_text(count: int) -> Message:
+    """A count of characters as people read sizes: 1.9 GB, 640.0 kB, 12 B (decimal units, as ls -h --si)."""
+    if count >= 10**9:
+        return M("{n} GB", n=round(count / 10**9, 1))
+    if count >= 10**6:
+        return M("{n} MB", n=round(count / 10**6, 1))
+    if count >= 10**3:
+        return M("{n} kB", n=round(count / 10**3, 1))
+    return M("{n} B", n=count)

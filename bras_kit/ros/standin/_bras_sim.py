@@ -87,11 +87,18 @@ class State:
         self.end_ns = 10 * 10**9
         self.stops = 0
         self.interrupted = False  # the end of the run was signalled (SIGINT)
-        self.messages: list[tuple[int, str, str, str, dict]] = []  # (t_ns, node, topic, type, fields)
+        # each message's and log's line of the record, made when it was sent (bras_kit.ros.record_wire)
+        self.messages: list[bytes] = []
+        self.message_bytes = 0
         self.dropped = 0
-        self.logs: list[tuple[int, str, str, str]] = []  # (t_ns, level, node, text)
+        self.too_big = 0  # messages larger than one line of the record may be
+        self.bytes_dropped = 0  # messages past the record's bytes
+        self.logs: list[bytes] = []
+        self.log_bytes = 0
+        self.logs_dropped = 0
         self.echo = True
         self.nodes: list = []
+        self.node_names: list[str] = []  # each node's name as the stand-in checked it, when it was made
         self.publishers: list[tuple[str, str, str, str, int]] = []  # (node, topic, type, file, line)
         self.subscriptions: list[tuple[str, str, str, str, int]] = []
         self.timers: list[tuple[str, float, str, int]] = []  # (node, period in s, file, line)
@@ -273,6 +280,10 @@ def caller() -> tuple[str, int]:
 
 
 def record(node: str, topic: str, type_name: str, fields: dict) -> None:
+    """A message published: serialised now, a copy (bras_kit.ros.record_wire), so that what the
+    node changes afterwards changes nothing recorded; kept while it fits the record's bounds."""
+    from bras_kit.ros import record_wire
+
     if STATE.now_ns == STATE.same_time_ns:
         STATE.same_time_count += 1
         if STATE.same_time_count > STORM:
@@ -282,13 +293,28 @@ def record(node: str, topic: str, type_name: str, fields: dict) -> None:
     if len(STATE.messages) >= MAX_MESSAGES:
         STATE.dropped += 1
         return
-    STATE.messages.append((STATE.now_ns, node, topic, type_name, fields))
+    line = record_wire.message_line(STATE.now_ns, node, topic, type_name, fields)
+    if line is None:  # larger than one line of the record: counted (rule BK657), not kept
+        STATE.too_big += 1
+        return
+    if STATE.message_bytes + len(line) > record_wire.MAX_MESSAGE_BYTES:  # the record is full (BK657)
+        STATE.bytes_dropped += 1
+        return
+    STATE.message_bytes += len(line)
+    STATE.messages.append(line)
 
 
 def log(level: str, node: str, text: str) -> None:
     import sys
 
-    STATE.logs.append((STATE.now_ns, level, node, text))
+    from bras_kit.ros import record_wire
+
+    if len(STATE.logs) < record_wire.MAX_LOGS and STATE.log_bytes < record_wire.MAX_LOG_BYTES:
+        line = record_wire.log_line(STATE.now_ns, level, node, text)
+        STATE.log_bytes += len(line)
+        STATE.logs.append(line)
+    else:
+        STATE.logs_dropped += 1
     if STATE.echo:
         stamp = (START_NS + STATE.now_ns) / 1e9
         print(f"[{level}] [{stamp:.9f}] [{node}]: {text}", file=sys.stderr)

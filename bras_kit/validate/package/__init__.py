@@ -23,6 +23,7 @@ from . import (
     build_reach,  # noqa: F401  (BK639: what setup.py and launch files tried)
     node_mistakes,  # noqa: F401  (BK627, registered on import)
     run_reach,  # noqa: F401  (BK659: what the containment stopped)
+    run_record,  # noqa: F401  (BK657-BK658: the run's record, bounded and checked)
     texts,  # noqa: F401  (the rules' words)
 )
 from .launch_rules import LAUNCH_CHECKS, installed_descriptions, launched  # noqa: F401  (BK630-BK633)

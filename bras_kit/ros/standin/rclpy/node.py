@@ -128,6 +128,10 @@ class Node:
         self._clock = ROSClock()
         self.executor = None
         _bras_sim.STATE.nodes.append(self)
+        # the name as checked, for the record: real rclpy reads it from rcl's handle, so whatever the
+        # node's code sets in self._name afterwards names nothing there, and nothing here
+        self._bras_name = node_name
+        _bras_sim.STATE.node_names.append(node_name)
         if automatically_declare_parameters_from_overrides:
             for name, parameter in self._parameter_overrides.items():
                 if name not in self._parameters:
@@ -204,7 +208,7 @@ class Node:
         _check_msg_type(msg_type)
         publisher = Publisher(self, msg_type, final_topic, qos_profile)
         self._publishers_list.append(publisher)
-        _bras_sim.STATE.publishers.append((self._name, final_topic, msg_type._type_name, *_bras_sim.caller()))
+        _bras_sim.STATE.publishers.append((self._bras_name, final_topic, msg_type._type_name, *_bras_sim.caller()))
         return publisher
 
     def create_subscription(self, msg_type, topic, callback, qos_profile, *, callback_group=None,
@@ -221,7 +225,7 @@ class Node:
         self._subscriptions_list.append(subscription)
         if self.executor is not None:
             self.executor.wake()
-        _bras_sim.STATE.subscriptions.append((self._name, final_topic, msg_type._type_name, *_bras_sim.caller()))
+        _bras_sim.STATE.subscriptions.append((self._bras_name, final_topic, msg_type._type_name, *_bras_sim.caller()))
         return subscription
 
     def destroy_publisher(self, publisher):
@@ -304,7 +308,7 @@ class Node:
         self._timers_list.append(timer)
         if self.executor is not None:
             self.executor.wake()
-        _bras_sim.STATE.timers.append((self._name, timer_period_nsec / S_TO_NS, *_bras_sim.caller()))
+        _bras_sim.STATE.timers.append((self._bras_name, timer_period_nsec / S_TO_NS, *_bras_sim.caller()))
         return timer
 
     def destroy_timer(self, timer):

@@ -11,8 +11,10 @@ from .exceptions import InvalidHandle
 class Publisher:
     def __init__(self, node, msg_type, topic, qos_profile):
         self._node = node
+        self._node_name = node._bras_name  # as checked when the node was made: recorded with each message
         self.msg_type = msg_type
         self.topic = topic
+        self._topic = topic  # the resolved name as checked by create_publisher
         self.qos_profile = qos_profile
         self._destroyed = False
 
@@ -38,9 +40,9 @@ class Publisher:
             raise aborted
         for field, value in _messages.split_strings(msg):
             path, line = _bras_sim.caller()
-            _bras_sim.STATE.split_strings.append((self._node.get_name(), self.topic, field, value, path, line))
+            _bras_sim.STATE.split_strings.append((self._node_name, self._topic, field, value, path, line))
         fields = _messages.to_data(msg)
-        _bras_sim.record(self._node.get_name(), self.topic, _messages.type_name(self.msg_type) or '?', fields)
+        _bras_sim.record(self._node_name, self._topic, _messages.type_name(self.msg_type) or '?', fields)
         from .executors import deliver
 
         deliver(self.topic, self.msg_type, msg)
