@@ -120,11 +120,21 @@ def lesson_link(track: Track, exercise: Exercise, lang: str, start: str | os.Pat
 def _read_manifest(path: Path) -> dict[str, Any]:
     import yaml
 
+    from .. import yaml_gate
+    from ..learner_files import Unreadable, read_text
+
     try:
-        if path.stat().st_size > MAX_MANIFEST_BYTES:
-            raise BrasKitError(M("the manifest is too large"), path=str(path))
-        with open(path, encoding="utf-8") as stream:
-            data = yaml.safe_load(stream)
+        # the one reader (a regular file, never a pipe or /dev/zero, its size checked once open)
+        text = read_text(str(path), (str(path.parent),), limit=MAX_MANIFEST_BYTES)
+        data = yaml_gate.load(text, loader=yaml.SafeLoader)
+    except Unreadable as exc:
+        if exc.kind == "too_large":
+            raise BrasKitError(M("the manifest is too large"), path=str(path)) from None
+        if exc.kind != "missing":
+            raise BrasKitError(M("the manifest cannot be read ({reason})", reason=str(exc)), path=str(path)) from None
+        raise BrasKitError(M("the manifest is missing"), path=str(path),
+                           hint=M("an exercise set is a folder with track.yaml and one folder per exercise "
+                                  "holding exercise.yaml")) from None
     except FileNotFoundError:
         raise BrasKitError(M("the manifest is missing"), path=str(path),
                            hint=M("an exercise set is a folder with track.yaml and one folder per exercise "
