@@ -14,7 +14,7 @@ from dataclasses import dataclass, field
 from functools import cached_property
 from typing import Any
 
-from ...message import Message
+from ...message import M, Message
 from ...model import Robot
 from .staticpy import (
     UNKNOWN,
@@ -325,12 +325,20 @@ class Package:
         """The robot, or None when there is none or it cannot be read (the URDF rules say why)."""
         from ...authoring import load
         from ...errors import BrasKitError
+        from ...ros.launching import MAX_DESCRIPTION_CHARS
 
         source = self.description_source()
         if source is None:
             return None
+        full = os.path.join(self.root, source)
+        size = os.path.getsize(full) if os.path.isfile(full) else 0
+        if size > MAX_DESCRIPTION_CHARS:  # as robot_state_publisher's: the rules that need the robot are skipped
+            self._problem(source, None, M("it holds {size} MiB, more than the {most} MiB bras-kit reads in a robot "
+                                          "description", size=round(size / (1 << 20), 1),
+                                          most=MAX_DESCRIPTION_CHARS >> 20))
+            return None
         try:
-            return load(os.path.join(self.root, source), package_paths=[os.path.dirname(self.root)])
+            return load(full, package_paths=[os.path.dirname(self.root)])
         except BrasKitError:
             return None
 

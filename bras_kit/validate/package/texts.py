@@ -743,6 +743,10 @@ describe(
         "path": "robot_description is a file's path, not its text: {ros}",
         "xacro": "robot_description is xacro source that xacro never expanded: {ros}",
         "not_urdf": "robot_description is not a URDF robot ({detail}): {ros}",
+        "too_large": "robot_description is {detail} MiB of text, more than the 8 MiB bras-kit reads: the robot is "
+                     "neither checked nor shown",
+        "too_many": "robot_description declares more than {detail} links and joints, more than bras-kit holds: the "
+                    "robot is neither checked nor shown",
         "": "robot_state_publisher stops: {ros}",
     },
     hint={
@@ -756,6 +760,9 @@ describe(
         "xacro": "run xacro on it: ParameterValue(Command(['xacro ', path]), value_type=str), or "
                  "xacro.process_file(path).toxml()",
         "not_urdf": "check the file the launch file reads: it must be the robot's URDF",
+        "too_large": "the tutorial's arm is 5 kB: check that the launch file reads the robot's URDF file, and only it",
+        "too_many": "the tutorial's arm has 3 links: check that the launch file reads the robot's URDF file, and only "
+                    "it",
         "": "give robot_state_publisher the URDF text",
     },
     explanation="""\
