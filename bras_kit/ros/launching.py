@@ -25,6 +25,7 @@ from .attempts import Attempt
 
 PLAN_CPU_SECONDS = 20
 PLAN_WALL_SECONDS = 40.0
+MAX_LAUNCH_NODES = 256  # the stand-in's bound (launch/_plan.py MAX_NODES): the nodes of one launch evaluated
 PLAN_MEMORY_BYTES = 1 << 30
 
 # the simulated ROS install: package -> its executables (what `apt install` gave the tutorial)

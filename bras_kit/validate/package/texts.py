@@ -684,8 +684,13 @@ describe(
     title="ros2 launch stops with an error",
     message={
         "": "ros2 launch stops: {ros}",
+        "too_many_nodes": "the launch file starts more than 256 nodes: bras-kit evaluates no more, and stops there",
+        "log_flood": "the launch file logs more than 10,000 lines or 1 MiB (LogInfo): bras-kit keeps no more, and "
+                     "stops there",
     },
     hint={
+        "too_many_nodes": "the tutorial's launch file starts 3 nodes: look for a loop that adds Node(...) actions",
+        "log_flood": "the tutorial's launch file logs nothing: look for a loop that adds LogInfo(...) actions",
         "package": "no installed package is called '{missing}': use the name in package.xml ('{known}'), then "
                    "colcon build and source install/setup.bash",
         "package_near": "no installed package is called '{missing}': did you mean '{near}'?",

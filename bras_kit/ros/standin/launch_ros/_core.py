@@ -383,7 +383,7 @@ class Node(ExecuteProcess):
             "remappings": remappings, "arguments": arguments, "ros_arguments": ros_arguments, "argv": argv,
             "delay": context.delay, "file": self.__where[0], "line": self.__where[1],
         }
-        _plan.NODES.append(self.__recorded)
+        _plan.record_node(self.__recorded)
         _plan.CURRENT = None
         self._bras_cmd = [path, *argv]
         record_start(context, self)
