@@ -124,7 +124,7 @@ def _check_folder(folder: str) -> None:
 
     try:
         # the one reader (a regular file of at most the limit, checked once open), then the bounded loader
-        data = yaml_gate.load(read_text(metadata, (folder,), limit=MAX_METADATA_BYTES))
+        data = yaml_gate.load(read_text(os.path.abspath(metadata), (os.path.abspath(folder),), limit=MAX_METADATA_BYTES))
     except (OSError, UnicodeDecodeError, yaml.YAMLError) as exc:
         raise _fail(metadata, M("metadata.yaml cannot be read: {why}", why=str(exc).splitlines()[0])) from None
     info = data.get("rosbag2_bagfile_information") if isinstance(data, dict) else None

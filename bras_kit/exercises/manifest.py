@@ -125,7 +125,7 @@ def _read_manifest(path: Path) -> dict[str, Any]:
 
     try:
         # the one reader (a regular file, never a pipe or /dev/zero, its size checked once open)
-        text = read_text(str(path), (str(path.parent),), limit=MAX_MANIFEST_BYTES)
+        text = read_text(os.path.abspath(path), (os.path.abspath(path.parent),), limit=MAX_MANIFEST_BYTES)
         data = yaml_gate.load(text, loader=yaml.SafeLoader)
     except Unreadable as exc:
         if exc.kind == "too_large":

@@ -39,7 +39,7 @@ def exercises_passed(root: str) -> str:
     try:
         # through the one reader first: a regular file inside the submission, of a bounded size,
         # opened without waiting (a pipe named progress.json would hold the class's run forever)
-        read_bytes(os.path.join(folder, PROGRESS_FILE), (root,), limit=MAX_PROGRESS_BYTES)
+        read_bytes(os.path.abspath(os.path.join(folder, PROGRESS_FILE)), (os.path.abspath(root),), limit=MAX_PROGRESS_BYTES)
         progress = read_progress(folder)
     except (BrasKitError, OSError, ValueError, TypeError, RecursionError):  # nested, huge numbers: not counted
         return ""

@@ -213,7 +213,7 @@ def _parameters_file(path: str, node_name: str | None) -> dict[str, Any]:
 
     try:
         # any file the launch file names (as launch_ros), but a regular one, of a bounded size
-        data = yaml_gate.load(read_text(path, ("/",)), loader=yaml.SafeLoader) or {}
+        data = yaml_gate.load(read_text(os.path.abspath(path), ("/",)), loader=yaml.SafeLoader) or {}
     except Unreadable as exc:
         if exc.kind == "missing":
             raise FileNotFoundError(f"[Errno 2] No such file or directory: '{path}'") from None
