@@ -154,6 +154,7 @@ def rviz_fixed_frame(plan: Any) -> str | None:
     """The Fixed Frame of the configuration rviz2 is started with (``arguments=['-d', FILE]``)."""
     import yaml
 
+    from . import yaml_gate
     from .learner_files import read_text
 
     for node in plan.nodes if plan is not None else []:
@@ -164,7 +165,7 @@ def rviz_fixed_frame(plan: Any) -> str | None:
         # /dev/zero, a pipe, or a file elsewhere (docs/security.md)
         installed = plan.launch_file.rsplit(os.sep + "share" + os.sep, 1)[0]
         try:
-            data = yaml.safe_load(read_text(path, (installed,), limit=RVIZ_FILE_LIMIT))
+            data = yaml_gate.load(read_text(path, (installed,), limit=RVIZ_FILE_LIMIT))
             options = data["Visualization Manager"].get("Global Options") or {}
             frame = options.get("Fixed Frame", RVIZ_DEFAULT_FRAME)
         except (OSError, UnicodeDecodeError, yaml.YAMLError, KeyError, TypeError, AttributeError):

@@ -351,7 +351,15 @@ class _Hooks:
             raise XacroError(M("refused to load {path}: only YAML files next to the robot description "
                                "or inside the given package folders may be read", path=filename),
                              hint=M("move the file next to your xacro file, or pass its package with --package-path"))
-        check_readable_file(full)
+        from . import yaml_gate
+
+        text = _read_limited(full)
+        try:
+            yaml_gate.check(text)  # xacro's own loader then reads it: bounded first (aliases, depth, size)
+        except yaml_gate.YamlRefused as exc:
+            raise XacroError(M("{path}: {reason}", path=filename, reason=exc.message),
+                             hint=M("load_yaml reads a plain YAML file: no alias repeated thousands of times, "
+                                    "no nesting past {most} levels", most=yaml_gate.MAX_DEPTH)) from None
         return self.original_load_yaml(filename)
 
     @property

@@ -119,9 +119,12 @@ def _check_folder(folder: str) -> None:
                     M("give the folder ros2 bag record wrote, or the .mcap or .db3 file itself"))
     if os.path.getsize(metadata) > MAX_METADATA_BYTES:
         raise _fail(metadata, M("metadata.yaml is over {limit} KiB", limit=MAX_METADATA_BYTES >> 10))
+    from .. import yaml_gate
+    from ..learner_files import read_text
+
     try:
-        with open(metadata, encoding="utf-8") as handle:
-            data = yaml.load(handle, Loader=getattr(yaml, "CSafeLoader", yaml.SafeLoader))  # safe, in C when built
+        # the one reader (a regular file of at most the limit, checked once open), then the bounded loader
+        data = yaml_gate.load(read_text(os.path.abspath(metadata), (os.path.abspath(folder),), limit=MAX_METADATA_BYTES))
     except (OSError, UnicodeDecodeError, yaml.YAMLError) as exc:
         raise _fail(metadata, M("metadata.yaml cannot be read: {why}", why=str(exc).splitlines()[0])) from None
     info = data.get("rosbag2_bagfile_information") if isinstance(data, dict) else None

@@ -120,11 +120,12 @@ def lesson_link(track: Track, exercise: Exercise, lang: str, start: str | os.Pat
 def _read_manifest(path: Path, root: Path) -> dict[str, Any]:
     import yaml
 
+    from .. import yaml_gate
     from ..learner_files import Unreadable, read_text
 
     try:  # the one reader, inside the set's folder: no link out, no pipe, no device, no file past the bound
         text = read_text(str(path), (str(root),), limit=MAX_MANIFEST_BYTES)
-        data = yaml.safe_load(text)
+        data = yaml_gate.load(text, loader=yaml.SafeLoader)
     except Unreadable as exc:
         if exc.kind == "too_large":
             raise BrasKitError(M("the manifest is too large"), path=str(path)) from None

@@ -55,13 +55,15 @@ def load_rubric(path: str | None = None) -> Rubric:
     """The rubric in ``path`` (YAML), or the tutorial's; a malformed one is a ParameterError."""
     import yaml
 
+    from .. import yaml_gate
+
     where = Path(path) if path else DEFAULT_RUBRIC
     try:
         if not where.is_file() or where.stat().st_size > MAX_RUBRIC_BYTES:
             raise ParameterError(M("the rubric must be a YAML file of at most {most} kB", most=MAX_RUBRIC_BYTES >> 10),
                                  path=str(where), hint=M("bras-kit grade --explain-rubric prints the default one"))
         text = where.read_text(encoding="utf-8")
-        data = yaml.safe_load(text)
+        data = yaml_gate.load(text, loader=yaml.SafeLoader)
     except (OSError, UnicodeDecodeError) as exc:
         reason = os_reason(exc) if isinstance(exc, OSError) else quoted(str(exc))
         raise ParameterError(M("cannot read the rubric: {reason}", reason=reason), path=str(where),

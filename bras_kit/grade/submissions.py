@@ -4,6 +4,8 @@ unpacked safely (nothing outside the target, no links, size and file-count caps)
 from __future__ import annotations
 
 import bz2
+import contextlib
+import errno
 import gzip
 import hashlib
 import io
@@ -13,6 +15,8 @@ import stat
 import struct
 import tarfile
 import zipfile
+import zlib
+from collections.abc import Iterator
 from dataclasses import dataclass
 from pathlib import Path
 from typing import Any
@@ -64,9 +68,13 @@ def find_submissions(folder: str | os.PathLike[str]) -> list[Submission]:
     for entry in sorted(root.iterdir(), key=lambda p: p.name):
         if entry.name.startswith("."):
             continue
-        if entry.is_symlink():
-            kind = "other"  # never followed: a link could point anywhere on the teacher's disk
-        elif entry.is_dir():
+        try:
+            mode = entry.lstat().st_mode
+        except OSError:
+            mode = 0
+        if stat.S_ISLNK(mode) or not (stat.S_ISDIR(mode) or stat.S_ISREG(mode)):
+            kind = "other"  # a link is never followed (it could point anywhere on the teacher's disk), nor a pipe
+        elif stat.S_ISDIR(mode):
             kind = "folder"
         elif entry.name.lower().endswith(ARCHIVE_SUFFIXES):
             kind = "archive"
@@ -90,12 +98,24 @@ def content_hash(path: str) -> str:
     for file in files:
         digest.update(str(file.relative_to(target) if target.is_dir() else file.name).encode() + b"\0")
         try:
-            with open(file, "rb") as handle:
+            with open_regular(str(file)) as handle:  # never a pipe: it would wait for a writer
                 while chunk := handle.read(HASH_CHUNK):
                     digest.update(chunk)
         except OSError:
             digest.update(b"<unreadable>")
     return digest.hexdigest()
+
+
+def open_regular(path: str) -> Any:
+    """``path`` opened for reading when it is a regular file, judged on the open descriptor (a
+    pipe is opened without waiting for a writer, then refused; a link is not followed); else
+    ``OSError``."""
+    fd = os.open(path, os.O_RDONLY | os.O_NONBLOCK | getattr(os, "O_NOFOLLOW", 0) | getattr(os, "O_CLOEXEC", 0))
+    if not stat.S_ISREG(os.fstat(fd).st_mode):
+        os.close(fd)
+        raise OSError(errno.EINVAL, "not a regular file", path)
+    os.set_blocking(fd, True)
+    return os.fdopen(fd, "rb")
 
 
 def unpack(archive: str, target: str) -> None:
@@ -108,7 +128,10 @@ def unpack(archive: str, target: str) -> None:
             _unzip(archive, target)
         else:
             _untar(archive, target)
-    except (zipfile.BadZipFile, tarfile.TarError, EOFError, OSError) as exc:
+    except (zipfile.BadZipFile, zipfile.LargeZipFile, tarfile.TarError, EOFError, OSError, zlib.error, lzma.LZMAError,
+            NotImplementedError, RuntimeError, ValueError) as exc:
+        # zipfile's own refusals: an unknown version or method (NotImplementedError), a password
+        # (RuntimeError), a broken deflate stream (zlib.error), a name it cannot decode (ValueError)
         raise SubmissionError(M("the archive cannot be read: {reason}",
                                 reason=os_reason(exc) if isinstance(exc, OSError) and exc.errno else quoted(str(exc))),
                               path=archive, hint=M("hand in a .zip or .tar.gz made by an archive tool")) from None
@@ -133,32 +156,123 @@ def _check_totals(count: int, size: int, archive: str) -> None:
                               path=archive, hint=M("hand in the package only (no build/ or install/ folders)"))
 
 
-def _zip_directory(archive: str) -> tuple[int, int]:
-    """(entries, size of the central directory) as the end record says, read before zipfile
-    parses the directory into one object per entry (a zip of a million empty entries would
-    take the grading process's memory first). APPNOTE.TXT 4.3.16: the end record is the last
-    22 bytes, after a comment of at most 65,535."""
-    with open(archive, "rb") as handle:
-        handle.seek(0, os.SEEK_END)
-        size = handle.tell()
-        handle.seek(max(0, size - (22 + 0xFFFF)))
-        tail = handle.read()
-    at = tail.rfind(b"PK\x05\x06")
-    if at < 0 or len(tail) - at < 22:
+@dataclass(frozen=True)
+class _ZipEnd:
+    """What a zip's end records say (APPNOTE.TXT 4.3.14-4.3.16), read as zipfile reads them."""
+
+    entries: int
+    directory_bytes: int
+    directory_offset: int  # as written in the record
+    directory_start: int  # where zipfile will read it: just before the end records
+    zip64: bool
+
+
+# APPNOTE.TXT: the end of central directory record (4.3.16, 22 bytes and a comment of at most
+# 65,535), the ZIP64 locator (4.3.15, 20 bytes just before it) and the ZIP64 end record (4.3.14,
+# 56 bytes before the locator, as zipfile assumes: no "extensible data")
+_EOCD, _EOCD_SIZE = b"PK\x05\x06", 22
+_LOCATOR, _LOCATOR_SIZE = b"PK\x06\x07", 20
+_EOCD64, _EOCD64_SIZE = b"PK\x06\x06", 56
+CENTRAL_ENTRY_BYTES = 46  # an entry of the central directory, before its name, extra and comment (4.3.12)
+LOCAL_HEADER_BYTES = 30  # a member's local header, before its name and extra (4.3.7)
+
+
+def _zip_end(handle: Any, archive: str) -> _ZipEnd:
+    """The end records, found where zipfile looks for them (``_EndRecData``, ``_EndRecData64``)
+    and checked against the file's size (fstat on the open descriptor) and
+    :data:`MAX_ZIP_DIRECTORY_BYTES` before zipfile parses the directory into one object per
+    entry: a zip whose ZIP64 record claims a million entries is refused having read 98 bytes."""
+    size = os.fstat(handle.fileno()).st_size
+    handle.seek(max(0, size - (_EOCD_SIZE + 0xFFFF)))
+    tail = handle.read()
+    base = size - len(tail)
+    if len(tail) >= _EOCD_SIZE and tail[-_EOCD_SIZE:-_EOCD_SIZE + 4] == _EOCD and tail[-2:] == b"\0\0":
+        at = len(tail) - _EOCD_SIZE  # no comment: zipfile's first look
+    else:
+        at = tail.rfind(_EOCD)
+    if at < 0 or len(tail) - at < _EOCD_SIZE:
         raise zipfile.BadZipFile("no end of central directory record")
-    _sig, _disk, _start, _here, entries, directory_bytes, _offset, _comment = struct.unpack(
-        "<4s4H2LH", tail[at:at + 22])
-    return entries, directory_bytes
+    (_sig, disk, disk_start, here, entries, directory_bytes, offset,
+     _comment) = struct.unpack("<4s4H2LH", tail[at:at + _EOCD_SIZE])
+    location = base + at
+    zip64 = False
+    locator = tail[at - _LOCATOR_SIZE:at] if at >= _LOCATOR_SIZE else b""
+    if at < _LOCATOR_SIZE and location >= _LOCATOR_SIZE:  # the comment search started past it
+        handle.seek(location - _LOCATOR_SIZE)
+        locator = handle.read(_LOCATOR_SIZE)
+    if len(locator) == _LOCATOR_SIZE and locator[:4] == _LOCATOR:
+        _sig, locator_disk, _record_at, disks = struct.unpack("<4sLQL", locator)
+        if locator_disk != 0 or disks > 1:
+            _refuse_disks(archive)
+        if location >= _LOCATOR_SIZE + _EOCD64_SIZE:
+            handle.seek(location - _LOCATOR_SIZE - _EOCD64_SIZE)
+            record = handle.read(_EOCD64_SIZE)
+            if len(record) == _EOCD64_SIZE and record[:4] == _EOCD64:
+                (_sig, _size, _made, _needed, disk, disk_start, here, entries, directory_bytes,
+                 offset) = struct.unpack("<4sQ2H2L4Q", record)
+                zip64 = True
+    if disk != 0 or disk_start != 0 or here != entries:
+        _refuse_disks(archive)
+    start = location - directory_bytes - (_LOCATOR_SIZE + _EOCD64_SIZE if zip64 else 0)
+    return _ZipEnd(entries, directory_bytes, offset, start, zip64)
+
+
+def _refuse_disks(archive: str) -> None:
+    raise SubmissionError(M("the archive says it spans several disks: refused"), path=archive,
+                          hint=M("hand in a .zip or .tar.gz made by an archive tool"))
+
+
+def _refuse_lie(archive: str) -> None:
+    raise SubmissionError(M("the archive's end records do not match the archive: refused unread"), path=archive,
+                          hint=M("hand in a .zip or .tar.gz made by an archive tool"))
+
+
+def _check_zip_end(end: _ZipEnd, archive: str) -> None:
+    _check_totals(end.entries, 0, archive)
+    if end.directory_bytes > MAX_ZIP_DIRECTORY_BYTES:
+        _check_totals(MAX_ARCHIVE_FILES + 1, 0, archive)
+    # the directory must lie inside the file, before its end records, where its offset says (or
+    # after bytes put before the archive: a self-extracting stub), and hold its entries
+    if end.directory_start < 0 or end.directory_offset > end.directory_start \
+            or end.entries * CENTRAL_ENTRY_BYTES > end.directory_bytes:
+        _refuse_lie(archive)
+
+
+def _check_zip_members(members: list[zipfile.ZipInfo], end: _ZipEnd, archive: str) -> None:
+    """The directory as zipfile parsed it, against the end record and itself: as many entries as
+    the record says, and each member's bytes (its local header, name and compressed data) before
+    the directory and apart from every other member's: overlapping members are a zip bomb's
+    shape (one deflated stream counted many times)."""
+    if len(members) != end.entries:
+        raise SubmissionError(M("the archive's end record says {said} entries, its directory holds {found}: "
+                                "refused", said=end.entries, found=len(members)), path=archive,
+                              hint=M("hand in a .zip or .tar.gz made by an archive tool"))
+    spans = sorted((m.header_offset, m.header_offset + LOCAL_HEADER_BYTES + _name_bytes(m) + m.compress_size)
+                   for m in members)
+    previous_end = 0
+    for start, stop in spans:
+        if start < previous_end or start < 0 or stop > end.directory_start:
+            raise SubmissionError(M("the archive's members overlap or run into its directory: refused"),
+                                  path=archive, hint=M("hand in a .zip or .tar.gz made by an archive tool"))
+        previous_end = stop
+
+
+def _name_bytes(member: zipfile.ZipInfo) -> int:
+    """The length of the member's name as written (UTF-8 when flagged, else cp437: APPNOTE 4.4.4)."""
+    return len(member.orig_filename.encode("utf-8" if member.flag_bits & 0x800 else "cp437", "replace"))
 
 
 def _unzip(archive: str, target: str) -> None:
-    entries, directory_bytes = _zip_directory(archive)
-    # 0xFFFF entries or 0xFFFFFFFF bytes: a ZIP64 archive, larger than any accepted one anyway
-    _check_totals(entries, 0, archive)
-    if directory_bytes > MAX_ZIP_DIRECTORY_BYTES:
-        _check_totals(MAX_ARCHIVE_FILES + 1, 0, archive)
-    with zipfile.ZipFile(archive) as bundle:
+    with open_regular(archive) as handle:
+        end = _zip_end(handle, archive)
+        _check_zip_end(end, archive)
+        _unzip_checked(handle, end, archive, target)
+
+
+def _unzip_checked(handle: Any, end: _ZipEnd, archive: str, target: str) -> None:
+    with zipfile.ZipFile(handle) as bundle:  # the descriptor whose end records were checked
         members = bundle.infolist()
+        _check_zip_members(members, end, archive)
         _check_totals(len(members), sum(m.file_size for m in members), archive)
         plan = []
         for member in members:
@@ -219,18 +333,24 @@ class _Capped(io.RawIOBase):
         return int(self._stream.tell())
 
 
-def _decompressed(archive: str) -> Any:
+@contextlib.contextmanager
+def _decompressed(archive: str) -> Iterator[Any]:
     """The archive's tar stream: gzip, bzip2 and xz told apart by their magic numbers, as
     tarfile.open does (tarfile.py, TarFile.open's "r:*")."""
-    with open(archive, "rb") as handle:
+    with open_regular(archive) as handle:
         magic = handle.read(6)
-    if magic.startswith(b"\x1f\x8b"):
-        return gzip.open(archive, "rb")
-    if magic.startswith(b"BZh"):
-        return bz2.open(archive, "rb")
-    if magic.startswith(b"\xfd7zXZ\x00"):
-        return lzma.open(archive, "rb")
-    return open(archive, "rb")
+        handle.seek(0)
+        if magic.startswith(b"\x1f\x8b"):
+            opener: Any = gzip.GzipFile(fileobj=handle, mode="rb")
+        elif magic.startswith(b"BZh"):
+            opener = bz2.BZ2File(handle, "rb")
+        elif magic.startswith(b"\xfd7zXZ\x00"):
+            opener = lzma.LZMAFile(handle, "rb")
+        else:
+            yield handle
+            return
+        with opener as stream:
+            yield stream
 
 
 def _untar(archive: str, target: str) -> None:

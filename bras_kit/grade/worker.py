@@ -29,6 +29,10 @@ from .submissions import MAX_SUBMISSION_BYTES, Submission, SubmissionError, cont
 CHECK_CPU_SECONDS = 20
 CHECK_WALL_SECONDS = 40.0
 CHECK_MEMORY_BYTES = 1536 << 20
+# a robot file of a class bras-kit parses and holds (the tutorial's arm: 5 kB, 3 links): a long
+# comment is legal, so the size is generous; the links and joints are robot_state_publisher's
+# bound (bras_kit.ros.launching.MAX_DESCRIPTION_ELEMENTS)
+MAX_ROBOT_FILE_BYTES = 32 << 20
 RUN_SECONDS = 10.0  # simulated seconds each node runs with --run-nodes
 RUN_CPU_SECONDS = 10
 RUN_WALL_SECONDS = 30.0
@@ -213,7 +217,26 @@ def _inspect(root: str, lang: str) -> dict[str, Any]:
     for package in packages:
         for result in validate_package(package):
             findings += [_as_dict(f, _relative(result.path, root), lang) for f in result.findings]
-    checked = [p for p in paths if p not in pairs]
+    checked = []
+    for path in (p for p in paths if p not in pairs):
+        size = os.path.getsize(path) if os.path.isfile(path) else 0
+        if size > MAX_ROBOT_FILE_BYTES:  # its size, before any parser holds it: the learner's finding
+            findings.append(_finding(
+                "BK103", "error", say(M("{file} holds {size} MiB, more than the {most} MiB bras-kit reads in a robot "
+                                        "file: not read", file=_relative(path, root), size=round(size / (1 << 20), 1),
+                                        most=MAX_ROBOT_FILE_BYTES >> 20), lang),
+                say(M("hand in the robot's own URDF or xacro file (the tutorial's arm is 5 kB)"), lang),
+                _relative(path, root)))
+            continue
+        many = _too_many_elements(path)
+        if many:
+            findings.append(_finding(
+                "BK103", "error", say(M("{file} declares more than {most} links and joints, more than bras-kit holds "
+                                        "in a robot file: not read", file=_relative(path, root), most=many), lang),
+                say(M("hand in the robot's own URDF or xacro file (the tutorial's arm has 3 links)"), lang),
+                _relative(path, root)))
+            continue
+        checked.append(path)
     for path in checked:
         findings += [_as_dict(f, _relative(path, root), lang) for f in validate_path(path)]
     main = _main_file(checked, root)
@@ -228,6 +251,22 @@ def _inspect(root: str, lang: str) -> dict[str, Any]:
                                  "hand in the robot description (urdf/bras.urdf or urdf/bras.urdf.xacro)", "."))
     return {"findings": findings, "robot": robot, "main": _relative(main, root) if main else None,
             "package": bool(packages)}
+
+
+def _too_many_elements(path: str) -> int:
+    """The bound when the URDF at ``path`` declares more links and joints than it, else 0
+    (counted on the text, before a parser holds it; a xacro is bounded by its expansion's own)."""
+    from ..ros.launching import MAX_DESCRIPTION_ELEMENTS, description_too_large
+
+    if not path.lower().endswith(".urdf"):
+        return 0
+    try:
+        with open(path, encoding="utf-8", errors="replace") as handle:
+            text = handle.read(MAX_ROBOT_FILE_BYTES + 1)
+    except OSError:
+        return 0  # the validator says why
+    problem = description_too_large(text, most_chars=MAX_ROBOT_FILE_BYTES)
+    return MAX_DESCRIPTION_ELEMENTS if problem is not None and problem.kind == "too_many" else 0
 
 
 def _main_file(paths: list[str], root: str) -> str | None:

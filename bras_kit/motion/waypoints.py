@@ -188,8 +188,10 @@ def _parse_structured(text: str, path: str, tree: TFTree, is_json: bool):  # typ
     else:
         import yaml
 
+        from .. import yaml_gate
+
         try:
-            data = yaml.safe_load(text)
+            data = yaml_gate.load(text, loader=yaml.SafeLoader)  # PyYAML's own words in errors
         except yaml.YAMLError as exc:
             mark = getattr(exc, "problem_mark", None)
             problem = getattr(exc, "problem", None)  # PyYAML's own words, quoted in French
@@ -299,8 +301,10 @@ def _waypoint_lines(text: str) -> list[int | None]:
     """The line of each waypoint, found by composing the text as YAML (JSON is YAML too)."""
     import yaml
 
+    from .. import yaml_gate
+
     try:
-        node = yaml.compose(text, Loader=yaml.SafeLoader)
+        node = yaml_gate.compose(text)
     except yaml.YAMLError:
         return []
     if isinstance(node, yaml.MappingNode):

@@ -12,6 +12,7 @@ from dataclasses import dataclass, field
 from .. import scratch
 from .build import BuildRecord, build_package
 from .launching import (
+    MAX_LAUNCH_NODES,
     LaunchPlan,
     PlannedNode,
     StartProblem,
@@ -94,10 +95,14 @@ def launch_package(root: str, install_base: str, launch_file: str | None = None,
         if early is not None:
             early.cancel()
     result.plan = plan
-    for node in plan.nodes:
+    described: dict[tuple[str, tuple[str, ...]], tuple[str | None, list[StartProblem]]] = {}  # one parse each
+    for node in plan.nodes[:MAX_LAUNCH_NODES]:  # the child's bound, held here too
         result.start_problems += [(node, p) for p in ros_arguments_start(node)]
         if node.package == "robot_state_publisher":
-            text, problems = robot_state_publisher_start(node, roots=(build.prefix, *prefixes, root))
+            key = (str(node.parameters.get("robot_description", "")), tuple(node.arguments[:1]))
+            if key not in described:
+                described[key] = robot_state_publisher_start(node, roots=(build.prefix, *prefixes, root))
+            text, problems = described[key]
             result.problems += [(node, p) for p in problems]
             if text is not None and result.description is None:
                 result.description = text

@@ -13,6 +13,7 @@ comes back as data with the learner's file and line.
 from __future__ import annotations
 
 import os
+import re
 from dataclasses import dataclass, field
 from typing import Any
 
@@ -24,6 +25,7 @@ from .attempts import Attempt
 
 PLAN_CPU_SECONDS = 20
 PLAN_WALL_SECONDS = 40.0
+MAX_LAUNCH_NODES = 256  # the stand-in's bound (launch/_plan.py MAX_NODES): the nodes of one launch evaluated
 PLAN_MEMORY_BYTES = 1 << 30
 
 # the simulated ROS install: package -> its executables (what `apt install` gave the tutorial)
@@ -379,7 +381,8 @@ class StartProblem:
     """Why a node's counterpart cannot start, in its program's own words (``ros``) and a kind
     the feature above words for the learner."""
 
-    kind: str  # "empty", "file_fallback", "file_missing", "file_refused", "path", "xacro", "not_urdf"
+    kind: str  # "empty", "file_fallback", "file_missing", "file_refused", "path", "xacro", "not_urdf",
+    # "too_large", "too_many" (past what bras-kit parses: MAX_DESCRIPTION_CHARS, MAX_DESCRIPTION_ELEMENTS)
     ros: tuple[str, ...]
     detail: str = ""
 
@@ -416,9 +419,27 @@ def ros_arguments_start(node: PlannedNode) -> list[StartProblem]:
 
 
 RSP_EMPTY = "robot_description parameter must not be empty"
+# the robot_description bras-kit parses and holds (the tutorial's arm: 5 kB, 3 links): as much
+# text as the one reader reads from a file, and no more links and joints than the page can show
+MAX_DESCRIPTION_CHARS = 8 << 20
+MAX_DESCRIPTION_ELEMENTS = 20_000
+_ELEMENT = re.compile(r"<(?:link|joint)[\s/>]")
 RSP_INIT = "Unable to initialize urdf::model from robot description"
 RSP_FALLBACK = ("No robot_description parameter, but command-line argument available.  Assuming argument is "
                 "name of URDF file.  This backwards compatibility fallback will be removed in the future.")
+
+
+def description_too_large(text: str, most_chars: int = MAX_DESCRIPTION_CHARS) -> StartProblem | None:
+    """"too_large" (its MiB in ``detail``) or "too_many" (its links and joints) for a description
+    bras-kit will not parse: counted on the text, before any parser holds it."""
+    if len(text) > most_chars:
+        return StartProblem("too_large", (), str(round(len(text) / (1 << 20), 1)))
+    count = 0
+    for _ in _ELEMENT.finditer(text):
+        count += 1
+        if count > MAX_DESCRIPTION_ELEMENTS:
+            return StartProblem("too_many", (), str(MAX_DESCRIPTION_ELEMENTS))
+    return None
 
 
 def robot_state_publisher_start(node: PlannedNode, roots: tuple[str, ...] = ()) -> tuple[str | None, list[StartProblem]]:
@@ -440,6 +461,8 @@ def robot_state_publisher_start(node: PlannedNode, roots: tuple[str, ...] = ()) 
             try:
                 text = read_text(node.arguments[0], roots)
             except Unreadable as exc:
+                if exc.kind == "too_large":  # past the reader's 8 MiB: the same bound as a parameter's text
+                    return None, [*problems, StartProblem("too_large", (), f"> {MAX_DESCRIPTION_CHARS >> 20}")]
                 # a path that names nothing is what robot_state_publisher says; any other refusal is ours
                 if exc.kind != "missing" and os.path.lexists(os.path.join(roots[0] if roots else "", node.arguments[0])):
                     return None, [*problems, StartProblem("file_refused", (), str(node.arguments[0])[:200])]
@@ -452,6 +475,9 @@ def robot_state_publisher_start(node: PlannedNode, roots: tuple[str, ...] = ()) 
                                      f"{node.arguments[0]}: No such file or directory",), node.arguments[0])]
         else:
             return None, [StartProblem("empty", (f"[FATAL] [robot_state_publisher]: {RSP_EMPTY}",))]
+    too_large = description_too_large(text)
+    if too_large is not None:
+        return None, [*problems, too_large]
     stripped = text.strip()
     fatal = (f"[FATAL] [robot_state_publisher]: {RSP_INIT}",)
     if not stripped.startswith("<"):

@@ -175,6 +175,8 @@ def parse_parameters(items: list[str]) -> dict[str, Any]:
     is YAML (``0.5`` a float, ``3`` an integer, ``true`` a boolean, ``[1.0, 2.0]`` a list, else text)."""
     import yaml
 
+    from .. import yaml_gate
+
     out: dict[str, Any] = {}
     for item in items:
         name, sep, text = item.partition(":=")
@@ -182,7 +184,7 @@ def parse_parameters(items: list[str]) -> dict[str, Any]:
             raise BrasKitError(M("'{item}' is not NAME:=VALUE", item=item),
                                hint=M("write a parameter as -p amplitude:=0.5, as after ros2 run ... --ros-args"))
         try:
-            value = yaml.safe_load(text) if text.strip() else ""
+            value = yaml_gate.load(text, loader=yaml.SafeLoader) if text.strip() else ""
         except yaml.YAMLError:
             value = text
         if not isinstance(value, (bool, int, float, str, list)):

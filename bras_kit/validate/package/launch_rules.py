@@ -255,7 +255,11 @@ def ros2_launch_fails(pkg: Package) -> Iterator[Hit]:
         if (file, line, plan.failure.message) in seen:
             continue  # an included file stops the file that includes it at the same line
         seen.add((file, line, plan.failure.message))
-        variant, params = _launch_variant(pkg, result, plan.failure.message)
+        params: dict[str, Any]
+        if plan.failure.type == "Bound":  # bras-kit's own bound on a launch (the stand-in's launch/_plan.py)
+            variant, params = ("too_many_nodes" if " nodes" in plan.failure.message else "log_flood"), {}
+        else:
+            variant, params = _launch_variant(pkg, result, plan.failure.message)
         if variant in ("not_installed", "no_file") and _said_statically(pkg, str(params["path"])):
             continue  # BK601/BK602 already name this file and the data_files entry to add
         if variant == "package" and params["missing"] == result.build.package and _marker_said(pkg):

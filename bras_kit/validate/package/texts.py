@@ -714,8 +714,13 @@ describe(
     title="ros2 launch stops with an error",
     message={
         "": "ros2 launch stops: {ros}",
+        "too_many_nodes": "the launch file starts more than 256 nodes: bras-kit evaluates no more, and stops there",
+        "log_flood": "the launch file logs more than 10,000 lines or 1 MiB (LogInfo): bras-kit keeps no more, and "
+                     "stops there",
     },
     hint={
+        "too_many_nodes": "the tutorial's launch file starts 3 nodes: look for a loop that adds Node(...) actions",
+        "log_flood": "the tutorial's launch file logs nothing: look for a loop that adds LogInfo(...) actions",
         "package": "no installed package is called '{missing}': use the name in package.xml ('{known}'), then "
                    "colcon build and source install/setup.bash",
         "package_near": "no installed package is called '{missing}': did you mean '{near}'?",
@@ -773,6 +778,10 @@ describe(
         "path": "robot_description is a file's path, not its text: {ros}",
         "xacro": "robot_description is xacro source that xacro never expanded: {ros}",
         "not_urdf": "robot_description is not a URDF robot ({detail}): {ros}",
+        "too_large": "robot_description is {detail} MiB of text, more than the 8 MiB bras-kit reads: the robot is "
+                     "neither checked nor shown",
+        "too_many": "robot_description declares more than {detail} links and joints, more than bras-kit holds: the "
+                    "robot is neither checked nor shown",
         "": "robot_state_publisher stops: {ros}",
     },
     hint={
@@ -786,6 +795,9 @@ describe(
         "xacro": "run xacro on it: ParameterValue(Command(['xacro ', path]), value_type=str), or "
                  "xacro.process_file(path).toxml()",
         "not_urdf": "check the file the launch file reads: it must be the robot's URDF",
+        "too_large": "the tutorial's arm is 5 kB: check that the launch file reads the robot's URDF file, and only it",
+        "too_many": "the tutorial's arm has 3 links: check that the launch file reads the robot's URDF file, and only "
+                    "it",
         "": "give robot_state_publisher the URDF text",
     },
     explanation="""\

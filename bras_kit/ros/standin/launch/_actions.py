@@ -213,7 +213,7 @@ class LogInfo(Action):
         self.__where = _plan.caller()
 
     def execute(self, context: LaunchContext) -> None:
-        _plan.LOGS.append((context.delay, perform_substitutions(context, self.__msg), *self.__where))
+        _plan.record_log((context.delay, perform_substitutions(context, self.__msg), *self.__where))
 
 
 class ExecuteProcess(Action):

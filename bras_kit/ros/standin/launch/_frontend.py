@@ -369,10 +369,11 @@ def _xml_root(path: str) -> _XmlEntity:
 
 
 def _yaml_root(path: str) -> _YamlEntity:
-    import yaml
+    from bras_kit import yaml_gate
 
     with open(path, encoding="utf-8") as handle:
-        data = yaml.load(handle, Loader=_LineLoader)  # noqa: S506 - a SafeLoader that keeps line numbers
+        text = handle.read(yaml_gate.MAX_CHARS + 1)
+    data = yaml_gate.load(text, loader=_LineLoader)  # a SafeLoader that keeps line numbers, bounded
     if not isinstance(data, dict) or len(data) != 1:  # launch_yaml/parser.py: one root, 'launch'
         raise RuntimeError('Expected only one root')
     type_name = list(data.keys())[0]

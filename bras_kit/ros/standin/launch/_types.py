@@ -41,8 +41,10 @@ def coerce_to_type(value: str, data_type: Any = None, *, can_be_str: bool = Fals
     def convert_as_yaml(text: str, error_msg: str) -> Any:
         if not text:
             return text
+        from bras_kit import yaml_gate
+
         try:
-            output = yaml.safe_load(text)
+            output = yaml_gate.load(text, loader=yaml.SafeLoader)
         except Exception as err:  # noqa: BLE001 - type_utils.py:241 catches every error of the reader
             if can_be_str:
                 return text

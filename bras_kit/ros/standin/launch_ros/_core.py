@@ -179,8 +179,10 @@ def evaluate_parameter_dict(context: LaunchContext, parameters: Mapping) -> dict
             text = perform_substitutions(context, list(value))
             if len(text) == 0:
                 text = "''"
+            from bras_kit import yaml_gate
+
             try:
-                loaded = yaml.safe_load(text)
+                loaded = yaml_gate.load(text, loader=yaml.SafeLoader)
             except yaml.YAMLError:
                 raise TypeError(
                     f'Unable to parse the value of parameter {name} as yaml. '
@@ -206,11 +208,16 @@ def evaluate_parameter_dict(context: LaunchContext, parameters: Mapping) -> dict
 
 def _parameters_file(path: str, node_name: str | None) -> dict[str, Any]:
     """A parameters file's values for this node (``/**`` or the node's name)."""
+    from bras_kit import yaml_gate
+    from bras_kit.learner_files import Unreadable, read_text
+
     try:
-        with open(path) as handle:
-            data = yaml.safe_load(handle) or {}
-    except FileNotFoundError:
-        raise FileNotFoundError(f"[Errno 2] No such file or directory: '{path}'") from None
+        # any file the launch file names (as launch_ros), but a regular one, of a bounded size
+        data = yaml_gate.load(read_text(os.path.abspath(path), ("/",)), loader=yaml.SafeLoader) or {}
+    except Unreadable as exc:
+        if exc.kind == "missing":
+            raise FileNotFoundError(f"[Errno 2] No such file or directory: '{path}'") from None
+        raise OSError(str(exc)) from None
     out: dict[str, Any] = {}
     if isinstance(data, dict):
         for key, section in data.items():
@@ -376,7 +383,7 @@ class Node(ExecuteProcess):
             "remappings": remappings, "arguments": arguments, "ros_arguments": ros_arguments, "argv": argv,
             "delay": context.delay, "file": self.__where[0], "line": self.__where[1],
         }
-        _plan.NODES.append(self.__recorded)
+        _plan.record_node(self.__recorded)
         _plan.CURRENT = None
         self._bras_cmd = [path, *argv]
         record_start(context, self)

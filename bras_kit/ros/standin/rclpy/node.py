@@ -54,8 +54,10 @@ def _yaml_value(text):
     """A -p value as rcl reads it (rcl_yaml_param_parser: YAML, '' an empty string)."""
     import yaml
 
+    from bras_kit import yaml_gate
+
     try:
-        value = yaml.safe_load(text) if text.strip() else ''
+        value = yaml_gate.load(text, loader=yaml.SafeLoader) if text.strip() else ''
     except yaml.YAMLError:
         return text
     return value if isinstance(value, (bool, int, float, str, list)) else text
