@@ -317,9 +317,10 @@ def _expand_template(mappings: Mapping[str, str]) -> str:
 
 
 def arm(*, wrist: bool = False, inertials: bool = False, params: Mapping[str, object] | None = None,
-        collisions: bool = False) -> Robot:
-    """The tutorial arm as a :class:`Robot` (the default input of every command)."""
-    text = arm_urdf(wrist=wrist, inertials=inertials, params=params, collisions=collisions)
+        collisions: bool = False, world_anchor: bool = False) -> Robot:
+    """The tutorial arm as a :class:`Robot` (the default input of every command); ``world_anchor``
+    as :func:`arm_urdf`'s."""
+    text = arm_urdf(wrist=wrist, inertials=inertials, params=params, collisions=collisions, world_anchor=world_anchor)
     return robot_from_xml(parse_xml(text, "<bras-kit tutorial arm>"), "<bras-kit tutorial arm>", text)
 
 

@@ -14,9 +14,10 @@ import math
 import os
 import re
 import unicodedata
-from collections.abc import Mapping
+from collections.abc import Mapping, Sequence
 from dataclasses import dataclass
 from pathlib import Path
+from typing import Any
 
 from . import __version__
 from ._resources import robot_template, templates_dir
@@ -27,6 +28,8 @@ from .motion.sources import TUTORIAL_WAVES  # the one definition of the tutorial
 
 DEFAULT_PACKAGE = "bras_description"
 PACKAGE_NAME_PATTERN = re.compile(r"[a-z][a-z0-9_]*")
+# a <depend>: a package name, or a rosdep key such as python3-numpy
+DEPENDENCY_PATTERN = re.compile(r"[a-z][a-z0-9_+.-]*")
 
 OTHER_JOINT_WAVE = (0.5, 0.5, 0.0)
 # Fraction of each half-range (and of each velocity limit) the motion leaves unused.
@@ -330,6 +333,23 @@ EMPTY_DESCRIPTION = "TODO: Package description"
 DEFAULT_LICENSE = "TODO: License declaration"
 
 
+def check_description(description: str) -> None:
+    """Raise :class:`ParameterError` for a description that would break setup.py or package.xml as
+    ros2 pkg create writes it (its templates insert the text as it is)."""
+    bad = sorted({c for c in description if c in "'\"\\<>&" or not c.isprintable()})
+    if bad:
+        raise ParameterError(M("description '{text}': {shown} cannot be written into setup.py and package.xml",
+                               text=description, shown=" ".join(repr(c) for c in bad)),
+                             hint=M("write the description in words, without quotes, <, > or &"))
+
+
+def check_dependency(name: str) -> None:
+    """Raise :class:`ParameterError` for a ``<depend>`` that names no package rosdep or colcon could know."""
+    if not DEPENDENCY_PATTERN.fullmatch(name):
+        raise ParameterError(M("'{name}' is not a package name for <depend>", name=name),
+                             hint=M("give package names separated by spaces, e.g. --dependencies rclpy sensor_msgs"))
+
+
 def check_license(license_name: str) -> None:
     """Raise :class:`ParameterError` for a license that would break setup.py or package.xml as written."""
     bad = sorted({c for c in license_name if c in "'\"\\<>&" or not c.isprintable()})
@@ -341,12 +361,18 @@ def check_license(license_name: str) -> None:
 
 
 def render_empty_package(name: str = DEFAULT_PACKAGE, *, maintainer: str | None = None, email: str | None = None,
-                         license_name: str = DEFAULT_LICENSE) -> dict[str, str]:
+                         license_name: str = DEFAULT_LICENSE, description: str = EMPTY_DESCRIPTION,
+                         dependencies: Sequence[str] = (), node_name: str | None = None,
+                         library_name: str | None = None, package_format: int = 3) -> dict[str, str]:
     """What ``ros2 pkg create --build-type ament_python NAME`` writes, as ``{relative path: text}``.
 
     The same bytes in every language: ros2 pkg create writes English whatever the locale. With
     ``license_name`` Apache-2.0 the ``LICENSE`` file is written too, as ros2 pkg create copies
     ament_copyright's text for a license it knows (``ros2pkg/verb/create.py``, end of ``main``).
+    ``description``, ``dependencies`` (``<depend>``), ``node_name`` (``NAME/NODE.py`` and its
+    console_scripts entry), ``library_name`` (``NAME/LIBRARY/__init__.py``) and
+    ``package_format`` are ros2 pkg create's options of the same names (``populate_ament_python``,
+    ``populate_python_node``, ``populate_python_libary`` of ``ros2pkg/api/create.py``).
     """
     import jinja2
 
@@ -359,13 +385,30 @@ def render_empty_package(name: str = DEFAULT_PACKAGE, *, maintainer: str | None 
     email = default_email(maintainer) if email is None else email
     check_email(email)
     check_license(license_name)
+    check_description(description)
+    if package_format not in (2, 3):
+        raise ParameterError(M("package format {format} does not exist: 2 or 3", format=package_format),
+                             hint=M("leave --package-format out for format 3, as ros2 pkg create does"))
+    for dependency in dependencies:
+        check_dependency(dependency)
+    for option, module in (("--node-name", node_name), ("--library-name", library_name)):
+        if module is not None and (not (module.isidentifier() and module.isascii()) or keyword.iskeyword(module)):
+            raise ParameterError(M("{option} '{name}' cannot be a Python module's name", option=option, name=module),
+                                 hint=M("use lowercase letters, digits and underscores, e.g. animation"))
+    if node_name is not None and node_name == library_name:  # ros2pkg/verb/create.py renames it, with a warning
+        node_name += "_node"
     environment = jinja2.Environment(loader=jinja2.FileSystemLoader(str(templates_dir() / "empty")),
                                      undefined=jinja2.StrictUndefined, keep_trailing_newline=True,
-                                     autoescape=False)
+                                     autoescape=False, trim_blocks=True, lstrip_blocks=True)
     context = {"name": name, "maintainer": maintainer, "email": email, "license": license_name,
-               "description": EMPTY_DESCRIPTION}
+               "description": description, "dependencies": list(dict.fromkeys(dependencies)),
+               "node_name": node_name, "package_format": package_format}
     files = {target.format(name=name): environment.get_template(template).render(context)
              for template, target in _EMPTY_FILES}
+    if node_name is not None:
+        files[f"{name}/{node_name}.py"] = environment.get_template("pkg/node.py.j2").render(context)
+    if library_name is not None:
+        files[f"{name}/{library_name}/__init__.py"] = ""
     licence_text = templates_dir() / "empty" / "licenses" / f"{license_name}.txt"
     if "/" not in license_name and licence_text.is_file():
         files["LICENSE"] = licence_text.read_text(encoding="utf-8")
@@ -374,11 +417,13 @@ def render_empty_package(name: str = DEFAULT_PACKAGE, *, maintainer: str | None 
 
 def scaffold_empty_package(dest: str | os.PathLike[str], name: str = DEFAULT_PACKAGE, force: bool = False, *,
                            maintainer: str | None = None, email: str | None = None,
-                           license_name: str = DEFAULT_LICENSE) -> list[Path]:
-    """Write what ``ros2 pkg create --build-type ament_python`` writes into ``dest``; return the files made."""
+                           license_name: str = DEFAULT_LICENSE, **options: Any) -> list[Path]:
+    """Write what ``ros2 pkg create --build-type ament_python`` writes into ``dest``; return the files made
+    (``options``: :func:`render_empty_package`'s)."""
     dest = Path(dest)
     _check_destination(dest, force)
-    return _write(dest, render_empty_package(name, maintainer=maintainer, email=email, license_name=license_name))
+    files = render_empty_package(name, maintainer=maintainer, email=email, license_name=license_name, **options)
+    return _write(dest, files)
 
 
 def _default_maintainer() -> str:

@@ -397,7 +397,13 @@ class _Hooks:
 
     def safe_eval(self, expr: str, globals_: Any, locals_: Any = None) -> Any:
         table = locals_ if locals_ is not None else globals_
-        return self._evaluate(expr, table.__getitem__)
+        try:
+            return self._evaluate(expr, table.__getitem__)
+        except NameError as exc:  # a misspelt property: the closest name in scope, as validate does for links
+            missing = getattr(exc, "name", None) or _NOT_DEFINED.search(str(exc))
+            name = missing if isinstance(missing, str) else missing.group(1) if missing else ""
+            exc.close = _closest(name, _names_in(table))  # type: ignore[attr-defined]
+            raise
 
     def subst_eval(self, s: str, context: dict[str, Any]) -> str:
         subst = self.subst
@@ -602,6 +608,7 @@ def _clean_error(xacro: Any, path: str, exc: BaseException, files: Iterable[str]
                           hint=M("a macro or property probably refers to itself"))
     if isinstance(root, MemoryError):
         return XacroError(M("the expansion ran out of memory"), path=where, hint=M("simplify the file"))
+    close = getattr(root, "close", None)  # safe_eval's guess at a misspelt name
     if expressions:  # root cause first, where its expression is written; then what used it
         cause = _one_line(str(root) or type(root).__name__)
         if not isinstance(root, xacro.XacroException) and type(root).__name__ not in cause:
@@ -611,7 +618,12 @@ def _clean_error(xacro: Any, path: str, exc: BaseException, files: Iterable[str]
         if len(expressions) > 1:
             message = M("{message} (used by {expressions})", message=message, expressions=expressions[1:])
         at, line = found or (where, None)
-        return XacroError(message, path=at, line=line, hint=_hint_for(cause))
+        hint = _hint_for(cause)
+        if close:
+            hint = M("did you mean '{close}'? Otherwise, {hint}", close=close, hint=hint)
+        error = XacroError(message, path=at, line=line, hint=hint)
+        error.close = close  # type: ignore[attr-defined]  # validate's BK102 names it too
+        return error
     text = _one_line(str(exc) or type(exc).__name__)
     missing = _MISSING_FILE.search(text)
     if missing:
@@ -629,6 +641,28 @@ def _one_line(text: str) -> str:
 def _current_file(xacro_module, default: str) -> str:  # type: ignore[no-untyped-def]
     stack = [f for f in (xacro_module.filestack or []) if f]
     return os.path.normpath(stack[-1]) if stack else default
+
+
+_NOT_DEFINED = re.compile(r"name '([^']*)' is not defined")
+
+
+def _names_in(table: Any) -> list[str]:
+    """Every name an expression can read in ``table``: its properties, its parents' (macro
+    parameters over the file's properties), then xacro's globals (math, the namespaces)."""
+    names: list[str] = []
+    seen: set[int] = set()
+    while isinstance(table, dict) and id(table) not in seen:
+        seen.add(id(table))
+        names += [n for n in dict.keys(table) if isinstance(n, str) and not n.startswith("_")]
+        table = getattr(table, "parent", None)
+    return names
+
+
+def _closest(name: str, names: Iterable[str]) -> str | None:
+    import difflib
+
+    close = difflib.get_close_matches(name, list(dict.fromkeys(names)), n=1, cutoff=0.6) if name else []
+    return close[0] if close else None
 
 
 def _hint_for(message: str) -> Message:

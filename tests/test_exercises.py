@@ -223,7 +223,7 @@ def test_a_teachers_own_set(tmp_path, run_cli):
         "hints: {en: [the box, its origin, size 0.7 and origin 0.35]}\n"
         "checks:\n  - {kind: tip, file: bras.urdf, at: [0, 0, 1.35], hint: 1}\n  - {kind: findings, file: bras.urdf}\n")
     learner = tmp_path / "learner"
-    assert run_cli("exercises", "init", str(learner), "--set", str(source))[0] == 0
+    assert run_cli("exercises", "init", str(learner), "--track", str(source))[0] == 0
     code, out, _ = run_cli("exercises", "check", "-C", str(learner))
     assert code == 1 and "it must be at (0.000, 0.000, 1.350)" in _flat(out) and "hint 1/3: the box" in out
     urdf = learner / "longer-arm" / "bras.urdf"

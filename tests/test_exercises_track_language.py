@@ -88,7 +88,7 @@ def test_a_sets_lesson_is_named_from_the_sets_folder(run_cli, tmp_path, monkeypa
     teacher = tmp_path / "teacher" / "set"
     shutil.copytree(Path(__file__).parent / "data" / "exercises_teacher_set", teacher)
     track = tmp_path / "class" / "piste"
-    code, _, _ = run_cli("exercises", "init", str(track), "--set", str(teacher), "--lang", "en")
+    code, _, _ = run_cli("exercises", "init", str(track), "--track", str(teacher), "--lang", "en")
     assert code == 0
     monkeypatch.chdir(track)
     _, out, _ = run_cli("exercises", "check")

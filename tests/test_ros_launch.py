@@ -130,7 +130,7 @@ def test_cli_launch_no_browser_runs_the_learner_node(tmp_path, capsys):
     from bras_kit.cli import main
 
     folder = case("styles")
-    code = main(["launch", folder, "namespaced.launch.py", "--no-browser", "--duration", "2"])
+    code = main(["launch", folder, "namespaced.launch.py", "--no-page", "--duration", "2"])
     out = capsys.readouterr().out
     assert code == 0
     assert "/animation_bras" in out
@@ -235,7 +235,7 @@ def test_rviz_started_with_a_configuration_gives_the_viewer_its_fixed_frame(tmp_
 def test_unknown_launch_file_gets_ros2_launchs_words(capsys):
     from bras_kit.cli import main
 
-    assert main(["launch", case("tutorial"), "nope.launch.py", "--no-browser"]) == 2
+    assert main(["launch", case("tutorial"), "nope.launch.py", "--no-page"]) == 2
     err = capsys.readouterr().err
     assert "file 'nope.launch.py' was not found in the share directory of package 'bras_description'" in err
     assert "'affichage.launch.py'" in err
@@ -258,7 +258,7 @@ def test_log_info_is_printed_as_ros2_launch_prints_it(tmp_path, capsys):
         "def generate_launch_description():\n"
         "    return LaunchDescription([DeclareLaunchArgument('bras', default_value='gauche'),\n"
         "                              LogInfo(msg=['bras: ', LaunchConfiguration('bras')])])\n")
-    code = main(["launch", str(package), "said.launch.py", "bras:=droit", "--no-browser", "--duration", "1"])
+    code = main(["launch", str(package), "said.launch.py", "bras:=droit", "--no-page", "--duration", "1"])
     out = capsys.readouterr().out
     assert "[INFO] [launch.user]: bras: droit\n" in out, out
     assert code == 0

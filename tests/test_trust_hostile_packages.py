@@ -264,7 +264,7 @@ def test_bras_kit_launch_ends_and_refuses(world, case, capsys):
     """/dev/zero as the URDF file or RViz's configuration: the parent used to read it until its
     memory ran out; it is now never opened."""
     package = world.package(case)
-    main(["launch", str(package), "--no-browser", "--duration", "1", "--lang", "en"])
+    main(["launch", str(package), "--no-page", "--duration", "1", "--lang", "en"])
     captured = capsys.readouterr()
     out = captured.out + captured.err
     assert "Traceback" not in out and SECRET not in out

@@ -116,7 +116,7 @@ def test_a_failed_build_claims_no_install_tree(workspace):
 @pytest.mark.parametrize(("lang", "command", "below", "said"), [
     ("en", ("build",), "", "have one name"),
     ("fr", ("build",), "src/bras_description/urdf", "portent le même nom"),
-    ("en", ("launch", "bras_description", "affichage.launch.py", "--no-browser"), "src", "have one name"),
+    ("en", ("launch", "bras_description", "affichage.launch.py", "--no-page"), "src", "have one name"),
     ("fr", ("run", "bras_description", "animation", "--duration", "1"), "", "portent le même nom"),
 ])
 def test_two_packages_of_one_name_are_refused_as_colcon_refuses_them(workspace, lang, command, below, said):
@@ -145,7 +145,7 @@ def test_launch_by_name_includes_the_launch_file_of_the_other_package(workspace,
     """cellule.py (not *.launch.py: ros2launch takes any file) includes bras_description's
     affichage.launch.py through get_package_share_directory, and starts pilote, which reads
     bras_description's URDF the same way: all of the workspace is built."""
-    code = _cli(workspace / below, "launch", "cellule_bringup", "cellule.py", "--no-browser", "--duration", "1",
+    code = _cli(workspace / below, "launch", "cellule_bringup", "cellule.py", "--no-page", "--duration", "1",
                 "--lang", lang)
     assert code.returncode == 0, code.stdout + code.stderr
     assert "ros2 launch cellule_bringup cellule.py" in code.stdout
@@ -162,7 +162,7 @@ def test_a_launch_file_found_twice_in_the_share_folder_is_refused_as_ros2_launch
     setup.write_text(setup.read_text().replace(
         "glob('launch/*.py')),", "glob('launch/*.py')),\n        (os.path.join('share', package_name, 'config'), "
         "['config/cellule.py']),"))
-    code = _cli(workspace, "launch", "cellule_bringup", "cellule.py", "--no-browser", "--lang", "en")
+    code = _cli(workspace, "launch", "cellule_bringup", "cellule.py", "--no-page", "--lang", "en")
     assert code.returncode == 2
     assert "file 'cellule.py' was found more than once in the share directory of package 'cellule_bringup'" \
         in code.stderr
@@ -227,7 +227,7 @@ def test_after_source_install_setup_bash_a_package_is_found_from_anywhere(worksp
     elsewhere.mkdir()
     script = (f"source {workspace}/install/setup.bash && source {workspace}/install/setup.bash && "
               f'echo "$AMENT_PREFIX_PATH" && cd {elsewhere} && {sys.executable} -m bras_kit launch cellule_bringup '
-              f"cellule.py --no-browser --duration 1 --lang {lang}")
+              f"cellule.py --no-page --duration 1 --lang {lang}")
     done = subprocess.run(["bash", "-c", script], capture_output=True, text=True, timeout=300)
     assert done.returncode == 0, done.stdout + done.stderr
     prefixes = done.stdout.splitlines()[0].split(":")

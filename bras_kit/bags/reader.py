@@ -270,8 +270,8 @@ def read_recording(path: str, topic: str | None = None) -> Recording:
                 continue
             samples.setdefault(name, []).append((time, float(value)))
     if not samples:
-        raise _fail(path, M("topic {topic} holds no usable joint state ({count} messages)", topic=topic,
-                            count=count))
+        raise _fail(path, M("topic {topic} holds no usable joint state ({count})", topic=topic,
+                            count=Mn("{n} message", "{n} messages", count)))
     start = min(t for values in samples.values() for t, _ in values)  # ns
     notes: list[Message] = []
     if undecodable:

@@ -120,7 +120,9 @@ class _Formatter(argparse.RawDescriptionHelpFormatter):
         super().start_section(heading)
 
     def _get_help_string(self, action: argparse.Action) -> str | None:
-        return _word(action.help) if action.help else action.help
+        from ._options import help_text
+
+        return help_text(action, _word)
 
 
 class _TopParser(argparse.ArgumentParser):
@@ -185,6 +187,9 @@ def build_parser(selected: str | None) -> argparse.ArgumentParser:
             _command_module(name).configure(command_parser)
             command_parser.formatter_class = _Formatter
             _add_language(command_parser)
+            from ._options import apply
+
+            apply(command_parser)  # the shared options' one meaning
     return parser
 
 

@@ -32,7 +32,7 @@ def add_model_arguments(parser: argparse.ArgumentParser, *, variants: bool = Tru
         parser.add_argument("--collisions", action="store_true",
                             help="built-in arm: add <collision> shapes equal to the visuals (on with --inertials)")
         parser.add_argument("--param", action="append", default=[], metavar="NAME=VALUE",
-                            help="built-in arm: change a template parameter (e.g. bras_length=0.8)")
+                            help="a template parameter of the built-in arm (e.g. bras_length=0.8)")
 
 
 def add_cache_argument(parser: argparse.ArgumentParser) -> None:
@@ -311,3 +311,8 @@ def _node_spec(spec: str) -> tuple[str, str | None]:
     if sep and where and os.path.isdir(where):
         return where, executable or None
     return spec, None
+
+
+def add_no_browser_argument(parser: argparse.ArgumentParser) -> None:
+    """``--no-browser``: the page is served and its address printed; no browser is opened (see _options)."""
+    parser.add_argument("--no-browser", action="store_true")

@@ -108,16 +108,34 @@ def _text(snapshot: Any, results: list[Any], lang: str | None) -> str:
     if blocks:
         lines += [""] + blocks + [""]
     if errors:
-        lines.append(say(Mn("{n} problem keeps RViz empty or the arm still ({warnings} warnings): see the hints",
-                            "{n} problems keep RViz empty or the arm still ({warnings} warnings): see the hints",
-                            errors, warnings=warnings), lang))
+        lines.append(say(Mn("{n} problem keeps RViz empty or the arm still ({warnings}): see the hints",
+                            "{n} problems keep RViz empty or the arm still ({warnings}): see the hints",
+                            errors, warnings=Mn("{n} warning", "{n} warnings", warnings)), lang))
     elif warnings:
         lines.append(say(Mn("nothing keeps RViz from showing the arm moving; {n} warning above",
                             "nothing keeps RViz from showing the arm moving; {n} warnings above", warnings), lang))
+    elif (root := _root_link(snapshot)) is not None:  # the frame to choose, by its name (the tutorial's: base)
+        lines.append(say(M("nothing keeps RViz from showing the arm moving: set Fixed Frame to {root} "
+                           "and add RobotModel on /robot_description if it is still empty", root=root), lang))
     else:
         lines.append(say(M("nothing keeps RViz from showing the arm moving: set Fixed Frame to the root link "
                            "and add RobotModel on /robot_description if it is still empty"), lang))
     return "\n".join(lines) + "\n"
+
+
+def _root_link(snapshot: Any) -> str | None:
+    """The root link of the robot last published on /robot_description (None without one)."""
+    from ..errors import BrasKitError
+    from ..kinematics import tf_tree
+    from ..live.doctor import robot_of
+
+    robot, _ = robot_of(snapshot)
+    if robot is None:
+        return None
+    try:
+        return tf_tree(robot).root
+    except BrasKitError:  # a tree the kinematics refuse: the findings said why, the words stay general
+        return None
 
 
 def _document(snapshot: Any, results: list[Any], code: int, lang: str | None) -> dict[str, Any]:

@@ -25,8 +25,9 @@ ARGPARSE_WORDS = (
 def parser_words() -> list[str]:
     """Every description, epilog, group title and help string of every command."""
     from . import COMMANDS, _command_module, build_parser
+    from ._options import JOINED
 
-    words: list[str] = list(COMMANDS.values())
+    words: list[str] = [*COMMANDS.values(), JOINED]
     for name in [None, *COMMANDS]:
         parser = build_parser(name)
         parsers = [parser]
@@ -36,6 +37,7 @@ def parser_words() -> list[str]:
             words += [t for t in (p.description, p.epilog) if t]
             words += [g.title for g in p._action_groups if g.title]
             words += [a.help for a in p._actions if a.help and a.help != argparse.SUPPRESS]
+            words += [a.detail for a in p._actions if getattr(a, "detail", None)]  # type: ignore[attr-defined]
         if name is not None:
             _command_module(name)  # imported so its marked strings exist
     return words

@@ -17,12 +17,11 @@ DEMO_POSE = {"epaule": 0.8, "coude": 1.2}
 def configure(parser: argparse.ArgumentParser) -> None:
     parser.add_argument("outdir", nargs="?", default="bras-kit-demo", metavar="OUTDIR",
                         help="folder to write into (default: ./bras-kit-demo)")
-    parser.add_argument("--wrist", action="store_true", help="use the arm with the wrist joint 'poignet'")
-    parser.add_argument("--duration", type=float, default=9.0, help="seconds of tutorial motion in the GIF (default 9)")
-    parser.add_argument("--fps", type=float, default=20.0, help="GIF frames per second (default 20, as the tutorial's node)")
-    parser.add_argument("--size", default="480x360", help="image size WxH (default 480x360)")
-    parser.add_argument("--backend", default="auto", choices=("auto", "egl", "osmesa", "software"),
-                        help="rendering backend (default: auto)")
+    parser.add_argument("--wrist", action="store_true")
+    parser.add_argument("--duration", type=float, default=9.0, help="of tutorial motion in the GIF (default 9)")
+    parser.add_argument("--fps", type=float, default=20.0, help="of the GIF (default 20, as the tutorial's node)")
+    parser.add_argument("--size", default="480x360", help="default 480x360")
+    parser.add_argument("--backend", default="auto", choices=("auto", "egl", "osmesa", "software"))
     add_force_argument(parser)
 
 

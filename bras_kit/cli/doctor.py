@@ -22,17 +22,16 @@ def configure(parser: argparse.ArgumentParser) -> None:
     parser.add_argument("--clear-cache", action="store_true",
                         help="remove the decoded meshes kept in the cache folder, then run the checks")
     parser.add_argument("--ros", action="store_true",
-                        help="join this terminal's ROS 2 graph (ROS_DOMAIN_ID, discovery range and RMW from the "
-                             "environment) and say what keeps RViz empty or the arm still")
+                        help="join it (ROS_DOMAIN_ID, discovery range and RMW from the environment) and say what keeps RViz empty or the arm still")
     parser.add_argument("--duration", type=float, default=None, metavar="S",
-                        help="with --ros: seconds to watch the graph (default 3)")
+                        help="with --ros: the graph is watched for (default 3)")
     parser.add_argument("--format", choices=("text", "json"), default="text",
                         help="with --ros: text for people (default) or JSON for programs")
     parser.add_argument("--save", metavar="FILE",
                         help="with --ros: also write what was seen to FILE (JSON), to look at again with --from "
                              "or to send to a teacher")
     parser.add_argument("--from", dest="from_file", metavar="FILE",
-                        help="with --ros: report on a look saved with --save instead of joining the graph")
+                        help="with --ros: a look saved with --save, reported instead of joining the graph")
     from ._common import add_force_argument
 
     add_force_argument(parser)

@@ -40,10 +40,10 @@ def configure(parser: argparse.ArgumentParser) -> None:
     parser.add_argument("-C", "--dir", metavar="DIR", default=None,
                         help="the track's folder (default: the current folder or the first parent holding "
                         "progress.json)")
-    parser.add_argument("--set", dest="exercise_set", metavar="SET", default="builtin",
+    parser.add_argument("--track", dest="exercise_set", metavar="DIR", default="builtin",
                         help="init: a teacher's exercise set (a folder with track.yaml) instead of the built-in track")
     parser.add_argument("--force", action="store_true",
-                        help="reset: replace your files without asking")
+                        help="reset: your files are replaced without asking")
 
 
 def run(args: argparse.Namespace) -> int:

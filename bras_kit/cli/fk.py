@@ -14,9 +14,9 @@ from ._common import add_model_arguments, joint_values, warn, warn_out_of_limits
 def configure(parser: argparse.ArgumentParser) -> None:
     add_model_arguments(parser)
     parser.add_argument("--set", dest="values", action="append", default=[], metavar="JOINT=VALUE",
-                        help="a joint value in rad (revolute) or m (prismatic); repeatable; others are 0")
-    parser.add_argument("--link", help="print only this link (relative to the root)")
-    parser.add_argument("--from", dest="source", metavar="A", help="with --to: the pose of B in the frame of A")
+                        help="others are 0")
+    parser.add_argument("--link", help="only this link is printed (relative to the root)")
+    parser.add_argument("--from", dest="source", metavar="A", help="the frame A, with --to B: the pose of B in the frame of A")
     parser.add_argument("--to", dest="target", metavar="B", help="with --from: the pose of B in the frame of A")
     parser.add_argument("--format", choices=("text", "json"), default="text")
 

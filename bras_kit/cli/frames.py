@@ -6,7 +6,7 @@ import argparse
 import sys
 
 from ..i18n import say
-from ..message import M
+from ..message import M, Mn
 from ._common import add_force_argument, add_model_arguments, joint_values, warn_out_of_limits
 
 DEFAULT_OUTPUT = "frames.pdf"
@@ -15,11 +15,9 @@ DEFAULT_OUTPUT = "frames.pdf"
 def configure(parser: argparse.ArgumentParser) -> None:
     add_model_arguments(parser)
     parser.add_argument("-o", "--output", metavar="FILE",
-                        help=f"where to write: .pdf, .svg, .png or .dot (default {DEFAULT_OUTPUT}, "
-                        "like view_frames); '-' prints the DOT text")
+                        help=".pdf, .svg, .png or .dot (default frames.pdf, like view_frames); '-' prints the DOT text")
     parser.add_argument("--set", dest="values", action="append", default=[], metavar="JOINT=VALUE",
-                        help="show the arm in this pose: joint values on the edges, link positions "
-                        "in the boxes; repeatable")
+                        help="the arm in this pose: joint values on the edges, link positions in the boxes")
     add_force_argument(parser)
 
 
@@ -40,8 +38,9 @@ def run(args: argparse.Namespace) -> int:
         return 0
     check_writable(output, args.force)
     save_with(output, args.force, lambda temporary: frame_diagram(robot, config, path=temporary, lang=args.lang), announce=False)
-    written = M("wrote {path}: {frames} frames, {joints} joints", path=output, frames=len(tree.links),
-                joints=len(tree.links) - 1)
+    written = M("wrote {path}: {frames}, {joints}", path=output,  # each count agrees with its noun (0 and 1: singular in French)
+                frames=Mn("{n} frame", "{n} frames", len(tree.links)),
+                joints=Mn("{n} joint", "{n} joints", len(tree.links) - 1))
     if not args.output:
         written = M("{text} (-o FILE.svg|png|dot for another format, -o - prints DOT)", text=written)
     print(say(written, args.lang), file=sys.stderr)

@@ -31,9 +31,9 @@ def configure(parser: argparse.ArgumentParser) -> None:
     parser.formatter_class = argparse.RawDescriptionHelpFormatter
     parser.epilog = EPILOG
     add_model_arguments(parser)
-    parser.add_argument("--json", action="store_true", help="print the facts as JSON")
+    parser.add_argument("--json", action="store_true", help="the facts")
     parser.add_argument("-o", "--output", metavar="PNG",
-                        help="draw the robot as Gazebo loads it: the parts it loses in red")
+                        help="a picture of the robot as Gazebo loads it: the parts it loses in red")
     parser.add_argument("--only-kept", action="store_true", help="with -o: leave out the parts Gazebo loses")
     add_force_argument(parser)
 
@@ -47,8 +47,18 @@ def _text(found, findings, robot_name: str | None, lang: str | None) -> str:  # 
 
     name = robot_name or "?"
     lines = []
+
+    def said(f) -> None:  # type: ignore[no-untyped-def]
+        lines.append(f"{f.code} " + labelled(SEVERITY_WORDS[f.severity], f.text(lang), lang))
+        if f.hint_text(lang):
+            lines.append("  " + say(M("hint: {hint}", hint=f.hint_text(lang)), lang))
+
+    # a refusal's reasons come right under it, before the facts: the first thing read is why
+    reasons = [f for f in findings if f.severity == "error"] if found.refused else []
     if found.refused:
         lines.append(say(M("Gazebo refuses model '{name}'", name=name), lang))
+        for f in reasons:
+            said(f)
     else:
         lines.append(say(Mn("Gazebo loads model '{name}': {n} link", "Gazebo loads model '{name}': {n} links",
                             len(found.links), name=name), lang))
@@ -66,9 +76,8 @@ def _text(found, findings, robot_name: str | None, lang: str | None) -> str:  # 
     anchored = M("yes (the root is 'world')") if found.anchored else M("no: a free body, it falls")
     lines.append(say(M("  anchored:    {answer}", answer=anchored), lang))
     for f in findings:
-        lines.append(f"{f.code} " + labelled(SEVERITY_WORDS[f.severity], f.text(lang), lang))
-        if f.hint_text(lang):
-            lines.append("  " + say(M("hint: {hint}", hint=f.hint_text(lang)), lang))
+        if not any(f is reason for reason in reasons):
+            said(f)
     return "\n".join(lines) + "\n"
 
 

@@ -28,7 +28,7 @@ def configure(parser: argparse.ArgumentParser) -> None:
     parser.add_argument("--rubric", metavar="YAML", help="the rubric (default: the tutorial's, out of 20)")
     parser.add_argument("--explain-rubric", action="store_true", help="print the rubric and exit")
     parser.add_argument("-o", "--output", default="grade-report", metavar="DIR",
-                        help="report folder (default: ./grade-report)")
+                        help="the report folder (default: ./grade-report)")
     parser.add_argument("--jobs", type=int, default=None, metavar="N",
                         help="worker processes on this machine (default: one per core)")
     parser.add_argument("--scheduler", metavar="ADDRESS",
@@ -40,7 +40,7 @@ def configure(parser: argparse.ArgumentParser) -> None:
     parser.add_argument("--no-pictures", action="store_true", help="skip the pictures (faster)")
     add_cache_argument(parser)
     parser.add_argument("--gif", action="store_true",
-                        help="also draw each arm moving (the tutorial's motion) as pictures/LEARNER.gif")
+                        help="each arm moving (the tutorial's motion), as pictures/LEARNER.gif")
     parser.add_argument("--run-nodes", action="store_true",
                         help="also run each package's nodes with bras-kit run's stand-in for rclpy and check what "
                         "they publish (BK640-BK659). This EXECUTES the learners' code: each node runs contained "

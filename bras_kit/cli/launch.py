@@ -8,7 +8,8 @@ import sys
 
 from ..evaluation import rviz_fixed_frame
 from ..inert import for_terminal
-from ..message import M
+from ..message import M, Mn
+from ._common import add_no_browser_argument
 
 _EPILOG = """\
 The package is built (bras-kit build, into a temporary install tree), the launch file (Python,
@@ -22,8 +23,9 @@ FindPackageShare, get_package_share_directory and launch includes across package
 
 examples (in ~/ros2_cellule_ws or a folder below it, as after 'source install/setup.bash'):
   bras-kit launch bras_description affichage.launch.py
-  bras-kit launch bras_description affichage.launch.py --no-browser --duration 5
-  bras-kit launch bras_description affichage.launch.py animation:=true --no-browser
+  bras-kit launch bras_description affichage.launch.py --no-page --duration 5
+  bras-kit launch bras_description affichage.launch.py animation:=true --no-page
+  bras-kit launch bras_description affichage.launch.py --no-browser   (over SSH: the page's address only)
 """
 
 
@@ -36,12 +38,12 @@ def configure(parser: argparse.ArgumentParser) -> None:
     parser.add_argument("items", nargs="*", metavar="FILE|NAME:=VALUE",
                         help="the launch file, by its name in the package's share folder (default: the "
                              "package's first), and launch arguments")
-    parser.add_argument("--no-browser", action="store_true",
-                        help="print what started, what each node published and the findings, then exit")
+    parser.add_argument("--no-page", action="store_true",
+                        help="no page: print what started, what each node published and the findings, then exit")
+    add_no_browser_argument(parser)
     parser.add_argument("--duration", type=float, default=10.0, metavar="S",
-                        help="seconds of simulated time the package's own nodes are first run for, for their "
-                             "findings (default: 10); in the browser they then run live")
-    parser.add_argument("--json", action="store_true", help="print the findings as JSON")
+                        help="of simulated time the package's own nodes are first run for, for their findings (default: 10); in the browser they then run live")
+    parser.add_argument("--json", action="store_true", help="the findings")
     parser.add_argument("--port", type=int, default=8080,
                         help="port of the page (default 8080; the next free one if taken)")
     parser.set_defaults(keeps_assignments="items")
@@ -80,7 +82,7 @@ def run(args: argparse.Namespace) -> int:
     args.typed, (args.target, workspace) = args.target, resolve_package(args.target)  # a folder, or a name in the workspace
     args.others = others(workspace, args.target)  # built beside it, as colcon builds the whole workspace
     launch_file, arguments = _split(args.items)
-    if args.no_browser:
+    if args.no_page:
         return _report(args, _launch(args, launch_file, arguments, lang), lang)
     from ..ros.contain import available as containable
     from ..sandbox import children_from_a_server
@@ -302,7 +304,7 @@ def _announce(args: argparse.Namespace, viewer) -> None:  # type: ignore[no-unty
                 folder=getattr(args, "typed", args.target)), args.lang), file=sys.stderr, flush=True)
     from .view import _has_screen
 
-    if _has_screen():
+    if not args.no_browser and _has_screen():
         import webbrowser
 
         webbrowser.open(viewer.url)
@@ -346,7 +348,8 @@ def _live(args: argparse.Namespace, launch_file: str | None, arguments: dict[str
                 break
             nodes.stop()
             names = ", ".join(os.path.relpath(p, args.target) for p in saved[:3])
-            print(say(M("{files} saved: the package is built and launched again", files=names), lang),
+            print(say(Mn("{files} saved: the package is built and launched again",
+                         "{files} saved: the package is built and launched again", min(len(saved), 3), files=names), lang),
                   file=sys.stderr, flush=True)
             try:
                 relaunched = _launch(args, launch_file, arguments, lang, viewer=viewer)  # the page shows it too

@@ -28,10 +28,10 @@ def configure(parser: argparse.ArgumentParser) -> None:
     parser.epilog = _EPILOG
     add_model_arguments(parser)
     parser.add_argument("--control", choices=("none", "pd", "pd+gravity"), default="pd",
-                        help="motors: none, PD servos (default) or PD servos with gravity compensation")
-    parser.add_argument("--kp", type=float, default=None, metavar="GAIN", help="motor stiffness, N·m/rad (default: 100)")
-    parser.add_argument("--kd", type=float, default=None, metavar="GAIN", help="motor damping, N·m·s/rad (default: 10)")
-    parser.add_argument("-o", "--output", metavar="FILE", help="write the MJCF to FILE (meshes in FILE_meshes/)")
+                        help="none, PD servos (default) or PD servos with gravity compensation")
+    parser.add_argument("--kp", type=float, default=None, metavar="GAIN")
+    parser.add_argument("--kd", type=float, default=None, metavar="GAIN")
+    parser.add_argument("-o", "--output", metavar="FILE", help="the MJCF to FILE (meshes in FILE_meshes/)")
     add_force_argument(parser)
 
 

@@ -56,28 +56,25 @@ def configure(parser: argparse.ArgumentParser) -> None:
     parser.epilog = _EPILOG
     add_model_arguments(parser)
     parser.add_argument("-m", "--motion", action="append", default=[], metavar="SPEC",
-                        help="tutorial, JOINT=FORMULA or a waypoint file (repeatable; default: tutorial)")
+                        help="a waypoint file; default: tutorial")
     add_node_argument(parser)
     parser.add_argument("--set", dest="set_values", action="append", default=[], metavar="JOINT=VALUE",
-                        help="hold a joint at a value in radians (metres if prismatic) (repeatable)")
+                        help="the joint is held at it")
     parser.add_argument("--duration", type=float, metavar="S",
-                        help="seconds to sample (default: the last waypoint's time, else 10)")
+                        help="sampled (default: the last waypoint's time, else 10)")
     parser.add_argument("--rate", type=float, default=None, metavar="HZ",
-                        help="samples per second (default: 20, like the tutorial's node)")
+                        help="default: 20, like the tutorial's node")
     parser.add_argument("--interpolation", choices=("linear", "cubic"),
-                        help="between waypoints (default: the file's own, else linear); cubic is "
-                             "smooth (C1), starts and ends at rest and never overshoots a waypoint")
+                        help="default: the file's own, else linear; cubic is smooth (C1), starts and ends at rest and never overshoots a waypoint")
     parser.add_argument("--clamp", action="store_true",
                         help="keep positions inside the joint limits (default: warn only)")
     parser.add_argument("--strict", action="store_true",
-                        help="exit with status 1 when a limit is still exceeded")
+                        help="a limit still exceeded")
     add_topic_argument(parser)
     parser.add_argument("-o", "--output", metavar="FILE",
-                        help="write the joint states to FILE (.csv or .json; '-' for stdout; .mcap, .db3 or "
-                             "FOLDER/ for a ROS 2 bag with /robot_description, /tf and /joint_states) "
-                             "instead of printing a summary")
+                        help="the joint states to FILE (.csv or .json; '-' for stdout; .mcap, .db3 or FOLDER/ for a ROS 2 bag with /robot_description, /tf and /joint_states) instead of printing a summary")
     parser.add_argument("--format", choices=("csv", "json", "bag"),
-                        help="output format (default: from the -o extension; csv for '-')")
+                        help="default: from the -o extension; csv for '-'")
     add_force_argument(parser)
 
 

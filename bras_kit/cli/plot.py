@@ -22,18 +22,16 @@ DEFAULT_OUTPUT = "plot.png"
 def configure(parser: argparse.ArgumentParser) -> None:
     add_model_arguments(parser)
     parser.add_argument("--motion", action="append", default=[], metavar="SPEC",
-                        help="'tutorial', JOINT=FORMULA (e.g. 'coude=1.2*sin(0.7*t)'), a waypoint "
-                        "file (.csv, .json, .yaml) or a ROS 2 bag (folder, .mcap, .db3); repeatable; "
-                        "default: the tutorial's animation")
+                        help="a file of waypoints (.csv, .json, .yaml) or a ROS 2 bag (folder, .mcap, .db3); default: the tutorial's animation")
     add_topic_argument(parser)
     parser.add_argument("--set", dest="values", action="append", default=[], metavar="JOINT=VALUE",
-                        help="hold a joint at this value (rad or m); repeatable")
+                        help="the joint is held at it")
     parser.add_argument("--interpolation", choices=("linear", "cubic"),
-                        help="between waypoints of a file (default: the file's own, else linear)")
+                        help="of a file (default: the file's own, else linear)")
     parser.add_argument("--duration", type=float, metavar="S",
-                        help="seconds to plot (default: the waypoints' end, else 10)")
-    parser.add_argument("--rate", type=float, metavar="HZ", help="samples per second (default 20, like the tutorial)")
-    parser.add_argument("-o", "--output", metavar="FILE", help=f"image to write: .png, .svg or .pdf (default {DEFAULT_OUTPUT})")
+                        help="plotted (default: the waypoints' end, else 10)")
+    parser.add_argument("--rate", type=float, metavar="HZ", help="default 20, like the tutorial")
+    parser.add_argument("-o", "--output", metavar="FILE", help="an image: .png, .svg or .pdf (default plot.png)")
     add_force_argument(parser)
 
 

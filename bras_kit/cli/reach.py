@@ -45,23 +45,20 @@ def configure(parser: argparse.ArgumentParser) -> None:
     for name in ("X", "Y", "Z"):
         parser.add_argument(name.lower(), metavar=name, type=_coordinate, help=f"target {name.lower()} in metres (root frame)")
     parser.add_argument("--from", dest="start", action="append", default=[], metavar="JOINT=VALUE",
-                        help="start pose (repeatable; other joints 0): the numeric solver starts here, "
-                        "the move starts here")
+                        help="a start pose, JOINT=VALUE (repeatable; other joints 0): the numeric solver and the move start there")
     parser.add_argument("--link", metavar="TIP", help="the link carrying the tip (default: the end of the longest chain)")
     parser.add_argument("--tip-offset", nargs=3, type=_coordinate, metavar=("X", "Y", "Z"),
-                        help="the tip point in the link's frame (default: the far end of the link's "
-                        "visual along its z, e.g. 0 0 0.5 for avant_bras)")
+                        help="default: the far end of the link's visual along its z, e.g. 0 0 0.5 for avant_bras")
     parser.add_argument("--rpy", nargs=3, type=_coordinate, metavar=("R", "P", "Y"),
                         help="also ask for the tip link's orientation (roll pitch yaw, rad; numeric solver)")
     parser.add_argument("--elbow", choices=("up", "down"),
                         help="two-joint arms: which of the two solutions (default: the one within limits "
                         "closest to the start)")
     parser.add_argument("--duration", type=_coordinate, metavar="S",
-                        help="length of the move in seconds (default and minimum: the shortest within the "
-                        "velocity limits)")
-    parser.add_argument("--gif", metavar="OUT.gif", help="render the move to an animated GIF")
+                        help="of the move (default and minimum: the shortest within the velocity limits)")
+    parser.add_argument("--gif", metavar="OUT.gif", help="the move")
     parser.add_argument("--format", choices=("text", "json"), default="text",
-                        help="text for people (default), json for scripts")
+                        help="text for people (default), json for programs")
     add_force_argument(parser)
 
 

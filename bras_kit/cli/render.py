@@ -60,23 +60,23 @@ def configure(parser: argparse.ArgumentParser) -> None:
     parser.epilog = _EPILOG
     add_model_arguments(parser)
     parser.add_argument("--set", dest="set_values", action="append", default=[], metavar="JOINT=VALUE",
-                        help="a joint value in rad (m if prismatic); repeatable; others are 0")
+                        help="others are 0")
     parser.add_argument("-m", "--motion", action="append", default=[], metavar="SPEC",
-                        help="tutorial, JOINT=FORMULA or a waypoint file (repeatable; default: tutorial)")
+                        help="a waypoint file; default: tutorial")
     add_node_argument(parser)
-    parser.add_argument("-o", "--output", metavar="PNG", help="write the picture of the pose here")
-    parser.add_argument("--gif", nargs="?", const="", metavar="FILE", help="write the motion as a GIF")
+    parser.add_argument("-o", "--output", metavar="PNG", help="the picture of the pose")
+    parser.add_argument("--gif", nargs="?", const="", metavar="FILE")
     parser.add_argument("--mp4", nargs="?", const="", metavar="FILE", help="write the motion as an MP4")
     parser.add_argument("--frames-dir", metavar="DIR", help="write each frame as DIR/frame_NNNN.png")
     parser.add_argument("--record", metavar="FILE",
                         help="also write the joint states drawn: .mcap/.db3 (a ROS 2 bag for Foxglove and "
                              "ros2 bag play), .csv or .json")
     add_topic_argument(parser)
-    parser.add_argument("--size", default="640x480", metavar="WxH", help="picture size in pixels (default 640x480)")
+    parser.add_argument("--size", default="640x480", metavar="WxH", help="default 640x480")
     parser.add_argument("--fps", type=float, default=20.0, metavar="N",
-                        help="frames per second of the animation (default 20, like the tutorial's node)")
+                        help="of the animation (default 20, like the tutorial's node)")
     parser.add_argument("--duration", type=float, metavar="S",
-                        help="seconds of motion (default: the motion's own length, else 10)")
+                        help="of motion (default: the motion's own length, else 10)")
     parser.add_argument("--view", choices=("iso", "front", "side", "top"), default="iso",
                         help="camera direction: iso (three-quarter), front (x-z plane), side (y-z), top")
     parser.add_argument("--azimuth", type=float, metavar="DEG", help="camera azimuth from +x towards +y")
@@ -86,15 +86,14 @@ def configure(parser: argparse.ArgumentParser) -> None:
     parser.add_argument("--tf", action="store_true", help="draw each link's axes (x red, y green, z blue)")
     parser.add_argument("--no-grid", action="store_true", help="leave out the ground grid")
     parser.add_argument("--geometry", choices=("visual", "collision", "both"), default="visual",
-                        help="draw the links' <visual> shapes (default), their <collision> shapes, or both, "
-                        "like RViz's Visual/Collision Enabled (not --collisions, which adds shapes to the built-in arm)")
+                        help="default <visual>, like RViz's Visual/Collision Enabled (not --collisions, which adds shapes to the built-in arm)")
     parser.add_argument("--antialias", action=argparse.BooleanOptionalAction, default=None,
                         help="smooth edges (default: on for -o pictures, off for animations: "
                         "twice the speed without a GPU)")
     parser.add_argument("--background", default="white", metavar="COLOR",
                         help="a name, #rrggbb or 'r g b' in 0..1 (default white; 'rviz' for RViz's grey)")
     parser.add_argument("--backend", choices=("auto", "egl", "osmesa", "software"), default="auto",
-                        help="auto: OpenGL on EGL, else OSMesa, else the (slower) software renderer")
+                        help="auto is OpenGL on EGL, else OSMesa, else the (slower) software renderer")
     add_force_argument(parser)
 
 

@@ -43,18 +43,16 @@ def configure(parser: argparse.ArgumentParser) -> None:
     parser.add_argument("executable", nargs="?", metavar="EXECUTABLE",
                         help="a name of setup.py's console_scripts (default: the only one)")
     parser.add_argument("--duration", type=float, default=None, metavar="S",
-                        help="seconds of simulated time to run the node for (default: 10; beside a bras-kit "
-                             "launch, live until Ctrl-C)")
+                        help="of simulated time the node runs for (default: 10; beside a bras-kit launch, live until Ctrl-C)")
     parser.add_argument("-o", "--output", metavar="FILE",
-                        help="write what /joint_states carried (.csv, .json or a ROS 2 bag .mcap, like bras-kit motion)")
-    parser.add_argument("--gif", metavar="FILE", help="draw the arm moved by the node as a GIF")
+                        help="what /joint_states carried (.csv, .json or a ROS 2 bag .mcap, like bras-kit motion)")
+    parser.add_argument("--gif", metavar="FILE", help="the arm moved by the node")
     parser.add_argument("--urdf", metavar="FILE",
                         help="the robot the node drives (default: the package's urdf/ file)")
     parser.add_argument("--quiet", action="store_true", help="do not show the node's logs and prints")
     parser.add_argument("-p", "--param", dest="params", action="append", default=[], metavar="NAME:=VALUE",
-                        help="a value for a parameter the node declares, as 'ros2 run ... --ros-args -p "
-                        "NAME:=VALUE' gives it (repeatable)")
-    parser.add_argument("--json", action="store_true", help="print the findings as JSON")
+                        help="a parameter the node declares, as 'ros2 run ... --ros-args -p NAME:=VALUE' gives it")
+    parser.add_argument("--json", action="store_true", help="the findings")
     add_force_argument(parser)
 
 

@@ -45,33 +45,30 @@ def configure(parser: argparse.ArgumentParser) -> None:
     parser.epilog = _EPILOG
     add_model_arguments(parser)
     parser.add_argument("-m", "--motion", action="append", default=[], metavar="SPEC",
-                        help="tutorial, JOINT=FORMULA or a waypoint file (repeatable; default: tutorial)")
+                        help="a waypoint file; default: tutorial")
     add_topic_argument(parser)
     parser.add_argument("--control", choices=("none", "pd", "pd+gravity"), default="pd",
-                        help="how the motors behave (default: pd)")
-    parser.add_argument("--kp", type=float, default=None, metavar="GAIN",
-                        help="stiffness of every motor, N·m/rad (default: 100)")
-    parser.add_argument("--kd", type=float, default=None, metavar="GAIN",
-                        help="damping of every motor, N·m·s/rad (default: 10)")
+                        help="default: pd")
+    parser.add_argument("--kp", type=float, default=None, metavar="GAIN")
+    parser.add_argument("--kd", type=float, default=None, metavar="GAIN")
     parser.add_argument("--set", "--start", dest="start", action="append", default=[], metavar="JOINT=VALUE",
                         help="pose at t=0, at rest (default: the motion's first pose; "
                              f"with --control none, {NUDGE:g} rad on every joint); --start is the old name")
     parser.add_argument("--duration", type=float, metavar="S",
-                        help="seconds to simulate (default: the last waypoint's time, else 10)")
+                        help="simulated (default: the last waypoint's time, else 10)")
     parser.add_argument("--rate", type=float, default=20.0, metavar="HZ",
-                        help="samples kept per second for files and the GIF (default: 20)")
+                        help="kept for files and the GIF (default: 20)")
     parser.add_argument("--timestep", type=float, default=None, metavar="S", help="physics time step (default: 0.002)")
     parser.add_argument("--integrator", choices=("implicitfast", "implicit", "RK4", "Euler"), default=None,
                         help="MuJoCo integrator (default: implicitfast)")
     parser.add_argument("--damping", type=float, default=None, metavar="B",
                         help="joint damping on every joint, N·m·s/rad (default: each joint's <dynamics damping>, "
                              "none when absent, as in Gazebo)")
-    parser.add_argument("--gif", metavar="FILE", help="draw the simulated motion as a GIF (bras-kit's renderer)")
+    parser.add_argument("--gif", metavar="FILE", help="the simulated motion (bras-kit's renderer)")
     parser.add_argument("-o", "--output", metavar="FILE",
-                        help="write the measured joint states: .csv (time,name,position,velocity,effort), .json, "
-                             "or .mcap/.db3 for a ROS 2 bag (/robot_description, /tf, /joint_states with effort)")
+                        help="the measured joint states: .csv (time,name,position,velocity,effort), .json, or .mcap/.db3 for a ROS 2 bag (/robot_description, /tf, /joint_states with effort)")
     parser.add_argument("--plot", metavar="FILE", help="plot positions and torques with the effort limits (.png/.svg/.pdf)")
-    parser.add_argument("--strict", action="store_true", help="exit with status 1 when a motor is too weak")
+    parser.add_argument("--strict", action="store_true", help="a motor too weak")
     add_force_argument(parser)
 
 

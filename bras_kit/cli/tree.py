@@ -12,7 +12,7 @@ from ._common import add_model_arguments, joint_values, warn, warn_out_of_limits
 def configure(parser: argparse.ArgumentParser) -> None:
     add_model_arguments(parser)
     parser.add_argument("--set", dest="values", action="append", default=[], metavar="JOINT=VALUE",
-                        help="show a joint's value in rad (revolute) or m (prismatic); repeatable")
+                        help="shown on its joint")
     parser.add_argument("--ascii", action="store_true",
                         help="draw with ASCII only (automatic when the terminal cannot show box characters)")
 

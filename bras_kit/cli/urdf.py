@@ -10,16 +10,15 @@ from ._common import add_force_argument, template_values, write_text
 
 
 def configure(parser: argparse.ArgumentParser) -> None:
-    parser.add_argument("--wrist", action="store_true", help="add the wrist link and joint 'poignet'")
-    parser.add_argument("--inertials", action="store_true", help="add mass and inertia to every link")
-    parser.add_argument("--collisions", action="store_true",
-                        help="add <collision> shapes equal to the visuals (on with --inertials)")
+    parser.add_argument("--wrist", action="store_true")
+    parser.add_argument("--inertials", action="store_true")
+    parser.add_argument("--collisions", action="store_true")
     parser.add_argument("--param", dest="params", action="append", default=[], metavar="NAME=VALUE",
-                        help="change a template parameter (repeatable); --list-params shows them")
+                        help="a template parameter of the built-in arm; --list-params shows them")
     parser.add_argument("--set", dest="old_params", action="append", default=[], metavar="NAME=VALUE",
-                        help="deprecated spelling of --param (--set means joint values elsewhere)")
+                        help=argparse.SUPPRESS)
     parser.add_argument("--list-params", action="store_true", help="list the template parameters and exit")
-    parser.add_argument("-o", "--output", metavar="FILE", help="write to FILE instead of printing")
+    parser.add_argument("-o", "--output", metavar="FILE", help="FILE instead of printing")
     add_force_argument(parser)
 
 
@@ -30,7 +29,9 @@ def run(args: argparse.Namespace) -> int:
         for p in template_parameters().values():
             print(f"{p.name:20s} {p.kind:7s} " + say(M("default {value}", value=p.default), args.lang))
         return 0
+    # with inertials, the base is fixed to a massless 'world' root, as bras-kit new does: KDL warns about
+    # an inertia on the root (BK506) and Gazebo drops a root without one (BK702)
     text = arm_urdf(wrist=args.wrist, inertials=args.inertials, params=parse_assignments(template_values(args)),
-                    collisions=args.collisions)
+                    collisions=args.collisions, world_anchor=args.inertials)
     write_text(args.output, text, args.force)
     return 0

@@ -33,36 +33,32 @@ def configure(parser: argparse.ArgumentParser) -> None:
                         "is also checked as a ROS 2 package (default: the built-in tutorial arm)")
     parser.add_argument("--format", choices=("text", "json"), default="text",
                         help="text for people (default), json for programs")
-    parser.add_argument("--strict", action="store_true", help="warnings also fail (exit 1)")
+    parser.add_argument("--strict", action="store_true", help="warnings also fail")
     parser.add_argument("--target", choices=("gazebo",), default=None,
                         help="where the robot is heading: 'gazebo' makes every model Gazebo refuses and every "
                         "part it loses an error (BK7xx, see docs/gazebo.md)")
     parser.add_argument("--set", "--pose", dest="pose", action="append", default=[], metavar="JOINT=VALUE",
-                        help="check this joint value against its limits (radians or metres; repeatable, "
-                        "or comma-separated: --pose epaule=0.5,coude=2.5)")
+                        help="checked against its limits (or comma-separated: --pose epaule=0.5,coude=2.5)")
     parser.add_argument("--motion", action="append", default=[], metavar="SPEC",
-                        help="check a motion against limits and velocities: 'tutorial', 'JOINT=FORMULA' "
-                        "(e.g. coude=1.2*sin(0.7*t)) or a waypoint file (repeatable)")
+                        help="checked against limits and velocities (e.g. coude=1.2*sin(0.7*t))")
     parser.add_argument("--duration", type=float, default=None, metavar="SECONDS",
-                        help="how long to sample --motion (default: the motion's own length, else 10 s)")
+                        help="of --motion sampled (default: the motion's own length, else 10 s)")
     parser.add_argument("--select", action="append", default=[], metavar="CODES",
                         help="only these rules: codes or prefixes, comma-separated (e.g. BK3,BK201)")
     parser.add_argument("--ignore", action="append", default=[], metavar="CODES",
                         help="skip these rules: codes or prefixes, comma-separated (e.g. BK505)")
-    parser.add_argument("--package-path", action="append", default=[], metavar="DIR",
-                        help="folder holding ROS packages, for $(find pkg) and package:// meshes (repeatable)")
-    parser.add_argument("--xacro-arg", action="append", default=[], metavar="NAME:=VALUE",
-                        help="xacro argument for .xacro files (repeatable)")
+    parser.add_argument("--package-path", action="append", default=[], metavar="DIR")
+    parser.add_argument("--xacro-arg", action="append", default=[], metavar="NAME:=VALUE")
     parser.add_argument("--run", action="store_true",
                         help="ROS 2 packages: also run each node of console_scripts (bras-kit run's stand-in for "
                         "rclpy, simulated time, --duration seconds, default 10) and check what it published; "
                         "this executes the package's code, in a child process with CPU, memory and time limits")
     parser.add_argument("-v", "--verbose", action="store_true",
                         help="also say which folder each ROS package ($(find), package://) was taken from")
-    parser.add_argument("--wrist", action="store_true", help="built-in arm: with the wrist joint 'poignet'")
-    parser.add_argument("--inertials", action="store_true", help="built-in arm: with <inertial> on every link")
+    parser.add_argument("--wrist", action="store_true")
+    parser.add_argument("--inertials", action="store_true")
     parser.add_argument("--param", action="append", default=[], metavar="NAME=VALUE",
-                        help="built-in arm: change a template parameter (e.g. bras_length=0.8)")
+                        help="a template parameter of the built-in arm (e.g. bras_length=0.8)")
 
 
 def _print_packages() -> None:
@@ -196,7 +192,9 @@ def run(args: argparse.Namespace) -> int:
     else:
         from ..authoring import arm, parse_assignments
 
-        robot = arm(wrist=args.wrist, inertials=args.inertials, params=parse_assignments(args.param))
+        # the arm bras-kit urdf prints with the same options (inertials: fixed to a 'world' root)
+        robot = arm(wrist=args.wrist, inertials=args.inertials, params=parse_assignments(args.param),
+                    world_anchor=args.inertials)
         results = [check_robot(robot, **options)]  # type: ignore[arg-type]
     if args.format == "json":
         sys.stdout.write(format_json(results, strict=args.strict, lang=lang))

@@ -12,6 +12,7 @@ from ..message import M
 from ._common import (
     add_force_argument,
     add_model_arguments,
+    add_no_browser_argument,
     add_node_argument,
     add_topic_argument,
     apply_node,
@@ -34,25 +35,22 @@ def configure(parser: argparse.ArgumentParser) -> None:
     parser.epilog = EPILOG
     add_model_arguments(parser)
     parser.add_argument("-m", "--motion", action="append", default=[], metavar="SPEC",
-                        help="a motion to play: 'tutorial', JOINT=FORMULA or a waypoint/joint-state file (repeatable)")
+                        help="a motion to play; a file of waypoints or joint states")
     add_node_argument(parser)
     add_topic_argument(parser)
     parser.add_argument("--port", type=int, default=8080, help="port of the page (default 8080; the next free one if taken)")
     parser.add_argument("--host", default="127.0.0.1",
                         help="address to listen on (default 127.0.0.1: this computer only)")
     parser.add_argument("--geometry", choices=("visual", "collision", "both"), default="visual",
-                        help="what the page shows first: the links' <visual> shapes (default), their <collision> "
-                        "shapes, or both (the Display checkboxes change it)")
-    parser.add_argument("--no-browser", action="store_true", help="print the address without opening a browser")
+                        help="what the page shows first (default <visual>; the Display checkboxes change it)")
+    add_no_browser_argument(parser)
     parser.add_argument("--export", metavar="HTML",
                         help="write one self-contained HTML file replaying the motion, then stop")
     parser.add_argument("--duration", type=float, default=None, metavar="S",
-                        help="with --export: seconds of motion (default: the motion's length, else 10)")
-    parser.add_argument("--fps", type=float, default=20.0, help="with --export: frames per second (default 20)")
+                        help="with --export: of motion (default: the motion's length, else 10)")
+    parser.add_argument("--fps", type=float, default=20.0, help="with --export (default 20)")
     parser.add_argument("--ros", action="store_true",
-                        help="show the robot of this terminal's live ROS 2 graph (/robot_description), moving with "
-                             "/joint_states, with what bras-kit doctor --ros finds (needs rclpy: ROS 2 sourced or "
-                             "the 'ros' extra)")
+                        help="show its robot (/robot_description), moving with /joint_states, with what bras-kit doctor --ros finds")
     add_force_argument(parser)
 
 

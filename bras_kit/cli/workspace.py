@@ -15,12 +15,12 @@ FORMATS = (".png", ".svg", ".pdf")
 def configure(parser: argparse.ArgumentParser) -> None:
     add_model_arguments(parser)
     parser.add_argument("-o", "--output", default="workspace.png", metavar="FILE",
-                        help="picture to write: .png, .svg or .pdf (default: workspace.png)")
+                        help="a picture: .png, .svg or .pdf (default: workspace.png)")
     parser.add_argument("--samples", type=int, default=100_000, metavar="N",
                         help="random joint configurations per region (default: 100000)")
     parser.add_argument("--link", metavar="TIP", help="the link carrying the tip (default: the end of the longest chain)")
     parser.add_argument("--tip-offset", nargs=3, type=float, metavar=("X", "Y", "Z"),
-                        help="the tip point in the link's frame (default: the far end of the link's visual along z)")
+                        help="default: the far end of the link's visual along its z")
     add_force_argument(parser)
 
 

@@ -10,12 +10,10 @@ from ._common import add_force_argument, write_text
 def configure(parser: argparse.ArgumentParser) -> None:
     parser.add_argument("file", metavar="FILE", help="the .xacro file to expand")
     parser.add_argument("mappings", nargs="*", metavar="NAME:=VALUE", help="xacro arguments")
-    parser.add_argument("-o", "--output", metavar="FILE", help="write to FILE instead of printing")
+    parser.add_argument("-o", "--output", metavar="FILE", help="FILE instead of printing")
     parser.add_argument("--package-path", action="append", default=[], metavar="DIR",
-                        help="a folder holding packages, a package, or an install share/ tree, "
-                        "for $(find pkg) (repeatable; also $BRAS_KIT_PACKAGE_PATH)")
-    parser.add_argument("-v", "--verbose", action="store_true",
-                        help="say which folder each $(find pkg) was taken from")
+                        help="also a package or an install share/ tree; also $BRAS_KIT_PACKAGE_PATH")
+    parser.add_argument("-v", "--verbose", action="store_true")
     add_force_argument(parser)
 
 

@@ -8,7 +8,7 @@ import numpy as np
 
 from ..i18n import say
 from ..kinematics import TFTree, fk_batch, tf_tree
-from ..message import M
+from ..message import M, Mn
 from ..model import Joint, Robot
 from ._labels import beyond_limits, format_number, format_vector, joint_label_lines, joint_values
 
@@ -22,8 +22,9 @@ def pose_facts(tree: TFTree, config: Mapping[str, float] | None) -> tuple[dict[s
 
 def graph_title(robot: Robot, tree: TFTree, config: Mapping[str, float] | None, lang: str | None = None) -> str:
     joints = len(tree.links) - 1
-    title = say(M("{robot}: frame tree, {links} links, {joints} joints ({movable} movable)", robot=robot.name or M("robot"),
-                    links=len(tree.links), joints=joints, movable=len(tree.dof)), lang)
+    title = say(M("{robot}: frame tree, {links}, {joints} ({movable})", robot=robot.name or M("robot"),
+                  links=Mn("{n} link", "{n} links", len(tree.links)), joints=Mn("{n} joint", "{n} joints", joints),
+                  movable=Mn("{n} movable", "{n} movable", len(tree.dof))), lang)
     if config:
         title += "\n" + say(M("pose"), lang) + ": " + ", ".join(f"{k}={format_number(v)}" for k, v in config.items())
     return title

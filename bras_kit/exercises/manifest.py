@@ -4,7 +4,7 @@ the lesson, the checks), ``start/`` (the files the learner starts from) and ``so
 reference solution, for the tests and for a teacher; never shown to the learner).
 
 The format is the same for the built-in track (``bras_kit/exercises/track/``) and for a
-teacher's own set (``bras-kit exercises init DIR --set SET``)::
+teacher's own set (``bras-kit exercises init DIR --track SET``)::
 
     # track.yaml
     name: bras-kit

@@ -113,14 +113,18 @@ def fit_camera(points: np.ndarray, options: RenderOptions) -> Camera:
     low, high = points.min(axis=0), points.max(axis=0)
     target = (low + high) / 2.0
     size = max(float(np.linalg.norm(high - low)), 1e-3)
-    distance = size
-    for _ in range(6):
+
+    def fitting(target: np.ndarray) -> float:  # the nearest distance at which every point is in the picture
+        if options.distance is not None:
+            return float(options.distance)
         rel = points - target
         x, y, z = rel @ right, rel @ up, rel @ back
-        if options.distance is None:
-            distance = float(max(np.max(z + np.abs(x) / tx), np.max(z + np.abs(y) / ty), np.max(z) + 0.05 * size))
-        else:
-            distance = options.distance
+        return float(max(np.max(z + np.abs(x) / tx), np.max(z + np.abs(y) / ty), np.max(z) + 0.05 * size))
+
+    for _ in range(6):
+        distance = fitting(target)
+        rel = points - target
+        x, y, z = rel @ right, rel @ up, rel @ back
         depth = np.maximum(distance - z, 1e-6)
         sx, sy = x / depth, y / depth
         shift_x = (sx.max() + sx.min()) / 2.0 * distance
@@ -128,6 +132,9 @@ def fit_camera(points: np.ndarray, options: RenderOptions) -> Camera:
         if abs(shift_x) + abs(shift_y) < 1e-6 * size:
             break
         target = target + right * shift_x + up * shift_y
+    # the last move of the aim may have pushed points out (a pose seen from above, deep towards the
+    # camera, is centred in more than six steps): the distance is worked out for where the aim ended
+    distance = fitting(target)
     pose = np.eye(4)
     pose[:3, :3] = rotation
     pose[:3, 3] = target + back * distance

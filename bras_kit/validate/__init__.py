@@ -326,7 +326,11 @@ def _unreadable(path: str, exc: BrasKitError) -> Finding:
             said = quoted(str(said.params.get("error", english)))
         if where:
             said = M("{where}{detail}", where=where, detail=said)
-        return _loader_finding("BK102", Hit("file", None, line, {"detail": said}, _xacro_kind(english)))
+        kind, params = _xacro_kind(english), {"detail": said}
+        close = getattr(exc, "close", None)  # the name in scope closest to a misspelt property
+        if kind == "property" and close:
+            kind, params = "property_close", {"detail": said, "close": close}
+        return _loader_finding("BK102", Hit("file", None, line, params, kind))
     return _loader_finding("BK103", Hit("file", None, line, {"path": path, "detail": exc.message}))
 
 

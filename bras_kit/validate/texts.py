@@ -63,6 +63,7 @@ describe(
     hint={
         "arg": "give the argument on the command line (--xacro-arg name:=value) or a default in <xacro:arg>",
         "property": "define the property with <xacro:property name=... value=...> before it is used",
+        "property_close": "did you mean '{close}'? Otherwise define the property with <xacro:property name=... value=...> before it is used",
         "include": "check the path of the included file: relative paths start from the including file",
         "package": "tell bras-kit where the package is: --package-path DIR or BRAS_KIT_PACKAGE_PATH",
         "unsafe": "xacro expressions may only compute numbers and strings from properties",
@@ -821,7 +822,7 @@ describe(
     "BK507",
     title="a moving body's moments of inertia are impossible",
     message="link '{link}': principal moments {a}, {b}, {c}: the largest is {ratio:.2f} times the sum of the two others, which no body can have; MuJoCo refuses to load it",
-    hint="recompute the inertia from the shape and mass (bras-kit urdf --inertials shows the formulas for the tutorial's boxes)",
+    hint="recompute the inertia from the shape and mass: for a box of mass m and sides x, y, z, ixx = m (y² + z²) / 12, iyy = m (x² + z²) / 12, izz = m (x² + y²) / 12 (bras-kit urdf --inertials writes each link's formula above its <inertial>)",
     explanation="""\
 For any real body the principal moments satisfy A + B >= C. A small breach is rounding (BK502,
 a warning); here the largest moment is more than 1.5 times the sum of the two others, on a
