@@ -204,10 +204,11 @@ def _start(function: Callable[..., T], args: tuple[Any, ...], kwargs: dict[str, 
             raise BrasKitError(M("this system cannot fork a contained child process"))
         return Pending(lambda: function(*args, **kwargs))
     read_fd, write_fd = os.pipe()
-    # a contained child runs a stranger's code: its standard output and error are pipes this
-    # process relays through the terminal's gate (bras_kit.inert), whatever writes to them
-    # (os.write(1, ...), sys.__stdout__, a C library's log)
-    relayed = (os.pipe(), os.pipe()) if contain is not None else ()
+    # a child may run a stranger's code (contained or not, a learner's xacro, setup.py, launch
+    # file or node): its standard output and error are pipes this process relays through the
+    # terminal's gate (bras_kit.inert), whatever writes to them (os.write(1, ...), sys.__stdout__,
+    # a C library's log)
+    relayed = (os.pipe(), os.pipe())
     sys.stdout.flush()
     sys.stderr.flush()
     pid = os.fork()
@@ -227,9 +228,11 @@ def _start(function: Callable[..., T], args: tuple[Any, ...], kwargs: dict[str, 
 
 
 class _Relay:
-    """A contained child's standard output and error, shown here as text made inert."""
+    """A child's standard output and error, shown here as text made inert."""
 
-    DRAIN_SECONDS = 2.0  # after the child's answer: what it wrote last (its namespace ends with it)
+    # once the child is reaped: what it wrote last is in the pipes already; a process it left
+    # behind holding them open is not waited for past a short quiet spell
+    DRAIN_SECONDS, QUIET_SECONDS = 2.0, 0.05
 
     def __init__(self, fds: tuple[int, ...]) -> None:
         import codecs
@@ -258,7 +261,9 @@ class _Relay:
     def drain(self) -> None:
         end = time.monotonic() + self.DRAIN_SECONDS
         while self.open and (left := end - time.monotonic()) > 0:
-            ready, _, _ = select.select(list(self.open), [], [], left)
+            ready, _, _ = select.select(list(self.open), [], [], min(left, self.QUIET_SECONDS))
+            if not ready:
+                break
             for fd in ready:
                 self.take(fd)
         self.close()

@@ -112,8 +112,11 @@ def test_every_way_a_process_writes_text_passes_the_gate(text):
         with pytest.raises(SystemExit):
             argparse.ArgumentParser(prog="bras-kit").error(text)
         with warnings.catch_warnings():
+            warnings.simplefilter("always")
             warnings.showwarning = _show_warning
-            warnings.warn(text, UserWarning)  # not bras-kit's: never shown, must not leak either
+            # a warning of bras-kit's own category (defined in bras_kit) is shown, quoting its text
+            own = type("OwnWarning", (UserWarning,), {"__module__": "bras_kit.example"})
+            warnings.warn(text, own, stacklevel=1)
     shown = out.getvalue() + err.getvalue()
     assert _raw(shown) == [], shown
     assert for_terminal(text) in out.getvalue() and for_terminal(text) in err.getvalue()
@@ -330,3 +333,45 @@ def test_the_check_finds_each_way_around():
     source = ("import os, sys\nsys.__stdout__.write('x')\nsys.stdout.buffer.write(b'x')\n"
               "os.write(1, b'x')\nprint('\\x1b[31m')\n")
     assert _ways_around(ast.parse(source)) == {"dunder", "buffer", "os.write", "escape"}
+
+
+OWN_SEQUENCES = {"\x1b[0m", "\x1b[1m", "\x1b[2m", "\x1b[31m", "\x1b[32m", "\x1b[33m", "\x1b[36m", "\x1b[H\x1b[2J\x1b[3J"}
+
+
+def _without_own_sequences(text: str) -> str:
+    for sequence in sorted(OWN_SEQUENCES, key=len, reverse=True):
+        text = text.replace(sequence, "")
+    return text
+
+
+def test_validate_in_colour_writes_its_own_styles_and_the_names_inert(tmp_path, monkeypatch, run_cli):
+    """A terminal that takes colours: the codes in bold and the severities in colour are the
+    only sequences; the learner's names inside the findings are shown, not obeyed."""
+    import bras_kit.cli.validate as command
+
+    monkeypatch.setattr(command, "_use_colour", lambda: True)
+    path = tmp_path / "arm.urdf"
+    path.write_text(_urdf("]0;t\u202ex\x9b31m\x85"), encoding="utf-8")  # what XML can hold
+    code, out, err = run_cli("validate", str(path))
+    assert code != 0
+    assert "\x1b[1mBK112\x1b[0m" in out and "\x1b[31merror\x1b[0m" in out
+    assert _raw(_without_own_sequences(out)) == []
+    assert "]0;t\\u202ex\\u009b31m\\u0085" in out
+
+
+def test_exercises_in_colour_write_their_own_styles_and_the_titles_inert(tmp_path, monkeypatch, run_cli):
+    import shutil
+
+    import bras_kit.exercises.screen as screen
+
+    monkeypatch.setattr(screen, "wants_colour", lambda stream: True)
+    exercise_set = tmp_path / "set"
+    shutil.copytree(ROOT / "bras_kit" / "exercises" / "track", exercise_set)
+    track = exercise_set / "track.yaml"
+    track.write_text(track.read_text(encoding="utf-8").replace('"The tutorial arm, exercise by exercise"',
+                                                                '"\\e]0;t\\a\\u202etitle"'), encoding="utf-8")
+    assert run_cli("exercises", "init", str(tmp_path / "work"), "--set", str(exercise_set))[0] == 0
+    code, out, _ = run_cli("exercises", "list", "--dir", str(tmp_path / "work"))
+    assert code == 0
+    assert "\x1b[1m\\x1b]0;t\\x07\\u202etitle\x1b[0m" in out  # bold, its text inert
+    assert _raw(_without_own_sequences(out)) == []
