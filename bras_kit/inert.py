@@ -273,12 +273,14 @@ def csv_text(rows: Iterable[Sequence[Cell]], delimiter: str = ",", number_format
 
     # csv quotes a cell holding a character of its line terminator: told "\r\n", it quotes a lone
     # carriage return too (which a reader takes for the end of a row); the file's rows end in "\n"
+    buffer = io.StringIO()
+    writer = csv.writer(buffer, delimiter=delimiter, lineterminator="\r\n")
     out = []
     for row in rows:
-        buffer = io.StringIO()
-        csv.writer(buffer, delimiter=delimiter, lineterminator="\r\n").writerow(
-            [_cell(value, number_format) for value in row])
+        writer.writerow([_cell(value, number_format) for value in row])
         out.append(buffer.getvalue()[:-2] + "\n")
+        buffer.seek(0)
+        buffer.truncate()
     return "".join(out)
 
 
