@@ -148,6 +148,8 @@ def write_text(path: str | None, text: str, force: bool, **options: Any) -> None
     if not text.endswith("\n"):
         text += "\n"
     if path is None or path == STDOUT:
-        sys.stdout.write(text)
+        from .inert import write_document
+
+        write_document(sys.stdout, text)  # as it is to a pipe; a terminal gets it through the gate
         return
     write_bytes(path, text.encode("utf-8"), force, **options)

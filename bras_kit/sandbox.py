@@ -210,16 +210,75 @@ def _start(function: Callable[..., T], args: tuple[Any, ...], kwargs: dict[str, 
             raise BrasKitError(M("this system cannot fork a contained child process"))
         return Pending(lambda: function(*args, **kwargs))
     read_fd, write_fd = os.pipe()
+    # a child may run a stranger's code (contained or not, a learner's xacro, setup.py, launch
+    # file or node): its standard output and error are pipes this process relays through the
+    # terminal's gate (bras_kit.inert), whatever writes to them (os.write(1, ...), sys.__stdout__,
+    # a C library's log)
+    relayed = (os.pipe(), os.pipe())
     sys.stdout.flush()
     sys.stderr.flush()
     pid = os.fork()
     if pid == 0:  # the child
         os.close(read_fd)
+        for standard, (relay_read, relay_write) in enumerate(relayed, start=1):
+            os.dup2(relay_write, standard)
+            os.close(relay_read)
+            os.close(relay_write)
         _child(write_fd, function, args, kwargs, cpu_seconds, memory_bytes, contain)
     os.close(write_fd)
+    for _, relay_write in relayed:
+        os.close(relay_write)
     limits = (M("this file") if what is None else what, cpu_seconds, memory_bytes, wall_seconds, contain, stop,
               result_bytes)
-    return Pending(child=(pid, read_fd), deadline=time.monotonic() + wall_seconds, limits=limits)
+    return Pending(child=(pid, read_fd), deadline=time.monotonic() + wall_seconds, limits=limits,
+                   relayed=tuple(relay_read for relay_read, _ in relayed))
+
+
+class _Relay:
+    """A child's standard output and error, shown here as text made inert."""
+
+    # once the child is reaped: what it wrote last is in the pipes already; a process it left
+    # behind holding them open is not waited for past a short quiet spell
+    DRAIN_SECONDS, QUIET_SECONDS = 2.0, 0.05
+
+    def __init__(self, fds: tuple[int, ...]) -> None:
+        import codecs
+
+        self.open = {fd: (codecs.getincrementaldecoder("utf-8")("surrogateescape"), standard)
+                     for standard, fd in enumerate(fds, start=1)}
+
+    def take(self, fd: int) -> None:
+        """Read what is waiting on ``fd`` and show it (the end of the stream closes it)."""
+        decoder, standard = self.open[fd]
+        chunk = os.read(fd, 1 << 16)
+        text = decoder.decode(chunk, final=not chunk)
+        if text:
+            from .inert import for_terminal
+
+            stream = sys.stdout if standard == 1 else sys.stderr
+            try:
+                stream.write(for_terminal(text))
+                stream.flush()
+            except (OSError, ValueError):  # a reader that went away: the child's words are dropped
+                pass
+        if not chunk:
+            del self.open[fd]
+            os.close(fd)
+
+    def drain(self) -> None:
+        end = time.monotonic() + self.DRAIN_SECONDS
+        while self.open and (left := end - time.monotonic()) > 0:
+            ready, _, _ = select.select(list(self.open), [], [], min(left, self.QUIET_SECONDS))
+            if not ready:
+                break
+            for fd in ready:
+                self.take(fd)
+        self.close()
+
+    def close(self) -> None:
+        for fd in list(self.open):
+            os.close(fd)
+        self.open.clear()
 
 
 class Pending(Generic[T]):
@@ -228,8 +287,9 @@ class Pending(Generic[T]):
     itself, called by :meth:`result` where no child can be forked."""
 
     def __init__(self, here: Callable[[], T] | None = None, *, child: tuple[int, int] | None = None,
-                 deadline: float = 0.0, limits: tuple[Any, ...] = ()) -> None:
+                 deadline: float = 0.0, limits: tuple[Any, ...] = (), relayed: tuple[int, ...] = ()) -> None:
         self._here, self._child, self._deadline, self._limits = here, child, deadline, limits
+        self._relay = _Relay(relayed)
 
     def close(self) -> None:
         """Kill the child if it is still at work, and reap it (its answer is not read)."""
@@ -239,6 +299,7 @@ class Pending(Generic[T]):
             os.close(read_fd)
             _kill(pid)
             os.waitpid(pid, 0)
+        self._relay.close()
 
     def result(self) -> T:
         """The child's answer, once (its error raised as run_limited raises it)."""
@@ -265,8 +326,12 @@ class Pending(Generic[T]):
                 if stop is not None and stop.is_set():
                     stopped = True
                     break
-                ready, _, _ = select.select([read_fd], [], [], min(left, 0.2 if stop is not None else 1.0))
-                if not ready:
+                ready, _, _ = select.select([read_fd, *self._relay.open], [], [],
+                                            min(left, 0.2 if stop is not None else 1.0))
+                for fd in ready:
+                    if fd != read_fd:
+                        self._relay.take(fd)
+                if read_fd not in ready:
                     continue
                 chunk = os.read(read_fd, 1 << 20)
                 if not chunk:
@@ -282,6 +347,10 @@ class Pending(Generic[T]):
             if timed_out or too_big or stopped or interrupted:  # interrupted: nobody will read its result
                 _kill(pid)
             _, status = os.waitpid(pid, 0)
+            if interrupted:
+                self._relay.close()
+            else:
+                self._relay.drain()
         if stopped:
             raise Stopped(M("{what} was stopped", what=what))
         if timed_out:

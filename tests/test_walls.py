@@ -174,5 +174,5 @@ def test_a_nodes_control_sequences_reach_the_terminal_as_visible_text(tmp_path):
         assert control not in shown, control
     text = shown.decode()
     for where in ("print:", "log:", "RuntimeError: raised:"):
-        assert f"{where}\\x1b[2J\\x1b]0;pwned-title\\x07\\x0dhidden\\x9b31m" in text, where
+        assert f"{where}\\x1b[2J\\x1b]0;pwned-title\\x07\\x0dhidden\\u009b31m" in text, where
     assert "BK640" in text and "raised:\\x1b[2J" in text

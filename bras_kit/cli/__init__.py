@@ -227,6 +227,16 @@ BLAS_THREADS = ("OPENBLAS_NUM_THREADS", "GOTO_NUM_THREADS", "OMP_NUM_THREADS")
 
 
 def main(argv: Sequence[str] | None = None) -> int:
+    """The command line: every byte it writes to stdout and stderr (its own words, argparse's,
+    warnings, logs, a child's that it relays, those of the processes it forks) passes the
+    terminal's gate (bras_kit.inert.gated_streams); bras-kit's own colours pass as Styled."""
+    from ..inert import gated_streams
+
+    with gated_streams():
+        return _main(argv)
+
+
+def _main(argv: Sequence[str] | None = None) -> int:
     argv = list(sys.argv[1:] if argv is None else argv)
     if not any(os.environ.get(name) for name in BLAS_THREADS):
         os.environ["OPENBLAS_NUM_THREADS"] = "1"
@@ -309,10 +319,8 @@ def _show_warning(message: Warning | str, category: type[Warning], filename: str
 
 
 def _fail(command: str, text: str, lang: str) -> None:
-    from ..inert import for_terminal
-
-    # an error may quote a learner's text: its control characters are shown, not obeyed
-    print(labelled(f"bras-kit {command}", labelled(M("error"), for_terminal(text), lang), lang), file=sys.stderr)
+    # an error may quote a learner's text: the gate in front of stderr shows its control characters
+    print(labelled(f"bras-kit {command}", labelled(M("error"), text, lang), lang), file=sys.stderr)
 
 
 def _terminated(signum: int, _frame: object) -> None:

@@ -8,6 +8,7 @@ import shutil
 import sys
 
 from ..errors import BrasKitError
+from ..inert import emit, join
 from ..message import M
 
 ACTIONS = ("watch", "init", "check", "list", "hint", "reset")
@@ -125,7 +126,7 @@ def _list(args: argparse.Namespace, lang: str) -> int:
     if args.target is not None:
         raise BrasKitError(M("list takes no argument"))
     track, progress = open_track(_folder(args))
-    print("\n".join(list_lines(track, progress, lang, _width(), _style())))
+    emit(sys.stdout, join("\n", list_lines(track, progress, lang, _width(), _style())))
     return 0
 
 
@@ -136,10 +137,10 @@ def _check(args: argparse.Namespace, lang: str) -> int:
     track, progress = open_track(_folder(args))
     exercise = _pick(track, progress, args.target)
     if exercise is None:
-        print("\n".join(done_lines(track, lang, _width(), _style())))
+        emit(sys.stdout, join("\n", done_lines(track, lang, _width(), _style())))
         return 0
     outcome = check_exercise(track, progress, exercise, lang)
-    print("\n".join(exercise_lines(track, progress, exercise, outcome, lang, _width(), _style())))
+    emit(sys.stdout, join("\n", exercise_lines(track, progress, exercise, outcome, lang, _width(), _style())))
     if outcome.state == "passed":
         from ..exercises import current_exercise
         from ..i18n import say
@@ -161,7 +162,7 @@ def _hint(args: argparse.Namespace, lang: str) -> int:
     if exercise is None:
         raise BrasKitError(M("every exercise passed: there is no hint left to give"))
     seen = reveal_hint(progress, exercise)
-    print("\n".join(hint_lines(exercise, range(1, seen + 1), lang, _width(), _style())))
+    emit(sys.stdout, join("\n", hint_lines(exercise, range(1, seen + 1), lang, _width(), _style())))
     return 0
 
 

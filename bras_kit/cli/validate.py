@@ -123,6 +123,7 @@ def run(args: argparse.Namespace) -> int:
 
     # begun before the rules are imported: the build and launch evaluation runs beside them
     ahead = evaluate_ahead([f for f in args.files if not (f.endswith(".py") and os.path.isfile(f))])
+    from ..inert import emit
     from ..validate import (
         check_robot,
         collect_files,
@@ -133,7 +134,7 @@ def run(args: argparse.Namespace) -> int:
     from ..validate.findings import FileResult
     from ..validate.package import Package, find_packages, installed_descriptions, validate_package
     from ..validate.registry import select_rules
-    from ..validate.report import exit_code, format_json, format_text
+    from ..validate.report import exit_code, format_json, format_styled, format_text
     from ._common import joint_values, xacro_mappings
 
     lang = args.lang
@@ -199,7 +200,10 @@ def run(args: argparse.Namespace) -> int:
     if args.format == "json":
         sys.stdout.write(format_json(results, strict=args.strict, lang=lang))
     else:
-        sys.stdout.write(format_text(results, lang, colour=_use_colour()))
+        if _use_colour():
+            emit(sys.stdout, format_styled(results, lang), end="")
+        else:
+            sys.stdout.write(format_text(results, lang))
     if args.verbose:
         _print_packages()
     return exit_code(results, strict=args.strict)

@@ -202,6 +202,20 @@ def load_exercise(folder: Path, number: int) -> Exercise:
     )
 
 
+def _distinct_folders(exercises: tuple[Exercise, ...], path: Path) -> None:
+    """Each exercise's folder (its id: progress, hints and the learner's copy are kept under it)
+    is its own, on a file system that ignores case or normalises accents too."""
+    import unicodedata
+
+    seen: dict[str, Exercise] = {}
+    for exercise in exercises:
+        first = seen.setdefault(unicodedata.normalize("NFC", exercise.id).casefold(), exercise)
+        if first is not exercise:
+            raise BrasKitError(M("exercises {first} and {second} would share the folder '{folder}'",
+                                 first=first.number, second=exercise.number, folder=exercise.id),
+                               path=str(path), hint=M("give each exercise a folder name of its own"))
+
+
 def load_track(source: str | os.PathLike[str] = BUILTIN) -> Track:
     """The built-in track (``"builtin"``) or a teacher's set (its folder)."""
     folder = BUILTIN_DIR if str(source) == BUILTIN else Path(source)
@@ -211,5 +225,6 @@ def load_track(source: str | os.PathLike[str] = BUILTIN) -> Track:
     if not isinstance(ids, list) or not ids or not all(isinstance(i, (str, int)) for i in ids):
         raise BrasKitError(M("'exercises' must list the exercise folders in order"), path=str(path))
     exercises = tuple(load_exercise(folder / _inside(str(i), path), n) for n, i in enumerate(ids, 1))
+    _distinct_folders(exercises, path)
     return Track(source=str(source), folder=folder, name=str(data.get("name", folder.name)),
                  title=_languages(data, "title", path, required=False), exercises=exercises)

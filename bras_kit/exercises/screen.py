@@ -12,22 +12,21 @@ from collections.abc import Sequence
 from dataclasses import dataclass
 
 from ..i18n import say
-from ..inert import for_terminal
+from ..inert import Shown, for_terminal, styled
 from ..message import M, Message, Mn
 from .checks import BROKEN, PASSED, Outcome
 from .manifest import Exercise, Track, lesson_link
 from .progress import Progress
 
 MIN_WIDTH, MAX_WIDTH = 40, 100
-_COLOURS = {"green": "32", "red": "31", "yellow": "33", "bold": "1", "dim": "2"}
-
-
 @dataclass(frozen=True)
 class Style:
     colour: bool = False
 
-    def __call__(self, text: str, name: str) -> str:
-        return f"\x1b[{_COLOURS[name]}m{text}\x1b[0m" if self.colour else text
+    def __call__(self, text: str, name: str) -> Shown:
+        """``text`` in the style ``name`` (a :class:`~bras_kit.inert.Styled`, which only
+        :func:`~bras_kit.inert.emit` writes as colour), or the plain text without colours."""
+        return styled(text, name) if self.colour else text
 
 
 def wants_colour(stream: object) -> bool:
@@ -48,15 +47,15 @@ def _wrap(text: str, width: int, indent: str = "") -> list[str]:
     return out
 
 
-def _labelled(label: str, text: str, width: int, shown: str | None = None) -> list[str]:
+def _labelled(label: str, text: str, width: int, shown: Shown | None = None) -> list[Shown]:
     """``label text`` with the text wrapped under itself; ``shown`` is the label as printed
     (coloured), ``label`` its plain text (its width)."""
     lines = _wrap(text, max(20, width - len(label) - 1)) if text else [""]
     pad = " " * (len(label) + 1)
-    return [f"{shown or label} {lines[0]}".rstrip(), *(pad + line for line in lines[1:])]
+    return [((shown or label) + " " + lines[0]).rstrip(), *(pad + line for line in lines[1:])]
 
 
-def state_word(outcome: Outcome | None, style: Style, lang: str) -> str:
+def state_word(outcome: Outcome | None, style: Style, lang: str) -> Shown:
     if outcome is None:
         return style(say(M("checking..."), lang), "dim")
     if outcome.state == PASSED:
@@ -83,14 +82,14 @@ def hints_to_show(outcome: Outcome | None, seen: int) -> list[int]:
 
 
 def exercise_lines(track: Track, progress: Progress, exercise: Exercise, outcome: Outcome | None, lang: str,
-                   width: int, style: Style = Style()) -> list[str]:
+                   width: int, style: Style = Style()) -> list[Shown]:
     width = fitted(width)
     rule = style("─" * width, "dim")
     passed = sum(progress.passed(e.id) for e in track.exercises)
     head = say(M("exercise {number}/{total}: {title}", number=exercise.number, total=len(track.exercises),
                  title=exercise.title_in(lang)), lang)
-    lines = [*(_wrap(head, width)), rule]
-    lines = [style(line, "bold") if i == 0 else line for i, line in enumerate(lines)]
+    heading = _wrap(head, width)
+    lines: list[Shown] = [style(heading[0], "bold"), *heading[1:], rule]
     lines += _wrap(exercise.statement_in(lang), width)
     lines.append("")
     files = ", ".join(os.path.join(exercise.id, name) for name in exercise.files)
@@ -101,7 +100,8 @@ def exercise_lines(track: Track, progress: Progress, exercise: Exercise, outcome
     # the reason and the detail may quote the learner's file (a syntax error's line): text, not commands
     reason = for_terminal(_reason(outcome, lang)) if outcome and outcome.reason else ""
     dash = " —" if reason else ""
-    lines += _labelled(state_word(outcome, Style(), lang) + dash, reason, width, state_word(outcome, style, lang) + dash)
+    lines += _labelled(str(state_word(outcome, Style(), lang)) + dash, reason, width,
+                       state_word(outcome, style, lang) + dash)
     if outcome is not None and outcome.detail:
         detail = say(outcome.detail, lang) if isinstance(outcome.detail, Message) else str(outcome.detail)
         lines += _wrap(for_terminal(detail), width, "  ")
@@ -117,9 +117,10 @@ def keys_line(lang: str, width: int) -> str:
     return say(M("h: next hint   c: check again   l: list   q: quit"), lang)[:fitted(width)]
 
 
-def list_lines(track: Track, progress: Progress, lang: str, width: int, style: Style = Style()) -> list[str]:
+def list_lines(track: Track, progress: Progress, lang: str, width: int, style: Style = Style()) -> list[Shown]:
     width = fitted(width)
     lines = [style(track.title_in(lang), "bold")]
+    mark: Shown
     for exercise in track.exercises:
         if progress.passed(exercise.id):
             mark = style(say(M("passed"), lang), "green")
@@ -135,21 +136,22 @@ def list_lines(track: Track, progress: Progress, lang: str, width: int, style: S
     return lines
 
 
-def _row(title: str, mark: str, used: str, width: int) -> str:
+def _row(title: str, mark: Shown, used: str, width: int) -> Shown:
     room = max(10, width - 24)
     if len(title) > room:
         title = title[:room - 1] + "…"
-    return f"{title:<{room}} {mark} {used}".rstrip()
+    return (f"{title:<{room}} " + mark + f" {used}").rstrip()
 
 
-def done_lines(track: Track, lang: str, width: int, style: Style = Style()) -> list[str]:
+def done_lines(track: Track, lang: str, width: int, style: Style = Style()) -> list[Shown]:
     return [style(say(M("every exercise of '{track}' passed: well done!", track=track.title_in(lang)), lang), "green"),
             *_wrap(say(M("the files stay yours: bras-kit view, run and validate work on them as on any other"),
                        lang), fitted(width))]
 
 
-def hint_lines(exercise: Exercise, numbers: Sequence[int], lang: str, width: int, style: Style = Style()) -> list[str]:
-    lines: list[str] = []
+def hint_lines(exercise: Exercise, numbers: Sequence[int], lang: str, width: int,
+               style: Style = Style()) -> list[Shown]:
+    lines: list[Shown] = []
     for number in numbers:
         label = say(M("hint {n}/3:", n=number), lang)
         lines += _labelled(label, exercise.hint_in(lang, number), fitted(width), style(label, "yellow"))

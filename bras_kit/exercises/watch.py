@@ -20,6 +20,7 @@ from pathlib import Path
 from typing import IO
 
 from ..i18n import say
+from ..inert import CLEAR_SCREEN, Shown, emit, join
 from ..message import M
 from . import check_exercise, current_exercise, open_track, reveal_hint
 from .checks import Outcome
@@ -28,7 +29,6 @@ from .progress import Progress, reload_if_changed
 from .screen import Style, done_lines, exercise_lines, keys_line, list_lines, wants_colour
 
 POLL_SECONDS = 0.2
-CLEAR = "\x1b[H\x1b[2J\x1b[3J"
 
 
 def snapshot(folder: Path, exercise: Exercise) -> tuple[tuple[str, int, int], ...]:
@@ -95,7 +95,7 @@ class Watcher:
         self.outcome: Outcome | None = None
         self.seen: tuple[tuple[str, int, int], ...] = ()
         self.note = ""
-        self.last_screen: list[str] = []
+        self.last_screen: list[Shown] = []
 
     def width(self) -> int:
         return shutil.get_terminal_size((80, 24)).columns if self.tty else 80
@@ -125,11 +125,11 @@ class Watcher:
             self.check()
         self.draw(force=True)
 
-    def screen(self, checking: bool = False) -> list[str]:
+    def screen(self, checking: bool = False) -> list[Shown]:
         width = self.width()
         if self.exercise is None:
             return done_lines(self.track, self.lang, width, self.style)
-        lines = []
+        lines: list[Shown] = []
         if self.note:
             lines.append(self.style(self.note, "green"))
         lines += exercise_lines(self.track, self.progress, self.exercise, None if checking else self.outcome,
@@ -141,18 +141,18 @@ class Watcher:
         if self.tty:
             stamp = time.strftime("%H:%M:%S")
             footer = keys_line(self.lang, self.width())
-            self.out.write(CLEAR + "\n".join(lines) + "\n" + self.style(footer, "dim") + "\n"
-                           + self.style(say(M("checked at {time}", time=stamp), self.lang), "dim") + "\n")
+            emit(self.out, CLEAR_SCREEN, join("\n", lines), "\n", self.style(footer, "dim"), "\n",
+                 self.style(say(M("checked at {time}", time=stamp), self.lang), "dim"))
         elif lines != self.last_screen or force:
             if checking:
                 return
-            self.out.write("\n".join(lines) + "\n\n")
+            emit(self.out, join("\n", lines), "\n\n", end="")
         self.last_screen = lines
         self.out.flush()
 
     def show_list(self) -> None:
-        self.out.write((CLEAR if self.tty else "") + "\n".join(list_lines(self.track, self.progress, self.lang,
-                                                                           self.width(), self.style)) + "\n")
+        emit(self.out, CLEAR_SCREEN if self.tty else "",
+             join("\n", list_lines(self.track, self.progress, self.lang, self.width(), self.style)))
         self.out.write(say(M("press any key to go back"), self.lang) + "\n")
         self.out.flush()
 

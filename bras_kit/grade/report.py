@@ -3,16 +3,14 @@ Gradescope's shape), and static HTML pages, openable from disk."""
 
 from __future__ import annotations
 
-import csv
 import html
-import io
 import json
 import os
 from collections import Counter
 from collections.abc import Callable, Sequence
 from typing import Any
 
-from ..inert import for_spreadsheet
+from ..inert import Cell, csv_text
 from ..message import M, Message, Mn
 from .rubric import SEVERITIES, Item, Rubric, rubric_words
 
@@ -21,19 +19,19 @@ REPORT_MARK = ".bras-kit-grade"  # a folder holding this file is a report bras-k
 
 def grades_csv(results: Sequence[dict[str, Any]], rubric: Rubric) -> str:
     """identifier, score, max, one column per rubric item, the first error message; and the
-    exercises passed when a learner handed in a ``bras-kit exercises`` track."""
-    buffer = io.StringIO()
-    writer = csv.writer(buffer, lineterminator="\n")
+    exercises passed when a learner handed in a ``bras-kit exercises`` track.
+
+    The folder's name, the error and the rubric's ids are strangers' text: bras_kit.inert.csv_text
+    makes every text cell inert for a spreadsheet, whatever it splits on, and keeps the numbers."""
     track = any(result.get("exercises") for result in results)
-    writer.writerow(["identifier", "score", "max", *[item.id for item in rubric.items], "first_error",
-                     *(["exercises"] if track else [])])
+    rows: list[list[Cell]] = [["identifier", "score", "max", *[item.id for item in rubric.items], "first_error",
+                               *(["exercises"] if track else [])]]
     for result in results:
-        # the folder's name and the error are the learner's: text, never a formula (bras_kit.inert)
-        writer.writerow([for_spreadsheet(str(result["learner"])), _number(result["score"]), _number(result["max"]),
-                         *[_number(result["items"].get(item.id, 0.0)) for item in rubric.items],
-                         for_spreadsheet(str(result.get("first_error", ""))),
-                         *([for_spreadsheet(str(result.get("exercises", "")))] if track else [])])
-    return buffer.getvalue()
+        rows.append([str(result["learner"]), float(result["score"]), float(result["max"]),
+                     *[float(result["items"].get(item.id, 0.0)) for item in rubric.items],
+                     str(result.get("first_error", "")),
+                     *([str(result.get("exercises", ""))] if track else [])])
+    return csv_text(rows, number_format="g")
 
 
 def results_json(results: Sequence[dict[str, Any]], rubric: Rubric) -> str:
@@ -161,6 +159,22 @@ def _file_name(learner: str) -> str:
     return _safe_name(learner) + ".html"
 
 
+def _check_own_files(results: Sequence[dict[str, Any]]) -> None:
+    """Refuse a class where two learners would share a page or a results file, even on a file
+    system that ignores case (file_stem makes that a SHA-256 collision: this is the net under it)."""
+    from ..errors import BrasKitError
+
+    owners: dict[str, str] = {}
+    for result in results:
+        learner = str(result["learner"])
+        page = _file_name(learner)
+        other = owners.setdefault(page.casefold(), learner)
+        if other != learner:
+            raise BrasKitError(M("learners '{first}' and '{second}' would share the report page {page}",
+                                 first=other, second=learner, page=page),
+                               hint=M("rename one of their submissions and grade again"))
+
+
 def write_reports(folder: str, results: Sequence[dict[str, Any]], rubric: Rubric, lang: str, *,
                   gradescope: bool = False, finished: bool = True) -> None:
     from ..i18n import say
@@ -169,6 +183,7 @@ def write_reports(folder: str, results: Sequence[dict[str, Any]], rubric: Rubric
     def t(words: Message | str) -> str:
         return say(words, lang)
 
+    _check_own_files(results)
     os.makedirs(os.path.join(folder, "learners"), exist_ok=True)
     write_text(os.path.join(folder, "grades.csv"), grades_csv(results, rubric), True, announce=False)
     write_text(os.path.join(folder, "results.json"), results_json(results, rubric), True, announce=False)

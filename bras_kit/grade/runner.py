@@ -114,9 +114,11 @@ class Progress:
 
             rate = self.done / max(time.monotonic() - self.start, 1e-6)
             filled = int(30 * self.done / max(self.total, 1))
-            self.stream.write("\r" + say(M("grading [{bar}] {done}/{total}, {failed} unreadable, {rate:.1f}/s ",
-                                           bar="#" * filled + "." * (30 - filled), done=self.done, total=self.total,
-                                           failed=self.failed, rate=rate), self.lang))
+            from ..inert import LINE_START, emit
+
+            emit(self.stream, LINE_START, say(M("grading [{bar}] {done}/{total}, {failed} unreadable, {rate:.1f}/s ",
+                                                bar="#" * filled + "." * (30 - filled), done=self.done,
+                                                total=self.total, failed=self.failed, rate=rate), self.lang), end="")
             self.stream.flush()
 
     def close(self) -> None:

@@ -83,11 +83,15 @@ def find_submissions(folder: str | os.PathLike[str]) -> list[Submission]:
         else:
             kind = "other"
         out.append(Submission(learner_name(entry), str(entry), kind))
-    names = [s.learner for s in out]
-    for submission in out:
-        if names.count(submission.learner) > 1:  # bras.urdf and bras.zip: keep the full names apart
+    # bras.urdf and bras.zip: keep the full names apart, until no two learners share a name (the
+    # entry "bras.zip.tar" is learner "bras.zip", which the archive "bras.zip" became)
+    while True:
+        names = [s.learner for s in out]
+        clashing = [s for s in out if names.count(s.learner) > 1 and s.learner != Path(s.path).name]
+        if not clashing:
+            return out
+        for submission in clashing:
             object.__setattr__(submission, "learner", Path(submission.path).name)
-    return out
 
 
 def content_hash(path: str) -> str:

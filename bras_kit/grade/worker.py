@@ -9,7 +9,6 @@ the next (only the first submission of each worker pays for them).
 
 from __future__ import annotations
 
-import hashlib
 import os
 import shutil
 import tempfile
@@ -417,9 +416,8 @@ def _animation(robot: Any, learner: str, options: Options, package_paths: tuple[
 
 
 def _safe_name(learner: str) -> str:
-    """A file name for ``learner``'s picture and page; names that had to change get a suffix
-    from the original, so that "a b" and "a_b" keep pages of their own."""
-    keep = "".join(c if c.isalnum() or c in "-_." else "_" for c in learner).strip(".")
-    if keep == learner:
-        return keep
-    return (keep or "learner") + "-" + hashlib.sha256(learner.encode("utf-8", "surrogateescape")).hexdigest()[:8]
+    """A file name for ``learner``'s picture and page: bras_kit.inert.file_stem, the one mapping
+    from a user-given name to a file (two learners never share one, on any file system)."""
+    from ..inert import file_stem
+
+    return file_stem(learner)

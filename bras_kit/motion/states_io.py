@@ -49,22 +49,24 @@ def states_to_json(states: JointStates) -> str:
 def states_to_csv(states: JointStates) -> str:
     """Long form, like a recorded /joint_states: ``time,name,position,velocity``, one row per joint per sample.
 
-    Simulated states (with measured torques) get a fifth column, ``effort``.
+    Simulated states (with measured torques) get a fifth column, ``effort``. The joint names are
+    the URDF's, so a stranger's: text cells through bras_kit.inert.csv_text (never a formula),
+    the numbers as numbers.
     """
+    from ..inert import csv_text
+
     efforts = _efforts(states)
+    names = [str(name) for name in states.names]
     if efforts is not None:
-        rows = ["time,name,position,velocity,effort"]
-        for t, position, velocity, effort in zip(states.times, states.positions, states.velocities, efforts):
-            time = repr(float(t))
-            rows.extend(f"{time},{name},{float(p)!r},{float(v)!r},{float(e)!r}"
-                        for name, p, v, e in zip(states.names, position, velocity, effort))
-        return "\n".join(rows) + "\n"
-    rows = ["time,name,position,velocity"]
-    for t, position, velocity in zip(states.times, states.positions, states.velocities):
-        time = repr(float(t))
-        rows.extend(f"{time},{name},{float(p)!r},{float(v)!r}"
-                    for name, p, v in zip(states.names, position, velocity))
-    return "\n".join(rows) + "\n"
+        return csv_text([("time", "name", "position", "velocity", "effort"),
+                         *((float(t), name, float(p), float(v), float(e))
+                           for t, position, velocity, effort in zip(states.times, states.positions,
+                                                                    states.velocities, efforts)
+                           for name, p, v, e in zip(names, position, velocity, effort))])
+    return csv_text([("time", "name", "position", "velocity"),
+                     *((float(t), name, float(p), float(v))
+                       for t, position, velocity in zip(states.times, states.positions, states.velocities)
+                       for name, p, v in zip(names, position, velocity))])
 
 
 STATES_SUFFIXES = (".csv", ".json", ".mcap", ".db3")
@@ -181,8 +183,19 @@ def _states_from_json(text: str, path: str) -> JointStates:
 
 
 def _states_from_csv(text: str, path: str) -> JointStates:
-    lines = text.splitlines()
-    header = [c.strip() for c in lines[0].split(",")] if lines else []
+    import csv
+    import io
+
+    from ..inert import from_spreadsheet
+
+    # csv's reader: a joint name may hold a comma, a quote or a line break, which csv_text quoted
+    reader = csv.reader(io.StringIO(text, newline=""))
+    try:
+        rows = [(reader.line_num, row) for row in reader]
+    except csv.Error as exc:  # a NUL on Python 3.10
+        raise ParameterError(M("not a CSV file: {reason}", reason=str(exc)), path=path, line=reader.line_num,
+                             hint=M("write the file with bras-kit motion -o states.csv")) from None
+    header = [c.strip() for c in rows[0][1]] if rows else []
     if header not in (["time", "name", "position", "velocity"], ["time", "name", "position", "velocity", "effort"]):
         raise ParameterError(M("the header is not time,name,position,velocity"), path=path, line=1,
                              hint=M("write the file with bras-kit motion -o states.csv"))
@@ -190,12 +203,12 @@ def _states_from_csv(text: str, path: str) -> JointStates:
     times: list[float] = []
     positions: list[list[float]] = []
     velocities: list[list[float]] = []
-    for number, line in enumerate(lines[1:], start=2):
-        if not line.strip():
+    for number, cells in rows[1:]:
+        if not any(cell.strip() for cell in cells):
             continue
-        cells = line.split(",")
         try:
-            time, name, position, velocity = float(cells[0]), cells[1].strip(), float(cells[2]), float(cells[3])
+            time, name, position, velocity = (float(cells[0]), from_spreadsheet(cells[1]).strip(), float(cells[2]),
+                                              float(cells[3]))
         except (IndexError, ValueError):
             raise ParameterError(M("expected time,name,position,velocity"), path=path, line=number) from None
         if not times or time != times[-1]:

@@ -22,6 +22,7 @@ import numpy as np
 
 from ..errors import BackendError, ParameterError
 from ..i18n import say
+from ..inert import LINE_START, emit
 from ..message import M, Message
 
 PALETTE_SAMPLES = 4  # frames the GIF palette is computed from
@@ -61,17 +62,17 @@ class Progress:
         filled = int(share * 30)
         elapsed = now - self._start
         left = elapsed / share - elapsed if share > 0 else 0.0
-        self.stream.write(f"\r{say(self.label)} [{'#' * filled}{'.' * (30 - filled)}] "
-                          + say(M("{done}/{total} frames, {left:4.1f} s left ", done=self.done, total=self.total,
-                                  left=left)))
+        emit(self.stream, LINE_START, f"{say(self.label)} [{'#' * filled}{'.' * (30 - filled)}] "
+             + say(M("{done}/{total} frames, {left:4.1f} s left ", done=self.done, total=self.total, left=left)),
+             end="")
         self.stream.flush()
 
     def close(self) -> None:
         if self.enabled:
             elapsed = time.monotonic() - self._start
-            self.stream.write(f"\r{say(self.label)} [{'#' * 30}] "
-                              + say(M("{done}/{total} frames in {elapsed:.1f} s", done=self.done, total=self.total,
-                                      elapsed=elapsed)) + " " * 8 + "\n")
+            emit(self.stream, LINE_START, f"{say(self.label)} [{'#' * 30}] "
+                 + say(M("{done}/{total} frames in {elapsed:.1f} s", done=self.done, total=self.total,
+                         elapsed=elapsed)) + " " * 8)
             self.stream.flush()
 
 

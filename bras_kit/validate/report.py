@@ -7,12 +7,12 @@ from collections.abc import Sequence
 from dataclasses import dataclass
 
 from ..i18n import say
-from ..inert import for_terminal
+from ..inert import Shown, Styled, for_terminal, join, styled
 from ..message import M, Message, Mn
 from .findings import FileResult, Finding
 from .registry import ERROR, INFO, SEVERITY_WORDS, WARNING
 
-_COLOURS = {ERROR: "31", WARNING: "33", INFO: "36"}  # red, yellow, cyan
+_COLOURS = {ERROR: "red", WARNING: "yellow", INFO: "cyan"}
 
 
 @dataclass(frozen=True)
@@ -66,20 +66,24 @@ def element_text(finding: Finding) -> str:
     return f'<{finding.element} name="{finding.name}">'
 
 
-def finding_text(path: str, finding: Finding, lang: str | None = None, colour: bool = False) -> str:
+def finding_text(path: str, finding: Finding, lang: str | None = None) -> str:
+    return str(_finding_shown(path, finding, lang, False))
+
+
+def _finding_shown(path: str, finding: Finding, lang: str | None, colour: bool) -> Shown:
     where = f"{path}:{finding.line}:" if finding.line else f"{path}:"
-    severity = say(SEVERITY_WORDS[finding.severity], lang)
-    code = finding.code
-    if colour:
-        code = f"\033[1m{code}\033[0m"
-        severity = f"\033[{_COLOURS[finding.severity]}m{severity}\033[0m"
+    severity: Shown = say(SEVERITY_WORDS[finding.severity], lang)
+    code: Shown = finding.code
+    if colour:  # bras-kit's own styles, as Styled: only emit() writes them as colours
+        code = styled(finding.code, "bold")
+        severity = styled(str(severity), _COLOURS[finding.severity])
     element = for_terminal(element_text(finding))
     where = for_terminal(where)
     # a message may quote a learner's text (an exception's): its control characters are shown, not obeyed
-    head = " ".join(part for part in (where, code, severity, element, for_terminal(finding.text(lang))) if part)
+    head = join(" ", [part for part in (where, code, severity, element, for_terminal(finding.text(lang))) if part])
     hint = finding.hint_text(lang)
     if hint:
-        return f"{head}\n  " + say(M("hint: {hint}", hint=for_terminal(hint)), lang)
+        return head + "\n  " + say(M("hint: {hint}", hint=for_terminal(hint)), lang)
     return head
 
 
@@ -102,12 +106,22 @@ REPEATED = 10
 NAMES_SHOWN = 5
 
 
-def format_text(results: Sequence[FileResult], lang: str | None = None, colour: bool = False) -> str:
+def format_text(results: Sequence[FileResult], lang: str | None = None) -> str:
+    return str(_format_shown(results, lang, False))
+
+
+def format_styled(results: Sequence[FileResult], lang: str | None = None) -> Styled:
+    """:func:`format_text` with the codes in bold and the severities in colour, for a terminal
+    (written by :func:`bras_kit.inert.emit`)."""
+    return Styled() + _format_shown(results, lang, True)
+
+
+def _format_shown(results: Sequence[FileResult], lang: str | None, colour: bool) -> Shown:
     blocks = [block for r in results for block in _file_blocks(r, lang, colour)]
-    return "\n".join(blocks + ([""] if blocks else []) + [summary_text(results, lang)]) + "\n"
+    return join("\n", blocks + ([""] if blocks else []) + [summary_text(results, lang)]) + "\n"
 
 
-def _file_blocks(result: FileResult, lang: str | None, colour: bool) -> list[str]:
+def _file_blocks(result: FileResult, lang: str | None, colour: bool) -> list[Shown]:
     by_code: dict[str, list[Finding]] = {}
     for found in result.findings:
         by_code.setdefault(found.code, []).append(found)
@@ -115,9 +129,9 @@ def _file_blocks(result: FileResult, lang: str | None, colour: bool) -> list[str
     for found in result.findings:
         same = by_code[found.code]
         if len(same) <= REPEATED:
-            blocks.append(finding_text(result.path, found, lang, colour))
+            blocks.append(_finding_shown(result.path, found, lang, colour))
         elif found is same[0]:
-            blocks.append(finding_text(result.path, found, lang, colour) + "\n  " + repeated_text(same, lang))
+            blocks.append(_finding_shown(result.path, found, lang, colour) + "\n  " + repeated_text(same, lang))
     return blocks
 
 
