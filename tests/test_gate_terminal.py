@@ -227,7 +227,7 @@ def test_exercises_list_of_a_strangers_set_shows_its_titles_inert(text, tmp_path
     first = exercise_set / "01-links" / "exercise.yaml"
     first.write_text(first.read_text(encoding="utf-8").replace('"Describe the arm: the links"',
                                                                 _yaml_quoted(text)), encoding="utf-8")
-    code, out, err = run_cli("exercises", "init", str(root / "work"), "--set", str(exercise_set))
+    code, out, err = run_cli("exercises", "init", str(root / "work"), "--track", str(exercise_set))
     assert code == 0, err
     for action in ("list", "check", "hint"):
         code, out, err = run_cli("exercises", action, "--dir", str(root / "work"))
@@ -370,7 +370,7 @@ def test_exercises_in_colour_write_their_own_styles_and_the_titles_inert(tmp_pat
     track = exercise_set / "track.yaml"
     track.write_text(track.read_text(encoding="utf-8").replace('"The tutorial arm, exercise by exercise"',
                                                                 '"\\e]0;t\\a\\u202etitle"'), encoding="utf-8")
-    assert run_cli("exercises", "init", str(tmp_path / "work"), "--set", str(exercise_set))[0] == 0
+    assert run_cli("exercises", "init", str(tmp_path / "work"), "--track", str(exercise_set))[0] == 0
     code, out, _ = run_cli("exercises", "list", "--dir", str(tmp_path / "work"))
     assert code == 0
     assert "\x1b[1m\\x1b]0;t\\x07\\u202etitle\x1b[0m" in out  # bold, its text inert

@@ -48,9 +48,13 @@ RATE_TOLERANCE = 0.25  # a real timer on a loaded machine; a period in Hz or two
 
 
 def corpus() -> list[Path]:
-    """Every learner node under tests/data (a .py file that imports rclpy), one per content."""
+    """Every learner node under tests/data (a .py file that imports rclpy), one per content; not the
+    attacks on the stand-in's own record (hostile_code/record/: they reach for bras-kit's _bras_sim,
+    which a real ROS 2 has not; tests/test_record_hostile.py runs them)."""
     seen: dict[str, Path] = {}
     for path in sorted(DATA.rglob("*.py")):
+        if path.is_relative_to(DATA / "hostile_code" / "record"):
+            continue
         text = path.read_text(encoding="utf-8", errors="replace")
         if not re.search(r"^\s*(import rclpy|from rclpy)", text, re.M):
             continue

@@ -263,14 +263,19 @@ class Package:
         """Every file of the package folder (relative, sorted), out of colcon's build, install and log
         folders (a build run in the package folder), caches and hidden folders; at most
         SOURCE_FILES_LIMIT entries are looked at (a package holds tens)."""
+        from ...learner_files import Unreadable, walk
+
         out: list[str] = []
         seen = 0
-        for folder, dirs, names in os.walk(self.root):
-            dirs[:] = sorted(d for d in dirs if not d.startswith(".") and d not in NOT_SOURCE_FOLDERS)
-            seen += len(dirs) + len(names)
-            out += [relative(self.root, os.path.join(folder, n)) for n in names]
-            if seen > SOURCE_FILES_LIMIT:
-                break
+        try:  # through the one reader: a folder linked out of the package is never walked into
+            for folder, dirs, names in walk(self.root, (self.root,)):
+                dirs[:] = sorted(d for d in dirs if not d.startswith(".") and d not in NOT_SOURCE_FOLDERS)
+                seen += len(dirs) + len(names)
+                out += [relative(self.root, os.path.join(folder, n)) for n in names]
+                if seen > SOURCE_FILES_LIMIT:
+                    break
+        except (Unreadable, OSError):
+            pass
         return sorted(out)
 
     def files(self, folder: str, suffixes: tuple[str, ...]) -> list[str]:
@@ -335,15 +340,17 @@ class Package:
     def module_written(self, module: str) -> bool:
         """The module's file is where the import looks for it, in this very case: Python's import
         compares names exactly, even on a file system that does not (macOS, Windows)."""
+        from ...learner_files import Unreadable, is_file, list_folder
+
         folder = self.root
         for part in module_file(module).split("/"):
             try:
-                if part not in os.listdir(folder):
+                if part not in {name for name, _kind in list_folder(folder, (self.root,))}:
                     return False
-            except OSError:
+            except (Unreadable, OSError):
                 return False
             folder = os.path.join(folder, part)
-        return os.path.isfile(folder)
+        return is_file(folder, (self.root,))
 
     def misplaced(self, module: str) -> list[str]:
         """The package's files named as the module's file (in any case, or without ``.py``) in another
