@@ -290,13 +290,7 @@ def _walk(root: str, top: int, parts: list[str], want: str, text: str) -> int:
                 try:
                     held.append(os.open(name, _DIR_FLAGS, dir_fd=held[-1]))
                 except OSError as exc:
-                    if exc.errno in (errno.ELOOP, errno.ENOTDIR, errno.ENOENT):  # swapped since the stat
-                        links += 1
-                        if links > MAX_LINKS:
-                            raise Outside("loop", text, root) from None
-                        pending.appendleft(name)
-                        continue
-                    raise Outside("missing", text, root) from None
+                    links = _swapped(exc, name, pending, links, text, root)
                 continue
             kind = _refused_kind(info.st_mode, want)
             if kind:
@@ -305,13 +299,8 @@ def _walk(root: str, top: int, parts: list[str], want: str, text: str) -> int:
                 fd = os.open(name, _FILE_FLAGS | (os.O_DIRECTORY if stat.S_ISDIR(info.st_mode) else 0),
                              dir_fd=held[-1])
             except OSError as exc:
-                if exc.errno in (errno.ELOOP, errno.ENOTDIR, errno.ENOENT):
-                    links += 1
-                    if links > MAX_LINKS:
-                        raise Outside("loop", text, root) from None
-                    pending.appendleft(name)
-                    continue
-                raise Outside("missing", text, root) from None
+                links = _swapped(exc, name, pending, links, text, root)
+                continue
             kind = _refused_kind(os.fstat(fd).st_mode, want)
             if kind:
                 os.close(fd)
@@ -343,3 +332,14 @@ def open_any_beneath(roots: tuple[str, ...] | list[str], path: str, *, want: str
             if exc.kind not in ("outside", "link_out") or refusal.kind in ("outside", "link_out"):
                 refusal = exc
     raise refusal
+
+
+def _swapped(exc: OSError, name: str, pending: deque[str], links: int, text: str, root: str) -> int:
+    """A component that changed between its stat and its open (a link now, or gone): walked again,
+    counted as a link so that a swap repeated without end is a loop; any other failure is "missing"."""
+    if exc.errno not in (errno.ELOOP, errno.ENOTDIR, errno.ENOENT):
+        raise Outside("missing", text, root) from None
+    if links + 1 > MAX_LINKS:
+        raise Outside("loop", text, root) from None
+    pending.appendleft(name)
+    return links + 1

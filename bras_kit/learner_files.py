@@ -74,18 +74,17 @@ def read_text(path: str, roots: tuple[str, ...] | list[str], *, limit: int = MAX
 
 def is_file(path: str, roots: tuple[str, ...] | list[str]) -> bool:
     """Whether ``path`` is a regular file bras-kit may read under ``roots`` (opened, then closed)."""
-    try:
-        fd, _root = open_any_beneath(tuple(roots), os.fspath(path), want=FILE)
-    except Outside:
-        return False
-    os.close(fd)
-    return True
+    return _reaches(path, roots, FILE)
 
 
 def is_folder(path: str, roots: tuple[str, ...] | list[str]) -> bool:
     """Whether ``path`` is a folder under ``roots``, reached without a link out of them."""
+    return _reaches(path, roots, FOLDER)
+
+
+def _reaches(path: str, roots: tuple[str, ...] | list[str], want: str) -> bool:
     try:
-        fd, _root = open_any_beneath(tuple(roots), os.fspath(path), want=FOLDER)
+        fd, _root = open_any_beneath(tuple(roots), os.fspath(path), want=want)
     except Outside:
         return False
     os.close(fd)
