@@ -293,7 +293,9 @@ _PLAIN = re.compile(r"[a-z0-9_][a-z0-9_.-]{0,63}")
 _DIGEST_LENGTH = 16
 _STEM_FORM = re.compile(rf".*-[0-9a-f]{{{_DIGEST_LENGTH}}}")
 # names Windows keeps for devices, whatever their extension (a report copied to a USB key)
-_DEVICES = {"con", "prn", "aux", "nul", *(f"com{i}" for i in range(10)), *(f"lpt{i}" for i in range(10))}
+# Windows' reserved device names, with any extension (learn.microsoft.com, "Naming Files, Paths, and Namespaces"):
+# COM and LPT take 0-9 and the superscripts 1-3
+_DEVICES = {"con", "prn", "aux", "nul", *(f"{port}{n}" for port in ("com", "lpt") for n in "0123456789\u00b9\u00b2\u00b3")}
 _SLUG_BYTES = 96
 
 
@@ -313,5 +315,7 @@ def file_stem(name: str) -> str:
     slug = "".join(c if c.isalnum() or c in "-_." else "_" for c in unicodedata.normalize("NFC", name))
     slug = re.sub(r"_+", "_", slug).strip("._-")
     slug = slug.encode("utf-8", "ignore")[:_SLUG_BYTES].decode("utf-8", "ignore") or "learner"
+    if slug.split(".")[0].lower() in _DEVICES:  # Windows reserves CON, CON.txt, con.bob alike
+        slug = f"_{slug}"
     digest = hashlib.sha256(name.encode("utf-8", "surrogatepass")).hexdigest()[:_DIGEST_LENGTH]
     return f"{slug}-{digest}"
