@@ -20,11 +20,11 @@ from collections.abc import Callable
 
 import numpy as np
 
-from bras_kit.authoring import arm
-from bras_kit.bags import read_recording, write_bag
-from bras_kit.bags.writer import _frame_split, _qos, _relative
-from bras_kit.kinematics import fk_batch, matrix_to_quat_xyzw
+from bras_kit.kinematics.frames import fk_batch, matrix_to_quat_xyzw
+from bras_kit.model.authoring import arm
 from bras_kit.motion import sample, states_to_csv, tutorial_motion
+from bras_kit.motion.bags import read_recording, write_bag
+from bras_kit.motion.bags.writer import _frame_split, _qos, _relative
 
 JOINT_STATE = """std_msgs/Header header
 string[] name

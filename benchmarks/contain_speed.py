@@ -1,5 +1,5 @@
 """What the containment costs an ordinary node: the tutorial's node (tests/data/tutorial_package,
-``animation``) run for 10 s of node time by ``run_node``, contained (bras_kit/ros/contain.py:
+``animation``) run for 10 s of node time by ``run_node``, contained (bras_kit/trust/contain.py:
 user, mount, network and PID namespaces set up in the forked child) beside today's figure
 without walls. The goal: under 0.5 s of wall time contained. The peer is ``ros2 run``, which
 takes 10 s of wall time for 10 s of node time.
@@ -28,8 +28,8 @@ TUTORIAL = ROOT / "tests" / "data" / "tutorial_package"
 
 
 def main(repeat: int = 15) -> None:
-    from bras_kit.ros.contain import available
     from bras_kit.run import run_node
+    from bras_kit.trust.contain import available
 
     print(f"containment here: {available()}")
     run_node(str(TUTORIAL), "animation", duration=1.0)  # warm: modules compiled and cached

@@ -13,8 +13,8 @@ import time
 
 import numpy as np
 
-from bras_kit.authoring import arm, arm_urdf
-from bras_kit.kinematics import fk, fk_batch, tf_tree
+from bras_kit.kinematics.frames import fk, fk_batch, tf_tree
+from bras_kit.model.authoring import arm, arm_urdf
 
 
 def best_of(repeats: int, func) -> float:  # type: ignore[no-untyped-def]

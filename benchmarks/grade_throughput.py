@@ -29,7 +29,7 @@ from pathlib import Path
 
 
 def make_class(folder: Path, count: int) -> None:
-    from bras_kit.authoring import arm_urdf
+    from bras_kit.model.authoring import arm_urdf
 
     texts = [arm_urdf(), arm_urdf(wrist=True), arm_urdf(wrist=True, inertials=True),
              arm_urdf().replace('<origin xyz="0 0 0.6"/>', '<origin xyz="0 0 0.3"/>'), arm_urdf()[:900]]

@@ -24,9 +24,9 @@ import warnings
 
 import numpy as np
 
-from bras_kit.authoring import arm, arm_urdf
 from bras_kit.ik import ik_2r, ik_2r_batch, planar_two_link, solve_ik, tip_positions
-from bras_kit.kinematics import tf_tree
+from bras_kit.kinematics.frames import tf_tree
+from bras_kit.model.authoring import arm, arm_urdf
 
 SUCCESS = 1e-4  # m
 TIP = (0.0, 0.0, 0.15)

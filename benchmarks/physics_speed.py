@@ -46,7 +46,7 @@ def bras_kit_rate(robot, seconds: float, repeat: int, package_paths=()) -> float
 def pybullet_rate(seconds: float, repeat: int) -> float:
     import pybullet as p
 
-    from bras_kit.authoring import arm_urdf
+    from bras_kit.model.authoring import arm_urdf
 
     path = os.path.join(tempfile.mkdtemp(), "bras.urdf")
     Path(path).write_text(arm_urdf(inertials=True))
@@ -70,7 +70,7 @@ def pybullet_rate(seconds: float, repeat: int) -> float:
 
 
 def panda():  # type: ignore[no-untyped-def]
-    from bras_kit.authoring import load
+    from bras_kit.model.authoring import load
 
     robots = Path(sys.prefix) / "lib" / f"python{sys.version_info.major}.{sys.version_info.minor}" / "site-packages" \
         / "cmeel.prefix" / "share" / "example-robot-data" / "robots"
@@ -95,7 +95,7 @@ def main() -> None:
     parser.add_argument("--seconds", type=float, default=60.0, help="simulated seconds per run")
     parser.add_argument("--repeat", type=int, default=3)
     args = parser.parse_args()
-    from bras_kit.authoring import arm
+    from bras_kit.model.authoring import arm
 
     arm_rate = bras_kit_rate(arm(inertials=True), args.seconds, args.repeat)
     robot, paths = panda()

@@ -20,7 +20,7 @@ import time
 
 import numpy as np
 
-from bras_kit.authoring import arm, arm_urdf
+from bras_kit.model.authoring import arm, arm_urdf
 from bras_kit.motion import sample, tutorial_motion
 from bras_kit.render import Renderer, render_motion
 from bras_kit.render.sequence import GifWriter, palette_samples
@@ -106,7 +106,7 @@ if not hasattr(EGL, "EGLDeviceEXT"):  # PyOpenGL 3.1.0 (pyrender's pin) lacks th
     EGL.EGLDeviceEXT = ctypes.c_void_p
 import mujoco
 import numpy as np
-from bras_kit.authoring import arm
+from bras_kit.model.authoring import arm
 from bras_kit.physics.mjcf import build_mjcf
 
 job = json.loads(sys.argv[1])

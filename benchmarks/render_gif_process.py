@@ -101,7 +101,7 @@ def main() -> None:
     parser.add_argument("--mujoco-python", metavar="PATH",
                         help="a Python with mujoco, numpy and pillow: adds MuJoCo's renderer as a peer")
     args = parser.parse_args()
-    from bras_kit.authoring import arm_urdf
+    from bras_kit.model.authoring import arm_urdf
 
     with tempfile.TemporaryDirectory() as tmp:
         urdf = os.path.join(tmp, "bras.urdf")

@@ -25,8 +25,8 @@ def main() -> None:
     parser.add_argument("--frames", type=int, default=10_000)
     parser.add_argument("--size", default="160x120")
     args = parser.parse_args()
-    from bras_kit.authoring import load
-    from bras_kit.kinematics import tf_tree
+    from bras_kit.kinematics.frames import tf_tree
+    from bras_kit.model.authoring import load
     from bras_kit.render import render_motion
 
     share = next(os.path.join(base, "cmeel.prefix", "share") for base in site.getsitepackages()

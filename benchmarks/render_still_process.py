@@ -39,7 +39,7 @@ def main() -> None:
     parser = argparse.ArgumentParser(description=__doc__, formatter_class=argparse.RawDescriptionHelpFormatter)
     parser.add_argument("--repeat", type=int, default=15)
     args = parser.parse_args()
-    from bras_kit.authoring import arm_urdf
+    from bras_kit.model.authoring import arm_urdf
 
     ours = bras_kit_command()
     with tempfile.TemporaryDirectory() as tmp:

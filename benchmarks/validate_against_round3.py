@@ -26,7 +26,7 @@ printed, with what it makes of that range, and the target is judged on the range
 one core the two sides add up instead: ``taskset -c 0 python benchmarks/...`` gives that figure.
 
 The untimed first run of each tree leaves what a learner's first command leaves: this boot's
-record of the containment's trial (bras_kit.ros.contain), read by every later command instead of
+record of the containment's trial (bras_kit.trust.contain), read by every later command instead of
 forking a trial child; and each tree's bytecode.
 """
 
@@ -80,8 +80,8 @@ def phases(package: str) -> None:
 
     from bras_kit.ros import launched
     at = mark("both, before the fork: the evaluation (bras_kit.ros.launched) and PyYAML", at)
-    from bras_kit.ros.contain import available, begin_trial
-    if begin_trial():  # no trial where this boot's record says one passed (bras_kit.ros.contain)
+    from bras_kit.trust.contain import available, begin_trial
+    if begin_trial():  # no trial where this boot's record says one passed (bras_kit.trust.contain)
         from bras_kit.ros.launching import preload_planning
         preload_planning()
     available()
@@ -118,7 +118,7 @@ def main() -> int:
     if not os.path.isfile(os.path.join(args.baseline, "bras_kit", "__init__.py")):
         parser.error(f"{args.baseline} holds no bras_kit/ source tree")
 
-    from bras_kit.scaffold import scaffold_package
+    from bras_kit.scaffold.package import scaffold_package
 
     now_env = environment()
     now_env.pop("PYTHONPATH", None)

@@ -43,7 +43,7 @@ def main() -> int:
     parser.add_argument("--runs", type=int, default=7, help="runs per measurement (median)")
     args = parser.parse_args()
 
-    from bras_kit.scaffold import scaffold_package
+    from bras_kit.scaffold.package import scaffold_package
 
     bras_kit = [sys.executable, "-m", "bras_kit", "validate"]
     check_urdf = shutil.which("check_urdf")

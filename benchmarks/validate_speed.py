@@ -71,7 +71,7 @@ def findings_count(path: str | None) -> str:
     from bras_kit.validate import validate, validate_path
 
     if path is None:
-        from bras_kit.authoring import arm
+        from bras_kit.model.authoring import arm
 
         return str(len(validate(arm())))
     return str(len(validate_path(path)))
@@ -90,7 +90,7 @@ def main() -> int:
     check_urdf = shutil.which("check_urdf")
     rows = []
     with tempfile.TemporaryDirectory(prefix="bras-kit-bench-") as folder:
-        from bras_kit.authoring import arm_urdf
+        from bras_kit.model.authoring import arm_urdf
 
         tutorial = os.path.join(folder, "bras.urdf")
         with open(tutorial, "w", encoding="utf-8") as handle:

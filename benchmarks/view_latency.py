@@ -101,7 +101,7 @@ def talos_first_frame(path: Path, package_root: str, runs: int = 5) -> dict[str,
     from _process import bras_kit_command, environment
     from playwright.sync_api import sync_playwright
 
-    from bras_kit.authoring import load
+    from bras_kit.model.authoring import load
     from bras_kit.view import view_model
     from bras_kit.view.framing import place_camera
 
@@ -229,7 +229,7 @@ def slider_latency(path: Path | None, package_root: str | None, changes: int = 2
     import yourdfpy
     from viser.extras import ViserUrdf
 
-    from bras_kit.authoring import arm, load
+    from bras_kit.model.authoring import arm, load
     from bras_kit.view import Source, Viewer
     from bras_kit.view.session import Session
 
@@ -380,7 +380,7 @@ def main() -> None:
         arm_file = Path(folder) / "bras.urdf"
         arm_file.write_bytes(subprocess.run([sys.executable, "-m", "bras_kit", "urdf"], capture_output=True).stdout)
         print(f"  tutorial arm   {reload_time(arm_file, None):.3f} s")
-        from bras_kit._resources import robot_template
+        from bras_kit.core.resources import robot_template
 
         xacro_file = Path(folder) / "bras.urdf.xacro"
         shutil.copy(robot_template(), xacro_file)  # a copy: expanded in the sandboxed child, as a learner's
@@ -388,7 +388,7 @@ def main() -> None:
     print(f"  tutorial arm, until the new joint's slider shows in chromium {reload_in_browser():.3f} s")
     if talos:
         print(f"  talos_reduced  {reload_time(*talos):.3f} s")
-        from bras_kit.authoring import load
+        from bras_kit.model.authoring import load
         from bras_kit.view import view_model
 
         model = view_model(load(str(talos[0]), package_paths=(talos[1],)), (talos[1],))

@@ -56,8 +56,8 @@ def main() -> None:
 
     import xacro
 
-    from bras_kit._resources import robot_template
-    from bras_kit.xacrotools import expand_xacro
+    from bras_kit.core.resources import robot_template
+    from bras_kit.model.xacro import expand_xacro
 
     work = tempfile.mkdtemp()
     arm = os.path.join(work, "bras.urdf.xacro")

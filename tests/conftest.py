@@ -30,7 +30,7 @@ def pytest_sessionfinish(session, exitstatus):  # noqa: ARG001 - pytest's hook s
 @pytest.fixture(autouse=True)
 def _english_by_default():
     """A command run with --lang fr sets the process's language: each test starts from the default."""
-    from bras_kit import i18n
+    from bras_kit.core import i18n
 
     i18n._language.clear()
     yield
@@ -39,21 +39,21 @@ def _english_by_default():
 
 @pytest.fixture(scope="session")
 def tutorial_robot():
-    from bras_kit.authoring import arm
+    from bras_kit.model.authoring import arm
 
     return arm()
 
 
 @pytest.fixture(scope="session")
 def wrist_robot():
-    from bras_kit.authoring import arm
+    from bras_kit.model.authoring import arm
 
     return arm(wrist=True)
 
 
 @pytest.fixture(scope="session")
 def tutorial_tree(tutorial_robot):
-    from bras_kit.kinematics import tf_tree
+    from bras_kit.kinematics.frames import tf_tree
 
     return tf_tree(tutorial_robot)
 

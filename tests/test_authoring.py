@@ -9,9 +9,9 @@ from pathlib import Path
 import numpy as np
 import pytest
 
-from bras_kit.authoring import arm, arm_urdf, load, parse_assignments, template_parameters
-from bras_kit.errors import ParameterError
-from bras_kit.kinematics import fk, tf_tree
+from bras_kit.core.errors import ParameterError
+from bras_kit.kinematics.frames import fk, tf_tree
+from bras_kit.model.authoring import arm, arm_urdf, load, parse_assignments, template_parameters
 
 
 def visual(robot, link):
@@ -318,7 +318,7 @@ def _errors(robot):
 
 @pytest.mark.parametrize("name", [p.name for p in _number_parameters()])
 def test_each_parameter_at_its_bounds_gives_a_urdf_the_validator_accepts(name):
-    from bras_kit.authoring import parameter_range
+    from bras_kit.model.authoring import parameter_range
 
     allowed = parameter_range(name)
     assert allowed is not None, f"{name} has no range: a new kind of parameter needs one"
@@ -392,9 +392,9 @@ def test_every_comment_of_the_template_has_french_words():
     """A comment added to the template in English only would reach a French package's xacro."""
     from babel.messages.pofile import read_po
 
-    from bras_kit._resources import robot_template
-    from bras_kit.authoring import _COMMENT, comment_id, localise_comments
-    from bras_kit.i18n import LOCALE_DIR
+    from bras_kit.core.i18n import LOCALE_DIR
+    from bras_kit.core.resources import robot_template
+    from bras_kit.model.authoring import _COMMENT, comment_id, localise_comments
 
     with (LOCALE_DIR / "fr" / "LC_MESSAGES" / "package.po").open("rb") as handle:
         french = {m.id: m.string for m in read_po(handle) if m.id}
@@ -414,7 +414,7 @@ def expand_xacro_text(text):
     import re
     import tempfile
 
-    from bras_kit.xacrotools import expand_xacro
+    from bras_kit.model.xacro import expand_xacro
 
     with tempfile.TemporaryDirectory() as folder:
         path = Path(folder) / "bras.urdf.xacro"
@@ -425,7 +425,7 @@ def expand_xacro_text(text):
 def test_the_built_in_arm_is_cached_and_equals_xacros_expansion(tmp_path, monkeypatch):
     import xacro
 
-    from bras_kit._resources import robot_template
+    from bras_kit.core.resources import robot_template
 
     monkeypatch.setenv("XDG_CACHE_HOME", str(tmp_path))
     first = arm_urdf(wrist=True)

@@ -154,7 +154,7 @@ def test_tf_gives_the_hand_computed_pose_of_each_moving_link(recorded):
 
 
 def test_robot_description_is_the_urdf(recorded):
-    from bras_kit.authoring import arm_urdf
+    from bras_kit.model.authoring import arm_urdf
 
     (_, log_time, message), = _read_foxglove(str(recorded / "run.mcap"))["/robot_description"]
     assert message.data == arm_urdf()
@@ -457,7 +457,7 @@ def test_not_a_bag_and_not_sqlite_are_refused(tmp_path, run_cli):
 def test_rosbags_decompressor_table_is_still_what_bras_kit_patches():
     from rosbags.rosbag2 import storage_mcap
 
-    from bras_kit.bags._compat import PATCHED_KEYS
+    from bras_kit.motion.bags._compat import PATCHED_KEYS
 
     assert sorted(storage_mcap.DECOMPRESSORS) == sorted(PATCHED_KEYS)
 
@@ -468,7 +468,7 @@ def test_decompression_bomb_is_refused_without_filling_memory(tmp_path, run_cli)
 
     from backports import zstd
 
-    from bras_kit.authoring import arm
+    from bras_kit.model.authoring import arm
     from bras_kit.motion import motion_from_specs
 
     bag = _foxglove_bag(str(tmp_path / "bomb.mcap"), _tutorial_samples(20.0), chunk_size=64 << 20)

@@ -8,7 +8,7 @@ from pathlib import Path
 
 import pytest
 
-from bras_kit.authoring import arm_urdf
+from bras_kit.model.authoring import arm_urdf
 from bras_kit.validate import validate_path
 
 INSTALL_HINT = ("check_urdf (urdfdom) is missing: install it with "
@@ -74,7 +74,7 @@ def test_check_urdf_rejects_a_second_root(tmp_path):
 
 @pytest.mark.parametrize("wrist", [False, True], ids=["default", "wrist"])
 def test_scaffolded_package_urdf_passes_check_urdf(tmp_path, wrist):
-    from bras_kit.scaffold import render_package
+    from bras_kit.scaffold.package import render_package
 
     path = tmp_path / "bras.urdf"
     path.write_text(render_package(wrist=wrist, params={"bras_length": 0.7})["urdf/bras.urdf"])

@@ -72,7 +72,7 @@ def modules_after(code: str) -> set[str]:
     "from bras_kit.cli import build_parser\nbuild_parser(None)",
     *(f"from bras_kit.cli import main\ntry:\n    main(['{name}', '--help'])\nexcept SystemExit:\n    pass"
       for name in ("urdf", "xacro", "new")),
-    "import bras_kit, bras_kit.authoring, bras_kit.model, bras_kit.kinematics, bras_kit.xmlio",
+    "import bras_kit, bras_kit.model.authoring, bras_kit.model.robot, bras_kit.kinematics.frames, bras_kit.model.xmlio",
 ], ids=["help", "build-parser", "urdf-help", "xacro-help", "new-help", "library-core"])
 def test_start_up_loads_no_heavy_module(code):
     loaded = modules_after(code)

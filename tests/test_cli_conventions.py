@@ -11,7 +11,7 @@ import sys
 import numpy as np
 import pytest
 
-from bras_kit.expr import parse_joint_value
+from bras_kit.model.expr import parse_joint_value
 
 
 @pytest.mark.parametrize("text,radians", [
@@ -27,7 +27,7 @@ def test_joint_values_accept_what_learners_type(text, radians):
     ("__import__('os')", "not allowed"),
 ])
 def test_joint_values_refuse_what_is_not_one_number(text, words):
-    from bras_kit.errors import BrasKitError
+    from bras_kit.core.errors import BrasKitError
 
     with pytest.raises(BrasKitError, match=words):
         parse_joint_value(text)

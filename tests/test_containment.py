@@ -1,4 +1,4 @@
-"""bras_kit.ros.contain and run_limited(contain=...): what the contained child sees and may do.
+"""bras_kit.trust.contain and run_limited(contain=...): what the contained child sees and may do.
 
 Oracles: the kernel's answers inside the child (its pid in its namespace, the errno of a
 mount, of a write, of a connection; the network interfaces it has), files seen from outside
@@ -15,10 +15,10 @@ import sys
 
 import pytest
 
-from bras_kit.errors import BrasKitError
-from bras_kit.ros import contain as contain_module
-from bras_kit.ros.contain import Containment, ContainmentUnavailable, Status, available
-from bras_kit.sandbox import ForkServer, _rebuild_error, run_limited
+from bras_kit.core.errors import BrasKitError
+from bras_kit.trust import contain as contain_module
+from bras_kit.trust.contain import Containment, ContainmentUnavailable, Status, available
+from bras_kit.trust.sandbox import ForkServer, _rebuild_error, run_limited
 
 TUTORIAL = os.path.join(os.path.dirname(__file__), "data", "tutorial_package")
 

@@ -16,15 +16,15 @@ from pathlib import Path
 
 import pytest
 
-from bras_kit import doctor
-from bras_kit.ros import contain
+from bras_kit.doctor import install as doctor
+from bras_kit.trust import contain
 
 DATA = Path(__file__).parent / "data"
 TUTORIAL = DATA / "tutorial_package"
 HOSTILE_NODE = DATA / "hostile_code" / "nodes" / "write_home.py"
 WITHOUT = """
 import sys
-from bras_kit.message import M
+from bras_kit.core.message import M
 from bras_kit.ros import contain
 contain.available = lambda: contain.Status(False, M("the kernel refuses new namespaces to this user (test)"),
                                            M("unprivileged user namespaces"),

@@ -24,9 +24,9 @@ from pathlib import Path
 
 import pytest
 
-from bras_kit.ros.contain import available
 from bras_kit.ros.script import run_script
 from bras_kit.run import run_findings, run_node
+from bras_kit.trust.contain import available
 
 CORPUS = Path(__file__).parent / "data" / "hostile_code"
 SECRET = "-----BEGIN OPENSSH PRIVATE KEY----- bras-kit-test-secret"

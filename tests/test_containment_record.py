@@ -1,4 +1,4 @@
-"""This boot's record of a containment trial that passed (bras_kit.ros.contain): a command reads it
+"""This boot's record of a containment trial that passed (bras_kit.trust.contain): a command reads it
 instead of forking a throwaway trial child (issue 43: ``validate PKG_DIR`` waited for that child).
 
 Oracles: whether a trial child runs (the trial itself replaced by one that fails the test), the
@@ -12,9 +12,9 @@ import os
 
 import pytest
 
-from bras_kit.errors import BrasKitError
-from bras_kit.ros import contain
-from bras_kit.sandbox import run_limited
+from bras_kit.core.errors import BrasKitError
+from bras_kit.trust import contain
+from bras_kit.trust.sandbox import run_limited
 
 
 @pytest.fixture
@@ -125,7 +125,7 @@ def test_without_a_runtime_folder_of_its_own_the_record_goes_to_a_folder_of_its_
 
 
 def test_doctor_tries_the_walls_for_real(runtime, monkeypatch):
-    from bras_kit.doctor import check_containment
+    from bras_kit.doctor.install import check_containment
 
     assert contain.available().ok and _record(runtime) is not None
     tried = []

@@ -22,9 +22,9 @@ def private_tmp(tmp_path, monkeypatch):
 
 
 def _frame_tree_png(path) -> np.ndarray:
-    from bras_kit.authoring import arm
     from bras_kit.cli.demo import DEMO_POSE
     from bras_kit.diagrams import frame_diagram
+    from bras_kit.model.authoring import arm
 
     frame_diagram(arm(), DEMO_POSE, path=str(path))
     return np.asarray(Image.open(path))

@@ -12,7 +12,7 @@ from hypothesis import given, settings
 from hypothesis import strategies as st
 
 from bras_kit import diagrams
-from bras_kit.authoring import load
+from bras_kit.core.errors import ModelError, ParameterError
 from bras_kit.diagrams import (
     frame_diagram,
     frames_dot,
@@ -23,9 +23,9 @@ from bras_kit.diagrams import (
     tip_point,
     tree_text,
 )
-from bras_kit.errors import ModelError, ParameterError
-from bras_kit.kinematics import tf_tree
-from bras_kit.model import Joint, Limit, Link, Mimic, Origin, Robot
+from bras_kit.kinematics.frames import tf_tree
+from bras_kit.model.authoring import load
+from bras_kit.model.robot import Joint, Limit, Link, Mimic, Origin, Robot
 
 # ---------------------------------------------------------------- fixtures
 
@@ -461,7 +461,7 @@ def test_tip_of_a_tool_frame_without_visual_is_its_origin(branching_robot):
 
 
 def test_tip_follows_the_chain_direction_through_sphere_and_rotated_cylinder():
-    from bras_kit.model import Geometry, Visual
+    from bras_kit.model.robot import Geometry, Visual
 
     sphere = Visual(Origin((0.0, 0.0, 0.0)), Geometry("sphere", radius=0.1))
     cylinder = Visual(Origin((0.2, 0.0, 0.0), (0.0, math.pi / 2, 0.0)), Geometry("cylinder", radius=0.03, length=0.4))

@@ -9,8 +9,8 @@ import re
 import subprocess
 import sys
 
-from bras_kit.doctor import FAIL, OK, Check, healthy, run_checks
-from bras_kit.message import M
+from bras_kit.core.message import M
+from bras_kit.doctor.install import FAIL, OK, Check, healthy, run_checks
 
 HIDE = "import sys\nfor name in {names!r}: sys.modules[name] = None\n"
 MAIN = "from bras_kit.cli import main\nraise SystemExit(main({argv!r}))\n"

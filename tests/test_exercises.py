@@ -17,7 +17,7 @@ from pathlib import Path
 
 import pytest
 
-from bras_kit.errors import BrasKitError
+from bras_kit.core.errors import BrasKitError
 from bras_kit.exercises import (
     BROKEN,
     FAILED,

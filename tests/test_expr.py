@@ -8,8 +8,8 @@ import math
 import numpy as np
 import pytest
 
-from bras_kit.errors import BrasKitError, ParameterError, UnsafeExpressionError
-from bras_kit.expr import MAX_LENGTH, compile_expression
+from bras_kit.core.errors import BrasKitError, ParameterError, UnsafeExpressionError
+from bras_kit.model.expr import MAX_LENGTH, compile_expression
 
 GRID = np.arange(0, 201) * 0.05  # the tutorial's 20 Hz over 10 s
 

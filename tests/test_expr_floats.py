@@ -14,7 +14,7 @@ import pytest
 from hypothesis import given, settings
 from hypothesis import strategies as st
 
-from bras_kit.expr import _FLOATS, FUNCTIONS, compile_expression
+from bras_kit.model.expr import _FLOATS, FUNCTIONS, compile_expression
 
 SPECIAL = [0.0, -0.0, 0.5, -0.5, 1.0, -1.0, 2.0, -2.0, 3.0, -3.0, 1 / 3, 0.3, -8.0, 100.0, -100.5, 710.0,
            1000.0, 1e308, -1e308, 1e-320, -1e-320, math.inf, -math.inf, math.nan]

@@ -15,10 +15,10 @@ from pathlib import Path
 
 import pytest
 
-from bras_kit.errors import ParameterError, XMLSyntaxError
-from bras_kit.i18n import say, say_error
-from bras_kit.xacrotools import expand_xacro
-from bras_kit.xmlio import read_xml
+from bras_kit.core.errors import ParameterError, XMLSyntaxError
+from bras_kit.core.i18n import say, say_error
+from bras_kit.model.xacro import expand_xacro
+from bras_kit.model.xmlio import read_xml
 
 PASTE = Path(__file__).parent / "data" / "paste"
 

@@ -7,7 +7,7 @@ from pathlib import Path
 
 import pytest
 
-from bras_kit.authoring import load
+from bras_kit.model.authoring import load
 
 DATA = Path(__file__).parent / "data"
 TUTORIAL = DATA / "tutorial_package"
@@ -39,8 +39,8 @@ def _first_problem_cell(page: str) -> str:
 @pytest.mark.parametrize(("lang", "header"), [("en", "first problem"), ("fr", "premier problème")])
 def test_a_learner_with_only_warnings_sees_the_first_one_in_the_class_table(tmp_path: Path, lang: str,
                                                                            header: str) -> None:
+    from bras_kit.core.i18n import say
     from bras_kit.grade.report import index_page
-    from bras_kit.i18n import say
 
     results, rubric = _grade(tmp_path, lang)
     (lea,) = results
@@ -106,9 +106,9 @@ def test_one_misnamed_joint_is_spoken_of_in_the_singular() -> None:
 
 
 def test_two_misnamed_joints_keep_the_plural() -> None:
-    from bras_kit.validate.findings import finding
+    from bras_kit.findings.data import finding
+    from bras_kit.findings.registry import RULES, Hit
     from bras_kit.validate.package.run_rules import joint_state_unknown_names  # noqa: F401  (registers BK646)
-    from bras_kit.validate.registry import RULES, Hit
 
     many = finding(RULES["BK646"], Hit("file", None, 3, {"file": "a.py", "names": ["a", "b"], "joints": ["c"]}, ""))
     assert "qui ne sont pas des articulations mobiles" in many.text("fr")

@@ -120,7 +120,7 @@ def test_the_arm_stays_in_view_and_clear_of_the_panel_at_an_extreme_pose(browser
 def test_the_framed_box_holds_every_pose_within_the_limits() -> None:
     """The camera fits the arm's swept box (sampled poses) grown by SWEPT_MARGIN about its centre:
     every pose within the limits lies inside, the worst ones worked out by hand included."""
-    from bras_kit.authoring import arm
+    from bras_kit.model.authoring import arm
     from bras_kit.view.framing import SWEPT_MARGIN, reach_points
     from bras_kit.view.model import view_model
 

@@ -14,12 +14,12 @@ from pathlib import Path
 
 import pytest
 
-from bras_kit.authoring import arm, arm_urdf
-from bras_kit.errors import BrasKitError
-from bras_kit.model import robot_from_xml
+from bras_kit.core.errors import BrasKitError
+from bras_kit.model.authoring import arm, arm_urdf
+from bras_kit.model.robot import robot_from_xml
+from bras_kit.model.xmlio import parse_xml
 from bras_kit.motion import check_limits, motion_from_specs, sample
 from bras_kit.motion.formula_limits import formula_position_violations
-from bras_kit.xmlio import parse_xml
 
 TUTORIAL = Path(__file__).parent / "data" / "package_tutorial"
 SECONDS = 60.0  # BK623's span (validate/package/rules.py MOTION_SECONDS)

@@ -1,4 +1,4 @@
-"""The spreadsheet's gate (bras_kit.inert.csv_text, docs/security.md "Cells for a spreadsheet"):
+"""The spreadsheet's gate (bras_kit.trust.inert.csv_text, docs/security.md "Cells for a spreadsheet"):
 every CSV bras-kit writes (js.csv from ``run -o``, states.csv from ``motion -o``, grades.csv)
 holds no cell a spreadsheet would evaluate, however the spreadsheet splits it, and its numbers
 stay numbers.
@@ -21,7 +21,7 @@ import pytest
 from hypothesis import given, settings
 from hypothesis import strategies as st
 
-from bras_kit.inert import csv_text, for_spreadsheet, from_spreadsheet
+from bras_kit.trust.inert import csv_text, for_spreadsheet, from_spreadsheet
 
 ROOT = Path(__file__).parent.parent
 # OWASP: = + - @ tab carriage return; ASVS: NUL; the line feed; and the full-width and small forms
@@ -131,7 +131,7 @@ def test_grades_csv_of_strangers_learner_names_and_errors(learners):
 
 def test_motion_writes_states_csv_whose_joint_names_are_text(tmp_path, run_cli):
     """motion -o on a URDF whose joint is named like a formula (the issue's case)."""
-    from bras_kit.authoring import arm_urdf
+    from bras_kit.model.authoring import arm_urdf
 
     urdf = tmp_path / "arm.urdf"
     urdf.write_text(arm_urdf().replace('"epaule"', '"=HYPERLINK(1)"'))
@@ -203,12 +203,12 @@ def test_every_csv_bras_kit_writes_goes_through_the_gate():
     offenders = {}
     for path in sorted((ROOT / "bras_kit").rglob("*.py")):
         rel = path.relative_to(ROOT).as_posix()
-        if rel == "bras_kit/inert.py":
+        if rel == "bras_kit/trust/inert.py":
             continue
         found = _csv_writers(ast.parse(path.read_text(encoding="utf-8")))
         if found:
             offenders[rel] = found
-    assert offenders == {}, "write CSV with bras_kit.inert.csv_text"
+    assert offenders == {}, "write CSV with bras_kit.trust.inert.csv_text"
 
 
 def test_the_check_finds_a_csv_writer():
@@ -222,5 +222,5 @@ def test_the_csv_writers_are_known():
     write CSV are named here, so that a new one is looked at."""
     writers = sorted(rel for path in (ROOT / "bras_kit").rglob("*.py")
                      if "csv_text(" in path.read_text(encoding="utf-8")
-                     and (rel := path.relative_to(ROOT).as_posix()) != "bras_kit/inert.py")
+                     and (rel := path.relative_to(ROOT).as_posix()) != "bras_kit/trust/inert.py")
     assert writers == ["bras_kit/grade/report.py", "bras_kit/motion/states_io.py"]

@@ -1,4 +1,4 @@
-"""Names that become files (bras_kit.inert.file_stem, docs/security.md "Names that become
+"""Names that become files (bras_kit.trust.inert.file_stem, docs/security.md "Names that become
 files"): two learners never share a report page, a picture or a results file, on any file
 system; the same learner always gets the same one.
 
@@ -19,8 +19,8 @@ import pytest
 from hypothesis import example, given, settings
 from hypothesis import strategies as st
 
-from bras_kit.errors import BrasKitError
-from bras_kit.inert import file_stem
+from bras_kit.core.errors import BrasKitError
+from bras_kit.trust.inert import file_stem
 
 # names a class hands in: ASCII and not, spaces, dots, slashes, case twins, digest look-alikes
 pieces = st.one_of(st.sampled_from(["bob", "Bob", "BOB", "smith", " ", "_", "-", ".", "/", "..", "é", "e\u0301",
@@ -108,7 +108,7 @@ def test_entries_of_one_class_never_share_a_learner_name(tmp_path):
 def test_two_learners_named_alike_each_see_their_own_page_and_results(tmp_path):
     """The issue's class: 'bob smith' hands in the tutorial arm, 'bob_smith-7e50351d' a broken
     file. Each link of the index opens that learner's own page; Gradescope gets two files."""
-    from bras_kit.authoring import arm_urdf
+    from bras_kit.model.authoring import arm_urdf
 
     klass = tmp_path / "class"
     klass.mkdir()

@@ -1,4 +1,4 @@
-"""The terminal's gate (bras_kit.inert, docs/security.md "Text for a terminal"): every byte bras-kit
+"""The terminal's gate (bras_kit.trust.inert, docs/security.md "Text for a terminal"): every byte bras-kit
 writes to stdout and stderr, by whatever path, shows a control character instead of obeying it;
 bras-kit's own colours pass only as Styled.
 
@@ -24,7 +24,7 @@ import pytest
 from hypothesis import HealthCheck, given, settings
 from hypothesis import strategies as st
 
-from bras_kit.inert import (
+from bras_kit.trust.inert import (
     CLEAR_SCREEN,
     Styled,
     TerminalWriter,
@@ -291,11 +291,11 @@ def test_a_node_writing_to_its_descriptors_reaches_the_terminal_inert(tmp_path, 
 # the raw streams, a descriptor written directly, escape sequences spelled in the source: each
 # allowed only where the gate itself or a binary output lives
 ALLOWED = {
-    "bras_kit/inert.py": {"escape"},
-    "bras_kit/outputs.py": {"buffer"},  # write_bytes: a binary document to stdout (PNG, GIF)
+    "bras_kit/trust/inert.py": {"escape"},
+    "bras_kit/trust/outputs.py": {"buffer"},  # write_bytes: a binary document to stdout (PNG, GIF)
     "bras_kit/cli/render.py": {"buffer"},  # a PNG to stdout
-    "bras_kit/sandbox.py": {"os.write"},  # the child's answer to its own pipe
-    "bras_kit/ros/contain.py": {"os.write"},  # pipes between the contained processes
+    "bras_kit/trust/sandbox.py": {"os.write"},  # the child's answer to its own pipe
+    "bras_kit/trust/contain.py": {"os.write"},  # pipes between the contained processes
     "bras_kit/run/__init__.py": {"os.write"},  # the child's joint states to their pipe
 }
 
@@ -326,7 +326,7 @@ def test_no_module_writes_to_the_terminal_around_the_gate():
         ways = _ways_around(ast.parse(path.read_text(encoding="utf-8"))) - ALLOWED.get(rel, set())
         if ways:
             offenders[rel] = sorted(ways)
-    assert offenders == {}, "write through bras_kit.inert (emit, Styled, the gated streams) instead"
+    assert offenders == {}, "write through bras_kit.trust.inert (emit, Styled, the gated streams) instead"
 
 
 def test_the_check_finds_each_way_around():

@@ -16,8 +16,8 @@ import numpy as np
 import pytest
 import sdformat_oracle as oracle
 
-from bras_kit.authoring import arm, arm_urdf, load
-from bras_kit.errors import BrasKitError
+from bras_kit.core.errors import BrasKitError
+from bras_kit.model.authoring import arm, arm_urdf, load
 from bras_kit.validate import validate, validate_path
 from bras_kit.validate.gazebo import TARGET_SEVERITY, gazebo_colour
 from bras_kit.validate.urdf2sdf import gazebo_model
@@ -108,8 +108,8 @@ def test_tutorial_arm_done_right_passes_gazebos_reader(tmp_path_factory):
 def test_the_scaffolds_physics_package_passes_gazebos_reader_anchored(tmp_path, xacro):
     """bras-kit new --inertials --wrist: Gazebo keeps every link, holds the arm in place (the world
     joint is there in libsdformat's SDF), and bras-kit says so with nothing above info."""
-    from bras_kit.scaffold import scaffold_package
-    from bras_kit.xacrotools import expand_xacro
+    from bras_kit.model.xacro import expand_xacro
+    from bras_kit.scaffold.package import scaffold_package
 
     scaffold_package(tmp_path / "bras_description", wrist=True, inertials=True, xacro=xacro)
     path = tmp_path / "bras_description" / "urdf" / "bras.urdf"

@@ -14,8 +14,8 @@ import sdformat_oracle as oracle
 from test_gazebo import REFUSAL_RULES
 from test_real_robots import ROOTS, TREES
 
-from bras_kit.authoring import load
-from bras_kit.errors import BrasKitError
+from bras_kit.core.errors import BrasKitError
+from bras_kit.model.authoring import load
 from bras_kit.validate import validate
 from bras_kit.validate.urdf2sdf import gazebo_model, refusals
 

@@ -17,8 +17,8 @@ from pathlib import Path
 
 import pytest
 
-from bras_kit.authoring import arm_urdf
-from bras_kit.scaffold import scaffold_package
+from bras_kit.model.authoring import arm_urdf
+from bras_kit.scaffold.package import scaffold_package
 
 HOSTILE = Path(__file__).parent / "data" / "hostile"
 

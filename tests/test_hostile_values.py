@@ -33,9 +33,9 @@ from hypothesis import HealthCheck, Phase, given, settings
 from hypothesis import strategies as st
 
 from bras_kit.cli import main
-from bras_kit.model import robot_from_xml
+from bras_kit.model.robot import robot_from_xml
+from bras_kit.model.xmlio import parse_xml
 from bras_kit.validate import validate_path
-from bras_kit.xmlio import parse_xml
 
 DATA = Path(__file__).parent / "data" / "hostile"
 BASE = (DATA / "arm_values.urdf").read_text(encoding="utf-8")
@@ -232,7 +232,7 @@ def test_nan_axis_is_refused_by_fk(tmp_path):
 
 def test_unreadable_axis_is_nan_in_the_tree_not_x(tmp_path):
     """Model.axis_or_default used to give 1 0 0 for an <axis> written but unreadable."""
-    from bras_kit.kinematics import fk, tf_tree
+    from bras_kit.kinematics.frames import fk, tf_tree
 
     robot = robot_from_xml(parse_xml(_mutate(BASE, COUDE_AXIS, "xyz", "0 1")))
     assert all(math.isnan(v) for v in robot.joint("coude").axis_or_default)
@@ -453,7 +453,7 @@ def test_simulate_table_never_says_ok_beside_nan_nor_before_a_divergence(diverge
 
 def test_the_physics_library_refuses_a_nan_damping_itself():
     """bras_kit.physics.build_mjcf, called without the command line, used to read NaN as no damping."""
-    from bras_kit.errors import ModelError
+    from bras_kit.core.errors import ModelError
     from bras_kit.physics.mjcf import build_mjcf
 
     robot = robot_from_xml(parse_xml(_mutate(BASE, COUDE_DYNAMICS, "damping", "nan")), path="arm.urdf")

@@ -2,7 +2,7 @@
 
 The ids are collected from the code's syntax tree (``M``, ``Mn``, ``Mc`` calls and the texts
 given to registration calls), not from a list kept by hand, so a new message cannot be
-forgotten: it fails here until ``python -m bras_kit.i18n_tools update`` has added it and a French
+forgotten: it fails here until ``python -m bras_kit.cli.catalogs update`` has added it and a French
 translation is written.
 """
 
@@ -15,9 +15,9 @@ from pathlib import Path
 
 import pytest
 
-from bras_kit import i18n_tools
-from bras_kit.i18n import LOCALE_DIR, say
-from bras_kit.message import M, Message, Mn, domain_of, number
+from bras_kit.cli import catalogs as i18n_tools
+from bras_kit.core.i18n import LOCALE_DIR, say
+from bras_kit.core.message import M, Message, Mn, domain_of, number
 
 babel_pofile = pytest.importorskip("babel.messages.pofile")
 
@@ -116,7 +116,7 @@ def test_a_missing_field_never_raises():
 
 
 def test_an_error_holds_data_and_is_worded_where_shown():
-    from bras_kit.errors import ParameterError
+    from bras_kit.core.errors import ParameterError
 
     error = ParameterError(M("unknown joint '{name}'", name="Coude"), path="bras.urdf", line=3, element="joint",
                            hint=M("hint"))
@@ -134,7 +134,7 @@ def test_errors_do_not_import_the_catalogs():
 
 def _error_classes() -> set[str]:
     """The names of every BrasKitError subclass defined in bras_kit (read from the code)."""
-    import bras_kit.errors as errors
+    import bras_kit.core.errors as errors
 
     names = {n for n, v in vars(errors).items() if isinstance(v, type) and issubclass(v, errors.BrasKitError)}
     for path in sorted(i18n_tools.PACKAGE_ROOT.rglob("*.py")):

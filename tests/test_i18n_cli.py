@@ -18,7 +18,7 @@ from pathlib import Path
 
 import pytest
 
-from bras_kit.i18n import LOCALE_DIR
+from bras_kit.core.i18n import LOCALE_DIR
 
 babel_pofile = pytest.importorskip("babel.messages.pofile")
 babel_mofile = pytest.importorskip("babel.messages.mofile")
@@ -55,7 +55,7 @@ def test_there_is_a_french_cli_catalog():
 @functools.cache
 def _template_prose() -> frozenset[str]:
     """The ids of the package templates' {% trans %} blocks (paragraphs of generated files)."""
-    from bras_kit.i18n_tools import extract_templates
+    from bras_kit.cli.catalogs import extract_templates
 
     return frozenset(item.id for item in extract_templates())
 
@@ -118,7 +118,7 @@ def test_every_mo_file_is_compiled_from_its_po(po):
     import gettext
 
     mo = po.with_suffix(".mo")
-    assert mo.exists(), f"{mo} is missing: run python -m bras_kit.i18n_tools compile"
+    assert mo.exists(), f"{mo} is missing: run python -m bras_kit.cli.catalogs compile"
     with mo.open("rb") as handle:
         compiled = dict(gettext.GNUTranslations(handle)._catalog)  # type: ignore[attr-defined]
     compiled.pop("", None)  # the header
@@ -127,7 +127,7 @@ def test_every_mo_file_is_compiled_from_its_po(po):
     stale = sorted(str(k) for k in compiled.keys() - expected.keys())
     changed = sorted(str(k) for k in expected.keys() & compiled.keys() if expected[k] != compiled[k])
     assert not (missing or stale or changed), (
-        f"{mo} is older than {po.name}: run python -m bras_kit.i18n_tools compile\n"
+        f"{mo} is older than {po.name}: run python -m bras_kit.cli.catalogs compile\n"
         f"missing: {missing[:5]}\nno longer in the .po: {stale[:5]}\ntranslated otherwise: {changed[:5]}")
 
 
@@ -196,7 +196,7 @@ def _typed_names() -> tuple[str, ...]:
     """Option metavars (JOINT=VALUE, FILE), command names and the validator's rule names: words a
     user types, the same in every language."""
     from bras_kit import cli
-    from bras_kit.validate.registry import RULES
+    from bras_kit.findings.registry import RULES
 
     names: set[str] = set(cli.COMMANDS)
     for command in cli.COMMANDS:

@@ -25,7 +25,7 @@ from pathlib import Path
 
 import pytest
 
-from bras_kit.authoring import arm_urdf
+from bras_kit.model.authoring import arm_urdf
 
 DATA = Path(__file__).parent / "data"
 REPO = Path(__file__).resolve().parent.parent
@@ -188,8 +188,8 @@ def _normalise(text: str, tmp: Path) -> str:
 
 
 def _run(name: str, lang: str, tmp: Path) -> str:
-    from bras_kit import i18n
     from bras_kit.cli import main
+    from bras_kit.core import i18n
 
     argv = ["--lang", lang] + [a.replace(T, str(tmp)) for a in CASES[name]]
     out, err = io.StringIO(), io.StringIO()
@@ -273,7 +273,7 @@ def _last_digits_dropped(text: str) -> str:
 def _typed_names() -> tuple[str, ...]:
     """Names a user types, the same in every language: option metavars, rule names, ROS names."""
     from bras_kit import cli
-    from bras_kit.validate.registry import RULES
+    from bras_kit.findings.registry import RULES
 
     names: set[str] = set(ROS_NAMES)
     for command in cli.COMMANDS:

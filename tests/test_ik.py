@@ -7,8 +7,7 @@ import math
 import numpy as np
 import pytest
 
-from bras_kit.authoring import arm
-from bras_kit.errors import ParameterError
+from bras_kit.core.errors import ParameterError
 from bras_kit.ik import (
     ik_2r,
     ik_2r_batch,
@@ -24,9 +23,10 @@ from bras_kit.ik import (
     workspace_figure,
     workspace_points,
 )
-from bras_kit.kinematics import fk_batch, rpy_to_matrix, tf_tree
-from bras_kit.model import robot_from_xml
-from bras_kit.xmlio import parse_xml
+from bras_kit.kinematics.frames import fk_batch, rpy_to_matrix, tf_tree
+from bras_kit.model.authoring import arm
+from bras_kit.model.robot import robot_from_xml
+from bras_kit.model.xmlio import parse_xml
 
 SHOULDER = np.array([0.0, 0.0, 0.05])  # epaule origin
 UPPER, FOREARM = 0.6, 0.5  # coude origin z, forearm tip along avant_bras z

@@ -102,17 +102,17 @@ def test_the_detector_finds_a_circle():
 
 def test_errors_and_message_import_nothing_above_them():
     graph = module_graph()
-    assert graph["bras_kit.message"] == set()
-    assert graph["bras_kit.errors"] <= {"bras_kit.message"}
+    assert graph["bras_kit.core.message"] == set()
+    assert graph["bras_kit.core.errors"] <= {"bras_kit.core.message"}
 
 
 def test_contributor_tools_sit_above_the_runtime():
-    """No module imports bras_kit.i18n_tools (the catalogs' extraction and compilation), not even
+    """No module imports bras_kit.cli.catalogs (the catalogs' extraction and compilation), not even
     inside a function: it imports the runtime's i18n, never the other way round."""
     importers = []
     for path in ROOT.rglob("*.py"):
         module = _module_name(path)
-        if module == "bras_kit.i18n_tools":
+        if module == "bras_kit.cli.catalogs":
             continue
         for node in ast.walk(ast.parse(path.read_text(encoding="utf-8"))):
             if isinstance(node, ast.ImportFrom):
@@ -121,6 +121,6 @@ def test_contributor_tools_sit_above_the_runtime():
                 targets = [alias.name for alias in node.names]
             else:
                 continue
-            if "bras_kit.i18n_tools" in targets:
+            if "bras_kit.cli.catalogs" in targets:
                 importers.append(f"{module}:{node.lineno}")
     assert importers == []

@@ -8,8 +8,8 @@ import math
 import numpy as np
 import pytest
 
-from bras_kit.errors import ModelError, ParameterError
-from bras_kit.kinematics import (
+from bras_kit.core.errors import ModelError, ParameterError
+from bras_kit.kinematics.frames import (
     fk,
     fk_batch,
     matrix_to_quat_xyzw,
@@ -18,8 +18,8 @@ from bras_kit.kinematics import (
     rpy_to_matrix,
     tf_tree,
 )
-from bras_kit.model import robot_from_xml
-from bras_kit.xmlio import parse_xml
+from bras_kit.model.robot import robot_from_xml
+from bras_kit.model.xmlio import parse_xml
 
 
 def robot_from(text: str):

@@ -14,10 +14,10 @@ from pathlib import Path
 
 import pytest
 
-from bras_kit import scratch
-from bras_kit.ros.contain import available
 from bras_kit.ros.launched import launch_package
-from bras_kit.scaffold import scaffold_package
+from bras_kit.scaffold.package import scaffold_package
+from bras_kit.trust import scratch
+from bras_kit.trust.contain import available
 
 DATA = Path(__file__).parent / "data"
 TUTORIAL = DATA / "launch" / "tutorial" / "bras_description"

@@ -68,7 +68,7 @@ def test_the_issues_launch_file_passes_the_command_line(tmp_path):
     """xacro.process_file(os.path.join(get_package_share_directory(...), 'urdf', 'bras.urdf')) and a -d
     to a configuration the package does not have: exit 0, RViz's defaults said as advice. Run as on a
     machine with no $XDG_RUNTIME_DIR nor $TMPDIR (a container, a CI runner): the package is then built
-    in /dev/shm where it has room (bras_kit.scratch), whose installed URDF xacro refused to read."""
+    in /dev/shm where it has room (bras_kit.trust.scratch), whose installed URDF xacro refused to read."""
     root = package_with(tmp_path, "xacro_process_file.launch.py")
     env = {k: v for k, v in os.environ.items() if k not in ("XDG_RUNTIME_DIR", "TMPDIR", "TEMP", "TMP")}
     done = subprocess.run([sys.executable, "-m", "bras_kit", "validate", str(root), "--format", "json"],
@@ -82,8 +82,8 @@ def test_the_issues_launch_file_passes_the_command_line(tmp_path):
 def test_a_share_folder_joined_alone_then_joined_again_is_the_same_folder(tmp_path):
     """os.path.join(get_package_share_directory(PKG)) then os.path.join(that, 'urdf', ...): the issue's
     'share/bras_description//urdf/bras.urdf' was this path read as text."""
+    from bras_kit.ros.package import share_targets
     from bras_kit.validate.package import Package
-    from bras_kit.validate.package.sources import share_targets
 
     root = package_with(tmp_path, "xacro_pretty.launch.py")
     opened = [share.relative for _, share, _ in share_targets(Package(str(root)))]
@@ -101,7 +101,7 @@ def test_a_share_folder_joined_alone_then_joined_again_is_the_same_folder(tmp_pa
 ])
 def test_share_paths_are_normalised_as_the_system_resolves_them(tmp_path, parts, expected):
     """Oracle: os.path.join over a real share folder, resolved by the file system (os.path.realpath)."""
-    from bras_kit.validate.package.staticpy import Share, ShareFile, join_paths
+    from bras_kit.ros.staticpy import Share, ShareFile, join_paths
 
     share = tmp_path / "share" / "bras_description"
     (share / "urdf").mkdir(parents=True)
@@ -115,13 +115,13 @@ def test_share_paths_are_normalised_as_the_system_resolves_them(tmp_path, parts,
 @pytest.mark.parametrize("parts", [["..", "autre", "urdf", "x.urdf"], ["urdf", "..", "..", "x.urdf"]])
 def test_a_path_that_leaves_the_share_folder_is_not_judged(parts):
     """Where '..' out of share/PKG lands depends on how the workspace was installed (merged or not)."""
-    from bras_kit.validate.package.staticpy import UNKNOWN, Share, join_paths
+    from bras_kit.ros.staticpy import UNKNOWN, Share, join_paths
 
     assert join_paths([Share("bras_description"), *parts]) is UNKNOWN
 
 
 def test_an_absolute_part_drops_the_share_folder_as_os_path_join_does():
-    from bras_kit.validate.package.staticpy import Share, join_paths
+    from bras_kit.ros.staticpy import Share, join_paths
 
     assert join_paths([Share("bras_description"), "/urdf/bras.urdf"]) == os.path.join("/x", "/urdf/bras.urdf")
 
@@ -146,7 +146,7 @@ def test_an_rviz_configuration_the_package_holds_but_does_not_install_is_advice(
 def test_a_file_in_the_in_memory_scratch_folder_is_readable_by_xacro(tmp_path):
     """bras-kit builds a package to evaluate it in /dev/shm where it can: the installed URDF there is a
     regular file, which xacro.process_file in the launch file must read (it was refused as a system file)."""
-    from bras_kit.xacrotools import check_readable_file
+    from bras_kit.model.xacro import check_readable_file
 
     shm = Path("/dev/shm")
     assert shm.is_dir()
@@ -160,8 +160,8 @@ def test_a_file_in_the_in_memory_scratch_folder_is_readable_by_xacro(tmp_path):
 
 
 def test_a_device_is_still_refused(tmp_path):
-    from bras_kit.errors import BrasKitError
-    from bras_kit.xacrotools import check_readable_file
+    from bras_kit.core.errors import BrasKitError
+    from bras_kit.model.xacro import check_readable_file
 
     for path in ("/dev/null", "/proc/self/status"):
         with pytest.raises(BrasKitError):

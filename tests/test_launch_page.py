@@ -115,7 +115,7 @@ def test_a_fixed_frame_that_is_no_frame_draws_no_arm_and_the_page_says_why(brows
     """RViz started with a configuration whose Fixed Frame is no frame of the robot draws nothing
     ("Frame [monde] does not exist"): the terminal says BK610, and the page draws no arm, says why,
     and lists the same findings; choosing a frame of the robot draws it, as in RViz."""
-    from bras_kit.scaffold import scaffold_package
+    from bras_kit.scaffold.package import scaffold_package
 
     package = tmp_path / "bras_description"
     scaffold_package(package)

@@ -64,7 +64,7 @@ def _page_where_the_arm_moves_by_itself(browser, process: subprocess.Popen, erro
 
 
 def test_launch_file_starting_the_node_moves_the_arm_by_itself(browser, tmp_path):
-    from bras_kit.scaffold import scaffold_package
+    from bras_kit.scaffold.package import scaffold_package
 
     scaffold_package(tmp_path / "bras_description")
     env = {k: v for k, v in os.environ.items() if k not in ("DISPLAY", "WAYLAND_DISPLAY")}
@@ -117,7 +117,7 @@ def test_run_in_a_second_terminal_moves_the_launched_arm(browser, tmp_path):
 def test_saving_a_file_of_the_package_builds_and_launches_it_again(browser, tmp_path):
     """The node moves the arm live; the learner saves motion.py with a still pose: the package is
     built and launched again, the new node runs, and the forearm stops where the new code holds it."""
-    from bras_kit.scaffold import scaffold_package
+    from bras_kit.scaffold.package import scaffold_package
 
     package = tmp_path / "bras_description"
     scaffold_package(package)

@@ -9,7 +9,7 @@ import os
 import numpy as np
 import pytest
 
-from bras_kit.errors import ParameterError, UnsafeExpressionError
+from bras_kit.core.errors import ParameterError, UnsafeExpressionError
 from bras_kit.motion import (
     DEFAULT_DURATION,
     DEFAULT_RATE,
@@ -67,7 +67,7 @@ EXTRA_URDF = """<?xml version="1.0"?>
 
 @pytest.fixture(scope="module")
 def extra_robot(tmp_path_factory):
-    from bras_kit.authoring import load
+    from bras_kit.model.authoring import load
 
     path = tmp_path_factory.mktemp("robots") / "extra.urdf"
     path.write_text(EXTRA_URDF, encoding="utf-8")
@@ -120,7 +120,7 @@ def test_wrist_follows_its_own_pace(wrist_robot):
 
 
 def test_wrist_amplitude_shrinks_to_fit_narrow_limits():
-    from bras_kit.authoring import arm
+    from bras_kit.model.authoring import arm
 
     robot = arm(wrist=True, params={"poignet_lower": -0.5, "poignet_upper": 0.5})
     states = sample(tutorial_motion(robot), duration=20)

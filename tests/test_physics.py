@@ -13,12 +13,12 @@ from pathlib import Path
 import numpy as np
 import pytest
 
-from bras_kit.authoring import arm
-from bras_kit.errors import ModelError
-from bras_kit.model import robot_from_xml
+from bras_kit.core.errors import ModelError
+from bras_kit.model.authoring import arm
+from bras_kit.model.robot import robot_from_xml
+from bras_kit.model.xmlio import parse_xml
 from bras_kit.motion import pose_motion
 from bras_kit.physics import build_mjcf, simulate
-from bras_kit.xmlio import parse_xml
 
 G = 9.81  # MuJoCo's default gravity, m/s^2
 # the tutorial arm's defaults (bras_kit/templates/robot/bras.urdf.xacro): masses, lengths, efforts
@@ -117,7 +117,7 @@ TINY = (Path(__file__).parent / "data" / "urdf" / "physics" / "tiny_inertia.urdf
 
 
 def test_a_diverging_run_stops_where_it_went_nan_and_names_the_joint(tmp_path, monkeypatch):
-    from bras_kit.authoring import load
+    from bras_kit.model.authoring import load
 
     monkeypatch.chdir(tmp_path)  # MuJoCo would write MUJOCO_LOG.TXT here
     robot = load(str(TINY))
@@ -281,7 +281,7 @@ def test_urdf_with_collisions_passes_check_urdf(tmp_path, options):
     import shutil
     import subprocess
 
-    from bras_kit.authoring import arm_urdf
+    from bras_kit.model.authoring import arm_urdf
 
     program = shutil.which("check_urdf")
     assert program, "check_urdf (liburdfdom-tools) is missing"
@@ -293,7 +293,7 @@ def test_urdf_with_collisions_passes_check_urdf(tmp_path, options):
 
 
 def test_missing_inertials_are_explained_in_french():
-    from bras_kit.i18n import say_error
+    from bras_kit.core.i18n import say_error
     from bras_kit.physics.diagnostics import check_physics_ready
 
     with pytest.raises(ModelError) as info:
@@ -306,7 +306,7 @@ def test_missing_inertials_are_explained_in_french():
 def test_an_inertia_given_in_a_turned_frame_reaches_mujoco_turned_into_the_link_frame():
     import mujoco
 
-    from bras_kit.authoring import load
+    from bras_kit.model.authoring import load
 
     robot = load(str(Path(__file__).parent / "data" / "urdf" / "physics" / "rotated_inertia.urdf"))
     model = build_mjcf(robot).compile()  # MuJoCo refused fullinertia beside an orientation
@@ -324,7 +324,7 @@ def test_an_inertia_given_in_a_turned_frame_reaches_mujoco_turned_into_the_link_
 def test_a_point_mass_without_inertia_on_a_fixed_frame_is_accepted_with_its_mass():
     import mujoco
 
-    from bras_kit.authoring import load
+    from bras_kit.model.authoring import load
 
     robot = load(str(Path(__file__).parent / "data" / "urdf" / "physics" / "rotated_inertia.urdf"))
     model = build_mjcf(robot).compile()  # MuJoCo refused a zero fullinertia (eigenvalues must be > 0)
@@ -336,7 +336,7 @@ def test_a_point_mass_without_inertia_on_a_fixed_frame_is_accepted_with_its_mass
 def test_a_scaled_mesh_is_scaled_by_its_mujoco_asset():
     import mujoco
 
-    from bras_kit.authoring import load
+    from bras_kit.model.authoring import load
 
     robot = load(str(Path(__file__).parent / "data" / "urdf" / "physics" / "scaled_mesh.urdf"))
     model = build_mjcf(robot).compile()  # MuJoCo refused scale= on a <geom>

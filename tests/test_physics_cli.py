@@ -11,7 +11,7 @@ from pathlib import Path
 import numpy as np
 import pytest
 
-from bras_kit.authoring import load
+from bras_kit.model.authoring import load
 from bras_kit.motion import read_states
 from bras_kit.physics import build_mjcf, simulate
 

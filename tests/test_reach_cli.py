@@ -8,7 +8,7 @@ import math
 import numpy as np
 import pytest
 
-from bras_kit.authoring import arm_urdf
+from bras_kit.model.authoring import arm_urdf
 
 ELBOW_X, ELBOW_Z = repr(0.6 * math.sin(1.2)), repr(0.05 + 0.6 * math.cos(1.2))  # elbow point at epaule = 1.2
 

@@ -20,12 +20,12 @@ from pathlib import Path
 
 import pytest
 
-from bras_kit.errors import BrasKitError
-from bras_kit.i18n import say
+from bras_kit.core.errors import BrasKitError
+from bras_kit.core.i18n import say
 from bras_kit.ros.capture import HEAD_CHARS, TAIL_CHARS
-from bras_kit.ros.contain import available
 from bras_kit.run import run_findings, run_node
 from bras_kit.run.report import summary
+from bras_kit.trust.contain import available
 
 CORPUS = Path(__file__).parent / "data" / "hostile_code" / "record"
 CONTAIN = "require" if available().ok else "off"
@@ -40,14 +40,14 @@ def clean(text: str) -> bool:
 
 def shown(recording) -> list[str]:
     """Every line bras-kit shows of the run: its summary and its findings, in English and French."""
-    from bras_kit.authoring import arm
+    from bras_kit.model.authoring import arm
 
     out = [say(m, lang) for m in summary(recording) for lang in ("en", "fr")]
     return out + [say(f.message, lang) for f in run_findings(recording, arm()) for lang in ("en", "fr")]
 
 
 def codes(recording) -> dict[str, str]:
-    from bras_kit.authoring import arm
+    from bras_kit.model.authoring import arm
 
     return {f.code: say(f.message, "en") for f in run_findings(recording, arm())}
 

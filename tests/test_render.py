@@ -12,7 +12,7 @@ import os
 import numpy as np
 import pytest
 
-from bras_kit.errors import BackendError, ModelError, ParameterError
+from bras_kit.core.errors import BackendError, ModelError, ParameterError
 from bras_kit.render import Renderer, render_motion, render_pose
 
 BLUE_HUE = 222.9  # hue of rgb (0.2, 0.4, 0.9)
@@ -140,7 +140,7 @@ def test_colours_are_the_materials(zero_front):
 
 
 def test_colour_follows_a_changed_material():
-    from bras_kit.authoring import arm
+    from bras_kit.model.authoring import arm
 
     green_arm = arm(params={"bras_color": "0.1 0.8 0.2 1"})  # hue 128 degrees
     image = render_pose(green_arm, None, **FRONT)
@@ -149,8 +149,8 @@ def test_colour_follows_a_changed_material():
 
 
 def test_visual_without_material_is_grey():
-    from bras_kit.model import robot_from_xml
-    from bras_kit.xmlio import parse_xml
+    from bras_kit.model.robot import robot_from_xml
+    from bras_kit.model.xmlio import parse_xml
 
     text = """<robot name="plain"><link name="a"><visual><geometry><sphere radius="0.2"/></geometry>
     </visual></link></robot>"""
@@ -384,7 +384,7 @@ def _mesh_package(tmp_path, with_mesh: bool = True, filename="package://demo_des
 
 
 def test_package_mesh_is_found_scaled_and_coloured(tmp_path):
-    from bras_kit.authoring import load
+    from bras_kit.model.authoring import load
 
     robot = load(_mesh_package(tmp_path))
     image = render_pose(robot, None, view="front", grid=False, size=(200, 200),
@@ -395,7 +395,7 @@ def test_package_mesh_is_found_scaled_and_coloured(tmp_path):
 
 
 def test_missing_mesh_is_drawn_as_a_red_stand_in_with_one_warning(tmp_path, capsys):
-    from bras_kit.authoring import load
+    from bras_kit.model.authoring import load
 
     urdf = _mesh_package(tmp_path, with_mesh=False)
     text = urdf.read_text().replace("</robot>", """  <link name="arm">
@@ -417,7 +417,7 @@ def test_missing_mesh_is_drawn_as_a_red_stand_in_with_one_warning(tmp_path, caps
 
 @pytest.mark.parametrize("filename", ["package://demo_description/meshes/cube.stl", "../meshes/cube.stl"])
 def test_mesh_beside_the_urdf_needs_no_package_path(tmp_path, filename):
-    from bras_kit.authoring import load
+    from bras_kit.model.authoring import load
 
     robot = load(_mesh_package(tmp_path, filename=filename))  # urdf/demo.urdf inside its package
     image = render_pose(robot, None, view="front", grid=False, size=(120, 120))
@@ -425,7 +425,7 @@ def test_mesh_beside_the_urdf_needs_no_package_path(tmp_path, filename):
 
 
 def test_unknown_package_says_how_to_find_it(tmp_path):
-    from bras_kit.authoring import load
+    from bras_kit.model.authoring import load
     from bras_kit.render.scene import resolve_mesh_path
 
     robot = load(_mesh_package(tmp_path, filename="package://elsewhere/meshes/cube.stl"))

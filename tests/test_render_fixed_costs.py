@@ -72,7 +72,7 @@ def test_rod_runs_from_the_origin_to_its_end():
 
 def test_pictures_load_neither_trimesh_nor_networkx_nor_scipy():
     code = ("import sys, numpy as np\n"
-            "from bras_kit.authoring import arm\n"
+            "from bras_kit.model.authoring import arm\n"
             "from bras_kit.render import render_pose, save_gif, render_motion\n"
             "import io\n"
             "image = render_pose(arm(), {'coude': 1.0}, size=(64, 48), tf=True)\n"
@@ -163,7 +163,7 @@ def _ascii_stl(mesh) -> str:  # type: ignore[no-untyped-def]
 
 
 def test_mesh_files_are_read_once_and_mirroring_keeps_them_outward(tmp_path, tutorial_robot):
-    from bras_kit.model import Geometry, Origin, Visual
+    from bras_kit.model.robot import Geometry, Origin, Visual
     from bras_kit.render import scene
 
     path = tmp_path / "cube.stl"
@@ -201,7 +201,7 @@ def test_a_display_ended_by_another_library_gives_a_fresh_renderer():
     fresh process: ending the display would disturb the other tests' renderers.)"""
     script = (
         "import numpy as np\n"
-        "from bras_kit.authoring import arm\n"
+        "from bras_kit.model.authoring import arm\n"
         "from bras_kit.render import _pyrender, render_pose\n"
         "robot = arm()\n"
         "first = render_pose(robot, {'coude': 0.7}, size=(96, 72), backend='egl')\n"

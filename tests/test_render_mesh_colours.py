@@ -17,7 +17,7 @@ import pytest
 from test_meshes import ROBOTS, SHARE
 from test_render import hsv
 
-from bras_kit.authoring import load
+from bras_kit.model.authoring import load
 from bras_kit.render import render_pose
 
 pytestmark = pytest.mark.slow

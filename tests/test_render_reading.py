@@ -11,7 +11,7 @@ from pathlib import Path
 import numpy as np
 import pytest
 
-from bras_kit.authoring import load
+from bras_kit.model.authoring import load
 from bras_kit.render import render_pose
 
 ROBOTS = next((Path(base) / "cmeel.prefix" / "share" / "example-robot-data" / "robots" for base in sys.path
@@ -102,7 +102,7 @@ def test_collision_geometry_shows_the_pandas_own_collision_meshes():
 
 
 def test_unknown_geometry_is_refused_with_the_choices(tutorial_robot):
-    from bras_kit.errors import ParameterError
+    from bras_kit.core.errors import ParameterError
 
     with pytest.raises(ParameterError) as error:
         render_pose(tutorial_robot, None, geometry="collisions")
@@ -143,7 +143,7 @@ def test_workspace_figure_marks_and_names_the_region_below_the_floor(tutorial_ro
     from matplotlib.patches import Polygon, Rectangle
 
     from bras_kit.ik import workspace_figure
-    from bras_kit.kinematics import tf_tree
+    from bras_kit.kinematics.frames import tf_tree
 
     figure, axes, _summary = workspace_figure(tf_tree(tutorial_robot), 20_000)
     texts = [t.get_text() for t in axes.texts]

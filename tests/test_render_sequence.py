@@ -7,7 +7,7 @@ import io
 import numpy as np
 import pytest
 
-from bras_kit.errors import ParameterError
+from bras_kit.core.errors import ParameterError
 from bras_kit.render import Progress, render_motion, save_frames, save_gif, save_mp4
 from bras_kit.render.sequence import GifWriter, frame_name, gif_delay, palette_samples
 

@@ -20,8 +20,8 @@ import numpy as np
 import pytest
 
 from bras_kit import meshes
-from bras_kit.authoring import load
-from bras_kit.kinematics import fk_batch, tf_tree
+from bras_kit.kinematics.frames import fk_batch, tf_tree
+from bras_kit.model.authoring import load
 from bras_kit.render import scene
 
 DATA = Path(__file__).parent / "data"
@@ -141,7 +141,7 @@ def test_part_corners_and_floor_are_those_of_each_parts_box(fresh):
 DRAW_ALONE = """
 import sys
 import numpy as np
-from bras_kit.authoring import load
+from bras_kit.model.authoring import load
 from bras_kit.render import render_pose
 np.save(sys.argv[2], render_pose(load(sys.argv[1]), {}, size=(480, 360)))
 """

@@ -60,7 +60,7 @@ def test_the_domain_is_read_as_rcl_reads_it(text, domain):
                                             ("  ", "not an integral number"), ("-1", "out of range"),
                                             ("233", "out of range")])
 def test_a_domain_rcl_refuses_is_refused_with_its_words(text, said):
-    from bras_kit.errors import ParameterError
+    from bras_kit.core.errors import ParameterError
     from bras_kit.ros.bus import domain_id
 
     with pytest.raises(ParameterError) as caught:
@@ -140,7 +140,7 @@ def test_the_robot_a_launch_shows_is_told_to_a_run_with_the_joints_it_lacks(priv
 
 
 def test_a_bus_folder_others_can_open_is_neither_joined_nor_listened_on(private_runtime):  # noqa: F811
-    from bras_kit.errors import BrasKitError
+    from bras_kit.core.errors import BrasKitError
     from bras_kit.ros.bus import Bus, bus_folder, launches
 
     with Bus.listen():

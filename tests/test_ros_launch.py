@@ -184,7 +184,7 @@ def test_run_builds_the_package_so_its_node_finds_its_share_folder(tmp_path):
 
 
 def test_run_of_a_package_that_does_not_build_says_colcons_words():
-    from bras_kit.errors import BrasKitError
+    from bras_kit.core.errors import BrasKitError
     from bras_kit.run import run_node
 
     with pytest.raises(BrasKitError) as caught:
@@ -221,7 +221,7 @@ def test_copied_styles_namespace_include_cat_and_file_argument_start_clean(tmp_p
 
 def test_rviz_started_with_a_configuration_gives_the_viewer_its_fixed_frame(tmp_path):
     from bras_kit.cli.launch import _rviz_fixed_frame
-    from bras_kit.scaffold import scaffold_package
+    from bras_kit.scaffold.package import scaffold_package
 
     scaffold_package(tmp_path / "bras_description")
     rviz = tmp_path / "bras_description" / "rviz" / "bras_description.rviz"

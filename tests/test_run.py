@@ -14,9 +14,10 @@ from pathlib import Path
 
 import pytest
 
-from bras_kit.authoring import load
+from bras_kit.model.authoring import load
 from bras_kit.run import NodeRunError, joint_states, run_node
-from bras_kit.run.findings import robot_of, run_findings
+from bras_kit.run.findings import run_findings
+from bras_kit.run.node import robot_of
 
 DATA = Path(__file__).parent / "data" / "run"
 TUTORIAL = DATA.parent / "tutorial_package"  # the tutorial's package exactly as printed (shared with the validator's tests)
@@ -110,7 +111,7 @@ BEGINNER_NODES = [
     ("init_twice.py", "error", "RuntimeError", ["BK640"]),
     # rclpy/publisher.py Publisher.publish: raise TypeError('Expected {}, got {}')
     ("publishes_wrong_type.py", "error", "TypeError", ["BK640"]),
-    # contained (bras_kit.ros.contain), a node writes only in the folder it runs in: /tmp is read-only
+    # contained (bras_kit.trust.contain), a node writes only in the folder it runs in: /tmp is read-only
     ("logs_to_tmp.py", "error", "OSError", ["BK640", "BK659"]),
     # rclpy/timer.py Rate.sleep(): waits for a timer an executor must spin in another thread
     ("rate_loop.py", "duration", None, ["BK643"]),

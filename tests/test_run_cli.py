@@ -11,8 +11,9 @@ import pytest
 
 from bras_kit.motion.states_io import read_states
 from bras_kit.run import run_node
-from bras_kit.run.findings import robot_of, run_findings
-from bras_kit.scaffold import scaffold_package
+from bras_kit.run.findings import run_findings
+from bras_kit.run.node import robot_of
+from bras_kit.scaffold.package import scaffold_package
 
 TUTORIAL = Path(__file__).parent / "data" / "tutorial_package"
 ORANGE_HUE = 28.2  # the forearm's material (0.95 0.5 0.1)

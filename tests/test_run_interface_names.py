@@ -17,7 +17,7 @@ from pathlib import Path
 
 import pytest
 
-from bras_kit.authoring import load
+from bras_kit.model.authoring import load
 from bras_kit.run import run_node
 from bras_kit.run.findings import run_findings
 
@@ -151,6 +151,15 @@ def test_a_package_rosidl_generated_is_not_taken_from_the_path(tmp_path, robot):
                          duration=1.0)
     assert (recording.ended, recording.failure.kind) == ("not_simulated", "NotSimulated")
     assert recording.failure.detail == "bras_msgs"
+
+
+def test_an_exception_imported_from_where_rclpy_keeps_it_is_no_message(tmp_path, robot):
+    """rclpy 7.1.6 keeps NoTypeSupportImportedException in rclpy/exceptions.py (rclpy/type_support.py
+    raises it): a node that imports it from there runs, and nothing calls it a message."""
+    imports = f"{GOOD}\nfrom rclpy.exceptions import NoTypeSupportImportedException"
+    recording = run_node(str(_node(tmp_path, "noeud.py", imports)), duration=1.0)
+    assert recording.failure is None and len(recording.joint_state_messages()) == 20
+    assert "BK652" not in _codes(recording, robot)
 
 
 # kept aside while the finder was changed, run at the end

@@ -11,7 +11,7 @@ from pathlib import Path
 
 import pytest
 
-from bras_kit.authoring import load
+from bras_kit.model.authoring import load
 from bras_kit.run import run_node
 from bras_kit.run.findings import run_findings
 
@@ -135,7 +135,7 @@ def test_explanations_are_worded_in_french():
 def test_static_reading_judges_waves_of_time_never_unresolved_names(source, expected):
     import ast
 
-    from bras_kit.validate.package.formulas import formula
+    from bras_kit.ros.formulas import formula
 
     assert formula(ast.parse(source, mode="eval").body, {}) == expected
 

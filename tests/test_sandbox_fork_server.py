@@ -1,4 +1,4 @@
-"""bras_kit.sandbox.ForkServer: the limited children of a big process (a grading worker)
+"""bras_kit.trust.sandbox.ForkServer: the limited children of a big process (a grading worker)
 forked by a small server instead, with run_limited's results, errors and limits.
 
 Oracles: process ids (who is the child's parent), the values and errors the functions below
@@ -11,9 +11,9 @@ import signal
 
 import pytest
 
-from bras_kit.errors import ParameterError
-from bras_kit.message import M
-from bras_kit.sandbox import ForkServer, ResourceLimitError
+from bras_kit.core.errors import ParameterError
+from bras_kit.core.message import M
+from bras_kit.trust.sandbox import ForkServer, ResourceLimitError
 
 
 def parent_and_self(extra: int) -> tuple[int, int, int]:
@@ -114,7 +114,7 @@ def _importing_in_a_thread(name: str):  # type: ignore[no-untyped-def]
 def test_a_child_forked_while_a_thread_imports_waits_for_that_import_forever(tmp_path, monkeypatch):
     """Why children_from_a_server exists: the control. Forked from a process whose other thread is
     importing a module, the child waits for that module's lock, which nobody in it will release."""
-    from bras_kit.sandbox import run_limited
+    from bras_kit.trust.sandbox import run_limited
 
     monkeypatch.syspath_prepend(str(tmp_path))
     flag = tmp_path / "go"
@@ -132,7 +132,7 @@ def test_a_child_forked_while_a_thread_imports_waits_for_that_import_forever(tmp
 def test_inside_children_from_a_server_that_child_is_forked_by_the_server_and_imports(tmp_path, monkeypatch):
     """The server was forked before the thread existed: its child imports the module at once, and
     comes from the server, not from the process whose thread holds the lock."""
-    from bras_kit import sandbox
+    from bras_kit.trust import sandbox
 
     monkeypatch.syspath_prepend(str(tmp_path))
     flag = tmp_path / "go"
@@ -155,7 +155,7 @@ def test_a_call_the_server_cannot_be_sent_is_forked_from_here_and_the_server_sta
     """A function with keyword arguments, or arguments pickle refuses (a lock), is run as before."""
     import threading
 
-    from bras_kit import sandbox
+    from bras_kit.trust import sandbox
 
     with sandbox.children_from_a_server():
         server = sandbox._server

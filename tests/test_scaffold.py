@@ -19,11 +19,11 @@ import numpy as np
 import pytest
 import yaml
 
-from bras_kit.authoring import load
-from bras_kit.errors import OutputExistsError, ParameterError
-from bras_kit.scaffold import plan_motion, render_package, scaffold_package
-from bras_kit.xacrotools import expand_xacro
-from bras_kit.xmlio import read_xml
+from bras_kit.core.errors import OutputExistsError, ParameterError
+from bras_kit.model.authoring import load
+from bras_kit.model.xacro import expand_xacro
+from bras_kit.model.xmlio import read_xml
+from bras_kit.scaffold.package import plan_motion, render_package, scaffold_package
 
 PKG = "bras_description"
 EXPECTED_FILES = {
@@ -246,14 +246,14 @@ def test_motion_keeps_a_margin_from_each_limit(packages):
 
 
 def test_equal_limits_give_a_still_joint():
-    from bras_kit.authoring import arm
+    from bras_kit.model.authoring import arm
 
     waves = plan_motion(arm(params={"coude_lower": 0.3, "coude_upper": 0.3}))
     assert (waves[1].joint, waves[1].centre, waves[1].amplitude) == ("coude", 0.3, 0.0)
 
 
 def test_inverted_limits_are_refused_and_nothing_is_written(run_cli, tmp_path):
-    from bras_kit.authoring import arm
+    from bras_kit.model.authoring import arm
 
     with pytest.raises(ParameterError, match="coude_lower=1 is above coude_upper=-1"):
         arm(params={"coude_lower": 1, "coude_upper": -1})  # refused before any URDF is written
@@ -602,7 +602,7 @@ def test_the_scaffolded_node_moves_like_the_cli_and_lesson_6(tmp_path):
     """One wrist motion: the package's motion.py, bras-kit's tutorial motion and lesson 6."""
     import importlib.util
 
-    from bras_kit.authoring import arm
+    from bras_kit.model.authoring import arm
     from bras_kit.motion import TUTORIAL_FORMULAS, tutorial_motion
 
     scaffold_package(tmp_path / "p", wrist=True)

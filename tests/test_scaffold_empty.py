@@ -11,7 +11,7 @@ from pathlib import Path
 
 import pytest
 
-from bras_kit.scaffold import render_empty_package
+from bras_kit.scaffold.package import render_empty_package
 from bras_kit.validate.package import find_packages, validate_package
 
 DATA = Path(__file__).parent / "data"

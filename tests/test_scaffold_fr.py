@@ -14,9 +14,9 @@ import tokenize
 import pytest
 
 from bras_kit import __version__
-from bras_kit.authoring import load
-from bras_kit.errors import ParameterError
-from bras_kit.scaffold import check_email, render_package, scaffold_package
+from bras_kit.core.errors import ParameterError
+from bras_kit.model.authoring import load
+from bras_kit.scaffold.package import check_email, render_package, scaffold_package
 
 PKG = "bras_description"
 # Whole words a French reader should not meet in the package's prose (any case).
@@ -153,7 +153,7 @@ def test_french_urdf_and_xacro_comments(both, with_xacro):
 
 def test_french_xacro_expands_to_the_french_urdf(both, with_xacro, tmp_path):
     """--xacro and the hand-written URDF describe the same robot: xacro's expansion is its body."""
-    from bras_kit.xacrotools import expand_xacro
+    from bras_kit.model.xacro import expand_xacro
 
     (tmp_path / "bras.urdf.xacro").write_text(with_xacro["fr"]["urdf/bras.urdf.xacro"], encoding="utf-8")
     expanded = expand_xacro(tmp_path / "bras.urdf.xacro", {})

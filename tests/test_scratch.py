@@ -1,4 +1,4 @@
-"""Where bras-kit makes the folders it throws away (bras_kit/scratch.py): the user's TMPDIR when
+"""Where bras-kit makes the folders it throws away (bras_kit/trust/scratch.py): the user's TMPDIR when
 set, else a folder in memory that is safe to make folders in, else tempfile's own choice.
 
 The oracles are the folders' own facts, set by each test (mode bits, owner, free space as
@@ -12,7 +12,7 @@ import subprocess
 import sys
 import tempfile
 
-from bras_kit import scratch
+from bras_kit.trust import scratch
 
 
 def _folder(tmp_path, name: str, mode: int) -> str:
@@ -96,7 +96,7 @@ def test_validate_pkg_dir_makes_its_folders_in_the_scratch_folder_and_leaves_non
     (here a runtime folder of the test's) and removes them; the trial's record stays. Oracle:
     every folder tempfile made, noted by the process that made it, and the runtime folder's
     listing afterwards."""
-    from bras_kit.scaffold import scaffold_package
+    from bras_kit.scaffold.package import scaffold_package
 
     package = tmp_path / "bras_description"
     scaffold_package(str(package))

@@ -57,8 +57,8 @@ def _port_is_free(port: int) -> bool:
 
 def test_view_stopped_right_after_its_address_exits_0(tmp_path: Path) -> None:
     port = _free_port()
-    # _has_screen is asked right after the address is printed, before the wait
-    done = _interrupted_at("bras_kit.cli.view", "_has_screen", ["view", "--port", str(port)], tmp_path)
+    # has_screen is asked right after the address is printed, before the wait
+    done = _interrupted_at("bras_kit.cli._common", "has_screen", ["view", "--port", str(port)], tmp_path)
     assert f"http://127.0.0.1:{port}" in done.stdout, done.stderr
     assert done.returncode == 0, done.stderr
     assert "interrupted" not in done.stderr and "Traceback" not in done.stderr
@@ -70,7 +70,7 @@ def test_view_stopped_right_after_its_address_exits_0(tmp_path: Path) -> None:
     ("bras_kit.run.live", "LiveNodes.start"),  # the package's nodes starting live
 ])
 def test_launch_stopped_right_after_its_address_exits_0(tmp_path: Path, module: str, name: str) -> None:
-    from bras_kit.scaffold import scaffold_package
+    from bras_kit.scaffold.package import scaffold_package
 
     scaffold_package(tmp_path / "bras_description")
     port = _free_port()

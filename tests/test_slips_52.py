@@ -14,7 +14,7 @@ TUTORIAL_URDF = (DATA / "live" / "bras.urdf").read_text(encoding="utf-8")
 # --- doctor --ros names the root link the learner sets Fixed Frame to --------------------------------
 
 def _healthy_look(urdf: str):  # type: ignore[no-untyped-def]
-    from bras_kit.live.snapshot import snapshot_from_json
+    from bras_kit.ros.graph import snapshot_from_json
 
     return snapshot_from_json({"descriptions": [{"text": urdf, "received": 1.0, "length": len(urdf)}],
                                "nodes": ["/robot_state_publisher"], "started": 0.0, "ended": 3.0})
@@ -63,8 +63,8 @@ def test_doctor_counts_its_warnings_in_french(warnings):
 
 
 def _one_link_robot():  # type: ignore[no-untyped-def]
-    from bras_kit.model import robot_from_xml
-    from bras_kit.xmlio import parse_xml
+    from bras_kit.model.robot import robot_from_xml
+    from bras_kit.model.xmlio import parse_xml
 
     text = '<robot name="seul"><link name="base"/></robot>'
     return robot_from_xml(parse_xml(text, "seul.urdf"), path="seul.urdf", source_text=text)
@@ -72,9 +72,9 @@ def _one_link_robot():  # type: ignore[no-untyped-def]
 
 @pytest.mark.parametrize(("wrist", "links"), [(None, 1), (False, 3), (True, 4)])
 def test_the_frame_tree_title_agrees_with_its_counts(wrist, links):
-    from bras_kit.authoring import arm
     from bras_kit.diagrams.dot import graph_title
-    from bras_kit.kinematics import tf_tree
+    from bras_kit.kinematics.frames import tf_tree
+    from bras_kit.model.authoring import arm
 
     robot = _one_link_robot() if wrist is None else arm(wrist=wrist)
     tree = tf_tree(robot)
@@ -95,8 +95,8 @@ def test_frames_says_one_frame_and_zero_joint_in_french(run_cli, tmp_path):
 
 @pytest.mark.parametrize(("count", "words"), [(1, "enregistré :"), (2, "enregistrés :"), (3, "enregistrés :")])
 def test_files_saved_agree_with_their_number(count, words):
-    from bras_kit.i18n import say
-    from bras_kit.message import Mn
+    from bras_kit.core.i18n import say
+    from bras_kit.core.message import Mn
 
     names = ", ".join(["urdf/bras.urdf", "setup.py", "launch/affichage.launch.py"][:count])
     # the very message launch's live loop prints (bras_kit/cli/launch.py, _live)
@@ -166,7 +166,7 @@ def _random_arm_params():  # type: ignore[no-untyped-def]
 def test_urdf_inertials_with_any_sizes_and_masses_validates_clean(tmp_path):
     from hypothesis import HealthCheck, given, settings
 
-    from bras_kit.authoring import arm
+    from bras_kit.model.authoring import arm
     from bras_kit.validate import validate
 
     @settings(max_examples=25, deadline=None, suppress_health_check=[HealthCheck.function_scoped_fixture])
@@ -219,7 +219,7 @@ def test_urdf_inertials_writes_each_formula_it_used(run_cli, lang):
 
 
 def test_bk507_hint_gives_the_formula_the_generated_file_holds(run_cli):
-    from bras_kit.validate.findings import Finding
+    from bras_kit.findings.data import Finding
 
     hint = Finding("BK507", "error", "link", "bras", 1, params={"link": "bras", "a": 1, "b": 1, "c": 5,
                                                                    "ratio": 2.5}).hint_text("en")
@@ -283,7 +283,7 @@ _GAZEBO = DATA / "gazebo"
 
 
 def _refused_cases() -> list[Path]:
-    from bras_kit.authoring import load
+    from bras_kit.model.authoring import load
     from bras_kit.validate.urdf2sdf import gazebo_model
 
     cases = []
@@ -479,7 +479,7 @@ def _furthest_in_picture(robot, camera, q) -> float:  # type: ignore[no-untyped-
     """The largest |x| or |y| of the arm's geometry on the picture, in normalised device coordinates (1: the edge)."""
     import numpy as np
 
-    from bras_kit.kinematics import fk_batch, tf_tree
+    from bras_kit.kinematics.frames import fk_batch, tf_tree
 
     tree = tf_tree(robot)
     transforms = fk_batch(tree, np.atleast_2d(q))
@@ -517,8 +517,8 @@ def test_the_camera_keeps_the_whole_arm_in_every_pose():
     import numpy as np
     from hypothesis import given, settings
 
-    from bras_kit.authoring import arm
-    from bras_kit.kinematics import tf_tree
+    from bras_kit.kinematics.frames import tf_tree
+    from bras_kit.model.authoring import arm
     from bras_kit.render.renderer import Renderer
 
     @settings(max_examples=30, deadline=None)
@@ -541,7 +541,7 @@ def test_the_top_view_keeps_the_wrist_of_a_pose_seen_from_above(run_cli, tmp_pat
     """The case found: seen from above, the last step of the aim pushed the hand out of the picture."""
     import numpy as np
 
-    from bras_kit.authoring import arm
+    from bras_kit.model.authoring import arm
     from bras_kit.render.renderer import Renderer
 
     robot, q = arm(wrist=True), np.array([0.06, -0.117, -0.518])

@@ -4,10 +4,10 @@ from __future__ import annotations
 
 import numpy as np
 
-from bras_kit.kinematics import tf_tree
-from bras_kit.model import robot_from_xml
-from bras_kit.tip import end_link, tool_tip
-from bras_kit.xmlio import parse_xml
+from bras_kit.kinematics.frames import tf_tree
+from bras_kit.kinematics.tip import end_link, tool_tip
+from bras_kit.model.robot import robot_from_xml
+from bras_kit.model.xmlio import parse_xml
 
 
 def test_tutorial_tip_is_the_far_end_of_the_forearm(tutorial_tree, wrist_robot):

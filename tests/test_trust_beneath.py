@@ -1,5 +1,5 @@
-"""A path stays under its root (bras_kit.beneath) and the one reader of learner files
-(bras_kit.learner_files): one test per trick.
+"""A path stays under its root (bras_kit.trust.beneath) and the one reader of learner files
+(bras_kit.trust.learner_files): one test per trick.
 
 Oracles: the kernel's own view of each path made here (a link, a loop, a named pipe, a Unix
 socket, /dev/zero, a folder), and openat2(2)'s RESOLVE_BENEATH rules as its manual states them:
@@ -14,8 +14,8 @@ import threading
 
 import pytest
 
-from bras_kit.beneath import FOLDER, Outside, beneath, beneath_any, is_name_component
-from bras_kit.learner_files import Unreadable, copy_file, read_bytes, read_text
+from bras_kit.trust.beneath import FOLDER, Outside, beneath, beneath_any, is_name_component
+from bras_kit.trust.learner_files import Unreadable, copy_file, read_bytes, read_text
 
 SECRET = "bras-kit-trust-secret"
 

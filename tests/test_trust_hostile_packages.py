@@ -28,7 +28,7 @@ from test_containment_hostile import snapshot
 from test_ros_bus import private_runtime  # noqa: F401 - the fixture
 
 from bras_kit.cli import main
-from bras_kit.ros.contain import available
+from bras_kit.trust.contain import available
 from bras_kit.validate.package import validate_package
 
 DATA = Path(__file__).parent / "data"

@@ -143,8 +143,8 @@ def test_build_never_installs_the_outside_file_while_a_folder_is_swapped(package
 
 @pytest.mark.slow
 def test_robot_state_publisher_never_gets_the_outside_file_while_a_folder_is_swapped(package):
-    from bras_kit.learner_files import Unreadable
     from bras_kit.ros.launching import PlannedNode, robot_state_publisher_start
+    from bras_kit.trust.learner_files import Unreadable
 
     root, outside = package
     path = str(root / "urdf" / "bras.urdf")

@@ -1,5 +1,5 @@
-"""The one reader resolves a path beneath its root by descriptor (bras_kit.beneath.open_beneath,
-bras_kit.learner_files): one test per trick, in both of its ways (the kernel's openat2 with
+"""The one reader resolves a path beneath its root by descriptor (bras_kit.trust.beneath.open_beneath,
+bras_kit.trust.learner_files): one test per trick, in both of its ways (the kernel's openat2 with
 RESOLVE_BENEATH, and the walk of one component at a time used where the kernel lacks it), a
 generated tree of links checked against the kernel's own resolution, and a real process racing
 a folder against a link while bras-kit reads.
@@ -21,9 +21,9 @@ import pytest
 from hypothesis import HealthCheck, given, settings
 from hypothesis import strategies as st
 
-from bras_kit import beneath as beneath_module
-from bras_kit.beneath import FOLDER, Outside, open_beneath
-from bras_kit.learner_files import (
+from bras_kit.trust import beneath as beneath_module
+from bras_kit.trust.beneath import FOLDER, Outside, open_beneath
+from bras_kit.trust.learner_files import (
     Unreadable,
     copy_file,
     list_folder,

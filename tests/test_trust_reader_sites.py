@@ -71,7 +71,7 @@ def calls_by_path(source: str) -> list[tuple[str, int, str]]:
 def test_no_learner_file_is_read_around_the_reader(module):
     source = (PACKAGE / module).read_text(encoding="utf-8")
     left = [(fn, line, call) for fn, line, call in calls_by_path(source) if (module, fn) not in ALLOWED]
-    assert left == [], f"{module}: read through bras_kit.learner_files instead: {left}"
+    assert left == [], f"{module}: read through bras_kit.trust.learner_files instead: {left}"
 
 
 def test_the_walk_finds_each_kind_of_call():

@@ -21,11 +21,11 @@ from pathlib import Path
 
 import pytest
 
-from bras_kit.errors import BrasKitError
+from bras_kit.core.errors import BrasKitError
 from bras_kit.ros.ahead import evaluate_ahead
 from bras_kit.ros.launched import evaluate_package
-from bras_kit.sandbox import ResourceLimitError, run_limited, start_limited
-from bras_kit.scaffold import scaffold_package
+from bras_kit.scaffold.package import scaffold_package
+from bras_kit.trust.sandbox import ResourceLimitError, run_limited, start_limited
 
 PKG = "bras_description"
 
@@ -92,7 +92,7 @@ def test_beside_another_thread_no_worker_is_forked(tmp_path, monkeypatch):
     """A fork beside a thread that holds an import lock would wait for it forever: no worker then."""
     import threading
 
-    import bras_kit.sandbox as sandbox
+    import bras_kit.trust.sandbox as sandbox
 
     root = tmp_path / PKG
     scaffold_package(str(root))
@@ -144,7 +144,7 @@ def test_a_worker_nobody_waits_for_is_killed_when_its_process_ends(tmp_path):
     marker = tmp_path / "pid"
     script = textwrap.dedent(f"""
         import os, time
-        from bras_kit.sandbox import start_limited
+        from bras_kit.trust.sandbox import start_limited
 
         def long(path):
             with open(path, "w") as handle:

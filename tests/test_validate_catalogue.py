@@ -7,9 +7,9 @@ from pathlib import Path
 
 import pytest
 
+from bras_kit.findings.registry import FAMILIES, SEVERITIES, TEXTS, select_rules
 from bras_kit.validate import RULES, default_language
 from bras_kit.validate.catalogue import catalogue_markdown, raw_text
-from bras_kit.validate.registry import FAMILIES, SEVERITIES, TEXTS, select_rules
 
 ROOT = Path(__file__).parent.parent
 RULE_TESTS = "".join(path.read_text(encoding="utf-8") for path in

@@ -12,17 +12,17 @@ import pytest
 from hypothesis import HealthCheck, given, settings
 from hypothesis import strategies as st
 
-from bras_kit.errors import BrasKitError
+from bras_kit.core.errors import BrasKitError
+from bras_kit.findings.data import FileResult
+from bras_kit.findings.report import format_json, format_text
 from bras_kit.validate import Finding, validate_path
-from bras_kit.validate.findings import FileResult
-from bras_kit.validate.report import format_json, format_text
 
 DATA = Path(__file__).parent / "data" / "urdf"
 BRAS = (DATA / "good" / "bras.urdf").read_text(encoding="utf-8")
 
 
 def _inertial_arm() -> str:
-    from bras_kit.authoring import arm_urdf
+    from bras_kit.model.authoring import arm_urdf
 
     return arm_urdf(wrist=True, inertials=True)
 

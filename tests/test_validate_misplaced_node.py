@@ -18,7 +18,7 @@ from pathlib import Path
 
 import pytest
 
-from bras_kit.scaffold import scaffold_package
+from bras_kit.scaffold.package import scaffold_package
 from bras_kit.validate.package import validate_package
 
 DATA = Path(__file__).parent / "data"

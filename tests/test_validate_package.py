@@ -15,7 +15,7 @@ from pathlib import Path
 import pytest
 import yaml
 
-from bras_kit.scaffold import scaffold_package
+from bras_kit.scaffold.package import scaffold_package
 from bras_kit.validate import RULES
 from bras_kit.validate.package import find_packages, validate_package
 
@@ -103,7 +103,7 @@ def test_scaffold_default_email_is_made_from_the_name(tmp_path):
 @pytest.mark.parametrize("options", [{"email": "TODO"}, {"maintainer": "Jean O'Brien"}, {"maintainer": "A & B"}])
 def test_scaffold_refuses_what_would_make_a_broken_package(tmp_path, options):
     """An email catkin_pkg refuses (BK606), a name that breaks setup.py or package.xml (BK600)."""
-    from bras_kit.errors import ParameterError
+    from bras_kit.core.errors import ParameterError
 
     with pytest.raises(ParameterError):
         scaffold_package(tmp_path / PKG, **options)
@@ -563,7 +563,7 @@ def test_data_files_completed_by_a_loop_are_not_reported(tmp_path):
 def test_a_package_launch_cannot_find_is_named_with_the_one_meant(tmp_path, written, lang, said):
     """ROS's "package 'X' not found" (BK631): a ROS package misspelled is named as the one the tutorial
     starts; the learner's own package misspelled sends to package.xml's name."""
-    from bras_kit.i18n import say
+    from bras_kit.core.i18n import say
     from bras_kit.validate.package import Package
 
     root = tmp_path / PKG

@@ -10,9 +10,9 @@ from pathlib import Path
 
 import pytest
 
+from bras_kit.findings.report import REPEATED
 from bras_kit.validate import validate_path
 from bras_kit.validate._dmass import UrdfInertial, _valid, valid_mass_matrix
-from bras_kit.validate.report import REPEATED
 
 DATA = Path(__file__).parent / "data" / "repeated_findings"
 MANY = DATA / "chain_40_continuous.urdf"  # 39 continuous joints with lower/upper: 39 BK208
@@ -66,7 +66,7 @@ def test_an_inertial_repeated_on_every_link_is_judged_once_with_the_same_verdict
     robot_findings = validate_path(str(MANY))
     assert [f.code for f in robot_findings if f.code.startswith("BK7")] == []
     _valid.cache_clear()
-    from bras_kit.authoring import load
+    from bras_kit.model.authoring import load
 
     robot = load(str(MANY))
     verdicts = {valid_mass_matrix(UrdfInertial.read(link.inertial)) for link in robot.links}

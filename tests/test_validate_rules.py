@@ -9,7 +9,7 @@ from pathlib import Path
 import numpy as np
 import pytest
 
-from bras_kit.errors import ParameterError
+from bras_kit.core.errors import ParameterError
 from bras_kit.validate import validate, validate_path
 
 DATA = Path(__file__).parent / "data" / "urdf"
@@ -69,14 +69,14 @@ def test_reference_arm_has_only_the_inertial_note(check):
 
 @pytest.mark.parametrize("variant", [{}, {"wrist": True}, {"inertials": True}, {"wrist": True, "inertials": True}])
 def test_tutorial_arm_variants_have_no_error_or_warning(variant):
-    from bras_kit.authoring import arm
+    from bras_kit.model.authoring import arm
 
     findings = validate(arm(**variant))
     assert [f for f in findings if f.severity != "info"] == []
 
 
 def test_tutorial_arm_with_changed_lengths_stays_clean():
-    from bras_kit.authoring import arm
+    from bras_kit.model.authoring import arm
 
     robot = arm(wrist=True, inertials=True, params={"bras_length": 0.8, "avant_bras_length": 0.35})
     assert [f.code for f in validate(robot) if f.severity != "info"] == []
@@ -1045,7 +1045,7 @@ def test_limit_in_degrees_spares_multi_turn_joints(check, lower, upper, flagged)
 
 
 def test_urdf_beside_its_xacro_is_checked_once_and_compared(run_cli, tmp_path):
-    from bras_kit.scaffold import scaffold_package
+    from bras_kit.scaffold.package import scaffold_package
 
     scaffold_package(str(tmp_path / "plain"))
     scaffold_package(str(tmp_path / "templated"), xacro=True)
@@ -1080,7 +1080,7 @@ def test_package_urdf_edited_the_tutorials_way_is_checked_as_written(run_cli, tm
     """A package made by bras-kit new, a xacro copied beside its URDF, then the tutorial's pitfall
     (coude at z=0.3): the URDF the package installs is what the launch file loads, so it is checked
     itself and the misplaced joint is reported there, with no advice to overwrite it."""
-    from bras_kit.scaffold import scaffold_package
+    from bras_kit.scaffold.package import scaffold_package
 
     package = tmp_path / "bras_description"
     scaffold_package(str(package))

@@ -82,7 +82,7 @@ def _assert_names_on_frames(page, pictures: int = 10, columns: slice = slice(Non
 
 
 def test_frame_names_sit_on_their_frames_while_the_exported_arm_moves(browser, tmp_path):
-    from bras_kit.authoring import load
+    from bras_kit.model.authoring import load
     from bras_kit.motion import motion_from_specs, sample
     from bras_kit.view import export_html
 

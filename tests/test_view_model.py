@@ -101,7 +101,7 @@ def test_mimic_joint_has_no_slider_and_follows_its_leader(mimic_file):
 
 
 def test_playback_turns_a_joint_red_while_it_is_past_its_limit(tmp_path):
-    from bras_kit.authoring import arm
+    from bras_kit.model.authoring import arm
     from bras_kit.view import Source, Viewer
 
     # coude's limits are -2 .. 2 rad; 2.5 sin(t) is past 2 for t in (0.927, 2.214)
@@ -127,7 +127,7 @@ def test_playback_turns_a_joint_red_while_it_is_past_its_limit(tmp_path):
 
 
 def test_zero_random_and_fixed_frame(tmp_path):
-    from bras_kit.authoring import arm
+    from bras_kit.model.authoring import arm
     from bras_kit.view import Source, Viewer
 
     with Viewer(Source(robot=arm()), port=_free_port(), watch=False) as viewer:
@@ -203,7 +203,7 @@ def test_saving_an_included_file_in_another_folder_reloads(tmp_path):
 
 
 def test_the_share_tunnel_is_refused(tmp_path):
-    from bras_kit.authoring import arm
+    from bras_kit.model.authoring import arm
     from bras_kit.view import Source, Viewer
 
     with Viewer(Source(robot=arm()), port=_free_port(), watch=False) as viewer:
@@ -230,7 +230,7 @@ def test_library_entry_serves_a_robot_and_prints_its_address(capsys):
     import urllib.request
 
     import bras_kit
-    from bras_kit.authoring import arm
+    from bras_kit.model.authoring import arm
 
     port = _free_port()
     viewer = bras_kit.view(arm(wrist=True), port=port, motion="tutorial")
@@ -244,7 +244,7 @@ def test_library_entry_serves_a_robot_and_prints_its_address(capsys):
 
 
 def test_the_fixed_frame_is_kept_by_name_across_a_reload(tmp_path):
-    from bras_kit.authoring import arm_urdf
+    from bras_kit.model.authoring import arm_urdf
     from bras_kit.view import Source, Viewer
 
     path = tmp_path / "bras.urdf"
@@ -277,8 +277,8 @@ def test_coincident_frame_names_are_stacked_one_spacing_apart():
 
 
 def test_typed_joint_values_follow_the_command_line_parser_and_its_degrees_hint():
-    from bras_kit.authoring import arm
-    from bras_kit.i18n import say
+    from bras_kit.core.i18n import say
+    from bras_kit.model.authoring import arm
     from bras_kit.view.model import view_model
     from bras_kit.view.panel import read_joint_box
 
@@ -296,8 +296,8 @@ def test_typed_joint_values_follow_the_command_line_parser_and_its_degrees_hint(
 
 
 def test_geometry_collision_at_startup_shows_the_collision_shapes_only():
-    from bras_kit.authoring import arm
-    from bras_kit.errors import ParameterError
+    from bras_kit.core.errors import ParameterError
+    from bras_kit.model.authoring import arm
     from bras_kit.view import Source, Viewer
 
     with Viewer(Source(robot=arm(collisions=True)), port=_free_port(), watch=False, geometry="collision") as viewer:
@@ -325,7 +325,7 @@ def _record_messages(scene) -> list:
 
 
 def test_moving_coude_sends_the_poses_of_the_links_it_moves_only():
-    from bras_kit.authoring import arm
+    from bras_kit.model.authoring import arm
     from bras_kit.view import Source, Viewer
 
     with Viewer(Source(robot=arm(wrist=True)), port=_free_port(), watch=False) as viewer:
@@ -350,7 +350,7 @@ def test_moving_coude_sends_the_poses_of_the_links_it_moves_only():
 
 def test_a_heavy_robot_is_lit_without_environment_map_nor_shadows_and_a_light_one_gets_them_back(monkeypatch):
     import bras_kit.view.session as session_module
-    from bras_kit.authoring import arm
+    from bras_kit.model.authoring import arm
     from bras_kit.view import Source, Viewer
 
     with Viewer(Source(robot=arm()), port=_free_port(), watch=False) as viewer:
@@ -434,7 +434,7 @@ def test_a_robot_of_many_links_starts_without_tf_axes_nor_names_and_gets_them_wh
 
 
 def test_the_tutorial_arm_shows_its_tf_axes_and_frame_names_from_the_start():
-    from bras_kit.authoring import arm
+    from bras_kit.model.authoring import arm
     from bras_kit.view import Source, Viewer
 
     with Viewer(Source(robot=arm(wrist=True)), port=_free_port(), watch=False) as viewer:
@@ -452,9 +452,9 @@ def test_a_reload_with_an_unusable_axis_keeps_the_last_good_arm_and_says_why(tmp
     the same way on reload: the arm drawn stays the last good one, the error names BK207's line."""
     import argparse
 
-    from bras_kit.authoring import arm_urdf
     from bras_kit.cli._common import check_usable
-    from bras_kit.errors import UnusableModelError
+    from bras_kit.core.errors import UnusableModelError
+    from bras_kit.model.authoring import arm_urdf
     from bras_kit.view import Source, Viewer
 
     path = tmp_path / "bras.urdf"
@@ -504,7 +504,7 @@ def _pixels(camera, points: np.ndarray) -> np.ndarray:
 
 def test_a_browser_that_reported_its_canvas_before_its_session_is_framed(tmp_path):
     """The whole swept arm lands inside the canvas, left of the 410-pixel control panel."""
-    from bras_kit.authoring import arm
+    from bras_kit.model.authoring import arm
     from bras_kit.view import Source, Viewer
     from bras_kit.view.framing import reach_points
     from bras_kit.view.session import Session
@@ -520,7 +520,7 @@ def test_a_browser_that_reported_its_canvas_before_its_session_is_framed(tmp_pat
 
 
 def test_a_canvas_not_laid_out_yet_is_framed_when_it_reports_its_size(tmp_path):
-    from bras_kit.authoring import arm
+    from bras_kit.model.authoring import arm
     from bras_kit.view import Source, Viewer
     from bras_kit.view.session import Session
 
@@ -537,7 +537,7 @@ def test_a_canvas_not_laid_out_yet_is_framed_when_it_reports_its_size(tmp_path):
 def test_a_canvas_reported_before_layout_is_framed_again_at_its_real_size(tmp_path):
     """A busy browser first reports the canvas HTML gives before layout (300 x 150), then its real
     size: the arm is framed for the real one (it used to stay framed for 300 x 150, cut at the sides)."""
-    from bras_kit.authoring import arm
+    from bras_kit.model.authoring import arm
     from bras_kit.view import Source, Viewer
     from bras_kit.view.framing import reach_points
     from bras_kit.view.session import Session
@@ -554,7 +554,7 @@ def test_a_canvas_reported_before_layout_is_framed_again_at_its_real_size(tmp_pa
 
 
 def test_a_camera_the_learner_moved_stays_when_the_window_is_resized(tmp_path):
-    from bras_kit.authoring import arm
+    from bras_kit.model.authoring import arm
     from bras_kit.view import Source, Viewer
     from bras_kit.view.session import Session
 
@@ -573,7 +573,7 @@ def test_the_viewer_s_first_camera_landing_after_the_browser_s_own_is_framed_aga
     """On a busy machine the page can apply the viewer's first camera (one for every browser,
     sized for no canvas) after the one placed for its canvas: seen in the report, it is placed
     again (the arm was left cut at the edge of a 1000 x 700 page)."""
-    from bras_kit.authoring import arm
+    from bras_kit.model.authoring import arm
     from bras_kit.view import Source, Viewer
     from bras_kit.view.session import Session
 

@@ -19,8 +19,8 @@ from pathlib import Path
 
 import pytest
 
-from bras_kit.ros.contain import MAX_FOLDER_BYTES, MAX_FOLDER_FILES, MAX_PROCESSES, available
 from bras_kit.run import run_findings, run_node
+from bras_kit.trust.contain import MAX_FOLDER_BYTES, MAX_FOLDER_FILES, MAX_PROCESSES, available
 
 NODES = Path(__file__).parent / "data" / "walls" / "nodes"
 TUTORIAL = Path(__file__).parent / "data" / "tutorial_package"

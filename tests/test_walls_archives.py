@@ -32,7 +32,7 @@ from pathlib import Path
 import pytest
 
 from bras_kit.grade.submissions import MAX_ARCHIVE_BYTES, MAX_ARCHIVE_FILES, SubmissionError, unpack
-from bras_kit.sandbox import run_limited
+from bras_kit.trust.sandbox import run_limited
 
 TUTORIAL = Path(__file__).parent / "data" / "tutorial_package"
 UNPACK_MEMORY = 160 << 20  # what unpacking may take on top of this process: a kernel limit in a child

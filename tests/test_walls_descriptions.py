@@ -79,8 +79,8 @@ def test_a_urdf_file_past_the_readers_bound_is_too_large(tmp_path):
 
 def test_the_finding_has_its_words_in_english_and_french():
     import bras_kit.validate.package  # noqa: F401 - registers the package rules and their words
-    from bras_kit.validate.findings import finding
-    from bras_kit.validate.registry import RULES, hit
+    from bras_kit.findings.data import finding
+    from bras_kit.findings.registry import RULES, hit
 
     for variant, detail, english, french in (("too_large", "59.4", "59.4 MiB of text, more than the 8 MiB",
                                               "59.4 Mio de texte, plus que les 8 Mio"),
@@ -93,7 +93,7 @@ def test_the_finding_has_its_words_in_english_and_french():
 
 
 def test_the_package_rules_do_not_parse_a_robot_file_past_the_bound(tmp_path):
-    from bras_kit.scaffold import scaffold_package
+    from bras_kit.scaffold.package import scaffold_package
     from bras_kit.validate.package import validate_package
 
     scaffold_package(tmp_path / "pkg")

@@ -1,4 +1,4 @@
-"""bras_kit.inert: a learner's text made inert for a terminal and for a spreadsheet.
+"""bras_kit.trust.inert: a learner's text made inert for a terminal and for a spreadsheet.
 
 Oracles: the Unicode character database (Python's unicodedata: general category Cc, the
 bidirectional classes of the embedding, override and isolate controls) over every code point,
@@ -10,7 +10,7 @@ import unicodedata
 
 import pytest
 
-from bras_kit.inert import TerminalWriter, for_spreadsheet, for_terminal
+from bras_kit.trust.inert import TerminalWriter, for_spreadsheet, for_terminal
 
 BIDI_CONTROLS = {"LRE", "RLE", "LRO", "RLO", "PDF", "LRI", "RLI", "FSI", "PDI", "LRM", "RLM", "ALM"}
 

@@ -48,7 +48,7 @@ def test_the_viewer_listens_on_loopback_only(viewer):  # noqa: F811 - the fixtur
 def test_the_launch_page_listens_on_loopback_only_and_refuses_another_origin(browser, tmp_path):  # noqa: F811
     from test_launch_view import _launch, _url
 
-    from bras_kit.scaffold import scaffold_package
+    from bras_kit.scaffold.package import scaffold_package
 
     scaffold_package(tmp_path / "bras_description")
     env = {k: v for k, v in os.environ.items() if k not in ("DISPLAY", "WAYLAND_DISPLAY")}

@@ -29,7 +29,7 @@ from pathlib import Path
 import pytest
 
 from bras_kit.grade.submissions import MAX_ARCHIVE_FILES, SubmissionError, find_submissions, unpack
-from bras_kit.sandbox import run_limited
+from bras_kit.trust.sandbox import run_limited
 
 TUTORIAL_URDF = Path(__file__).parent / "data" / "tutorial_package" / "urdf" / "bras.urdf"
 UNPACK_MEMORY = 160 << 20

@@ -8,9 +8,9 @@ import os
 
 import pytest
 
-from bras_kit.errors import ParameterError, TimeInJointValueError, os_reason
-from bras_kit.i18n import say
-from bras_kit.wording import either, joined, quoted
+from bras_kit.core.errors import ParameterError, TimeInJointValueError, os_reason
+from bras_kit.core.i18n import say
+from bras_kit.core.wording import either, joined, quoted
 
 
 @pytest.mark.parametrize("code", [errno.ENOENT, errno.EACCES, errno.EISDIR, errno.ENOTDIR, errno.EEXIST,
@@ -46,7 +46,7 @@ def test_lists_are_joined_with_the_word_of_the_language():
 
 
 def test_a_joint_value_depending_on_t_is_its_own_error_class():
-    from bras_kit.expr import parse_joint_value
+    from bras_kit.model.expr import parse_joint_value
 
     with pytest.raises(TimeInJointValueError):
         parse_joint_value("0.5*t")

@@ -15,8 +15,8 @@ from pathlib import Path
 
 import pytest
 
-from bras_kit.errors import BrasKitError
-from bras_kit.xacrotools import expand_xacro
+from bras_kit.core.errors import BrasKitError
+from bras_kit.model.xacro import expand_xacro
 
 pytestmark = pytest.mark.slow
 

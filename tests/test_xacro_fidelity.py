@@ -19,8 +19,8 @@ import pytest
 from hypothesis import HealthCheck, given, seed, settings
 from hypothesis import strategies as st
 
-from bras_kit.errors import BrasKitError
-from bras_kit.xacrotools import PACKAGE_PATH_ENV, expand_xacro
+from bras_kit.core.errors import BrasKitError
+from bras_kit.model.xacro import PACKAGE_PATH_ENV, expand_xacro
 
 xacro = pytest.importorskip("xacro")
 

@@ -6,9 +6,9 @@ import math
 
 import pytest
 
-from bras_kit.errors import XMLSafetyError, XMLSyntaxError
-from bras_kit.model import robot_from_xml
-from bras_kit.xmlio import parse_xml, read_xml
+from bras_kit.core.errors import XMLSafetyError, XMLSyntaxError
+from bras_kit.model.robot import robot_from_xml
+from bras_kit.model.xmlio import parse_xml, read_xml
 
 
 def test_elements_remember_their_line():

@@ -1,4 +1,4 @@
-"""The one YAML loader (bras_kit/yaml_gate.py): every YAML text bras-kit reads for a learner or a
+"""The one YAML loader (bras_kit/trust/yaml_gate.py): every YAML text bras-kit reads for a learner or a
 stranger goes through it, and it refuses, before anything is built, what would make bras-kit's
 own process swell or recurse.
 
@@ -24,7 +24,7 @@ import yaml
 from hypothesis import given, settings
 from hypothesis import strategies as st
 
-from bras_kit import yaml_gate
+from bras_kit.trust import yaml_gate
 
 PACKAGE = Path(__file__).resolve().parents[1] / "bras_kit"
 GATE = PACKAGE / "yaml_gate.py"
@@ -206,7 +206,7 @@ def test_ordinary_documents_load_as_pyyaml_loads_them(value):
 
 
 def test_the_refusal_carries_words_in_french():
-    from bras_kit.i18n import say
+    from bras_kit.core.i18n import say
 
     with pytest.raises(yaml_gate.YamlRefused) as refused:
         yaml_gate.load(laughs(6, 10))
@@ -236,7 +236,7 @@ def _run_measured(args: list[str], limit: int = 1 << 30) -> tuple[subprocess.Com
 
 def test_a_rviz_bomb_is_a_finding_and_bras_kit_stays_small(tmp_path):
     """Before the gate: 790 MB and 97 s (str() of the Fixed Frame, 10 ** 8 texts), here 23 MB."""
-    from bras_kit.scaffold import scaffold_package
+    from bras_kit.scaffold.package import scaffold_package
 
     scaffold_package(tmp_path / "pkg")
     rviz = tmp_path / "pkg" / "rviz" / "bras_description.rviz"

@@ -4,9 +4,9 @@ gettext. Writes the English into bras_kit/validate/texts.py and bras_kit/validat
 French tables (msgctxt = rule code). Run from the repository root:
 
     python tools/convert_validate_texts.py --texts
-    python -m bras_kit.i18n update
+    python -m bras_kit.core.i18n update
     python tools/convert_validate_texts.py --po
-    python -m bras_kit.i18n compile
+    python -m bras_kit.core.i18n compile
 """
 
 from __future__ import annotations

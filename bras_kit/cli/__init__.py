@@ -18,8 +18,8 @@ import warnings
 from collections.abc import Sequence
 
 from .. import __version__
-from ..errors import BrasKitError, UnknownJointError, os_reason
-from ..i18n import (
+from ..core.errors import BrasKitError, UnknownJointError, os_reason
+from ..core.i18n import (
     LANGUAGES,
     current_language,
     labelled,
@@ -29,7 +29,7 @@ from ..i18n import (
     set_language,
     translator,
 )
-from ..message import M, Message
+from ..core.message import M, Message
 
 # name -> one-line help. The module is bras_kit.cli.<name> (``xacro`` lives in ``xacro_cmd``).
 COMMANDS: dict[str, str] = {
@@ -96,13 +96,13 @@ _QUIET = logging.NullHandler()
 _SUBPARSERS: dict[str, argparse.ArgumentParser] = {}
 
 
-def _command_module(name: str):  # type: ignore[no-untyped-def]
+def _command_module(name: str):
     return importlib.import_module(f"{__name__}.{_MODULES.get(name, name)}")
 
 
 def _word(text: str) -> str:
     """A help text or an argparse word in the chosen language: each is an entry of the ``cli``
-    catalog, looked up as written (``python -m bras_kit.i18n_tools update`` reads them from the parsers)."""
+    catalog, looked up as written (``python -m bras_kit.cli.catalogs update`` reads them from the parsers)."""
     return translator(current_language(), "cli")(text)
 
 
@@ -229,8 +229,8 @@ BLAS_THREADS = ("OPENBLAS_NUM_THREADS", "GOTO_NUM_THREADS", "OMP_NUM_THREADS")
 def main(argv: Sequence[str] | None = None) -> int:
     """The command line: every byte it writes to stdout and stderr (its own words, argparse's,
     warnings, logs, a child's that it relays, those of the processes it forks) passes the
-    terminal's gate (bras_kit.inert.gated_streams); bras-kit's own colours pass as Styled."""
-    from ..inert import gated_streams
+    terminal's gate (bras_kit.trust.inert.gated_streams); bras-kit's own colours pass as Styled."""
+    from ..trust.inert import gated_streams
 
     with gated_streams():
         return _main(argv)

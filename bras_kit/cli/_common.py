@@ -8,8 +8,8 @@ import sys
 from collections.abc import Callable, Iterable, Mapping
 from typing import Any
 
-from ..errors import BrasKitError, ParameterError, TimeInJointValueError
-from ..message import M, Message, Mn
+from ..core.errors import BrasKitError, ParameterError, TimeInJointValueError
+from ..core.message import M, Message, Mn
 
 # A finding's or a note's severity, as it is shown
 SEVERITY_WORDS = {"error": M("error"), "warning": M("warning"), "info": M("info")}
@@ -52,11 +52,11 @@ def xacro_mappings(items: Iterable[str]) -> dict[str, str]:
     return out
 
 
-def load_model(args: argparse.Namespace):  # type: ignore[no-untyped-def]
+def load_model(args: argparse.Namespace):
     """The robot named by the model arguments (the tutorial arm when FILE is absent), refused with
     the validator's findings when it holds a value the command would compute with but the reader
     could not use (see :func:`check_usable`)."""
-    from ..authoring import arm, load, parse_assignments
+    from ..model.authoring import arm, load, parse_assignments
 
     if args.file is None:
         robot = arm(wrist=getattr(args, "wrist", False), inertials=getattr(args, "inertials", False),
@@ -72,7 +72,7 @@ def load_model(args: argparse.Namespace):  # type: ignore[no-untyped-def]
     return robot
 
 
-# What each command computes with (bras_kit.model.PARTS): a validator error about any other part
+# What each command computes with (bras_kit.model.robot.PARTS): a validator error about any other part
 # (a NaN inertia for fk, a text colour for motion) does not stop it.
 _KINEMATICS, _LIMITS = "kinematics", "limits"
 USES: dict[str, tuple[str, ...]] = {
@@ -107,7 +107,7 @@ def check_usable(robot: Any, args: argparse.Namespace) -> None:
     parts = parts_used(args)
     if not parts:
         return
-    from ..errors import UnusableModelError
+    from ..core.errors import UnusableModelError
     from ..validate.usable import blocking_findings
 
     findings = blocking_findings(robot, parts, getattr(args, "package_path", ()))
@@ -124,7 +124,7 @@ def check_usable(robot: Any, args: argparse.Namespace) -> None:
 
 def _findings_text(path: str, findings: list[Any]) -> Message:
     """The findings as ``bras-kit validate`` prints them, one message worded where it is shown."""
-    from ..validate.report import element_text
+    from ..findings.report import element_text
 
     lines: list[Message] = []
     for finding in findings[:MAX_SHOWN_FINDINGS]:
@@ -144,8 +144,8 @@ def _findings_text(path: str, findings: list[Any]) -> Message:
 def joint_values(items: Iterable[str]) -> dict[str, float]:
     """``["epaule=0.5", "coude=pi/2", "poignet=90deg"]`` -> radians by joint name, with a clear
     error for a bad value (the one parser of joint values: --set, --pose, --from, --start)."""
-    from ..authoring import parse_assignments
-    from ..expr import parse_joint_value
+    from ..model.authoring import parse_assignments
+    from ..model.expr import parse_joint_value
 
     values = {}
     for name, text in parse_assignments(items, M("joint value")).items():
@@ -179,28 +179,28 @@ def add_force_argument(parser: argparse.ArgumentParser) -> None:
 
 def check_writable(path: str, force: bool, *, make_parents: bool = False, option: str = "-o") -> None:
     """Refuse a path that exists (even a dangling link) unless ``force``, a folder, or a missing parent."""
-    from ..outputs import check_output
+    from ..trust.outputs import check_output
 
     check_output(path, force, make_parents=make_parents, option=option)
 
 
 def write_text(path: str | None, text: str, force: bool, **options: Any) -> None:
     """Write ``text`` to ``path`` (stdout when None or '-') through the one safe write function."""
-    from ..outputs import write_text as write
+    from ..trust.outputs import write_text as write
 
     write(path, text, force, **options)
 
 
 def save_with(path: str, force: bool, writer: Callable[[str], Any], **options: Any) -> Any:
-    """``writer(temporary_path)`` then moved onto ``path``: see :func:`bras_kit.outputs.write_to`."""
-    from ..outputs import write_to
+    """``writer(temporary_path)`` then moved onto ``path``: see :func:`bras_kit.trust.outputs.write_to`."""
+    from ..trust.outputs import write_to
 
     return write_to(path, force, writer, **options)
 
 
 def warn(message: Message | BrasKitError, lang: str | None = None) -> None:
     """``warning: ...`` on stderr, worded in the command's language."""
-    from ..i18n import labelled, say
+    from ..core.i18n import labelled, say
 
     print(labelled(M("warning"), say(message, lang), lang), file=sys.stderr)
 
@@ -227,7 +227,7 @@ def warn_out_of_limits(tree: Any, config: Mapping[str, float], consequence: Mess
 def template_values(args: argparse.Namespace) -> list[str]:
     """``--param`` items, plus the old ``--set`` spelling of ``urdf`` and ``new`` with a note;
     a joint name given there is pointed to ``--set`` of the other commands."""
-    from ..authoring import template_parameters
+    from ..model.authoring import template_parameters
 
     old = list(getattr(args, "old_params", []) or [])
     if old:
@@ -246,7 +246,7 @@ def template_values(args: argparse.Namespace) -> list[str]:
 
 def joint_name_hint(name: str, hint: Message | str | None) -> Message | str | None:
     """What a name given as a joint is instead: a template parameter, the wrist of the exercise."""
-    from ..authoring import template_parameters
+    from ..model.authoring import template_parameters
 
     if name in template_parameters():
         return M("'{name}' is a template parameter of the built-in arm, not a joint: use --param {name}=VALUE",
@@ -273,7 +273,7 @@ def apply_node(args: argparse.Namespace, duration: float | None) -> None:
     """``--node PKG_DIR[:EXE]``: run the node (as ``bras-kit run`` does) and make what it published
     on /joint_states the motion (``args.recorded``, taken directly by the motion sources);
     FILE defaults to the package's robot description."""
-    from ..message import M
+    from ..core.message import M
 
     args.recorded = None
     spec = getattr(args, "node", None)
@@ -283,18 +283,18 @@ def apply_node(args: argparse.Namespace, duration: float | None) -> None:
         raise ParameterError(M("--node and --motion both say how the arm moves"), hint=M("give one of them"))
     where, executable = _node_spec(spec)
     if args.file is None and os.path.isdir(where):
-        from ..validate.package.sources import Package
+        from ..ros.package import Package
 
         source = Package(where).description_source()
         if source is not None:
             args.file = os.path.join(where, source)
             args.package_path = [*args.package_path, os.path.dirname(os.path.abspath(where))]
     from ..ros.recording import states_for
-    from ..run import run_node
+    from ..run.node import run_node
 
     robot = load_model(args)
     recording = run_node(where, executable, duration=duration or 10.0, robot=robot)
-    from ..kinematics import tf_tree
+    from ..kinematics.frames import tf_tree
 
     states = states_for(recording, tf_tree(robot).dof)
     if not len(states):
@@ -316,3 +316,19 @@ def _node_spec(spec: str) -> tuple[str, str | None]:
 def add_no_browser_argument(parser: argparse.ArgumentParser) -> None:
     """``--no-browser``: the page is served and its address printed; no browser is opened (see _options)."""
     parser.add_argument("--no-browser", action="store_true")
+
+
+def has_screen() -> bool:
+    """A graphical browser can open: a desktop session (not SSH into a server)."""
+    if sys.platform in ("darwin", "win32"):
+        return True
+    return bool(os.environ.get("DISPLAY") or os.environ.get("WAYLAND_DISPLAY"))
+
+
+def open_page(url: str, args: argparse.Namespace) -> None:
+    """The page in the user's browser, unless ``--no-browser`` or there is no screen to show it on
+    (view, view --ros and launch alike)."""
+    if not args.no_browser and has_screen():
+        import webbrowser
+
+        webbrowser.open(url)

@@ -7,15 +7,15 @@ import json
 import sys
 from typing import Any
 
-from ..i18n import say
-from ..message import M, Mn
+from ..core.i18n import say
+from ..core.message import M, Mn
 
 
 def run_ros(args: argparse.Namespace) -> int:
-    from ..errors import ParameterError
+    from ..core.errors import ParameterError
     from ..live.doctor import diagnose
-    from ..live.snapshot import snapshot_from_json
     from ..live.watch import look, ros_python
+    from ..ros.graph import snapshot_from_json
 
     if args.duration is None:
         args.duration = DEFAULT_SECONDS
@@ -36,7 +36,7 @@ def run_ros(args: argparse.Namespace) -> int:
                   file=sys.stderr, flush=True)
         data = look(args.duration, python)
         if args.save:
-            from ..outputs import write_text
+            from ..trust.outputs import write_text
 
             write_text(args.save, json.dumps(data, ensure_ascii=False) + "\n", args.force, announce=False)
     snapshot = snapshot_from_json(data)
@@ -56,13 +56,13 @@ MAX_LOOK_BYTES = 64_000_000  # a 3 s look at a 1 kHz publisher is a few MB
 
 def _read_look(path: str) -> dict[str, Any]:
     """A look saved with --save: JSON, checked field by field when read as a snapshot."""
-    from ..errors import ParameterError
+    from ..core.errors import ParameterError
 
     try:
         with open(path, "rb") as file:
             raw = file.read(MAX_LOOK_BYTES + 1)
     except OSError as exc:
-        from ..errors import os_reason
+        from ..core.errors import os_reason
 
         raise ParameterError(M("cannot read {path}: {reason}", path=path, reason=os_reason(exc))) from None
     if len(raw) > MAX_LOOK_BYTES:
@@ -99,7 +99,7 @@ def _facts(snapshot: Any) -> list[Any]:
 
 
 def _text(snapshot: Any, results: list[Any], lang: str | None) -> str:
-    from ..validate.report import finding_text
+    from ..findings.report import finding_text
 
     lines = [say(fact, lang) for fact in _facts(snapshot)]
     blocks = [finding_text(r.path, f, lang) for r in results for f in r.findings]
@@ -125,8 +125,8 @@ def _text(snapshot: Any, results: list[Any], lang: str | None) -> str:
 
 def _root_link(snapshot: Any) -> str | None:
     """The root link of the robot last published on /robot_description (None without one)."""
-    from ..errors import BrasKitError
-    from ..kinematics import tf_tree
+    from ..core.errors import BrasKitError
+    from ..kinematics.frames import tf_tree
     from ..live.doctor import robot_of
 
     robot, _ = robot_of(snapshot)

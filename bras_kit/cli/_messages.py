@@ -1,7 +1,7 @@
 """The English words of the command line that are not ``M()`` messages, for the ``cli`` catalog.
 
 Two sources: argparse's own words and every command's help (descriptions, epilogs, group
-titles, option help, read from the parsers themselves). ``python -m bras_kit.i18n_tools update``
+titles, option help, read from the parsers themselves). ``python -m bras_kit.cli.catalogs update``
 merges them into ``locale/fr/LC_MESSAGES/cli.po`` with the messages of the code; the command
 line looks each up as written (:func:`bras_kit.cli._word`).
 """
@@ -46,5 +46,5 @@ def parser_words() -> list[str]:
 def _subparser(parser: argparse.ArgumentParser, name: str) -> argparse.ArgumentParser:
     for action in parser._actions:
         if isinstance(action, argparse._SubParsersAction):
-            return action.choices[name]  # type: ignore[no-any-return]
+            return action.choices[name]
     raise LookupError(name)

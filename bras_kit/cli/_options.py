@@ -94,11 +94,11 @@ def apply(parser: argparse.ArgumentParser) -> None:
         action.help = meaning
 
 
-def help_text(action: argparse.Action, word) -> str | None:  # type: ignore[no-untyped-def]
+def help_text(action: argparse.Action, word) -> str | None:
     """What ``--help`` shows for ``action``, each part looked up by ``word`` (the catalog)."""
     if not action.help:
         return action.help
     detail = getattr(action, "detail", None)
     if detail is None:
-        return word(action.help)  # type: ignore[no-any-return]
-    return word(JOINED).format(meaning=word(action.help), detail=word(detail))  # type: ignore[no-any-return]
+        return word(action.help)
+    return word(JOINED).format(meaning=word(action.help), detail=word(detail))

@@ -6,14 +6,14 @@ from __future__ import annotations
 import argparse
 import sys
 
-from ..i18n import say
-from ..message import M
+from ..core.i18n import say
+from ..core.message import M
 
 WAIT_FOR_DESCRIPTION = 10.0  # seconds: discovery (up to 2.5 s) and robot_state_publisher's start
 
 
 def run_ros(args: argparse.Namespace) -> int:
-    from ..errors import ParameterError
+    from ..core.errors import ParameterError
     from ..live.watch import ros_python
 
     if args.file is not None or args.motion or args.node or args.export:
@@ -42,7 +42,7 @@ def run_ros(args: argparse.Namespace) -> int:
 
 def _no_robot(feed: object, lang: str | None) -> int:
     """No robot to show: say why, as doctor --ros would, and exit 1."""
-    from ..validate.report import finding_text
+    from ..findings.report import finding_text
 
     results = feed.results()  # type: ignore[attr-defined]
     print(say(M("no robot came on /robot_description in {seconds:.0f} s: nothing to show", seconds=WAIT_FOR_DESCRIPTION),
@@ -55,7 +55,7 @@ def _no_robot(feed: object, lang: str | None) -> int:
 
 def _serve(args: argparse.Namespace, feed: object, robot: object) -> int:
     from ..view import Source, Viewer
-    from ._common import warn
+    from ._common import open_page, warn
 
     if args.host not in ("127.0.0.1", "localhost", "::1"):
         warn(M("listening on {host}: anyone who can reach this computer can see and move the arm", host=args.host),
@@ -68,13 +68,7 @@ def _serve(args: argparse.Namespace, feed: object, robot: object) -> int:
         print(say(M("bras-kit view: {url} (Ctrl-C to stop)", url=viewer.url), args.lang), flush=True)
         print(say(M("showing the live ROS 2 graph: /robot_description, moving with /joint_states"), args.lang),
               file=sys.stderr, flush=True)
-        if not args.no_browser:
-            from .view import _has_screen
-
-            if _has_screen():
-                import webbrowser
-
-                webbrowser.open(viewer.url)
+        open_page(viewer.url, args)
         viewer.wait(until=lambda: not feed.running)  # type: ignore[attr-defined]
     except KeyboardInterrupt:
         pass

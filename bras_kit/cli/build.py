@@ -7,7 +7,7 @@ import os
 import stat
 import sys
 
-from ..message import M
+from ..core.message import M
 
 _EPILOG = """\
 Each package's setup.py runs (in the sandbox, setup() recorded rather than installing) and the
@@ -50,7 +50,7 @@ def install_base(where: str) -> str:
 
 def packages_to_build(where: str | None) -> tuple[list[str], str]:
     """The package folders ``bras-kit build [WHERE]`` builds, in order, and the install/ they go to."""
-    from ..errors import ParameterError
+    from ..core.errors import ParameterError
     from ..ros.workspace import find_workspace, is_package_folder
     from ..validate.package import find_packages
 
@@ -72,15 +72,15 @@ def packages_to_build(where: str | None) -> tuple[list[str], str]:
 
 
 def run(args: argparse.Namespace) -> int:
-    from ..i18n import current_language, say
-    from ..inert import for_terminal
+    from ..core.i18n import current_language, say
+    from ..findings.data import FileResult, finding
+    from ..findings.registry import RULES
+    from ..findings.report import format_text
     from ..ros.build import build_package
     from ..ros.workspace import package_name
-    from ..validate.findings import FileResult, finding
+    from ..trust.inert import for_terminal
     from ..validate.package.build_reach import setup_blocked_hits
     from ..validate.package.launch_rules import build_hits
-    from ..validate.registry import RULES
-    from ..validate.report import format_text
 
     lang = args.lang or current_language()
     packages, base = packages_to_build(args.where)

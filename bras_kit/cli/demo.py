@@ -7,8 +7,8 @@ import os
 import sys
 import time
 
-from ..i18n import labelled, say
-from ..message import M
+from ..core.i18n import labelled, say
+from ..core.message import M
 from ._common import SEVERITY_WORDS, add_force_argument, warn
 
 DEMO_POSE = {"epaule": 0.8, "coude": 1.2}
@@ -35,13 +35,13 @@ def _done(start: float, path: str) -> None:
 
 
 def run(args: argparse.Namespace) -> int:
-    from ..authoring import arm
-    from ..message import M
+    from ..core.message import M
+    from ..model.authoring import arm
     from ..motion import check_limits, sample_loop, tutorial_motion
-    from ..outputs import write_to
     from ..render import parse_size, render_motion, render_pose, save_gif, save_png
     from ..render.renderer import used_software_fallback
-    from ..scaffold import scaffold_package
+    from ..scaffold.package import scaffold_package
+    from ..trust.outputs import write_to
     from ..validate import validate
 
     outdir = args.outdir
@@ -56,7 +56,7 @@ def run(args: argparse.Namespace) -> int:
                     variant=variant, folder=outdir), args.lang))
         made: list[str] = []
 
-        def save(name: str, writer) -> str:  # type: ignore[no-untyped-def]
+        def save(name: str, writer) -> str:
             path = os.path.join(outdir, name)
             write_to(path, args.force or name in owned, writer, announce=False)
             made.append(name)
@@ -131,7 +131,7 @@ def _next_steps(lang: str) -> str:
     return "\n".join(lines)
 
 
-def _draw_diagrams(robot, states, folder: str, lang: str | None) -> None:  # type: ignore[no-untyped-def]
+def _draw_diagrams(robot, states, folder: str, lang: str | None) -> None:
     """The demo's figures, written into ``folder``: the frame tree (drawn once, saved as PDF and
     PNG) and the joint-angle and tip-path plot."""
     from ..diagrams import frame_diagram, plot_motion
@@ -149,7 +149,7 @@ class _Diagrams:
     to their place by the demo's own writer. If that process cannot start or fails, the figures
     are drawn here instead, so a failure says what the in-process drawing says."""
 
-    def __init__(self, robot, states, lang: str | None = None) -> None:  # type: ignore[no-untyped-def]
+    def __init__(self, robot, states, lang: str | None = None) -> None:
         import concurrent.futures
         import multiprocessing
         import tempfile
@@ -166,8 +166,8 @@ class _Diagrams:
             self._future = None
         self._ready = False
 
-    def writer(self, name: str):  # type: ignore[no-untyped-def]
-        """A writer for :func:`~bras_kit.outputs.write_to` copying the figure ``name``."""
+    def writer(self, name: str):
+        """A writer for :func:`~bras_kit.trust.outputs.write_to` copying the figure ``name``."""
         import shutil
 
         def write(path: str) -> None:
@@ -213,8 +213,8 @@ def _claim(outdir: str, force: bool) -> set[str]:
     The demo owns its folder: running it again refreshes what it made (listed in a manifest),
     and it refuses only a folder holding something else, unless ``force``.
     """
-    from ..errors import OutputExistsError, os_reason
-    from ..outputs import OutputError
+    from ..core.errors import OutputExistsError, os_reason
+    from ..trust.outputs import OutputError
 
     if os.path.islink(outdir) or (os.path.lexists(outdir) and not os.path.isdir(outdir)):
         raise OutputError(M("{path} exists and is not a folder", path=outdir), hint=M("name a new folder for the demo"))
@@ -242,7 +242,7 @@ def _claim(outdir: str, force: bool) -> set[str]:
 
 def _remember(outdir: str, names: set[str]) -> None:
     """List what the demo made, so the next run may refresh it."""
-    from ..outputs import write_text
+    from ..trust.outputs import write_text
 
     path = os.path.join(outdir, MANIFEST)
     write_text(path, "\n".join(sorted(names)), True, announce=False)

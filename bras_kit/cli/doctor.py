@@ -42,12 +42,12 @@ def run(args: argparse.Namespace) -> int:
         from ._doctor_ros import run_ros
 
         return run_ros(args)
-    from ..doctor import CHECKS, healthy, run_checks
-    from ..i18n import labelled, say
-    from ..message import M, Mn
+    from ..core.i18n import labelled, say
+    from ..core.message import M, Mn
+    from ..doctor.install import CHECKS, healthy, run_checks
 
     if args.duration is not None or args.save or args.from_file or args.format != "text":
-        from ..errors import ParameterError
+        from ..core.errors import ParameterError
 
         raise ParameterError(M("--duration, --format, --save and --from go with --ros"),
                              hint=M("add --ros to look at the live ROS 2 graph"))

@@ -7,9 +7,9 @@ import os
 import shutil
 import sys
 
-from ..errors import BrasKitError
-from ..inert import emit, join
-from ..message import M
+from ..core.errors import BrasKitError
+from ..core.message import M
+from ..trust.inert import emit, join
 
 ACTIONS = ("watch", "init", "check", "list", "hint", "reset")
 
@@ -48,7 +48,7 @@ def configure(parser: argparse.ArgumentParser) -> None:
 
 
 def run(args: argparse.Namespace) -> int:
-    from ..i18n import current_language
+    from ..core.i18n import current_language
 
     lang = args.lang or current_language()
     action = args.action
@@ -73,8 +73,8 @@ def run(args: argparse.Namespace) -> int:
 def _track_language(args: argparse.Namespace, lang: str) -> str:
     """The language the track was laid out in, unless --lang names another on this command line:
     a track made with --lang fr answers in French when started with the command init printed."""
+    from ..core.i18n import set_language
     from ..exercises.progress import find_track_folder, read_progress
-    from ..i18n import set_language
 
     if getattr(args, "lang_given", None):
         return lang
@@ -86,7 +86,7 @@ def _track_language(args: argparse.Namespace, lang: str) -> str:
     return set_language(kept) if kept else lang
 
 
-def _folder(args: argparse.Namespace):  # type: ignore[no-untyped-def]
+def _folder(args: argparse.Namespace):
     from pathlib import Path
 
     return Path(args.dir) if args.dir else None
@@ -96,15 +96,15 @@ def _width() -> int:
     return shutil.get_terminal_size((80, 24)).columns if sys.stdout.isatty() else 80
 
 
-def _style():  # type: ignore[no-untyped-def]
+def _style():
     from ..exercises.screen import Style, wants_colour
 
     return Style(wants_colour(sys.stdout))
 
 
 def _init(args: argparse.Namespace, lang: str) -> int:
+    from ..core.i18n import say
     from ..exercises import init_track
-    from ..i18n import say
 
     folder = args.target or args.dir or "bras-kit-exercises"
     track = init_track(folder, args.exercise_set, lang)
@@ -113,7 +113,7 @@ def _init(args: argparse.Namespace, lang: str) -> int:
     return 0
 
 
-def _pick(track, progress, target):  # type: ignore[no-untyped-def]
+def _pick(track, progress, target):
     from ..exercises import current_exercise
 
     return track.exercise(target) if target is not None else current_exercise(track, progress)
@@ -142,8 +142,8 @@ def _check(args: argparse.Namespace, lang: str) -> int:
     outcome = check_exercise(track, progress, exercise, lang)
     emit(sys.stdout, join("\n", exercise_lines(track, progress, exercise, outcome, lang, _width(), _style())))
     if outcome.state == "passed":
+        from ..core.i18n import say
         from ..exercises import current_exercise
-        from ..i18n import say
 
         following = current_exercise(track, progress)
         if following is not None:
@@ -167,8 +167,8 @@ def _hint(args: argparse.Namespace, lang: str) -> int:
 
 
 def _reset(args: argparse.Namespace, lang: str) -> int:
+    from ..core.i18n import say
     from ..exercises import exercise_files, open_track, reset_exercise, start_files
-    from ..i18n import say
 
     if args.target is None:
         raise BrasKitError(M("reset needs the exercise's number"), hint=M("for example: bras-kit exercises reset 3"))
@@ -186,8 +186,8 @@ def _reset(args: argparse.Namespace, lang: str) -> int:
     return 0
 
 
-def _confirmed(exercise, files, lang: str) -> bool:  # type: ignore[no-untyped-def]
-    from ..i18n import say
+def _confirmed(exercise, files, lang: str) -> bool:
+    from ..core.i18n import say
 
     if not sys.stdin.isatty():
         raise BrasKitError(M("reset replaces your files {files}: it asks first, and there is no terminal to ask in",

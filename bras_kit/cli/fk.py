@@ -6,8 +6,8 @@ import argparse
 import json
 import math
 
-from ..i18n import say
-from ..message import M, Message
+from ..core.i18n import say
+from ..core.message import M, Message
 from ._common import add_model_arguments, joint_values, warn, warn_out_of_limits
 
 
@@ -39,8 +39,8 @@ def _text_block(title: Message, pose: dict[str, list[float]], lang: str | None) 
 
 
 def run(args: argparse.Namespace) -> int:
-    from ..errors import ParameterError
-    from ..kinematics import describe_transform, fk, relative_transform, tf_tree
+    from ..core.errors import ParameterError
+    from ..kinematics.frames import describe_transform, fk, relative_transform, tf_tree
     from ._common import load_model
 
     if (args.source is None) != (args.target is None):
@@ -72,9 +72,9 @@ def run(args: argparse.Namespace) -> int:
     return 0
 
 
-def _json(document: dict) -> str:  # type: ignore[type-arg]
+def _json(document: dict) -> str:
     """JSON text; a NaN or infinity (from a non-finite <origin> or axis) is an error, never printed."""
-    from ..errors import ModelError
+    from ..core.errors import ModelError
 
     try:
         return json.dumps(document, indent=2, allow_nan=False)

@@ -5,8 +5,8 @@ from __future__ import annotations
 import argparse
 import sys
 
-from ..i18n import say
-from ..message import M, Mn
+from ..core.i18n import say
+from ..core.message import M, Mn
 from ._common import add_force_argument, add_model_arguments, joint_values, warn_out_of_limits
 
 DEFAULT_OUTPUT = "frames.pdf"
@@ -23,7 +23,7 @@ def configure(parser: argparse.ArgumentParser) -> None:
 
 def run(args: argparse.Namespace) -> int:
     from ..diagrams import FRAME_FORMATS, frame_diagram, frames_dot, output_suffix
-    from ..kinematics import tf_tree
+    from ..kinematics.frames import tf_tree
     from ._common import check_writable, load_model, save_with, write_text
 
     output = args.output or DEFAULT_OUTPUT

@@ -15,7 +15,7 @@ import argparse
 import json
 import sys
 
-from ..message import M, Mn
+from ..core.message import M, Mn
 from ._common import SEVERITY_WORDS, add_force_argument, add_model_arguments
 
 EPILOG = """\
@@ -42,13 +42,13 @@ def _names(items: list[str]) -> str:
     return ", ".join(items) if items else "-"
 
 
-def _text(found, findings, robot_name: str | None, lang: str | None) -> str:  # type: ignore[no-untyped-def]
-    from ..i18n import labelled, say
+def _text(found, findings, robot_name: str | None, lang: str | None) -> str:
+    from ..core.i18n import labelled, say
 
     name = robot_name or "?"
     lines = []
 
-    def said(f) -> None:  # type: ignore[no-untyped-def]
+    def said(f) -> None:
         lines.append(f"{f.code} " + labelled(SEVERITY_WORDS[f.severity], f.text(lang), lang))
         if f.hint_text(lang):
             lines.append("  " + say(M("hint: {hint}", hint=f.hint_text(lang)), lang))
@@ -82,7 +82,7 @@ def _text(found, findings, robot_name: str | None, lang: str | None) -> str:  # 
 
 
 def run(args: argparse.Namespace) -> int:
-    from ..errors import ParameterError
+    from ..core.errors import ParameterError
     from ..validate import validate
     from ..validate.urdf2sdf import as_data, as_gazebo_shows, gazebo_model
     from ._common import check_writable, load_model

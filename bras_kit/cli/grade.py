@@ -7,8 +7,8 @@ import os
 import sys
 import time
 
-from ..i18n import say
-from ..message import M
+from ..core.i18n import say
+from ..core.message import M
 from ._common import add_cache_argument, add_force_argument
 
 EPILOG = """\
@@ -55,7 +55,7 @@ def configure(parser: argparse.ArgumentParser) -> None:
 
 
 def run(args: argparse.Namespace) -> int:
-    from ..errors import OutputExistsError, ParameterError
+    from ..core.errors import OutputExistsError, ParameterError
     from ..grade import Options, find_submissions, grade_all, load_rubric, write_reports
     from ..grade.report import REPORT_MARK, previous_results
     from ..grade.rubric import explained_rubric

@@ -6,9 +6,9 @@ import argparse
 import os
 import sys
 
-from ..evaluation import rviz_fixed_frame
-from ..inert import for_terminal
-from ..message import M, Mn
+from ..core.message import M, Mn
+from ..ros.evaluation import rviz_fixed_frame
+from ..trust.inert import for_terminal
 from ._common import add_no_browser_argument
 
 _EPILOG = """\
@@ -50,7 +50,7 @@ def configure(parser: argparse.ArgumentParser) -> None:
 
 
 def _split(items: list[str]) -> tuple[str | None, dict[str, str]]:
-    from ..errors import ParameterError
+    from ..core.errors import ParameterError
 
     launch_file, arguments = None, {}
     for item in items:
@@ -74,7 +74,7 @@ COUNTERPARTS = {
 
 
 def run(args: argparse.Namespace) -> int:
-    from ..i18n import current_language
+    from ..core.i18n import current_language
 
     lang = args.lang or current_language()
     from ..ros.workspace import others, resolve_package
@@ -84,8 +84,8 @@ def run(args: argparse.Namespace) -> int:
     launch_file, arguments = _split(args.items)
     if args.no_page:
         return _report(args, _launch(args, launch_file, arguments, lang), lang)
-    from ..ros.contain import available as containable
-    from ..sandbox import children_from_a_server
+    from ..trust.contain import available as containable
+    from ..trust.sandbox import children_from_a_server
 
     # With a page, threads run beside the package's children (the page's, viser's, Zenoh's): the
     # children that can be sent to it are forked by a server started now, before any thread exists
@@ -115,7 +115,7 @@ def run(args: argparse.Namespace) -> int:
 
 def _report(args: argparse.Namespace, launched: _Launched, lang: str) -> int:
     """The findings printed (text or JSON); the exit code they give."""
-    from ..validate.report import exit_code, format_json, format_text
+    from ..findings.report import exit_code, format_json, format_text
 
     if args.json:
         sys.stdout.write(format_json(launched.results, lang=lang))
@@ -129,7 +129,7 @@ class _Launched:
     """One build and launch of the package: its evaluation (what the terminal prints and the page
     shows), the package's own nodes, the page."""
 
-    def __init__(self, package, evaluation, nodes, page) -> None:  # type: ignore[no-untyped-def]
+    def __init__(self, package, evaluation, nodes, page) -> None:
         self.package, self.evaluation, self.nodes = package, evaluation, nodes
         self.result = evaluation.launched
         self.results = evaluation.results
@@ -139,25 +139,27 @@ class _Launched:
 
 
 def _launch(args: argparse.Namespace, launch_file: str | None, arguments: dict[str, str], lang: str,
-            page_shown: list[tuple[object, object]] | None = None, viewer=None) -> _Launched:  # type: ignore[no-untyped-def]
-    """Build the package, evaluate its launch file once (:mod:`bras_kit.evaluation`), say what
+            page_shown: list[tuple[object, object]] | None = None, viewer=None) -> _Launched:
+    """Build the package, evaluate its launch file once (:mod:`bras_kit.ros.evaluation`), say what
     started, run its own nodes in simulated time for their findings. The page reads that same
     evaluation: given ``page_shown``, it is opened as soon as the robot is known (before the
     checks), and (viewer, bus) is put in ``page_shown`` when its address is printed; given
     ``viewer`` (a rebuild), the open page shows the new evaluation."""
     import tempfile
 
-    from ..errors import ParameterError
-    from ..evaluation import check_launch, evaluate_launch, merge
-    from ..i18n import say
+    from ..core.errors import ParameterError
+    from ..core.i18n import say
+    from ..findings.data import merge_results
+    from ..ros.evaluation import evaluate_launch
     from ..validate.package import Package
+    from ..validate.package.launch_check import check_launch
 
     package = Package(args.target)
     pending, page = None, None
     if page_shown is not None:  # viser is imported while the package builds (see run: children_from_a_server)
         from concurrent.futures import ThreadPoolExecutor
 
-        from .. import backends
+        from ..core import backends
 
         pool = ThreadPoolExecutor(1, thread_name_prefix="bras-kit-page")
         pending = pool.submit(backends.viser)
@@ -226,19 +228,21 @@ def _launch(args: argparse.Namespace, launch_file: str | None, arguments: dict[s
         elif viewer is not None:
             viewer.show_launch(evaluation, package_paths)
         check_launch(evaluation, package, package_paths)
-        evaluation.results = merge(evaluation.results, _node_results(args, nodes, evaluation.robot, evaluation.package))
+        evaluation.results = sorted(merge_results(evaluation.results, _node_results(args, nodes, evaluation.robot, evaluation.package)),
+                                    key=lambda r: r.path)
         evaluation.checked = True  # the page shows them once the terminal has said them (run, _live)
     return _Launched(package, evaluation, nodes, page)
 
 
-def _node_results(args: argparse.Namespace, nodes: list, robot, package: str):  # type: ignore[no-untyped-def,type-arg]
+def _node_results(args: argparse.Namespace, nodes: list, robot, package: str):
     """Each of the package's own nodes run as bras-kit run runs it, in simulated time, against the
     robot robot_state_publisher loads: what it published, and its findings."""
-    from ..errors import BrasKitError
-    from ..i18n import current_language, say
-    from ..run import run_findings, run_node
+    from ..core.errors import BrasKitError
+    from ..core.i18n import current_language, say
+    from ..findings.data import FileResult
+    from ..run.findings import run_findings
+    from ..run.node import run_node
     from ..run.report import summary
-    from ..validate.findings import FileResult
 
     lang = args.lang or current_language()
     from ..run.live import executables_of
@@ -254,7 +258,7 @@ def _node_results(args: argparse.Namespace, nodes: list, robot, package: str):  
             continue
         for message in summary(recording):
             print("  " + say(message, lang))
-        by_file: dict[str, list] = {}  # type: ignore[type-arg]
+        by_file: dict[str, list] = {}
         for found in run_findings(recording, robot, lang=lang):
             by_file.setdefault(str(found.data.get("file", "")), []).append(found)
         out += [FileResult(os.path.join(args.target, file), found) for file, found in by_file.items()]
@@ -264,11 +268,11 @@ def _node_results(args: argparse.Namespace, nodes: list, robot, package: str):  
 _rviz_fixed_frame = rviz_fixed_frame  # the evaluation's reading (kept under its old name)
 
 
-def _open_page(args: argparse.Namespace, evaluation, package_paths: tuple[str, ...]):  # type: ignore[no-untyped-def]
+def _open_page(args: argparse.Namespace, evaluation, package_paths: tuple[str, ...]):
     """The launch in the browser: the evaluation's robot (robot_state_publisher's), findings, Fixed
     Frame and slider window, and the bus open for 'bras-kit run' beside it. Returns (viewer, bus).
     Nothing is said yet (:func:`_announce`)."""
-    from ..errors import BrasKitError
+    from ..core.errors import BrasKitError
     from ..ros.bus import Bus
     from ..view import Source, Viewer
 
@@ -290,34 +294,31 @@ def _open_page(args: argparse.Namespace, evaluation, package_paths: tuple[str, .
     return viewer, bus
 
 
-def _close(viewer, bus) -> None:  # type: ignore[no-untyped-def]
+def _close(viewer, bus) -> None:
     if bus is not None:
         bus.close()
     viewer.stop()
 
 
-def _announce(args: argparse.Namespace, viewer) -> None:  # type: ignore[no-untyped-def]
-    from ..i18n import say
+def _announce(args: argparse.Namespace, viewer) -> None:
+    from ..core.i18n import say
 
     print(say(M("bras-kit launch: {url} (Ctrl-C to stop)", url=viewer.url), args.lang), flush=True)
     print(say(M("'bras-kit run {folder}' in another terminal moves this arm, as ros2 run beside ros2 launch",
                 folder=getattr(args, "typed", args.target)), args.lang), file=sys.stderr, flush=True)
-    from .view import _has_screen
+    from ._common import open_page
 
-    if not args.no_browser and _has_screen():
-        import webbrowser
-
-        webbrowser.open(viewer.url)
+    open_page(viewer.url, args)
 
 
-def _live(args: argparse.Namespace, launch_file: str | None, arguments: dict[str, str], lang: str,  # type: ignore[no-untyped-def]
+def _live(args: argparse.Namespace, launch_file: str | None, arguments: dict[str, str], lang: str,
           launched: _Launched, viewer) -> int:
     """The package's own nodes live in the page until Ctrl-C; a file of the package saved: built
     and launched again, one evaluation printed and shown (robot, Fixed Frame, sliders, checks, nodes)."""
-    from ..errors import BrasKitError
-    from ..i18n import say
+    from ..core.errors import BrasKitError
+    from ..core.i18n import say
+    from ..findings.report import format_text
     from ..run.live import LiveNodes, changed_files, executables_of, package_stamps
-    from ..validate.report import format_text
 
     nodes = LiveNodes(args.target, [], viewer.show_joint_state)
 

@@ -10,9 +10,9 @@ import argparse
 import os
 import sys
 
-from ..errors import BrasKitError, os_reason
-from ..i18n import labelled, say
-from ..message import M, Mn
+from ..core.errors import BrasKitError, os_reason
+from ..core.i18n import labelled, say
+from ..core.message import M, Mn
 from ._common import add_force_argument, add_model_arguments, check_writable, write_text
 
 _EPILOG = """\
@@ -64,7 +64,7 @@ def run(args: argparse.Namespace) -> int:
     write_text(args.output, text, args.force)
     if built.assets:
         target = os.path.join(os.path.dirname(args.output), folder)
-        from ..outputs import write_bytes
+        from ..trust.outputs import write_bytes
 
         if os.path.islink(target):
             raise BrasKitError(M("{path} is a symbolic link: refused", path=target),
@@ -81,7 +81,7 @@ def run(args: argparse.Namespace) -> int:
     return 0
 
 
-def load_model(args: argparse.Namespace):  # type: ignore[no-untyped-def]
+def load_model(args: argparse.Namespace):
     from ._common import load_model as load
 
     return load(args)

@@ -13,9 +13,9 @@ import argparse
 import math
 import sys
 
-from ..errors import ParameterError
-from ..i18n import labelled, say
-from ..message import M, Mn
+from ..core.errors import ParameterError
+from ..core.i18n import labelled, say
+from ..core.message import M, Mn
 from ._common import (
     add_force_argument,
     add_model_arguments,
@@ -157,7 +157,7 @@ def run(args: argparse.Namespace) -> int:
     return 1 if args.strict and (violations or segments) else 0
 
 
-def _summary(robot, motion, states, violations, clamped, rate: float, lang: str) -> str:  # type: ignore[no-untyped-def]
+def _summary(robot, motion, states, violations, clamped, rate: float, lang: str) -> str:
     from ..motion import joint_unit
     from ..motion.sources import motion_title
 

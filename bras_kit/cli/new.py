@@ -5,8 +5,8 @@ from __future__ import annotations
 import argparse
 import os
 
-from ..i18n import say
-from ..message import M
+from ..core.i18n import say
+from ..core.message import M
 from ._common import add_force_argument, template_values
 
 
@@ -69,9 +69,9 @@ def _given(args: argparse.Namespace) -> list[str]:
 
 
 def run(args: argparse.Namespace) -> int:
-    from ..authoring import parse_assignments
-    from ..errors import ParameterError
-    from ..scaffold import DEFAULT_PACKAGE, check_package_name, scaffold_package
+    from ..core.errors import ParameterError
+    from ..model.authoring import parse_assignments
+    from ..scaffold.package import DEFAULT_PACKAGE, check_package_name, scaffold_package
 
     if args.build_type not in (None, "ament_python"):  # ros2 pkg create's ament_cmake or cmake: C++
         raise ParameterError(M("--build-type {type}: bras-kit makes ament_python packages only, the build type of "
@@ -110,8 +110,8 @@ def run(args: argparse.Namespace) -> int:
 
 def _empty(args: argparse.Namespace) -> int:
     """The tutorial's step 2 (``ros2 pkg create``): the package's frame, the learner's files to write."""
-    from ..errors import ParameterError
-    from ..scaffold import (
+    from ..core.errors import ParameterError
+    from ..scaffold.package import (
         DEFAULT_LICENSE,
         DEFAULT_PACKAGE,
         EMPTY_DESCRIPTION,

@@ -5,8 +5,8 @@ from __future__ import annotations
 import argparse
 import sys
 
-from ..i18n import say
-from ..message import M
+from ..core.i18n import say
+from ..core.message import M
 from ._common import (
     add_force_argument,
     add_model_arguments,

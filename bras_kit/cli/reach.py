@@ -12,8 +12,8 @@ import re
 import sys
 import textwrap
 
-from ..i18n import labelled, say
-from ..message import M, Mn
+from ..core.i18n import labelled, say
+from ..core.message import M, Mn
 from ._common import add_force_argument, add_model_arguments, check_writable, joint_values, warn
 
 # argparse takes "-0.3" for a positional only in its plain forms; widen that to "-1e-3",
@@ -38,7 +38,7 @@ def _coordinate(text: str) -> float:
 
 
 def configure(parser: argparse.ArgumentParser) -> None:
-    parser._negative_number_matcher = _NEGATIVE_NUMBER  # type: ignore[attr-defined]
+    parser._negative_number_matcher = _NEGATIVE_NUMBER
     parser.epilog = ("Negative coordinates parse as they are (reach -0.3 0 0.5); '--' before X Y Z "
                      "also works. Exit status: 0 reached, 1 not reached or singular, 2 bad input.")
     add_model_arguments(parser)
@@ -62,7 +62,7 @@ def configure(parser: argparse.ArgumentParser) -> None:
     add_force_argument(parser)
 
 
-def _states(motion):  # type: ignore[no-untyped-def]
+def _states(motion):
     """The move sampled for rendering, the final pose held for a moment."""
     import numpy as np
 
@@ -75,7 +75,7 @@ def _states(motion):  # type: ignore[no-untyped-def]
                        velocities=motion.velocities(times))
 
 
-def _view(robot, motion) -> str:  # type: ignore[no-untyped-def]
+def _view(robot, motion) -> str:
     """'front' (looking along y) when every moving joint turns about y, as in the tutorial arm."""
     moving = [robot.joint(n) for n, a, b in zip(motion.names, motion.start, motion.goal) if a != b]
     about_y = all(j is not None and j.axis is not None and abs(j.axis[0]) < 1e-9 and abs(j.axis[2]) < 1e-9
@@ -83,8 +83,8 @@ def _view(robot, motion) -> str:  # type: ignore[no-untyped-def]
     return "front" if moving and about_y else "iso"
 
 
-def _write_gif(robot, motion, path: str, force: bool, target=None) -> None:  # type: ignore[no-untyped-def]
-    from ..errors import BackendError
+def _write_gif(robot, motion, path: str, force: bool, target=None) -> None:
+    from ..core.errors import BackendError
 
     try:
         from ..render import render_motion, save_gif
@@ -105,7 +105,7 @@ def _angle(value: float, unit: str) -> str:
     return f"{value:+.6f} m"
 
 
-def _point_text(point) -> str:  # type: ignore[no-untyped-def]
+def _point_text(point) -> str:
     return "x={:.4f} y={:.4f} z={:.4f} m".format(*(float(v) + 0.0 for v in point))
 
 
@@ -113,7 +113,7 @@ def run(args: argparse.Namespace) -> int:
     import json
 
     from ..ik import motion_violations, reach_motion, serial_chain, solve_ik
-    from ..kinematics import rpy_to_matrix, tf_tree
+    from ..kinematics.frames import rpy_to_matrix, tf_tree
     from ._common import format_config, load_model
 
     lang = args.lang

@@ -14,8 +14,8 @@ import sys
 from collections.abc import Iterable, Iterator
 from typing import TYPE_CHECKING
 
-from ..i18n import say
-from ..message import M, Message, Mn
+from ..core.i18n import say
+from ..core.message import M, Message, Mn
 from ._common import (
     add_force_argument,
     add_model_arguments,
@@ -102,7 +102,7 @@ def _file_name(robot_name: str | None) -> str:
 
 
 def _check_frames_dir(folder: str, force: bool) -> None:
-    from ..errors import OutputExistsError
+    from ..core.errors import OutputExistsError
 
     if os.path.isdir(folder) and not force and any(re.fullmatch(r"frame_\d+\.png", n) for n in os.listdir(folder)):
         raise OutputExistsError(M("{folder} already holds frame_*.png files", folder=folder),
@@ -115,7 +115,7 @@ def _check_frames_dir(folder: str, force: bool) -> None:
                                 hint=M("choose another --frames-dir"))
 
 
-def _warn_limits(robot, states, lang: str | None) -> None:  # type: ignore[no-untyped-def]
+def _warn_limits(robot, states, lang: str | None) -> None:
     from ..motion import check_limits
 
     for v in check_limits(robot, states):
@@ -129,9 +129,8 @@ def _warn_limits(robot, states, lang: str | None) -> None:  # type: ignore[no-un
 
 
 def run(args: argparse.Namespace) -> int:
-    from ..errors import ParameterError
-    from ..kinematics import tf_tree
-    from ..outputs import staged
+    from ..core.errors import ParameterError
+    from ..kinematics.frames import tf_tree
     from ..render import Renderer, render_motion, render_options
     from ..render.sequence import (
         FramesDirWriter,
@@ -143,6 +142,7 @@ def run(args: argparse.Namespace) -> int:
         save_png,
         write_frames,
     )
+    from ..trust.outputs import staged
 
     opts = dict(size=args.size, view=args.view, tf=args.tf, grid=not args.no_grid, background=args.background,
                 backend=args.backend, azimuth=args.azimuth, elevation=args.elevation, distance=args.distance,
@@ -259,7 +259,7 @@ def run(args: argparse.Namespace) -> int:
 @contextlib.contextmanager
 def _writing() -> Iterator[None]:
     """A file that cannot be written (permissions, full disk) is a user error, not a traceback."""
-    from ..errors import BrasKitError, os_reason
+    from ..core.errors import BrasKitError, os_reason
 
     try:
         yield
@@ -270,7 +270,7 @@ def _writing() -> Iterator[None]:
 
 
 def _report(path: str, details: Message, defaulted: bool, lang: str | None) -> None:
-    from ..i18n import say
+    from ..core.i18n import say
 
     if defaulted:
         text = M("wrote {path} in the current folder (choose the name with the output option): {details}",

@@ -7,7 +7,7 @@ import os
 import signal
 import sys
 
-from ..message import M
+from ..core.message import M
 from ._common import add_force_argument, check_writable, warn
 
 _EPILOG = """\
@@ -57,11 +57,12 @@ def configure(parser: argparse.ArgumentParser) -> None:
 
 
 def run(args: argparse.Namespace) -> int:
-    from ..i18n import current_language, say
+    from ..core.i18n import current_language, say
+    from ..findings.report import exit_code, format_json, format_text
     from ..motion.states_io import check_states_output
-    from ..run import DEFAULT_DURATION, parse_parameters, run_node, uncontained_note
+    from ..run.node import DEFAULT_DURATION, parse_parameters, run_node
     from ..run.report import failure_lines, summary
-    from ..validate.report import exit_code, format_json, format_text
+    from ..trust.contain import uncontained_note
 
     lang = args.lang
     args.typed = args.target
@@ -111,10 +112,10 @@ def _resolve(args: argparse.Namespace) -> list[str]:
     return others(workspace, args.target)
 
 
-def _join(lang: str | None):  # type: ignore[no-untyped-def]
+def _join(lang: str | None):
     """The bus of the launches of this user on this ROS domain, or None when none is open (or
     Zenoh is missing: said, and the run is a batch run)."""
-    from ..errors import BrasKitError, ParameterError
+    from ..core.errors import BrasKitError, ParameterError
     from ..ros.bus import Bus
 
     try:
@@ -128,8 +129,8 @@ def _join(lang: str | None):  # type: ignore[no-untyped-def]
 
 def _say_launch_left_alone(lang: str | None) -> None:
     """A batch run beside an open launch: said, so that a page that stays still is no surprise."""
-    from ..errors import BrasKitError
-    from ..i18n import say
+    from ..core.errors import BrasKitError
+    from ..core.i18n import say
     from ..ros.bus import listening
 
     try:
@@ -142,24 +143,24 @@ def _say_launch_left_alone(lang: str | None) -> None:
               file=sys.stderr, flush=True)
 
 
-def _stop_on_sigterm():  # type: ignore[no-untyped-def]
+def _stop_on_sigterm():
     """SIGTERM ends a live run as Ctrl-C does (rclpy's signal handlers take both by default:
     rclpy/signals.py, SignalHandlerOptions.ALL); the handler it replaces is returned."""
-    def interrupt(_number, _frame):  # type: ignore[no-untyped-def]
+    def interrupt(_number, _frame):
         raise KeyboardInterrupt
 
     return signal.signal(signal.SIGTERM, interrupt)
 
 
-def _run_live(args: argparse.Namespace, bus, parameters, robot, beside: list[str]) -> int:  # type: ignore[no-untyped-def]
+def _run_live(args: argparse.Namespace, bus, parameters, robot, beside: list[str]) -> int:
     """The node live beside the open launches, until Ctrl-C (or until it ends by itself), as
     ``ros2 run`` beside ``ros2 launch``: each JointState goes onto the bus as it is published; a
     joint the page's robot does not have is named once."""
     import time
 
-    from ..i18n import say
+    from ..core.i18n import say
     from ..ros.bus import domain_id, unknown_joints
-    from ..run import MAX_DURATION, run_node
+    from ..run.node import MAX_DURATION, run_node
     from ..run.report import ending, failure_lines
 
     lang = args.lang
@@ -168,7 +169,7 @@ def _run_live(args: argparse.Namespace, bus, parameters, robot, beside: list[str
                 "clock until Ctrl-C, as ros2 run", domain=domain_id()), lang), file=sys.stderr, flush=True)
     warned: set[tuple[object, tuple[str, ...]]] = set()
 
-    def deliver(state) -> None:  # type: ignore[no-untyped-def]
+    def deliver(state) -> None:
         names = tuple(state.name)
         for shown in robots:
             missing = unknown_joints(list(names), shown)
@@ -181,9 +182,9 @@ def _run_live(args: argparse.Namespace, bus, parameters, robot, beside: list[str
 
     built: list[int] = []  # the exit code setup.py's findings give (BK639), once the package is built
 
-    def show_build(blocked) -> None:  # type: ignore[no-untyped-def]
-        from ..i18n import current_language
-        from ..validate.report import exit_code, format_text
+    def show_build(blocked) -> None:
+        from ..core.i18n import current_language
+        from ..findings.report import exit_code, format_text
 
         results = _file_results({}, blocked, args)
         built.append(exit_code(results) if results else 0)
@@ -210,11 +211,11 @@ def _run_live(args: argparse.Namespace, bus, parameters, robot, beside: list[str
     return max(1 if recording.failure is not None else 0, *built)
 
 
-def _robot(args: argparse.Namespace):  # type: ignore[no-untyped-def]
+def _robot(args: argparse.Namespace):
     """The robot the findings and the GIF use: --urdf, else the package's, else the built-in
     tutorial arm (a lone node file is written for it), said on stderr."""
-    from ..authoring import arm
-    from ..run.findings import robot_of
+    from ..model.authoring import arm
+    from ..run.node import robot_of
 
     robot = robot_of(args.target, args.urdf)
     if robot is None:
@@ -224,13 +225,13 @@ def _robot(args: argparse.Namespace):  # type: ignore[no-untyped-def]
     return robot
 
 
-def _results(recording, robot, args):  # type: ignore[no-untyped-def]
+def _results(recording, robot, args):
     """The run rules' findings as the validator's per-file results, paths under the target; with
     them, what the package's setup.py tried that its walls stopped (BK639, as ``bras-kit build``
     shows it)."""
     from ..run.findings import run_findings
 
-    by_file: dict[str, list] = {}  # type: ignore[type-arg]
+    by_file: dict[str, list] = {}
     for found in run_findings(recording, robot, lang=args.lang):
         by_file.setdefault(str(found.data.get("file") or recording.source), []).append(found)
     if not by_file:
@@ -238,12 +239,12 @@ def _results(recording, robot, args):  # type: ignore[no-untyped-def]
     return _file_results(by_file, recording.build_blocked, args)
 
 
-def _file_results(by_file, blocked, args):  # type: ignore[no-untyped-def]
+def _file_results(by_file, blocked, args):
     """``by_file`` (findings by file, under the target) with what setup.py tried that its walls
     stopped (``blocked``: BK639), as per-file results in name order."""
-    from ..validate.findings import FileResult, finding
+    from ..findings.data import FileResult, finding
+    from ..findings.registry import RULES
     from ..validate.package.build_reach import setup_blocked_hits
-    from ..validate.registry import RULES
 
     for hit in setup_blocked_hits(blocked):
         by_file.setdefault(str(hit.params["file"]), []).append(finding(RULES["BK639"], hit))
@@ -251,17 +252,16 @@ def _file_results(by_file, blocked, args):  # type: ignore[no-untyped-def]
     return [FileResult(os.path.join(base, file), findings) for file, findings in sorted(by_file.items())]
 
 
-def _write_states(recording, robot, args) -> None:  # type: ignore[no-untyped-def]
+def _write_states(recording, robot, args) -> None:
     """What /joint_states carried, through the one joint-state writer (CSV, JSON or a ROS 2 bag;
     a bag holds the robot's joints in its order, as robot_state_publisher would have them)."""
-    from ..errors import BrasKitError
-    from ..i18n import say
+    from ..core.errors import BrasKitError
+    from ..core.i18n import say
     from ..motion.states_io import states_format, write_states
-    from ..ros.recording import states_for
-    from ..run import joint_states
+    from ..ros.recording import joint_states, states_for
 
     if states_format(args.output) == "bag":
-        from ..kinematics import tf_tree
+        from ..kinematics.frames import tf_tree
 
         states = states_for(recording, tf_tree(robot).dof)
     else:
@@ -279,17 +279,17 @@ def _write_states(recording, robot, args) -> None:  # type: ignore[no-untyped-de
         print(say(written, args.lang), file=sys.stderr)
 
 
-def _write_gif(recording, robot, args) -> None:  # type: ignore[no-untyped-def]
+def _write_gif(recording, robot, args) -> None:
     import numpy as np
 
-    from ..i18n import say
-    from ..kinematics import tf_tree
-    from ..message import Mn
+    from ..core.i18n import say
+    from ..core.message import Mn
+    from ..kinematics.frames import tf_tree
     from ..motion.core import JointStates
-    from ..outputs import staged
     from ..render import render_motion
     from ..render.sequence import save_gif
     from ..ros.recording import states_for
+    from ..trust.outputs import staged
 
     states = states_for(recording, tf_tree(robot).dof)
     if not len(states):  # one picture of the arm at rest, as RViz shows it with nothing on /joint_states
@@ -304,7 +304,7 @@ def _write_gif(recording, robot, args) -> None:  # type: ignore[no-untyped-def]
                  path=args.gif, fps=fps)), file=sys.stderr)
 
 
-def _fps(times) -> float:  # type: ignore[no-untyped-def]
+def _fps(times) -> float:
     import numpy as np
 
     if len(times) < 2:

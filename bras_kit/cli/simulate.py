@@ -10,9 +10,9 @@ from __future__ import annotations
 import argparse
 import sys
 
-from ..errors import BrasKitError, ParameterError, os_reason
-from ..i18n import labelled, say
-from ..message import M
+from ..core.errors import BrasKitError, ParameterError, os_reason
+from ..core.i18n import labelled, say
+from ..core.message import M
 from ._common import (
     add_force_argument,
     add_model_arguments,
@@ -116,7 +116,7 @@ def run(args: argparse.Namespace) -> int:
     warn_motion_notes(motion)
     start = joint_values(args.start)
     if args.control == "none" and not start:
-        from ..kinematics import tf_tree
+        from ..kinematics.frames import tf_tree
 
         start = dict.fromkeys(tf_tree(robot).dof, NUDGE)
     states = simulate(robot, motion, control=args.control,

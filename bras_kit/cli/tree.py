@@ -5,7 +5,7 @@ from __future__ import annotations
 import argparse
 import sys
 
-from ..message import M
+from ..core.message import M
 from ._common import add_model_arguments, joint_values, warn, warn_out_of_limits
 
 
@@ -28,7 +28,7 @@ def _can_print(text: str) -> bool:
 
 def run(args: argparse.Namespace) -> int:
     from ..diagrams import UNICODE_GLYPHS, tree_text
-    from ..kinematics import tf_tree
+    from ..kinematics.frames import tf_tree
     from ._common import load_model
 
     robot = load_model(args)

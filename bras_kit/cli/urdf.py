@@ -4,8 +4,8 @@ from __future__ import annotations
 
 import argparse
 
-from ..i18n import say
-from ..message import M
+from ..core.i18n import say
+from ..core.message import M
 from ._common import add_force_argument, template_values, write_text
 
 
@@ -23,7 +23,7 @@ def configure(parser: argparse.ArgumentParser) -> None:
 
 
 def run(args: argparse.Namespace) -> int:
-    from ..authoring import arm_urdf, parse_assignments, template_parameters
+    from ..model.authoring import arm_urdf, parse_assignments, template_parameters
 
     if args.list_params:
         for p in template_parameters().values():

@@ -10,7 +10,7 @@ import argparse
 import os
 import sys
 
-from ..message import M
+from ..core.message import M
 
 EPILOG = """\
 exit status: 0 no errors (warnings allowed), 1 errors (or warnings with --strict),
@@ -62,8 +62,8 @@ def configure(parser: argparse.ArgumentParser) -> None:
 
 
 def _print_packages() -> None:
-    from ..i18n import say
-    from ..xacrotools import describe_package_folder, packages_used
+    from ..core.i18n import say
+    from ..model.xacro import describe_package_folder, packages_used
 
     for name, folder in packages_used().items():
         print(say(describe_package_folder(name, folder)), file=sys.stderr)
@@ -87,13 +87,13 @@ def _use_colour() -> bool:
 
 
 def _run_results(targets: list[str], lang: str, select: list[str], ignore: list[str],
-                 duration: float | None, *, nodes: bool = False) -> list:  # type: ignore[type-arg]
+                 duration: float | None, *, nodes: bool = False) -> list:
     """Each package (or, with ``nodes``, each node file) run as ``bras-kit run`` runs it, its findings."""
     if not targets:
         return []
-    from ..i18n import say
-    from ..run import uncontained_note
+    from ..core.i18n import say
     from ..run.findings import node_file_results, package_run_results
+    from ..trust.contain import uncontained_note
 
     note = uncontained_note()
     if note is not None:
@@ -103,27 +103,17 @@ def _run_results(targets: list[str], lang: str, select: list[str], ignore: list[
             results_of(target, lang=lang, select=select, ignore=ignore, duration=duration or 10.0)]
 
 
-def _merge(results: list, extra: list) -> list:  # type: ignore[type-arg]
-    """The run's findings join the static ones of the same file."""
-    from ..validate.findings import FileResult, sort_key
-
-    by_path = {result.path: result for result in results}
-    for result in extra:
-        if result.path in by_path:
-            merged = by_path[result.path].findings + result.findings
-            by_path[result.path] = FileResult(result.path, sorted(merged, key=sort_key))
-        else:
-            by_path[result.path] = result
-    return list(by_path.values())
-
-
 def run(args: argparse.Namespace) -> int:
-    from ..errors import ParameterError
+    from ..core.errors import ParameterError
+    from ..findings.data import merge_results
     from ..ros.ahead import evaluate_ahead
 
     # begun before the rules are imported: the build and launch evaluation runs beside them
     ahead = evaluate_ahead([f for f in args.files if not (f.endswith(".py") and os.path.isfile(f))])
-    from ..inert import emit
+    from ..findings.data import FileResult
+    from ..findings.registry import select_rules
+    from ..findings.report import exit_code, format_json, format_styled, format_text
+    from ..trust.inert import emit
     from ..validate import (
         check_robot,
         collect_files,
@@ -131,10 +121,7 @@ def run(args: argparse.Namespace) -> int:
         generated_pairs,
         validate_path,
     )
-    from ..validate.findings import FileResult
     from ..validate.package import Package, find_packages, installed_descriptions, validate_package
-    from ..validate.registry import select_rules
-    from ..validate.report import exit_code, format_json, format_styled, format_text
     from ._common import joint_values, xacro_mappings
 
     lang = args.lang
@@ -179,7 +166,7 @@ def run(args: argparse.Namespace) -> int:
                    for result in validate_package(package.root, lang=lang, select=select, ignore=ignore,
                                                   package=package, launch=True)]
         if args.run:
-            results = _merge(results, _run_results(packages, lang, select, ignore, args.duration))
+            results = merge_results(results, _run_results(packages, lang, select, ignore, args.duration))
         # bras.urdf beside bras.urdf.xacro: check the xacro once, unless the package installs the URDF
         # (then the launch file loads it and it is the learner's own file, checked as written)
         generated = generated_pairs(paths, [*args.files, *installed_descriptions(read)])
@@ -191,12 +178,12 @@ def run(args: argparse.Namespace) -> int:
                     for path in paths]
         results += _run_results(nodes, lang, select, ignore, args.duration, nodes=True)
     else:
-        from ..authoring import arm, parse_assignments
+        from ..model.authoring import arm, parse_assignments
 
         # the arm bras-kit urdf prints with the same options (inertials: fixed to a 'world' root)
         robot = arm(wrist=args.wrist, inertials=args.inertials, params=parse_assignments(args.param),
                     world_anchor=args.inertials)
-        results = [check_robot(robot, **options)]  # type: ignore[arg-type]
+        results = [check_robot(robot, **options)]
     if args.format == "json":
         sys.stdout.write(format_json(results, strict=args.strict, lang=lang))
     else:

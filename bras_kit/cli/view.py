@@ -7,8 +7,8 @@ import argparse
 import os
 import sys
 
-from ..i18n import say
-from ..message import M
+from ..core.i18n import say
+from ..core.message import M
 from ._common import (
     add_force_argument,
     add_model_arguments,
@@ -55,8 +55,8 @@ def configure(parser: argparse.ArgumentParser) -> None:
 
 
 def run(args: argparse.Namespace) -> int:
-    from ..authoring import arm, parse_assignments
-    from ..errors import ParameterError
+    from ..core.errors import ParameterError
+    from ..model.authoring import arm, parse_assignments
     from ._common import xacro_mappings
 
     if args.ros:
@@ -82,7 +82,7 @@ def run(args: argparse.Namespace) -> int:
                         package_paths=tuple(args.package_path))
     from ._common import check_usable
 
-    check_usable(source.load(), args)  # type: ignore[attr-defined]
+    check_usable(source.load(), args)
     if args.export:
         return _export(args, source)
     return _serve(args, source)
@@ -91,12 +91,12 @@ def run(args: argparse.Namespace) -> int:
 def _package_description(args: argparse.Namespace) -> None:
     """FILE a package folder: the robot description its launch file loads (as bras-kit launch
     would show it), watched like any file; the package's parent folder resolves package://."""
-    from ..errors import ParameterError
+    from ..core.errors import ParameterError
 
     folder = args.file
     if folder is None or not os.path.isdir(folder) or not os.path.isfile(os.path.join(folder, "package.xml")):
         return
-    from ..validate.package.sources import Package
+    from ..ros.package import Package
 
     source = Package(folder).description_source()
     if source is None:
@@ -107,10 +107,10 @@ def _package_description(args: argparse.Namespace) -> None:
 
 
 def _export(args: argparse.Namespace, source: object) -> int:
-    from ..errors import ParameterError
+    from ..core.errors import ParameterError
     from ..motion import motion_from_specs, sample
     from ..motion.sources import motion_title
-    from ..outputs import write_text
+    from ..trust.outputs import write_text
     from ..view import export_html
     from ._common import check_writable, warn_motion_notes
 
@@ -138,7 +138,7 @@ def _serve(args: argparse.Namespace, source: object) -> int:
     if args.host not in ("127.0.0.1", "localhost", "::1"):
         warn(M("listening on {host}: anyone who can reach this computer can see and move the arm", host=args.host),
              args.lang)
-    from ._common import check_usable
+    from ._common import check_usable, open_page
 
     viewer = Viewer(source, host=args.host, port=args.port, lang=args.lang, motion_specs=args.motion,  # type: ignore[arg-type]
                     motion_topic=args.topic, geometry=args.geometry, recorded=args.recorded,
@@ -149,20 +149,10 @@ def _serve(args: argparse.Namespace, source: object) -> int:
         if source.path:  # type: ignore[attr-defined]
             print(say(M("watching {path}: save it and the page reloads", path=source.path), args.lang),  # type: ignore[attr-defined]
                   file=sys.stderr, flush=True)
-        if not args.no_browser and _has_screen():
-            import webbrowser
-
-            webbrowser.open(viewer.url)
+        open_page(viewer.url, args)
         viewer.wait()
     except KeyboardInterrupt:  # Ctrl-C as soon as the address shows (before the wait began) stops it too
         pass
     finally:
         viewer.stop()
     return 0
-
-
-def _has_screen() -> bool:
-    """A graphical browser can open: a desktop session (not SSH into a server)."""
-    if sys.platform in ("darwin", "win32"):
-        return True
-    return bool(os.environ.get("DISPLAY") or os.environ.get("WAYLAND_DISPLAY"))

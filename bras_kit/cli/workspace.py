@@ -5,8 +5,8 @@ from __future__ import annotations
 import argparse
 import os
 
-from ..i18n import say
-from ..message import M
+from ..core.i18n import say
+from ..core.message import M
 from ._common import add_force_argument, add_model_arguments, check_writable, save_with
 
 FORMATS = (".png", ".svg", ".pdf")
@@ -25,9 +25,9 @@ def configure(parser: argparse.ArgumentParser) -> None:
 
 
 def run(args: argparse.Namespace) -> int:
-    from ..errors import ParameterError
+    from ..core.errors import ParameterError
     from ..ik import workspace_figure
-    from ..kinematics import tf_tree
+    from ..kinematics.frames import tf_tree
     from ._common import load_model
 
     extension = os.path.splitext(args.output)[1].lower()

@@ -18,7 +18,7 @@ def configure(parser: argparse.ArgumentParser) -> None:
 
 
 def run(args: argparse.Namespace) -> int:
-    from ..xacrotools import expand_xacro
+    from ..model.xacro import expand_xacro
     from ._common import xacro_mappings
 
     text = expand_xacro(args.file, xacro_mappings(args.mappings), args.package_path)
@@ -26,8 +26,8 @@ def run(args: argparse.Namespace) -> int:
     if args.verbose:
         import sys
 
-        from ..i18n import say
-        from ..xacrotools import describe_package_folder, packages_used
+        from ..core.i18n import say
+        from ..model.xacro import describe_package_folder, packages_used
 
         for name, folder in packages_used().items():
             print(say(describe_package_folder(name, folder), args.lang), file=sys.stderr)

@@ -3,7 +3,7 @@
 Modules: :mod:`.text` (``bras-kit tree``), :mod:`.dot` (Graphviz text), :mod:`.layout` (tidy tree
 placement), :mod:`.frames` (the frame tree drawn with matplotlib), :mod:`.trajectory` (tool tip
 path, motion plane), :mod:`.plot` (joint angles and tip path), :mod:`.output` (formats, saving).
-Trees are walked through :class:`~bras_kit.kinematics.TFTree`'s flat arrays, never by recursion;
+Trees are walked through :class:`~bras_kit.kinematics.frames.TFTree`'s flat arrays, never by recursion;
 matplotlib is imported inside the drawing functions only.
 """
 

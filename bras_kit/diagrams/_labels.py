@@ -5,10 +5,10 @@ from __future__ import annotations
 import math
 from collections.abc import Mapping, Sequence
 
-from ..i18n import say
-from ..kinematics import TFTree
-from ..message import M
-from ..model import Joint
+from ..core.i18n import say
+from ..core.message import M
+from ..kinematics.frames import TFTree
+from ..model.robot import Joint
 from ..motion import joint_unit
 
 
@@ -90,7 +90,7 @@ def joint_label_lines(joint: Joint, value: float | None = None, lang: str | None
 def joint_values(tree: TFTree, config: Mapping[str, float] | None) -> dict[str, float]:
     """Every driven joint's value for ``config``: the movable ones, and mimic joints from their leader.
 
-    Unknown or fixed joint names in ``config`` raise :class:`~bras_kit.errors.ParameterError`.
+    Unknown or fixed joint names in ``config`` raise :class:`~bras_kit.core.errors.ParameterError`.
     """
     q = tree.config_vector(config)
     values = {name: float(v) for name, v in zip(tree.dof, q)}

@@ -6,10 +6,10 @@ from collections.abc import Mapping
 
 import numpy as np
 
-from ..i18n import say
-from ..kinematics import TFTree, fk_batch, tf_tree
-from ..message import M, Mn
-from ..model import Joint, Robot
+from ..core.i18n import say
+from ..core.message import M, Mn
+from ..kinematics.frames import TFTree, fk_batch, tf_tree
+from ..model.robot import Joint, Robot
 from ._labels import beyond_limits, format_number, format_vector, joint_label_lines, joint_values
 
 

@@ -7,11 +7,11 @@ from collections.abc import Mapping, Sequence
 from dataclasses import dataclass
 from typing import TYPE_CHECKING, Any
 
-from .. import backends
-from ..errors import ModelError
-from ..kinematics import tf_tree
-from ..message import M
-from ..model import Robot
+from ..core import backends
+from ..core.errors import ModelError
+from ..core.message import M
+from ..kinematics.frames import tf_tree
+from ..model.robot import Robot
 from ._labels import beyond_limits
 from .dot import frames_dot, graph_title, joint_label, link_label, pose_facts
 from .layout import tidy_layout

@@ -7,9 +7,9 @@ import os
 from collections.abc import Sequence
 from typing import TYPE_CHECKING
 
-from .. import backends
-from ..errors import ParameterError
-from ..message import M
+from ..core import backends
+from ..core.errors import ParameterError
+from ..core.message import M
 
 if TYPE_CHECKING:  # pragma: no cover
     from matplotlib.figure import Figure
@@ -51,7 +51,7 @@ def _check_text_fits(figure: Figure, dpi: float) -> None:
     """Refuse a PNG whose capped resolution leaves text under one pixel (FreeType cannot draw it)."""
     from matplotlib.text import Text
 
-    from ..message import M
+    from ..core.message import M
 
     sizes = [float(text.get_fontsize()) for text in figure.findobj(Text) if text.get_text()]
     if sizes and min(sizes) * dpi / 72.0 < 1.0:

@@ -9,13 +9,13 @@ from typing import TYPE_CHECKING, Any
 
 import numpy as np
 
-from .. import backends
-from ..i18n import say
-from ..kinematics import TFTree, fk_batch, tf_tree
-from ..message import M, Mn
-from ..model import Robot
+from ..core import backends
+from ..core.i18n import say
+from ..core.message import M, Mn
+from ..kinematics.frames import TFTree, fk_batch, tf_tree
+from ..kinematics.tip import tool_tip
+from ..model.robot import Robot
 from ..motion import TOLERANCE, joint_unit
-from ..tip import tool_tip
 from ._labels import format_number
 from .output import FIGURE_FORMATS, output_suffix, save_figure
 from .trajectory import motion_plane, states_matrix, tip_positions

@@ -5,10 +5,10 @@ from __future__ import annotations
 from collections.abc import Mapping
 from dataclasses import dataclass
 
-from ..i18n import say
-from ..kinematics import tf_tree
-from ..message import M
-from ..model import Robot
+from ..core.i18n import say
+from ..core.message import M
+from ..kinematics.frames import tf_tree
+from ..model.robot import Robot
 from ._labels import beyond_limits, format_number, joint_summary, joint_values
 from ._tree import children_of
 
@@ -36,7 +36,7 @@ def tree_text(robot: Robot, config: Mapping[str, float] | None = None, *, ascii:
     """The TF tree as indented text, one link per line (the root first), each child under its joint.
 
     ``config`` adds each movable joint's value. Each level is indented by three characters, so a
-    line's indentation is 3 x the depth of its link. Raises :class:`~bras_kit.errors.ModelError`
+    line's indentation is 3 x the depth of its link. Raises :class:`~bras_kit.core.errors.ModelError`
     when the links do not form a tree.
     """
     tree = tf_tree(robot)
@@ -54,7 +54,7 @@ def tree_text(robot: Robot, config: Mapping[str, float] | None = None, *, ascii:
         assert joint is not None
         text = f"{joint.name or '?'} ({joint_summary(joint, lang)})"
         if joint.name in values:
-            value = values[joint.name]  # type: ignore[index]
+            value = values[joint.name]
             text += f" = {format_number(value)}"
             if beyond_limits(joint, value):
                 text += " (" + say(M("out of limits"), lang) + ")"

@@ -7,16 +7,16 @@ from typing import Any
 
 import numpy as np
 
-from ..errors import ParameterError
-from ..kinematics import TFTree, fk_batch, movable_joints_hint, tf_tree
-from ..message import M
-from ..model import Robot
-from ..tip import tool_tip
+from ..core.errors import ParameterError
+from ..core.message import M
+from ..kinematics.frames import TFTree, fk_batch, movable_joints_hint, tf_tree
+from ..kinematics.tip import tool_tip
+from ..model.robot import Robot
 from ._labels import format_vector
 
 
 def tip_point(robot: Robot) -> tuple[str, np.ndarray]:
-    """The tool tip: the end link and the tip's offset in its frame (see :mod:`bras_kit.tip`)."""
+    """The tool tip: the end link and the tip's offset in its frame (see :mod:`bras_kit.kinematics.tip`)."""
     return tool_tip(tf_tree(robot))
 
 

@@ -17,8 +17,8 @@ import os
 from pathlib import Path
 from typing import Any
 
-from ..errors import BrasKitError
-from ..message import M
+from ..core.errors import BrasKitError
+from ..core.message import M
 from .checks import BROKEN, CHECKS, FAILED, PASSED, Outcome, run_checks
 from .manifest import BUILTIN, START, Exercise, Track, load_track
 from .progress import (
@@ -39,7 +39,7 @@ __all__ = ["BROKEN", "BUILTIN", "CHECKS", "FAILED", "PASSED", "PROGRESS_FILE", "
 def start_files(exercise: Exercise, which: str = START) -> list[str]:
     """The files of the exercise's ``start/`` (or ``solution/``) folder, relative to it, listed
     through the one reader (no link followed out of the exercise's folder)."""
-    from ..learner_files import Unreadable, walk
+    from ..trust.learner_files import Unreadable, walk
 
     root = exercise.folder / which
     out: list[str] = []
@@ -54,7 +54,7 @@ def start_files(exercise: Exercise, which: str = START) -> list[str]:
 
 
 def _refused(path: str, exc: OSError) -> BrasKitError:
-    from ..beneath import Outside
+    from ..trust.beneath import Outside
 
     if isinstance(exc, Outside) and exc.kind in ("link_out", "outside"):
         return BrasKitError(M("'{path}' leads out of the track through a symbolic link: bras-kit reads and writes "
@@ -72,8 +72,8 @@ def copy_files(exercise: Exercise, target: str | os.PathLike[str], which: str = 
     track), each file read through the one reader and written under ``root`` (default:
     ``target``) without following a link out of it: a file replaced whole (a temporary beside
     it, then renamed), never written through a link."""
-    from ..beneath import Outside
-    from ..learner_files import read_bytes, write_file
+    from ..trust.beneath import Outside
+    from ..trust.learner_files import read_bytes, write_file
 
     base = Path(root) if root is not None else Path(target)
     if root is None:
@@ -96,7 +96,7 @@ def copy_files(exercise: Exercise, target: str | os.PathLike[str], which: str = 
 
 def _writable(base: Path, folder: str) -> None:
     """A folder of the track that :func:`copy_files` may write into (or make); else the refusal."""
-    from ..beneath import FOLDER, Outside, open_beneath
+    from ..trust.beneath import FOLDER, Outside, open_beneath
 
     if folder in ("", "."):
         return
@@ -157,7 +157,7 @@ def check_exercise(track: Track, progress: Progress, exercise: Exercise, lang: s
                    *, record: bool = True) -> Outcome:
     """Check one exercise in the learner's folder and record it; a pass on the current exercise
     moves the track on to the next one not yet passed."""
-    from ..i18n import current_language
+    from ..core.i18n import current_language
 
     outcome = run_checks(progress.folder / exercise.id, exercise.checks, lang or current_language())
     if record:

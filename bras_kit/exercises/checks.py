@@ -10,7 +10,7 @@ findings   the validator (:mod:`bras_kit.validate`): no finding above ``allow`` 
            (its package rules, and its robot files)
 frame      the model and forward kinematics: with ``pose``, the ``point`` fixed in ``link``
            (default its origin) is ``at`` (metres, within ``tol``)
-tip        the tool tip as drawn (:func:`bras_kit.tip.tool_tip`: the farthest point of the end
+tip        the tool tip as drawn (:func:`bras_kit.kinematics.tip.tool_tip`: the farthest point of the end
            link's visual, or of ``link``'s) is ``at`` with ``pose``
 joint      the model: a joint ``name`` exists, of ``type``, from ``parent`` to ``child``
 parent     the TF tree: ``link``'s parent is ``parent``
@@ -44,8 +44,8 @@ from dataclasses import dataclass, field
 from pathlib import Path
 from typing import Any
 
-from ..errors import BrasKitError
-from ..message import M, Message
+from ..core.errors import BrasKitError
+from ..core.message import M, Message
 
 PASSED, FAILED, BROKEN = "passed", "failed", "broken"
 DEFAULT_TOLERANCE = 0.002  # metres
@@ -107,7 +107,7 @@ class Session:
 
 
 def _load_robot(path: Path, name: str, args: Mapping[str, str] | None) -> Any:
-    from ..authoring import load
+    from ..model.authoring import load
     from ..validate import UNREADABLE_CODES, validate_path
 
     unreadable = [f for f in validate_path(path, mappings=args) if f.code in UNREADABLE_CODES]
@@ -120,7 +120,7 @@ def _load_robot(path: Path, name: str, args: Mapping[str, str] | None) -> Any:
 
 
 def _run(path: Path, name: str, duration: float) -> Any:
-    from ..run import NodeRunError, run_node
+    from ..run.node import NodeRunError, run_node
 
     try:
         recording = run_node(str(path), duration=duration, wall_seconds=20.0, cpu_seconds=10)
@@ -185,7 +185,7 @@ def _package_results(path: Path) -> list[tuple[str, list[Any]]]:
     # launch files run, contained, and what they tried is judged with the rest
     for result in validate_package(str(path), launch=True):
         out.append((os.path.relpath(result.path, base), list(result.findings)))
-    from ..learner_files import is_file, walk
+    from ..trust.learner_files import is_file, walk
 
     roots = (str(base),)  # listed through the one reader: no link followed out of the exercise's folder
     for folder, dirs, files in walk(str(path), roots):
@@ -204,7 +204,7 @@ def _vector(values: Any) -> tuple[float, float, float]:
 def _where(tree: Any, q: Any, link: str, point: Any) -> Any:
     import numpy as np
 
-    from ..kinematics import fk_batch
+    from ..kinematics.frames import fk_batch
 
     index = tree.index(link)
     matrix = fk_batch(tree, q)[index]
@@ -212,7 +212,7 @@ def _where(tree: Any, q: Any, link: str, point: Any) -> Any:
 
 
 def _tree(robot: Any, name: str) -> Any:
-    from ..kinematics import tf_tree
+    from ..kinematics.frames import tf_tree
 
     try:
         return tf_tree(robot)
@@ -256,7 +256,7 @@ def check_frame(session: Session, spec: Mapping[str, Any]) -> None:
 def check_tip(session: Session, spec: Mapping[str, Any]) -> None:
     import numpy as np
 
-    from ..tip import tool_tip
+    from ..kinematics.tip import tool_tip
 
     name = spec["file"]
     tree = _tree(session.robot(name, spec.get("args")), name)
@@ -280,7 +280,7 @@ def check_tip(session: Session, spec: Mapping[str, Any]) -> None:
 
 
 def _pose_words(pose: Mapping[str, float]) -> str:
-    from ..message import number
+    from ..core.message import number
 
     return ", ".join(f"{k}={number(float(v))}" for k, v in pose.items())
 
@@ -359,7 +359,7 @@ def _messages(session: Session, spec: Mapping[str, Any]) -> tuple[Any, list[Any]
 
 
 def check_node(session: Session, spec: Mapping[str, Any]) -> None:
-    from ..run import run_findings
+    from ..run.findings import run_findings
 
     name = spec["file"]
     recording = session.run(name, float(spec.get("duration", DEFAULT_DURATION)))

@@ -33,8 +33,8 @@ from dataclasses import dataclass, field
 from pathlib import Path
 from typing import Any
 
-from ..errors import BrasKitError
-from ..message import M
+from ..core.errors import BrasKitError
+from ..core.message import M
 
 BUILTIN = "builtin"
 BUILTIN_DIR = Path(__file__).with_name("track")
@@ -120,8 +120,8 @@ def lesson_link(track: Track, exercise: Exercise, lang: str, start: str | os.Pat
 def _read_manifest(path: Path, root: Path) -> dict[str, Any]:
     import yaml
 
-    from .. import yaml_gate
-    from ..learner_files import Unreadable, read_text
+    from ..trust import yaml_gate
+    from ..trust.learner_files import Unreadable, read_text
 
     try:  # the one reader, inside the set's folder: no link out, no pipe, no device, no file past the bound
         text = read_text(str(path), (str(root),), limit=MAX_MANIFEST_BYTES)

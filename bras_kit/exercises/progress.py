@@ -22,9 +22,9 @@ from dataclasses import dataclass, field
 from pathlib import Path
 from typing import Any
 
-from ..errors import BrasKitError
-from ..i18n import LANGUAGES
-from ..message import M
+from ..core.errors import BrasKitError
+from ..core.i18n import LANGUAGES
+from ..core.message import M
 
 PROGRESS_FILE = "progress.json"
 LOCK_FILE = ".progress.json.lock"
@@ -95,7 +95,7 @@ def stamp(folder: str | os.PathLike[str]) -> tuple[int, int, int]:
 def _raw(folder: str | os.PathLike[str]) -> bytes:
     """The bytes of progress.json, read through the one reader: never through a link out of the
     track, never a pipe or a device, at most 1 MiB."""
-    from ..learner_files import Unreadable, read_bytes
+    from ..trust.learner_files import Unreadable, read_bytes
 
     path = progress_path(folder)
     try:
@@ -189,7 +189,7 @@ def read_progress(folder: str | os.PathLike[str], *, keep_aside: bool = False) -
 def _keep_aside(folder: Path, data: bytes) -> str | None:
     """``data`` as a new file progress.json.bad-N in the track (N the first free number, or the copy
     of these very bytes kept before), its name; None when it cannot be written."""
-    from ..learner_files import read_bytes, write_file
+    from ..trust.learner_files import read_bytes, write_file
 
     for number in range(1, 1000):
         name = f"{PROGRESS_FILE}.bad-{number}"
@@ -210,7 +210,7 @@ def _keep_aside(folder: Path, data: bytes) -> str | None:
 def _locked(folder: Path) -> Iterator[None]:
     """The track's lock (flock on .progress.json.lock beside progress.json, never through a link):
     one process at a time reads, changes and replaces the file."""
-    from ..beneath import open_root
+    from ..trust.beneath import open_root
 
     try:
         top = open_root(str(folder))
@@ -230,8 +230,8 @@ def _locked(folder: Path) -> Iterator[None]:
 
 
 def _write(progress: Progress) -> None:
-    from ..beneath import Outside
-    from ..learner_files import write_file
+    from ..trust.beneath import Outside
+    from ..trust.learner_files import write_file
 
     text = json.dumps(progress.as_dict(), indent=2, ensure_ascii=False) + "\n"
     try:

@@ -11,9 +11,9 @@ import textwrap
 from collections.abc import Sequence
 from dataclasses import dataclass
 
-from ..i18n import say
-from ..inert import Shown, for_terminal, styled
-from ..message import M, Message, Mn
+from ..core.i18n import say
+from ..core.message import M, Message, Mn
+from ..trust.inert import Shown, for_terminal, styled
 from .checks import BROKEN, PASSED, Outcome
 from .manifest import Exercise, Track, lesson_link
 from .progress import Progress
@@ -24,8 +24,8 @@ class Style:
     colour: bool = False
 
     def __call__(self, text: str, name: str) -> Shown:
-        """``text`` in the style ``name`` (a :class:`~bras_kit.inert.Styled`, which only
-        :func:`~bras_kit.inert.emit` writes as colour), or the plain text without colours."""
+        """``text`` in the style ``name`` (a :class:`~bras_kit.trust.inert.Styled`, which only
+        :func:`~bras_kit.trust.inert.emit` writes as colour), or the plain text without colours."""
         return styled(text, name) if self.colour else text
 
 

@@ -19,9 +19,9 @@ from collections.abc import Iterator
 from pathlib import Path
 from typing import IO
 
-from ..i18n import say
-from ..inert import CLEAR_SCREEN, Shown, emit, join
-from ..message import M
+from ..core.i18n import say
+from ..core.message import M
+from ..trust.inert import CLEAR_SCREEN, Shown, emit, join
 from . import check_exercise, current_exercise, open_track, reveal_hint
 from .checks import Outcome
 from .manifest import Exercise, Track
@@ -34,7 +34,7 @@ POLL_SECONDS = 0.2
 def snapshot(folder: Path, exercise: Exercise) -> tuple[tuple[str, int, int], ...]:
     """(path, mtime_ns, size) of every file of the exercise's folder (a file being written
     changes one of them; a missing file is a state too)."""
-    from ..learner_files import walk
+    from ..trust.learner_files import walk
 
     out = []
     root = folder / exercise.id

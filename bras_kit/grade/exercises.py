@@ -11,7 +11,7 @@ MAX_DEPTH = 3  # progress.json is looked for in the submission and up to three f
 def find_progress(root: str) -> str | None:
     """The folder of the first ``progress.json`` in ``root`` or below it (hidden folders skipped)."""
     from ..exercises.progress import PROGRESS_FILE
-    from ..learner_files import is_file, is_folder, walk
+    from ..trust.learner_files import is_file, is_folder, walk
 
     if not is_folder(root, (root,)):
         return None
@@ -30,10 +30,10 @@ def exercises_passed(root: str) -> str:
     """``"5/14"`` for the built-in track (``"5"`` for a teacher's own set), "" without a track or
     with a progress file that cannot be read. As recorded by the learner's ``bras-kit exercises``:
     ``bras-kit exercises check N -C FOLDER`` checks one again."""
-    from ..errors import BrasKitError
+    from ..core.errors import BrasKitError
     from ..exercises.manifest import BUILTIN, load_track
     from ..exercises.progress import MAX_PROGRESS_BYTES, PROGRESS_FILE, read_progress
-    from ..learner_files import read_bytes
+    from ..trust.learner_files import read_bytes
 
     folder = find_progress(root)
     if folder is None:

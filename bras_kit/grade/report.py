@@ -10,8 +10,8 @@ from collections import Counter
 from collections.abc import Callable, Sequence
 from typing import Any
 
-from ..inert import Cell, csv_text
-from ..message import M, Message, Mn
+from ..core.message import M, Message, Mn
+from ..trust.inert import Cell, csv_text
 from .rubric import SEVERITIES, Item, Rubric, rubric_words
 
 REPORT_MARK = ".bras-kit-grade"  # a folder holding this file is a report bras-kit may refresh
@@ -21,7 +21,7 @@ def grades_csv(results: Sequence[dict[str, Any]], rubric: Rubric) -> str:
     """identifier, score, max, one column per rubric item, the first error message; and the
     exercises passed when a learner handed in a ``bras-kit exercises`` track.
 
-    The folder's name, the error and the rubric's ids are strangers' text: bras_kit.inert.csv_text
+    The folder's name, the error and the rubric's ids are strangers' text: bras_kit.trust.inert.csv_text
     makes every text cell inert for a spreadsheet, whatever it splits on, and keeps the numbers."""
     track = any(result.get("exercises") for result in results)
     rows: list[list[Cell]] = [["identifier", "score", "max", *[item.id for item in rubric.items], "first_error",
@@ -42,7 +42,7 @@ def results_json(results: Sequence[dict[str, Any]], rubric: Rubric) -> str:
 
 def gradescope_json(result: dict[str, Any], rubric: Rubric, lang: str | None = None) -> str:
     """One learner's results.json in the shape Gradescope's autograder reads."""
-    from ..i18n import say
+    from ..core.i18n import say
 
     tests = [{"name": say(rubric_words(item.title), lang), "score": result["items"].get(item.id, 0.0),
               "max_score": item.points, "output": _item_output(item, result, lang)} for item in rubric.items]
@@ -61,7 +61,7 @@ def _item_output(item: Item, result: dict[str, Any], lang: str | None) -> str:
         return "\n".join(f"{f['code']} {f['file']}{':' + str(f['line']) if f.get('line') else ''}: {f['message']}"
                          + (f" ({f['hint']})" if f.get("hint") else "") for f in hits)
     if result["items"].get(item.id, 0.0) < item.points:
-        from ..i18n import say
+        from ..core.i18n import say
 
         return say(M("not met: {title}", title=rubric_words(item.title)), lang)
     return ""
@@ -162,7 +162,7 @@ def _file_name(learner: str) -> str:
 def _check_own_files(results: Sequence[dict[str, Any]]) -> None:
     """Refuse a class where two learners would share a page or a results file, even on a file
     system that ignores case (file_stem makes that a SHA-256 collision: this is the net under it)."""
-    from ..errors import BrasKitError
+    from ..core.errors import BrasKitError
 
     owners: dict[str, str] = {}
     for result in results:
@@ -177,8 +177,8 @@ def _check_own_files(results: Sequence[dict[str, Any]]) -> None:
 
 def write_reports(folder: str, results: Sequence[dict[str, Any]], rubric: Rubric, lang: str, *,
                   gradescope: bool = False, finished: bool = True) -> None:
-    from ..i18n import say
-    from ..outputs import write_text
+    from ..core.i18n import say
+    from ..trust.outputs import write_text
 
     def t(words: Message | str) -> str:
         return say(words, lang)

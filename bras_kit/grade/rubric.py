@@ -8,9 +8,9 @@ from dataclasses import dataclass, field
 from pathlib import Path
 from typing import Any
 
-from ..errors import ParameterError, os_reason
-from ..message import M, Message
-from ..wording import quoted
+from ..core.errors import ParameterError, os_reason
+from ..core.message import M, Message
+from ..core.wording import quoted
 
 DEFAULT_RUBRIC = Path(__file__).with_name("tutorial.yaml")
 MAX_RUBRIC_BYTES = 1 << 20
@@ -55,7 +55,7 @@ def load_rubric(path: str | None = None) -> Rubric:
     """The rubric in ``path`` (YAML), or the tutorial's; a malformed one is a ParameterError."""
     import yaml
 
-    from .. import yaml_gate
+    from ..trust import yaml_gate
 
     where = Path(path) if path else DEFAULT_RUBRIC
     try:
@@ -155,7 +155,7 @@ def rubric_words(text: str) -> Message | str:
 def explained_rubric(rubric: Rubric, lang: str | None = None) -> str:
     """The rubric's YAML as ``--explain-rubric`` prints it: the default rubric with its comment, name
     and titles in ``lang``; any other rubric as written."""
-    from ..i18n import say
+    from ..core.i18n import say
 
     if rubric.text != DEFAULT_RUBRIC.read_text(encoding="utf-8"):
         return rubric.text

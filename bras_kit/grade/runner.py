@@ -15,10 +15,10 @@ from collections.abc import Callable, Iterator, Sequence
 from concurrent.futures.process import BrokenProcessPool
 from typing import IO, Any
 
-from .. import backends
-from ..errors import BrasKitError, os_reason
-from ..message import M, Message
-from ..wording import quoted
+from ..core import backends
+from ..core.errors import BrasKitError, os_reason
+from ..core.message import M, Message
+from ..core.wording import quoted
 from .rubric import Rubric
 from .submissions import Submission, content_hash
 from .worker import Options, grade
@@ -93,7 +93,7 @@ def _start_worker(rasteriser: str = "") -> None:
     signal.signal(signal.SIGTERM, terminated)
     from .worker import start_fork_server
 
-    start_fork_server()  # now, while this worker is small (see bras_kit.sandbox.ForkServer)
+    start_fork_server()  # now, while this worker is small (see bras_kit.trust.sandbox.ForkServer)
 
 
 class Progress:
@@ -110,11 +110,11 @@ class Progress:
         self.done += 1
         self.failed += int(failed)
         if self.enabled:
-            from ..i18n import say
+            from ..core.i18n import say
 
             rate = self.done / max(time.monotonic() - self.start, 1e-6)
             filled = int(30 * self.done / max(self.total, 1))
-            from ..inert import LINE_START, emit
+            from ..trust.inert import LINE_START, emit
 
             emit(self.stream, LINE_START, say(M("grading [{bar}] {done}/{total}, {failed} unreadable, {rate:.1f}/s ",
                                                 bar="#" * filled + "." * (30 - filled), done=self.done,
@@ -245,7 +245,7 @@ class DiedError(Exception):
 
 
 def _failed(submission: Submission, rubric: Rubric, exc: BaseException, lang: str) -> dict[str, Any]:
-    from ..i18n import say
+    from ..core.i18n import say
 
     if isinstance(exc, DiedError):
         why: Message | str = M("the worker process died while grading it (a crash, or out of memory)")

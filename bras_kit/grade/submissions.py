@@ -21,9 +21,9 @@ from dataclasses import dataclass
 from pathlib import Path
 from typing import Any
 
-from ..errors import BrasKitError, os_reason
-from ..message import M
-from ..wording import quoted
+from ..core.errors import BrasKitError, os_reason
+from ..core.message import M
+from ..core.wording import quoted
 
 ARCHIVE_SUFFIXES = (".zip", ".tar.gz", ".tgz", ".tar")
 FILE_SUFFIXES = (".urdf", ".xacro")

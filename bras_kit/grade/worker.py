@@ -1,7 +1,7 @@
 """Grading one submission, in a worker process (a local pool or a Dask worker).
 
 Reading and checking the learner's files happens in a child process under CPU, memory and
-wall-time limits (:func:`bras_kit.sandbox.run_limited`): a hostile or enormous submission
+wall-time limits (:func:`bras_kit.trust.sandbox.run_limited`): a hostile or enormous submission
 costs at most those limits and scores zero, and the batch goes on. The picture is drawn in
 the worker itself, which keeps pyrender and its OpenGL libraries loaded from one learner to
 the next (only the first submission of each worker pays for them).
@@ -18,9 +18,9 @@ from typing import Any
 
 import numpy as np
 
-from ..errors import BrasKitError
-from ..i18n import say, say_error
-from ..message import M, Message
+from ..core.errors import BrasKitError
+from ..core.i18n import say, say_error
+from ..core.message import M, Message
 from .exercises import exercises_passed
 from .rubric import SEVERITIES, Item, Rubric
 from .submissions import MAX_SUBMISSION_BYTES, Submission, SubmissionError, content_hash, unpack
@@ -128,9 +128,9 @@ def _size(path: str) -> int:
 
 def node_containment(unsafe: bool = False) -> Message | None:
     """Before ``--run-nodes``: None when the nodes will run contained; else raises
-    :class:`~bras_kit.ros.contain.ContainmentUnavailable` (what is missing, how to get it), or
+    :class:`~bras_kit.trust.contain.ContainmentUnavailable` (what is missing, how to get it), or
     with ``unsafe`` (``--unsafe-run-nodes``) returns the warning to show."""
-    from ..ros.contain import available, containment_required
+    from ..trust.contain import available, containment_required
 
     status = available()
     if status.ok:
@@ -150,10 +150,10 @@ def _run_nodes(root: str, lang: str, contain: str = "require") -> list[dict[str,
     """What the package's launch files and nodes did when run (rules BK630-BK633, BK640-BK659),
     as ``bras-kit validate PKG`` and ``bras-kit run`` find it. Each node runs in its own
     child process under the sandbox's CPU, memory and wall-clock limits (bras_kit.run), contained
-    (bras_kit.ros.contain); with ``contain="require"``, a machine that cannot contain them
-    raises :class:`~bras_kit.ros.contain.ContainmentUnavailable` (that learner is not graded)."""
-    from ..ros.contain import containment_required
+    (bras_kit.trust.contain); with ``contain="require"``, a machine that cannot contain them
+    raises :class:`~bras_kit.trust.contain.ContainmentUnavailable` (that learner is not graded)."""
     from ..run.findings import package_run_results
+    from ..trust.contain import containment_required
     from ..validate.package import find_packages
 
     if contain == "require":
@@ -178,10 +178,10 @@ _fork_server: Any = None  # a local pool worker's ForkServer (see start_fork_ser
 
 def start_fork_server() -> None:
     """In a pool worker that has drawn nothing yet: the small process its checks are forked
-    from (:class:`bras_kit.sandbox.ForkServer`), holding the modules they use."""
+    from (:class:`bras_kit.trust.sandbox.ForkServer`), holding the modules they use."""
     global _fork_server
-    from .. import authoring, validate  # noqa: F401  imported before the fork: the checks' children have them
-    from ..sandbox import ForkServer
+    from .. import validate  # noqa: F401  imported before the fork: the checks' children have them
+    from ..trust.sandbox import ForkServer
     from ..validate import package  # noqa: F401
 
     if _fork_server is None:
@@ -193,19 +193,19 @@ def start_fork_server() -> None:
 
 
 def _inspect_limited(root: str, lang: str) -> dict[str, Any]:
-    from .. import authoring, validate  # noqa: F401  imported here, the limited child is forked with them
-    from ..sandbox import run_limited
+    from .. import validate  # noqa: F401  imported here, the limited child is forked with them
+    from ..trust.sandbox import run_limited
     from ..validate import package  # noqa: F401  (else every submission would pay for importing them)
 
     run = _fork_server.run if _fork_server is not None else run_limited
-    return run(_inspect, root, lang, cpu_seconds=CHECK_CPU_SECONDS,  # type: ignore[no-any-return]
+    return run(_inspect, root, lang, cpu_seconds=CHECK_CPU_SECONDS,
                memory_bytes=CHECK_MEMORY_BYTES, wall_seconds=CHECK_WALL_SECONDS,
                what=M("checking {name}", name=os.path.basename(root)))
 
 
 def _inspect(root: str, lang: str) -> dict[str, Any]:
     """In the limited child: the findings of every file (and of the package), and the main robot."""
-    from ..authoring import load
+    from ..model.authoring import load
     from ..validate import collect_files, generated_pairs, validate_path
     from ..validate.package import find_packages, validate_package
 
@@ -324,8 +324,8 @@ def _moves(robot: Any, name: str) -> bool:
 
 
 def _joint_ok(item: Item, robot: Any) -> bool:
-    from ..kinematics import tf_tree
-    from ..tip import link_tip
+    from ..kinematics.frames import tf_tree
+    from ..kinematics.tip import link_tip
 
     joint = robot.joint(item.joint)
     if joint is None or (item.parent and joint.parent != item.parent):
@@ -340,7 +340,7 @@ def _joint_ok(item: Item, robot: Any) -> bool:
 
 
 def _inertials_ok(robot: Any) -> bool:
-    from ..kinematics import tf_tree
+    from ..kinematics.frames import tf_tree
 
     tree = tf_tree(robot)
     moving = set()
@@ -382,8 +382,8 @@ def _drawable(robot: Any) -> bool:
 
 def _picture(robot: Any, learner: str, options: Options, package_paths: tuple[str, ...] = ()) -> str | None:
     """The learner's arm at rest with its TF frames, as pictures/<learner>.png (None if it cannot be drawn)."""
-    from ..outputs import staged
     from ..render import render_pose, save_png
+    from ..trust.outputs import staged
 
     assert options.pictures is not None
     name = _safe_name(learner) + ".png"
@@ -399,8 +399,8 @@ def _picture(robot: Any, learner: str, options: Options, package_paths: tuple[st
 def _animation(robot: Any, learner: str, options: Options, package_paths: tuple[str, ...] = ()) -> str | None:
     """The tutorial's motion on the learner's arm (every moving joint swinging), as pictures/<learner>.gif."""
     from ..motion import motion_from_specs, sample_loop
-    from ..outputs import staged
     from ..render import render_motion, save_gif
+    from ..trust.outputs import staged
 
     assert options.pictures is not None
     name = _safe_name(learner) + ".gif"
@@ -416,8 +416,8 @@ def _animation(robot: Any, learner: str, options: Options, package_paths: tuple[
 
 
 def _safe_name(learner: str) -> str:
-    """A file name for ``learner``'s picture and page: bras_kit.inert.file_stem, the one mapping
+    """A file name for ``learner``'s picture and page: bras_kit.trust.inert.file_stem, the one mapping
     from a user-given name to a file (two learners never share one, on any file system)."""
-    from ..inert import file_stem
+    from ..trust.inert import file_stem
 
     return file_stem(learner)

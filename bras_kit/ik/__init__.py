@@ -8,7 +8,7 @@
 - :mod:`.reaching`: the move to a solution within the velocity limits (:func:`reach_motion`).
 - :mod:`.workspace`: where the tip can go (:func:`workspace_points`, :func:`workspace_figure`).
 
-The tip is a point fixed in a link, by default that of :func:`bras_kit.tip.tool_tip`.
+The tip is a point fixed in a link, by default that of :func:`bras_kit.kinematics.tip.tool_tip`.
 """
 
 from ._inputs import Vector

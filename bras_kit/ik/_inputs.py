@@ -6,10 +6,10 @@ from collections.abc import Mapping, Sequence
 
 import numpy as np
 
-from ..errors import ParameterError
-from ..kinematics import TFTree, tf_tree
-from ..message import M, Message
-from ..model import Robot
+from ..core.errors import ParameterError
+from ..core.message import M, Message
+from ..kinematics.frames import TFTree, tf_tree
+from ..model.robot import Robot
 from ..motion import joint_unit
 
 Vector = Sequence[float] | np.ndarray  # three numbers: a point, an offset

@@ -48,7 +48,7 @@ def _product(a: Sequence[float], b: Sequence[float]) -> tuple[float, ...]:
             a6 * b0 + a7 * b3 + a8 * b6, a6 * b1 + a7 * b4 + a8 * b7, a6 * b2 + a7 * b5 + a8 * b8)
 
 
-def _forward(kernel: _Kernel, x: Sequence[float], with_rotation: bool = False):  # type: ignore[no-untyped-def]
+def _forward(kernel: _Kernel, x: Sequence[float], with_rotation: bool = False):
     """Tip point, tip rotation (9-tuple, or None), joint origins and world axes for variables x."""
     r: Sequence[float] = (1.0, 0.0, 0.0, 0.0, 1.0, 0.0, 0.0, 0.0, 1.0)
     px = py = pz = 0.0
@@ -75,7 +75,7 @@ def _forward(kernel: _Kernel, x: Sequence[float], with_rotation: bool = False): 
     return tip, (_product(r, kernel.end_rot) if with_rotation else None), origins, axes
 
 
-def _jacobian_rows(kernel: _Kernel, tip, origins, axes, orientation: bool) -> list[list[float]]:  # type: ignore[no-untyped-def]
+def _jacobian_rows(kernel: _Kernel, tip, origins, axes, orientation: bool) -> list[list[float]]:
     """Geometric Jacobian as rows (3 or 6) of ``kernel.size`` columns, world frame."""
     rows = [[0.0] * kernel.size for _ in range(6 if orientation else 3)]
     tx, ty, tz = tip

@@ -7,7 +7,7 @@ from collections.abc import Mapping
 
 import numpy as np
 
-from ..kinematics import TFTree
+from ..kinematics.frames import TFTree
 from ._inputs import _unit_of
 from .results import LimitExcess
 

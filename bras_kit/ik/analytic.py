@@ -8,11 +8,11 @@ from dataclasses import dataclass
 
 import numpy as np
 
-from ..errors import ParameterError
-from ..kinematics import TFTree
-from ..message import M, Message
-from ..model import Robot
-from ..wording import joined
+from ..core.errors import ParameterError
+from ..core.message import M, Message
+from ..core.wording import joined
+from ..kinematics.frames import TFTree
+from ..model.robot import Robot
 from ._inputs import Vector, _as_tree, _joints_dict, _point, _start_vector
 from ._kernel import _forward
 from ._limits import TWO_PI, _bounds, _fit_angle, _violations
@@ -214,7 +214,7 @@ def ik_2r(model: TFTree | Robot, target: Vector, *, elbow: str | None = None,
     inner, outer = arm.reach
     c1, c2 = arm.columns
 
-    def failure(reason: str, message: Message, violations=(), solutions=()) -> IKResult:  # type: ignore[no-untyped-def]
+    def failure(reason: str, message: Message, violations=(), solutions=()) -> IKResult:
         closest = solve_chain(chain, goal, start=q_start, explain=False)
         return IKResult(False, closest.joints, closest.tip, goal, closest.residual, message, "analytic",
                         reason=reason, iterations=closest.iterations, violations=list(violations),

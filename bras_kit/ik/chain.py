@@ -7,11 +7,11 @@ from dataclasses import dataclass
 
 import numpy as np
 
-from ..errors import ParameterError
-from ..kinematics import TFTree, _skew, fk_batch
-from ..message import M
-from ..model import Robot
-from ..tip import end_link, tool_tip
+from ..core.errors import ParameterError
+from ..core.message import M
+from ..kinematics.frames import TFTree, _skew, fk_batch
+from ..kinematics.tip import end_link, tool_tip
+from ..model.robot import Robot
 from ._inputs import Vector, _as_tree, _point
 from ._kernel import _flat, _forward, _jacobian_rows, _Kernel
 from ._limits import _bounds
@@ -19,7 +19,7 @@ from ._limits import _bounds
 
 def resolve_tip(tree: TFTree, tip_link: str | None = None,
                 tip_offset: Vector | None = None) -> tuple[str, np.ndarray]:
-    """(link, point in the link's frame): defaults are those of :func:`bras_kit.tip.tool_tip`."""
+    """(link, point in the link's frame): defaults are those of :func:`bras_kit.kinematics.tip.tool_tip`."""
     if tip_offset is None:
         return tool_tip(tree, tip_link)
     return tree.links[tree.index(tip_link)] if tip_link else end_link(tree), _point(tip_offset, M("the tip offset"))

@@ -9,9 +9,9 @@ from operator import mul
 
 import numpy as np
 
-from ..errors import ParameterError
-from ..message import M, Message, Mn
-from ..wording import joined
+from ..core.errors import ParameterError
+from ..core.message import M, Message, Mn
+from ..core.wording import joined
 from ._inputs import Vector, _joints_dict, _point, _start_vector, _unit_of
 from ._kernel import _flat, _forward, _jacobian_rows, _Kernel, _product
 from ._limits import _bounds, _fit_angle, _violations
@@ -102,7 +102,7 @@ def _descend(kernel: _Kernel, x: list[float], goal: Sequence[float], goal_rot: S
     orientation = goal_rot is not None
     gx, gy, gz = goal
 
-    def evaluate(values: list[float]):  # type: ignore[no-untyped-def]
+    def evaluate(values: list[float]):
         tip, rot, origins, axes = _forward(kernel, values, orientation)
         error = [gx - tip[0], gy - tip[1], gz - tip[2]]
         if orientation:

@@ -8,10 +8,10 @@ from dataclasses import dataclass
 
 import numpy as np
 
-from ..errors import ParameterError
-from ..kinematics import TFTree
-from ..message import M
-from ..model import Robot
+from ..core.errors import ParameterError
+from ..core.message import M
+from ..kinematics.frames import TFTree
+from ..model.robot import Robot
 from ._inputs import _as_tree, _joints_dict, _start_vector, _unit_of
 from ._limits import _bounds, _violations
 from .results import LimitExcess

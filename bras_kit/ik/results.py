@@ -6,7 +6,7 @@ from dataclasses import dataclass, field
 
 import numpy as np
 
-from ..message import M, Message
+from ..core.message import M, Message
 
 
 @dataclass(frozen=True)

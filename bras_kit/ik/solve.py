@@ -6,10 +6,10 @@ from collections.abc import Mapping
 
 import numpy as np
 
-from ..errors import ParameterError
-from ..kinematics import TFTree
-from ..message import M
-from ..model import Robot
+from ..core.errors import ParameterError
+from ..core.message import M
+from ..kinematics.frames import TFTree
+from ..model.robot import Robot
 from ._inputs import Vector, _as_tree, _joints_dict, _start_vector
 from .analytic import _two_link_of, ik_2r
 from .chain import serial_chain

@@ -8,12 +8,12 @@ from typing import Any
 
 import numpy as np
 
-from .. import backends
-from ..errors import ParameterError
-from ..i18n import say
-from ..kinematics import TFTree, fk_batch
-from ..message import M
-from ..model import Robot
+from ..core import backends
+from ..core.errors import ParameterError
+from ..core.i18n import say
+from ..core.message import M
+from ..kinematics.frames import TFTree, fk_batch
+from ..model.robot import Robot
 from ._inputs import Vector, _as_tree
 from ._limits import _bounds
 from .chain import _path_from_root, resolve_tip, tip_positions
@@ -107,7 +107,7 @@ def _plane_axes(points: np.ndarray) -> tuple[int, int]:
 
 def workspace_figure(model: TFTree | Robot, samples: int = 100_000, *, tip_link: str | None = None,
                      tip_offset: Vector | None = None, size: tuple[float, float] = (7.0, 6.0),
-                     dpi: int = 100, lang: str | None = None):  # type: ignore[no-untyped-def]
+                     dpi: int = 100, lang: str | None = None):
     """A matplotlib figure of the region the tip reaches, in the arm's plane.
 
     Faint: every joint turning freely; solid: within the limits; the base and the arm at its

@@ -9,14 +9,14 @@ on /robot_description, the validator's own rules (e.g. BK301: ``coude``'s origin
 
 from __future__ import annotations
 
-from ..errors import BrasKitError
-from ..model import Robot
+from ..core.errors import BrasKitError
+from ..findings.data import FileResult, finding, sort_key
+from ..findings.registry import select_rules
+from ..model.robot import Robot
+from ..ros.graph import Snapshot
 from ..ros.topics import DESCRIPTION
 from ..validate import validate
-from ..validate.findings import FileResult, finding, sort_key
 from ..validate.live import LiveGraph, description_kind
-from ..validate.registry import select_rules
-from .snapshot import Snapshot
 
 # the validator's rules that need files or a package beside the URDF, which a live graph lacks
 NOT_ON_LIVE_TEXT = ("BK6", "BK7", "BK8")
@@ -30,9 +30,9 @@ def robot_of(snapshot: Snapshot) -> tuple[Robot | None, FileResult | None]:
     text = snapshot.descriptions[-1].text
     if description_kind(text) != "urdf":
         return None, None
-    from ..model import robot_from_xml
+    from ..model.robot import robot_from_xml
+    from ..model.xmlio import parse_xml
     from ..validate import _unreadable  # the same BK100-BK103 wording as 'bras-kit validate'
-    from ..xmlio import parse_xml
 
     try:
         robot = robot_from_xml(parse_xml(text, DESCRIPTION), path=DESCRIPTION, source_text=text)
@@ -52,7 +52,7 @@ def diagnose(snapshot: Snapshot) -> list[FileResult]:
     for rule in select_rules(["BK8"]):
         if rule.check is None:
             continue
-        for found in rule.check(graph):  # type: ignore[arg-type]  # a live rule takes a LiveGraph
+        for found in rule.check(graph):  # a live rule takes a LiveGraph
             by_place.setdefault(str(found.params.get("file", "")), []).append(finding(rule, found))
     results = [FileResult(place, sorted(found, key=sort_key)) for place, found in by_place.items()]
     if urdf is not None and urdf.findings:

@@ -25,10 +25,10 @@ import sys
 from collections.abc import Iterator, Mapping
 from typing import IO, Any
 
-from ..errors import BrasKitError
-from ..message import M
+from ..core.errors import BrasKitError
+from ..core.message import M
 from ..ros.bus import domain_id
-from .snapshot import Elsewhere, Snapshot, snapshot_from_json
+from ..ros.graph import Elsewhere, Snapshot, snapshot_from_json
 
 NO_ROS_EXIT = 3  # could not look: no rclpy to join the graph with
 PROBE = os.path.join(os.path.dirname(os.path.abspath(__file__)), "_probe.py")
@@ -58,7 +58,7 @@ class ProbeFailed(BrasKitError):
 
 
 def cached_venv_python() -> str:
-    from ..cachedir import cache_home
+    from ..core.cachedir import cache_home
 
     minor = f"{sys.version_info[0]}.{sys.version_info[1]}"
     return os.path.join(cache_home(), f"ros-jazzy-py{minor}", "bin", "python")

@@ -1,6 +1,6 @@
 """Decoded meshes kept on disk, so a mesh file is decoded once per machine, not once per command.
 
-Entries live in ``<cache home>/meshes`` (see :mod:`bras_kit.cachedir`), one ``.npz`` of plain
+Entries live in ``<cache home>/meshes`` (see :mod:`bras_kit.core.cachedir`), one ``.npz`` of plain
 arrays per (file content, scale, loader version), read with ``allow_pickle=False``. Nothing
 there is trusted: an entry that is a link, not a regular file, cut short, of another version or
 for another key, or whose arrays have the wrong shapes, types or index ranges is ignored and
@@ -19,7 +19,7 @@ from dataclasses import dataclass
 
 import numpy as np
 
-from ..cachedir import cache_home
+from ..core.cachedir import cache_home
 from .mesh import Issue, MeshData
 
 LOADER_VERSION = 1  # bump when decoding changes what a file gives: older entries are then never read

@@ -14,13 +14,13 @@ from typing import TYPE_CHECKING, Any
 if TYPE_CHECKING:
     import numpy as np
 
-    from ..model import Robot
+    from ..model.robot import Robot
 else:
-    from ..lazy_numpy import np
+    from ..core.lazy_numpy import np
 
-from ..errors import ParameterError, UnknownJointError
-from ..kinematics import TFTree, movable_joints_hint
-from ..message import M, Message
+from ..core.errors import ParameterError, UnknownJointError
+from ..core.message import M, Message
+from ..kinematics.frames import TFTree, movable_joints_hint
 
 DEFAULT_RATE = 20.0  # Hz, like the tutorial's animation node (a 0.05 s timer)
 DEFAULT_DURATION = 10.0  # seconds, for motions without a natural end

@@ -6,7 +6,7 @@ says of that joint's position. This module answers the same, step for step, with
 (whose import is a quarter of ``bras-kit validate PKG_DIR``, issue 43): the same refusals (a
 robot that is not a tree, a joint that cannot be driven, a formula the evaluator refuses, a
 value that is not a number), the same times ``k / rate``, the same first and worst samples. The
-values come from :meth:`bras_kit.expr.Expression.at`, which follows numpy's IEEE results; a
+values come from :meth:`bras_kit.model.expr.Expression.at`, which follows numpy's IEEE results; a
 transcendental function may differ from numpy's in the last bit, far below what BK623 shows.
 Checked against the numpy path on the formulas of tests/test_formula_limits.py.
 """
@@ -15,11 +15,11 @@ from __future__ import annotations
 
 import math
 
-from ..errors import ParameterError
-from ..expr import compile_expression
-from ..kinematics import movable_names, tree_structure
-from ..message import M
-from ..model import Robot
+from ..core.errors import ParameterError
+from ..core.message import M
+from ..kinematics.frames import movable_names, tree_structure
+from ..model.expr import compile_expression
+from ..model.robot import Robot
 from .core import DEFAULT_RATE, check_joint_of, checked_count
 from .limits import TOLERANCE, LimitViolation, joint_unit
 from .specs import spec_kind, split_formula

@@ -7,7 +7,7 @@ from typing import TYPE_CHECKING
 if TYPE_CHECKING:
     import numpy as np
 else:
-    from ..lazy_numpy import np
+    from ..core.lazy_numpy import np
 
 from .core import Evaluate
 

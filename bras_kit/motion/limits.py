@@ -12,10 +12,10 @@ from typing import TYPE_CHECKING
 if TYPE_CHECKING:
     import numpy as np
 else:
-    from ..lazy_numpy import np
+    from ..core.lazy_numpy import np
 
-from ..message import M, Message, Mn
-from ..model import Joint, Robot
+from ..core.message import M, Message, Mn
+from ..model.robot import Joint, Robot
 from .core import JointStates
 
 TOLERANCE = 1e-9  # how far past a limit still counts as on it (rounding)

@@ -15,13 +15,13 @@ from typing import TYPE_CHECKING
 if TYPE_CHECKING:
     import numpy as np
 else:
-    from ..lazy_numpy import np
+    from ..core.lazy_numpy import np
 
-from ..errors import ParameterError
-from ..expr import compile_expression
-from ..kinematics import TFTree, tf_tree
-from ..message import M, Message, number
-from ..model import Joint, Robot
+from ..core.errors import ParameterError
+from ..core.message import M, Message, number
+from ..kinematics.frames import TFTree, tf_tree
+from ..model.expr import compile_expression
+from ..model.robot import Joint, Robot
 from .core import JointStates, Motion, Track, check_joint
 from .interpolation import interpolator
 from .limits import joint_unit, speed_limit
@@ -207,8 +207,8 @@ def _waypoint_layer(tree: TFTree, path: str, interpolation: str | None) -> _Laye
 
 
 def _bag_layer(tree: TFTree, path: str, topic: str | None) -> _Layer:
-    """A recorded JointState topic of a ROS 2 bag, linear between samples (see :mod:`bras_kit.bags`)."""
-    from ..bags import recorded_tracks  # a feature above motion: only loaded for a bag
+    """A recorded JointState topic of a ROS 2 bag, linear between samples (see :mod:`bras_kit.motion.bags`)."""
+    from .bags import recorded_tracks  # a feature above motion: only loaded for a bag
 
     tracks, duration, notes, label = recorded_tracks(tree.dof, lambda name: check_joint(tree, name), path, topic)
     return _Layer(tracks, duration, label, notes)

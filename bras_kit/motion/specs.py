@@ -5,8 +5,8 @@ from __future__ import annotations
 
 import os
 
-from ..errors import ParameterError
-from ..message import M
+from ..core.errors import ParameterError
+from ..core.message import M
 
 WAYPOINT_SUFFIXES = (".csv", ".json", ".yaml", ".yml")
 

@@ -12,15 +12,15 @@ from typing import TYPE_CHECKING
 if TYPE_CHECKING:
     import numpy as np
 else:
-    from ..lazy_numpy import np
+    from ..core.lazy_numpy import np
 
-from ..errors import ParameterError, os_reason
-from ..message import M, Message
-from ..model import Robot
+from ..core.errors import ParameterError, os_reason
+from ..core.message import M, Message
+from ..model.robot import Robot
 from .core import JointStates
 
 
-def _efforts(states: JointStates):  # type: ignore[no-untyped-def]
+def _efforts(states: JointStates):
     """Measured motor torques when the states come from a simulation (``bras-kit simulate``), else None."""
     efforts = getattr(states, "efforts", None)
     return efforts if efforts is not None and len(efforts) == len(states.times) else None
@@ -50,10 +50,10 @@ def states_to_csv(states: JointStates) -> str:
     """Long form, like a recorded /joint_states: ``time,name,position,velocity``, one row per joint per sample.
 
     Simulated states (with measured torques) get a fifth column, ``effort``. The joint names are
-    the URDF's, so a stranger's: text cells through bras_kit.inert.csv_text (never a formula),
+    the URDF's, so a stranger's: text cells through bras_kit.trust.inert.csv_text (never a formula),
     the numbers as numbers.
     """
-    from ..inert import csv_text
+    from ..trust.inert import csv_text
 
     efforts = _efforts(states)
     names = [str(name) for name in states.names]
@@ -94,11 +94,11 @@ def check_states_output(path: str, force: bool, fmt: str | None = None, option: 
         raise ParameterError(M("cannot tell the format of '{path}'", path=path),
                              hint=M("end the file name in .csv, .json or .mcap (a ROS 2 bag)"))
     if fmt == "bag":
-        from ..bags.writer import check_bag_output  # a feature above motion: loaded for bags only
+        from .bags.writer import check_bag_output  # a feature above motion: loaded for bags only
 
         check_bag_output(path, force, option)
     elif path != "-":
-        from ..outputs import check_output
+        from ..trust.outputs import check_output
 
         check_output(path, force, option=option)
     return fmt
@@ -113,13 +113,13 @@ def write_states(robot: Robot, states: JointStates, path: str, force: bool = Fal
     """
     fmt = check_states_output(path, force, fmt, option)
     if fmt == "bag":
-        from ..bags import write_bag
+        from .bags import write_bag
 
         summary = write_bag(robot, states, path, force=force, option=option, sent=sent)
         return M("wrote the ROS 2 bag {folder} ({storage}: {messages} messages on /robot_description, /tf_static, "
                  "/tf, /joint_states; {duration} s): ros2 bag play {folder}", folder=summary.folder,
                  storage=summary.storage_file, messages=summary.messages, duration=summary.duration)
-    from ..outputs import write_text
+    from ..trust.outputs import write_text
 
     if fmt == "json" and sent is not None:  # messages as a node sent them (bras-kit run -o)
         import json
@@ -186,7 +186,7 @@ def _states_from_csv(text: str, path: str) -> JointStates:
     import csv
     import io
 
-    from ..inert import from_spreadsheet
+    from ..trust.inert import from_spreadsheet
 
     # csv's reader: a joint name may hold a comma, a quote or a line break, which csv_text quoted
     reader = csv.reader(io.StringIO(text, newline=""))

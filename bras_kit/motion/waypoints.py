@@ -10,12 +10,12 @@ from typing import TYPE_CHECKING
 if TYPE_CHECKING:
     import numpy as np
 else:
-    from ..lazy_numpy import np
+    from ..core.lazy_numpy import np
 
-from ..errors import ParameterError, os_reason
-from ..kinematics import TFTree, movable_joints_hint, tf_tree
-from ..message import M, Message
-from ..model import Robot
+from ..core.errors import ParameterError, os_reason
+from ..core.message import M, Message
+from ..kinematics.frames import TFTree, movable_joints_hint, tf_tree
+from ..model.robot import Robot
 from .core import Motion, Waypoints, check_joint
 from .interpolation import INTERPOLATIONS, segment_peaks
 from .limits import TOLERANCE, joint_unit, speed_limit
@@ -71,7 +71,7 @@ def read_waypoints(path: str, tree: TFTree | Robot, interpolation: str | None = 
 TIME_COLUMNS = ("time", "temps")  # the time column, in English or French
 
 
-def _joint_states_in(text: str, path: str, suffix: str):  # type: ignore[no-untyped-def]
+def _joint_states_in(text: str, path: str, suffix: str):
     """The joint states when the file holds messages (time, name, position...), else None."""
     from .states_io import _states_from_csv, _states_from_json
 
@@ -99,8 +99,8 @@ def _joint_states_in(text: str, path: str, suffix: str):  # type: ignore[no-unty
 
 def _number(text: str, decimal_comma: bool = False) -> float | None:
     """The one parser of joint values (``0.5``, ``1,5``, ``pi/2``, ``90deg``), None if not one."""
-    from ..errors import BrasKitError
-    from ..expr import parse_joint_value
+    from ..core.errors import BrasKitError
+    from ..model.expr import parse_joint_value
 
     try:
         return parse_joint_value(text.replace(",", ".") if decimal_comma else text)
@@ -108,7 +108,7 @@ def _number(text: str, decimal_comma: bool = False) -> float | None:
         return None
 
 
-def _parse_csv(text: str, path: str, tree: TFTree):  # type: ignore[no-untyped-def]
+def _parse_csv(text: str, path: str, tree: TFTree):
     import csv
 
     header: list[str] | None = None
@@ -175,7 +175,7 @@ _TOP_KEYS = ("waypoints", "interpolation", "joints")
 _POINT_KEYS = ("time", "positions")
 
 
-def _parse_structured(text: str, path: str, tree: TFTree, is_json: bool):  # type: ignore[no-untyped-def]
+def _parse_structured(text: str, path: str, tree: TFTree, is_json: bool):
     if is_json:
         import json
 
@@ -188,7 +188,7 @@ def _parse_structured(text: str, path: str, tree: TFTree, is_json: bool):  # typ
     else:
         import yaml
 
-        from .. import yaml_gate
+        from ..trust import yaml_gate
 
         try:
             data = yaml_gate.load(text, loader=yaml.SafeLoader)  # PyYAML's own words in errors
@@ -301,7 +301,7 @@ def _waypoint_lines(text: str) -> list[int | None]:
     """The line of each waypoint, found by composing the text as YAML (JSON is YAML too)."""
     import yaml
 
-    from .. import yaml_gate
+    from ..trust import yaml_gate
 
     try:
         node = yaml_gate.compose(text)

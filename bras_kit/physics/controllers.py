@@ -17,8 +17,8 @@ from collections.abc import Mapping, Sequence
 
 import numpy as np
 
-from ..errors import ParameterError
-from ..message import M
+from ..core.errors import ParameterError
+from ..core.message import M
 
 CONTROLS = ("none", "pd", "pd+gravity")
 

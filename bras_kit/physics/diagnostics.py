@@ -13,11 +13,11 @@ import os
 from collections.abc import Sequence
 from dataclasses import dataclass
 
-from .. import backends
-from ..errors import ModelError
-from ..i18n import say
-from ..message import M, Message, Mn
-from ..model import Robot
+from ..core import backends
+from ..core.errors import ModelError
+from ..core.i18n import say
+from ..core.message import M, Message, Mn
+from ..model.robot import Robot
 from .mjcf import WATER_DENSITY, MjcfModel
 
 VALIDATOR_CODES = ("BK402", "BK403", "BK404", "BK500", "BK501", "BK502")
@@ -158,7 +158,7 @@ def dynamics_summary(built: MjcfModel | None) -> Message | None:
                        friction=value[1]) for joint, value in built.dynamics.items() if any(value)])
 
 
-def report_text(robot: Robot, states, lang: str | None = None) -> str:  # type: ignore[no-untyped-def]
+def report_text(robot: Robot, states, lang: str | None = None) -> str:
     """The per-joint table of a run and, in plain words, which motors are too weak."""
     duration = float(states.times[-1]) if len(states) else 0.0
     lines = [say(M("{control} control, {duration} s simulated ({integrator}, time step {timestep} s, motors "
@@ -224,7 +224,7 @@ def report_text(robot: Robot, states, lang: str | None = None) -> str:  # type: 
     return "\n".join(lines)
 
 
-def divergence_message(states) -> Message | None:  # type: ignore[no-untyped-def]
+def divergence_message(states) -> Message | None:
     """The simulation became unstable: when and on which joint (None when it did not)."""
     if states.diverged is None:
         return None

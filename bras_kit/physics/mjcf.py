@@ -23,11 +23,11 @@ from xml.sax.saxutils import quoteattr
 
 import numpy as np
 
-from .. import backends
-from ..errors import ModelError
-from ..kinematics import matrix_to_quat_xyzw, rpy_to_matrix
-from ..message import M, Mn
-from ..model import Geometry, Joint, Origin, Robot
+from ..core import backends
+from ..core.errors import ModelError
+from ..core.message import M, Mn
+from ..kinematics.frames import matrix_to_quat_xyzw, rpy_to_matrix
+from ..model.robot import Geometry, Joint, Origin, Robot
 
 MUJOCO_MESH_SUFFIXES = (".stl", ".obj", ".msh")
 DEFAULT_KP = 100.0  # N.m/rad (N/m for sliders)
@@ -78,7 +78,7 @@ class MjcfModel:
     dynamics: dict[str, tuple[float, float]] = field(default_factory=dict)  # joint -> (damping, friction) written
     damping_given: bool = False  # True: one damping for every joint was asked for, not the URDF's <dynamics>
 
-    def compile(self):  # type: ignore[no-untyped-def]
+    def compile(self):
         """The ``mujoco.MjModel`` (a :class:`ModelError` with MuJoCo's reason when it refuses)."""
         return compile_xml(self.xml, {a.name: a.data for a in self.assets.values()}, self.robot_name)
 
@@ -105,7 +105,7 @@ def quiet_mujoco() -> Iterator[list[str]]:
         mujoco.set_mju_user_warning(previous)
 
 
-def compile_xml(xml: str, assets: Mapping[str, bytes], name: str = "robot"):  # type: ignore[no-untyped-def]
+def compile_xml(xml: str, assets: Mapping[str, bytes], name: str = "robot"):
     mujoco = backends.mujoco()
 
     try:
@@ -212,7 +212,7 @@ class _Meshes:
         name = f"m{len(self.assets)}_{stem}"
         return name
 
-    def _decoded(self, path: str, geometry: Geometry):  # type: ignore[no-untyped-def]
+    def _decoded(self, path: str, geometry: Geometry):
         from ..render.scene import mesh_file_data
 
         return mesh_file_data(path, self.robot, geometry.line)
@@ -253,7 +253,7 @@ def _geom_shape(geometry: Geometry | None, meshes: _Meshes) -> str | None:
     return None
 
 
-def _rgba(robot: Robot, visual) -> str:  # type: ignore[no-untyped-def]
+def _rgba(robot: Robot, visual) -> str:
     rgba = robot.material_rgba(visual) or (0.7, 0.7, 0.7, 1.0)
     return _vec(rgba)
 
@@ -264,14 +264,14 @@ def _mesh_scale(geometry: Geometry | None, meshes: _Meshes) -> str:
     return meshes.asset(geometry)[1]
 
 
-def _has_mass(inertial) -> bool:  # type: ignore[no-untyped-def]
+def _has_mass(inertial) -> bool:
     """An <inertial> worth writing: ``mass="0"`` with a zero tensor (a frame-only link) counts as none."""
     if inertial is None:
         return False
     return bool(inertial.mass) or any(v for v in inertial.inertia.values())
 
 
-def _inertial_xml(link) -> str:  # type: ignore[no-untyped-def]
+def _inertial_xml(link) -> str:
     inertial = link.inertial
     i = {k: (v if v is not None else 0.0) for k, v in inertial.inertia.items()}
     tensor = np.array([[i["ixx"], i["ixy"], i["ixz"]], [i["ixy"], i["iyy"], i["iyz"]], [i["ixz"], i["iyz"], i["izz"]]])
@@ -346,7 +346,7 @@ def joint_effort(joint: Joint) -> float:
 
 
 def _tree(robot: Robot) -> tuple[str, dict[str, list[Joint]]]:
-    from ..kinematics import tf_tree
+    from ..kinematics.frames import tf_tree
 
     tree = tf_tree(robot)  # raises a clear ModelError for loops, several roots, unknown links
     children: dict[str, list[Joint]] = {}
@@ -515,7 +515,7 @@ def _document(robot: Robot, bodies: list[str], meshes: _Meshes, actuators: list[
     return "\n".join(lines) + "\n"
 
 
-def _world_boxes(model) -> tuple[np.ndarray, np.ndarray]:  # type: ignore[no-untyped-def]
+def _world_boxes(model) -> tuple[np.ndarray, np.ndarray]:
     """Each geom's axis-aligned box in the world at the zero pose: centres and half sizes."""
     mujoco = backends.mujoco()
 
@@ -531,7 +531,7 @@ def _world_boxes(model) -> tuple[np.ndarray, np.ndarray]:  # type: ignore[no-unt
     return centres, halves
 
 
-def _floor_and_touching(model, robot: Robot) -> tuple[float, list[tuple[str, str, str]]]:  # type: ignore[no-untyped-def]
+def _floor_and_touching(model, robot: Robot) -> tuple[float, list[tuple[str, str, str]]]:
     """The floor height (under the fixed base's lowest point) and the parent/child pairs whose shapes touch."""
     mujoco = backends.mujoco()
 
@@ -556,7 +556,7 @@ def _floor_and_touching(model, robot: Robot) -> tuple[float, list[tuple[str, str
     return floor_z, touching + _overlapping_at_start(model, floor_geom)
 
 
-def _overlapping_at_start(model, floor_geom: int) -> list[tuple[str, str, str]]:  # type: ignore[no-untyped-def]
+def _overlapping_at_start(model, floor_geom: int) -> list[tuple[str, str, str]]:
     """Pairs of bodies (not parent and child) whose collision shapes already overlap at the zero pose.
 
     Left alone they push each other apart for ever (fingers of a gripper, a hand folded on the

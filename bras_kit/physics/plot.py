@@ -10,11 +10,11 @@ from typing import TYPE_CHECKING, Any
 
 import numpy as np
 
-from .. import backends
+from ..core import backends
+from ..core.i18n import say
+from ..core.message import M
 from ..diagrams.output import FIGURE_FORMATS, output_suffix, save_figure
-from ..i18n import say
-from ..message import M
-from ..model import Robot
+from ..model.robot import Robot
 
 if TYPE_CHECKING:  # pragma: no cover
     from matplotlib.figure import Figure

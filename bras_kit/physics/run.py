@@ -15,11 +15,11 @@ from dataclasses import dataclass, field
 
 import numpy as np
 
-from .. import backends
-from ..errors import ParameterError
-from ..kinematics import tf_tree
-from ..message import M, Message
-from ..model import Robot
+from ..core import backends
+from ..core.errors import ParameterError
+from ..core.message import M, Message
+from ..kinematics.frames import tf_tree
+from ..model.robot import Robot
 from ..motion import (
     DEFAULT_DURATION,
     DEFAULT_RATE,
@@ -224,7 +224,7 @@ def simulate(robot: Robot, motion: Motion | Sequence[str] | None = None, *, cont
 _UNSTABLE = ("mjWARN_BADQPOS", "mjWARN_BADQVEL", "mjWARN_BADQACC")
 
 
-def _steps(model, data, steps: int, start: float, timestep: float) -> Divergence | None:  # type: ignore[no-untyped-def]
+def _steps(model, data, steps: int, start: float, timestep: float) -> Divergence | None:
     """Step ``steps`` times; stop at the first step MuJoCo finds unstable (it then resets the state)."""
     mujoco = backends.mujoco()
 
@@ -243,13 +243,13 @@ def _steps(model, data, steps: int, start: float, timestep: float) -> Divergence
     return None
 
 
-def _geom_name(model, geom: int) -> str:  # type: ignore[no-untyped-def]
+def _geom_name(model, geom: int) -> str:
     mujoco = backends.mujoco()
 
     return mujoco.mj_id2name(model, mujoco.mjtObj.mjOBJ_GEOM, geom) or f"geom {geom}"
 
 
-def _needed_torques(model, qadr, vadr, times, q_ref, qd_ref) -> np.ndarray:  # type: ignore[no-untyped-def]
+def _needed_torques(model, qadr, vadr, times, q_ref, qd_ref) -> np.ndarray:
     """Inverse dynamics along the reference: the torque each joint would need to follow it exactly."""
     mujoco = backends.mujoco()
 

@@ -37,7 +37,7 @@ from typing import Any
 
 import numpy as np
 
-from .. import backends
+from ..core import backends
 
 _PLATFORM_CLASSES = {"EGLPlatform": "egl", "OSMesaPlatform": "osmesa"}
 
@@ -77,7 +77,7 @@ def register_byref_type() -> None:
         handler.check.append(name)
 
 
-def import_pyrender():  # type: ignore[no-untyped-def]
+def import_pyrender():
     """pyrender, importable under numpy 2 (it still uses ``np.infty``), in a third of its usual time.
 
     pyrender's ``__init__`` loads trimesh (about 0.5 s with scipy), networkx (0.1 s), FreeType
@@ -87,7 +87,7 @@ def import_pyrender():  # type: ignore[no-untyped-def]
     ``import trimesh`` / ``networkx`` / ``pyrender.viewer`` in the process loads the real module.
     """
     if not hasattr(np, "infty"):
-        np.infty = np.inf  # type: ignore[attr-defined]
+        np.infty = np.inf
     if "pyrender" in sys.modules:
         return backends.pyrender()
     stand_ins = _stand_ins()
@@ -104,7 +104,7 @@ def import_pyrender():  # type: ignore[no-untyped-def]
     return pyrender
 
 
-def _keep_uniform_locations(program_class) -> None:  # type: ignore[no-untyped-def]
+def _keep_uniform_locations(program_class) -> None:
     """pyrender's ``ShaderProgram.set_uniform`` asks OpenGL where each uniform is at every call,
     and sets every light and material again for every primitive (72 calls a frame for the
     tutorial arm, about 1,000 for Talos: a fifth to a third of a frame's time). This one keeps each location per
@@ -118,7 +118,7 @@ def _keep_uniform_locations(program_class) -> None:  # type: ignore[no-untyped-d
     original = program_class.set_uniform
     functions = program_class._FUNC_MAP
 
-    def set_uniform(self, name, value, unsigned=False):  # type: ignore[no-untyped-def]
+    def set_uniform(self, name, value, unsigned=False):
         key = (self._program_id, name)
         state = self.__dict__.setdefault("_bras_kit_uniforms", {})
         if isinstance(value, np.ndarray):
@@ -198,7 +198,7 @@ def _stand_ins() -> dict[str, types.ModuleType]:
     return stand_ins
 
 
-def _real(name: str, stand_in: types.ModuleType):  # type: ignore[no-untyped-def]
+def _real(name: str, stand_in: types.ModuleType):
     """A module ``__getattr__`` giving the real module's attribute, loading it if need be."""
     import importlib
 
@@ -255,7 +255,7 @@ def _path_to(graph: _ParentGraph, source: object, target: object) -> list[object
     return path
 
 
-def make_framebuffers(inner, width: int, height: int, samples: int,  # type: ignore[no-untyped-def]
+def make_framebuffers(inner, width: int, height: int, samples: int,
                        spare: bool = False) -> tuple[int, int, int] | None:
     """Create pyrender's main framebuffers ourselves, before its first frame, with ``samples``
     samples per pixel (pyrender always asks 4; Mesa's llvmpipe takes about twice as long then,
@@ -293,7 +293,7 @@ PYRENDER_MESH_FRAG_SHA256 = "b00bcadffa76bcc4645e10b13d550fb4735485131ae4178532a
 _NOT_FLAT = ("NORMAL_LOC", "TANGENT_LOC", "TEXCOORD_0_LOC", "TEXCOORD_1_LOC", "COLOR_0_LOC")
 
 
-def use_flat_shading(pyrender, inner) -> None:  # type: ignore[no-untyped-def]
+def use_flat_shading(pyrender, inner) -> None:
     """Give pyrender's renderer ``inner`` a shader cache that answers ``mesh.frag``, for a
     metallic-roughness primitive with no normals, textures, colours or shadows, with bras-kit's
     ``shaders/flat_mesh.frag``: pyrender's formulas for directional lights alone, each facet lit
@@ -304,7 +304,7 @@ def use_flat_shading(pyrender, inner) -> None:  # type: ignore[no-untyped-def]
     base = pyrender.shader_program.ShaderProgramCache
 
     class FlatShaderCache(base):  # type: ignore[misc, valid-type]
-        def get_program(self, vertex_shader, fragment_shader, geometry_shader=None, defines=None):  # type: ignore[no-untyped-def]
+        def get_program(self, vertex_shader, fragment_shader, geometry_shader=None, defines=None):
             given = defines or {}
             if fragment_shader == "mesh.frag" and given.get("USE_METALLIC_MATERIAL") \
                     and not any(k in _NOT_FLAT or k.startswith("HAS_") or k.endswith("_SHADOWS") for k in given):
@@ -338,7 +338,7 @@ class ColorReader:
         self.streaming = False
         self.pending: int | None = None
 
-    def __call__(self, inner, scene, flags):  # type: ignore[no-untyped-def]
+    def __call__(self, inner, scene, flags):
         from OpenGL import GL
 
         if not (self.streaming and self.spare is not None):
@@ -456,7 +456,7 @@ def _nothing() -> None:
     """Stands in for a pyrender clean-up already done, or not ours to do."""
 
 
-def draw_front_to_back(renderer_class) -> None:  # type: ignore[no-untyped-def]
+def draw_front_to_back(renderer_class) -> None:
     """pyrender sorts opaque mesh nodes farthest first (``Renderer._sorted_mesh_nodes``), the
     worst order for the depth test: every facet behind another is shaded, then painted over.
     Nearest first, Mesa's rasteriser skips the shading of what is already hidden (a fifth of
@@ -465,14 +465,14 @@ def draw_front_to_back(renderer_class) -> None:  # type: ignore[no-untyped-def]
     if getattr(renderer_class, "_bras_kit_front_to_back", False):
         return
 
-    def sorted_mesh_nodes(self, scene):  # type: ignore[no-untyped-def]
+    def sorted_mesh_nodes(self, scene):
         return [node for node, _ in _nodes_in_order(scene, scene.get_pose(scene.main_camera_node)[:3, 3])]
 
     renderer_class._sorted_mesh_nodes = sorted_mesh_nodes
     renderer_class._bras_kit_front_to_back = True
 
 
-def lean_forward_pass(pyrender, inner) -> None:  # type: ignore[no-untyped-def]
+def lean_forward_pass(pyrender, inner) -> None:
     """Give pyrender's renderer ``inner`` a forward pass that does per frame what pyrender's
     ``Renderer._forward_pass`` does per primitive: choose the program, set the camera and the
     lights (uniforms are the program's own state, so once a frame is enough), and ask each node's
@@ -498,7 +498,7 @@ def lean_forward_pass(pyrender, inner) -> None:  # type: ignore[no-untyped-def]
     programs: dict[tuple[object, ...], Any] = {}
     null = ctypes.c_void_p(0)
 
-    def forward_pass(self, scene, flags, seg_node_map=None):  # type: ignore[no-untyped-def]
+    def forward_pass(self, scene, flags, seg_node_map=None):
         camera = scene.main_camera_node
         limits = self._compute_max_n_lights(flags)
         if flags & unusual or not flags & flags_.OFFSCREEN or camera is None \
@@ -610,7 +610,7 @@ class _DirectCalls:
     _made: _DirectCalls | None = None
     _tried = False
 
-    def __init__(self, address) -> None:  # type: ignore[no-untyped-def]
+    def __init__(self, address) -> None:
         c = ctypes
 
         def entry(name: str, *arguments: Any) -> Any:
@@ -639,7 +639,7 @@ class _DirectCalls:
                 cls._made = None
         return cls._made
 
-    def draw_setup(self, program, primitive, pose: np.ndarray, material) -> None:  # type: ignore[no-untyped-def]
+    def draw_setup(self, program, primitive, pose: np.ndarray, material) -> None:
         identifier = program._program_id
         known = program.__dict__.get("_bras_kit_direct")
         if known is None or known[0] != identifier:  # kept on the program, as set_uniform keeps its own
@@ -659,7 +659,7 @@ class _DirectCalls:
         self.uniform1(where[4], float(material.roughnessFactor))
         self.bind_vertex_array(primitive._vaid)
 
-    def forget(self, program) -> None:  # type: ignore[no-untyped-def]
+    def forget(self, program) -> None:
         """Wipe ``set_uniform``'s record of these uniforms in ``program`` (see :func:`_keep_uniform_locations`)."""
         state = program.__dict__.get("_bras_kit_uniforms")
         if state:
@@ -674,7 +674,7 @@ class _DirectCalls:
         self.touched.clear()
 
 
-def _nodes_in_order(scene, camera: np.ndarray) -> list[tuple[Any, np.ndarray]]:  # type: ignore[no-untyped-def]
+def _nodes_in_order(scene, camera: np.ndarray) -> list[tuple[Any, np.ndarray]]:
     """The scene's mesh nodes, each with its pose (asked of the scene graph once), opaque ones
     nearest ``camera`` first, then transparent ones farthest first (see :func:`draw_front_to_back`).
     Nodes at the same distance (a link's TF axes and its target, say) keep the order of their

@@ -21,9 +21,9 @@ from typing import Any
 
 import numpy as np
 
-from ..errors import BackendError
-from ..message import M
-from ..wording import quoted
+from ..core.errors import BackendError
+from ..core.message import M
+from ..core.wording import quoted
 from ._compat import (
     ColorReader,
     delete_renderer,
@@ -131,15 +131,15 @@ def _linear(rgb: tuple[float, ...]) -> np.ndarray:
     return np.clip(np.asarray(rgb[:3], dtype=float), 0.0, 1.0) ** 2.2
 
 
-def _grouped(parts) -> dict[tuple[int, bool], dict[tuple[float, ...], list]]:  # type: ignore[no-untyped-def, type-arg]
+def _grouped(parts) -> dict[tuple[int, bool], dict[tuple[float, ...], list]]:
     """The parts by link and lighting, then by colour."""
-    grouped: dict[tuple[int, bool], dict[tuple[float, ...], list]] = {}  # type: ignore[type-arg]
+    grouped: dict[tuple[int, bool], dict[tuple[float, ...], list]] = {}
     for part in parts:
         grouped.setdefault((part.link, part.unlit), {}).setdefault(tuple(part.color), []).append(part)
     return grouped
 
 
-def _joined(members) -> tuple[np.ndarray, np.ndarray]:  # type: ignore[no-untyped-def]
+def _joined(members) -> tuple[np.ndarray, np.ndarray]:
     """The triangles of parts of one colour in one vertex array (float32) and one index array (uint32)."""
     starts = np.cumsum([0] + [len(p.vertices) for p in members])
     vertices = np.concatenate([p.vertices for p in members]).astype(np.float32)
@@ -147,7 +147,7 @@ def _joined(members) -> tuple[np.ndarray, np.ndarray]:  # type: ignore[no-untype
     return vertices, faces.astype(np.uint32)
 
 
-def _shared_key(builder: object, unlit: bool, colours) -> tuple[object, ...] | None:  # type: ignore[no-untyped-def]
+def _shared_key(builder: object, unlit: bool, colours) -> tuple[object, ...] | None:
     """What a link's group of parts is made of, by identity, when every array in it is a shared
     read-only one (the placed mesh pieces of :func:`scene.robot_parts`, the same objects for
     the same mesh bytes, scale and origin); None when one may change (triads, targets...).
@@ -172,7 +172,7 @@ def _frozen(array: object) -> bool:
 MESH_MEMORY_BYTES = 128 << 20  # vertex and index arrays of meshes kept with one renderer
 
 
-def _emissive(pyrender, rgb: tuple[float, ...]):  # type: ignore[no-untyped-def]
+def _emissive(pyrender, rgb: tuple[float, ...]):
     """A material that shows exactly ``rgb`` whatever the lights: black metal (no diffuse light, no
     specular reflection at the shader's floor of 4 %) that glows; the shader squares the glow."""
     return pyrender.MetallicRoughnessMaterial(
@@ -247,7 +247,7 @@ class PyrenderBackend:
                             pose=_look_pose(direction))
 
     @staticmethod
-    def _open(pyrender, camera: Camera, platform: str, antialias: bool,  # type: ignore[no-untyped-def]
+    def _open(pyrender, camera: Camera, platform: str, antialias: bool,
               supersample: bool):
         """An OffscreenRenderer drawing ``camera``'s picture, read back by :class:`_compat.ColorReader`.
 
@@ -286,7 +286,7 @@ class PyrenderBackend:
         return renderer
 
     @staticmethod
-    def _primitive(pyrender, vertices: np.ndarray, faces: np.ndarray,  # type: ignore[no-untyped-def]
+    def _primitive(pyrender, vertices: np.ndarray, faces: np.ndarray,
                    color: tuple[float, ...], unlit: bool):
         """Indexed triangles of one colour, with no normals: the fragment shader lights each
         facet flat from the derivatives of its position (see :func:`_compat.use_flat_shading`),

@@ -2,7 +2,7 @@
 
 Every public render function takes these as keyword arguments; :func:`render_options` turns
 them into a :class:`RenderOptions` and refuses unknown names or bad values with a
-:class:`~bras_kit.errors.ParameterError` that says what to write instead.
+:class:`~bras_kit.core.errors.ParameterError` that says what to write instead.
 """
 
 from __future__ import annotations
@@ -13,8 +13,8 @@ import re
 from collections.abc import Sequence
 from dataclasses import dataclass, field, fields
 
-from ..errors import ParameterError
-from ..message import M, Mn
+from ..core.errors import ParameterError
+from ..core.message import M, Mn
 
 # name -> (azimuth, elevation) in degrees. Azimuth is measured from +x towards +y, so the
 # camera of "front" stands on the -y side and looks along +y at the x-z plane, the plane
@@ -158,7 +158,7 @@ def parse_color(text: str | Sequence[float]) -> tuple[int, int, int]:
         raise ParameterError(M("'{text}' is not a colour", text=text),
                              hint=M("give a name (white, black, lightgrey, rviz), #rrggbb, "
                                     "or three numbers between 0 and 1 such as '0.9 0.9 0.9'")) from None
-    return rgb[:3]  # type: ignore[return-value]
+    return rgb[:3]
 
 
 def _angle(name: str, value: object, low: float, high: float) -> float | None:

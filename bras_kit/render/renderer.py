@@ -14,11 +14,11 @@ from typing import Any
 
 import numpy as np
 
-from ..errors import BackendError, ParameterError
-from ..kinematics import TFTree, fk_batch, movable_joints_hint, tf_tree
-from ..message import M
-from ..model import Robot
-from ..wording import quoted
+from ..core.errors import BackendError, ParameterError
+from ..core.message import M
+from ..core.wording import quoted
+from ..kinematics.frames import TFTree, fk_batch, movable_joints_hint, tf_tree
+from ..model.robot import Robot
 from .camera import Camera, fit_camera
 from .options import RenderOptions, render_options
 from .scene import Scene, build_scene
@@ -79,7 +79,7 @@ def workspace_samples(tree: TFTree, count: int = WORKSPACE_SAMPLES) -> np.ndarra
     return np.vstack([np.zeros((1, len(bounds))), grid])
 
 
-def open_backend(scene: Scene, camera: Camera, options: RenderOptions,  # type: ignore[no-untyped-def]
+def open_backend(scene: Scene, camera: Camera, options: RenderOptions,
                  sequence: bool = False):
     """The backend asked for; with 'auto', OpenGL (EGL, then OSMesa) or else, saying so once, software.
     ``sequence``: many frames will follow (antialiasing then favours the time per frame over the
@@ -104,7 +104,7 @@ def open_backend(scene: Scene, camera: Camera, options: RenderOptions,  # type: 
     global _announced_fallback
     if not _announced_fallback:
         _announced_fallback = True
-        from ..i18n import say
+        from ..core.i18n import say
 
         print(say(M("bras-kit render: no OpenGL here ({reason}); using the software renderer, slower",
                     reason=error.message)), file=sys.stderr)
@@ -126,8 +126,8 @@ def check_drawable(robot: Robot) -> None:
     urdfdom and the validator accept such numbers; drawing them would divide by infinity
     when the camera and the ground grid are fitted.
     """
-    from ..errors import ModelError
-    from ..message import M
+    from ..core.errors import ModelError
+    from ..core.message import M
 
     for joint in robot.joints:
         xyz, rpy = joint.origin.xyz, joint.origin.rpy
@@ -249,7 +249,7 @@ class Renderer:
         self.options = render_options(**opts)
         self.tree = tf_tree(robot)
         if len(self.tree.links) > MAX_RENDER_LINKS:
-            from ..errors import ModelError
+            from ..core.errors import ModelError
 
             raise ModelError(M("the robot has {count:,} links, more than the {most:,} bras-kit draws",
                                count=len(self.tree.links), most=MAX_RENDER_LINKS),

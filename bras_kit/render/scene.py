@@ -16,10 +16,10 @@ from typing import NamedTuple
 
 import numpy as np
 
-from ..errors import ModelError, XacroError
-from ..kinematics import TFTree, origin_matrix
-from ..message import M
-from ..model import Robot, Visual
+from ..core.errors import ModelError, XacroError
+from ..core.message import M
+from ..kinematics.frames import TFTree, origin_matrix
+from ..model.robot import Robot, Visual
 from ._memo import BoundedMemo
 
 DEFAULT_COLOR = (0.7, 0.7, 0.7, 1.0)  # a visual with no material, as RViz shows it
@@ -59,7 +59,7 @@ class Scene:
 def resolve_mesh_path(filename: str, robot: Robot, package_paths: Sequence[str] = (),
                       line: int | None = None) -> str:
     """The file a mesh ``filename`` names: ``package://pkg/...``, ``file://...``, or relative to the URDF."""
-    from ..xacrotools import find_package, package_roots
+    from ..model.xacro import find_package, package_roots
 
     if filename.startswith("package://"):
         package, _, rest = filename[len("package://"):].partition("/")
@@ -171,7 +171,7 @@ def rod_mesh(radius: float, end: np.ndarray, sections: int = 12) -> TriangleMesh
     return rod.transformed(matrix)
 
 
-def mesh_file_data(path: str, robot: Robot, line: int | None = None, scale: Sequence[float] | None = None):  # type: ignore[no-untyped-def]
+def mesh_file_data(path: str, robot: Robot, line: int | None = None, scale: Sequence[float] | None = None):
     """The decoded triangles and materials of a mesh file (:func:`bras_kit.meshes.load_mesh`:
     decoded once, then from the cache), as a :class:`bras_kit.meshes.MeshData`."""
     from ..meshes import DecodeError, load_mesh
@@ -192,7 +192,7 @@ def load_mesh_file(path: str, robot: Robot, line: int | None = None) -> Triangle
     return TriangleMesh(np.asarray(data.vertices, dtype=float), np.asarray(data.faces, dtype=np.int64))
 
 
-def _primitive_mesh(g) -> TriangleMesh | None:  # type: ignore[no-untyped-def]
+def _primitive_mesh(g) -> TriangleMesh | None:
     if g.kind == "box" and g.size is not None:
         return box_mesh(g.size)
     if g.kind == "cylinder" and g.radius and g.length:
@@ -202,7 +202,7 @@ def _primitive_mesh(g) -> TriangleMesh | None:  # type: ignore[no-untyped-def]
     return None
 
 
-def visual_pieces(robot: Robot, visual: Visual, package_paths: Sequence[str] = ()):  # type: ignore[no-untyped-def]
+def visual_pieces(robot: Robot, visual: Visual, package_paths: Sequence[str] = ()):
     """The visual's shape in the link frame as (mesh, own colour or None) pieces, and the mesh
     file's issues (what it names but could not be used); ``([], ())`` when it has no usable shape."""
     pieces, issues = _placed_visual(robot, visual, package_paths)
@@ -222,7 +222,7 @@ PLACED_MEMORY_BYTES = 128 << 20  # placed mesh pieces kept in this process (a cl
 _placed = BoundedMemo(PLACED_MEMORY_BYTES)  # (id of MeshData, xyz, rpy) -> (that MeshData, its pieces)
 
 
-def _placed_visual(robot: Robot, visual: Visual, package_paths: Sequence[str] = ()):  # type: ignore[no-untyped-def]
+def _placed_visual(robot: Robot, visual: Visual, package_paths: Sequence[str] = ()):
     """:func:`visual_pieces` as :class:`PlacedPiece` s. A mesh file's pieces placed at one origin
     are computed once per process: :func:`bras_kit.meshes.load_mesh` gives the same decoded
     object for the same bytes and scale (whatever the path), so a class of learners handing in
@@ -277,7 +277,7 @@ PLACEHOLDER_SIDE = 0.05  # metres: the stand-in of a mesh with no collision shap
 MAX_MESH_BYTES = 256 << 20
 
 
-def placeholder_mesh(robot: Robot, link, visual: Visual) -> TriangleMesh:  # type: ignore[no-untyped-def]
+def placeholder_mesh(robot: Robot, link, visual: Visual) -> TriangleMesh:
     """What stands for a mesh that cannot be read: the link's first primitive collision shape,
     else a small cube at the visual's origin."""
     for collision in link.collisions:
@@ -294,7 +294,7 @@ def robot_parts(tree: TFTree, package_paths: Sequence[str] = (), lang: str | Non
     own materials win; the URDF ``<material>`` colours primitives, meshes with no material (STL)
     and the pieces of a mesh without one; grey when neither says. What a mesh file names but
     cannot be used (a missing texture) is said once per file, and the rest drawn."""
-    from ..i18n import say
+    from ..core.i18n import say
 
     robot = tree.robot
     parts = []
@@ -322,7 +322,7 @@ def robot_parts(tree: TFTree, package_paths: Sequence[str] = (), lang: str | Non
             for piece in pieces:
                 rgba = piece.color if piece.color is not None else color
                 rgba = tuple(float(c) for c in rgba)
-                parts.append(Part(index, piece.mesh.vertices, piece.mesh.faces, rgba,  # type: ignore[arg-type]
+                parts.append(Part(index, piece.mesh.vertices, piece.mesh.faces, rgba,
                                   label=f"{name} visual {number}", bounds=piece.bounds))
     return parts
 
@@ -347,7 +347,7 @@ def collision_parts(tree: TFTree, package_paths: Sequence[str] = (), opacity: fl
             if mesh is None:
                 continue
             parts.append(Part(index, np.asarray(mesh.vertices, dtype=float), np.asarray(mesh.faces, dtype=np.int64),
-                              color, label=f"{name} collision {number}"))  # type: ignore[arg-type]
+                              color, label=f"{name} collision {number}"))
     return parts
 
 

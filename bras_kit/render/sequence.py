@@ -20,10 +20,10 @@ from typing import IO, Any, Protocol
 
 import numpy as np
 
-from ..errors import BackendError, ParameterError
-from ..i18n import say
-from ..inert import LINE_START, emit
-from ..message import M, Message
+from ..core.errors import BackendError, ParameterError
+from ..core.i18n import say
+from ..core.message import M, Message
+from ..trust.inert import LINE_START, emit
 
 PALETTE_SAMPLES = 4  # frames the GIF palette is computed from
 TRANSPARENT = 255  # GIF palette index left for "unchanged since the previous frame"
@@ -295,7 +295,7 @@ def save_png(image: np.ndarray, path: str | os.PathLike[str] | IO[bytes]) -> Non
 
     picture = Image.fromarray(np.ascontiguousarray(_rgb(image)))
     if hasattr(path, "write"):
-        picture.save(path, format="PNG")  # type: ignore[arg-type]
+        picture.save(path, format="PNG")
         return
     try:
         picture.save(os.fspath(path), compress_level=3) if str(path).lower().endswith(".png") \

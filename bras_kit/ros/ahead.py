@@ -26,9 +26,9 @@ def evaluate_ahead(paths: Iterable[str]) -> Callable[[str], Any]:
     its packages, or the worker in trouble): the caller then evaluates the package itself."""
     import threading
 
-    from ..errors import BrasKitError
-    from ..message import M
-    from ..sandbox import start_limited
+    from ..core.errors import BrasKitError
+    from ..core.message import M
+    from ..trust.sandbox import start_limited
     from . import launched  # noqa: F401 - read by the caller too: imported once, before the fork
 
     roots = [os.path.abspath(root) for root in find_packages(paths)]
@@ -56,9 +56,9 @@ def _evaluate_all(roots: list[str]) -> dict[str, Any]:
     meets that error again, in its place). What each launch file's child needs is imported while
     another child runs: the containment's trial, or, where this boot's record of a passed trial
     spares it, setup.py's (:func:`.launched.launch_package`)."""
-    from ..errors import BrasKitError
+    from ..core.errors import BrasKitError
+    from ..trust.contain import available, begin_trial
     from . import launched
-    from .contain import available, begin_trial
     from .launching import preload_planning
 
     if begin_trial():

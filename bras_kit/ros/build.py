@@ -11,7 +11,7 @@ the words colcon prints first, the cause and fix chosen by the feature above.
 
 ::
 
-    from bras_kit.ros.build import build_package
+    from ..ros.build import build_package
     record = build_package("src/bras_description", "install")
     record.failure            # None when colcon would say "Finished <<< bras_description"
     record.prefix             # install/bras_description
@@ -84,8 +84,8 @@ def _failed(package: str, lines: list[str]) -> tuple[str, ...]:
 
 def _manifest(root: str) -> tuple[str, str]:
     """(name, build_type) from package.xml; ("", "") when it cannot be read."""
-    from ..errors import BrasKitError
-    from ..xmlio import read_xml
+    from ..core.errors import BrasKitError
+    from ..model.xmlio import read_xml
 
     try:
         xml = read_xml(os.path.join(root, "package.xml"))
@@ -150,7 +150,7 @@ def build_package(root: str, install_base: str, *, meanwhile: Callable[[], objec
 
 
 def _setup_source(root: str) -> str:
-    from ..learner_files import read_text
+    from ..trust.learner_files import read_text
 
     try:
         return read_text(os.path.join(root, "setup.py"), (root,), errors="replace")
@@ -177,7 +177,7 @@ def _refused(record: BuildRecord, refusal: Refusal) -> BuildFailure:
 
 
 def _line_of(root: str, relative: str, text: str) -> int:
-    from ..learner_files import read_text
+    from ..trust.learner_files import read_text
 
     try:
         lines = read_text(os.path.join(root, relative), (root,), errors="replace").splitlines()
@@ -214,8 +214,8 @@ def _clear_prefix(record: BuildRecord) -> BuildFailure | None:
 
 def _lay_out(record: BuildRecord, checked: CheckedSetup) -> BuildFailure | None:
     """The install tree from the checked record: every source read through the one reader
-    (:mod:`bras_kit.learner_files`), every target a new file under the fresh prefix."""
-    from ..learner_files import Unreadable, copy_file, write_file
+    (:mod:`bras_kit.trust.learner_files`), every target a new file under the fresh prefix."""
+    from ..trust.learner_files import Unreadable, copy_file, write_file
 
     refused = _clear_prefix(record)
     if refused is not None:
@@ -249,9 +249,9 @@ def _lay_out(record: BuildRecord, checked: CheckedSetup) -> BuildFailure | None:
 
 
 def _run_setup(root: str, meanwhile: Callable[[], object] | None = None) -> dict[str, Any]:
-    from .. import scratch
-    from ..sandbox import ResourceLimitError, run_limited, start_limited
-    from .contain import containment
+    from ..trust import scratch
+    from ..trust.contain import containment
+    from ..trust.sandbox import ResourceLimitError, run_limited, start_limited
 
     with scratch.folder("bras-kit-setup-") as workdir:
         # the learner's setup.py reads its package and writes nowhere (setup() is recorded)

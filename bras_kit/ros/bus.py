@@ -16,7 +16,7 @@ no TCP, no multicast scouting, no gossip: nothing leaves this machine. As a ROS 
 
 ::
 
-    from bras_kit.ros.bus import Bus
+    from ..ros.bus import Bus
     with Bus.listen() as bus:                      # bras-kit launch
         bus.on_joint_state(lambda state: print(state.name, state.position))
         bus.offer_robot(lambda: {"package": "bras_description", "joints": ["epaule", "coude"]})
@@ -82,8 +82,8 @@ def domain_id(environ: Any = None) -> int:
     """``ROS_DOMAIN_ID`` as rcl reads it (rcl/src/rcl/domain_id.c, rcl_get_default_domain_id:
     unset or empty is 0; ``strtoul(text, &end, 0)``, refused when nothing is a number), and
     refused past the largest domain DDS can open."""
-    from ..errors import ParameterError
-    from ..message import M
+    from ..core.errors import ParameterError
+    from ..core.message import M
 
     text = (os.environ if environ is None else environ).get(DOMAIN_VARIABLE, "")
     if text == "":
@@ -121,8 +121,8 @@ def _private(folder: str) -> None:
     os.makedirs(folder, mode=0o700, exist_ok=True)
     info = os.lstat(folder)
     if not stat.S_ISDIR(info.st_mode) or info.st_uid != os.getuid() or info.st_mode & 0o077:
-        from ..errors import BrasKitError
-        from ..message import M
+        from ..core.errors import BrasKitError
+        from ..core.message import M
 
         raise BrasKitError(M("{folder} is not a private folder of yours: the bus between bras-kit commands is not "
                              "opened", folder=folder),
@@ -194,8 +194,8 @@ def _zenoh() -> Any:
     try:
         import zenoh
     except ImportError:
-        from ..errors import BrasKitError
-        from ..message import M
+        from ..core.errors import BrasKitError
+        from ..core.message import M
 
         raise BrasKitError(M("the bus between bras-kit commands needs Zenoh, which is not installed"),
                            hint=M("pip install eclipse-zenoh")) from None
@@ -227,8 +227,8 @@ def _open(zenoh: Any, config: Any, path: str) -> Any:
     try:
         return zenoh.open(config)
     except Exception as exc:  # noqa: BLE001 - zenoh.ZError, and whatever its Rust side raises
-        from ..errors import BrasKitError
-        from ..message import M
+        from ..core.errors import BrasKitError
+        from ..core.message import M
 
         hint = M("the path of a Unix socket holds at most {n} bytes: set XDG_RUNTIME_DIR to a shorter folder",
                  n=SUN_PATH_BYTES - 1) if len(path.encode()) >= SUN_PATH_BYTES else None

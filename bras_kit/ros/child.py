@@ -1,6 +1,6 @@
 """What runs in the child process: the stand-in installed, time simulated, the node's main().
 
-Everything here happens after ``fork`` (:func:`bras_kit.sandbox.run_limited`): the import
+Everything here happens after ``fork`` (:func:`bras_kit.trust.sandbox.run_limited`): the import
 hook, the patched ``time`` functions and the working folder belong to the child alone.
 """
 
@@ -25,11 +25,11 @@ def _patch_time(sim: Any) -> dict[str, Any]:
     saved = {name: getattr(time, name) for name in
              ("sleep", "time", "time_ns", "monotonic", "monotonic_ns", "perf_counter", "perf_counter_ns")}
     start = sim.START_NS
-    time.sleep = sim.sleep  # type: ignore[assignment]
-    time.time = lambda: (start + sim.STATE.now_ns) / 1e9  # type: ignore[assignment]
-    time.time_ns = lambda: start + sim.STATE.now_ns  # type: ignore[assignment]
-    time.monotonic = time.perf_counter = lambda: sim.STATE.now_ns / 1e9  # type: ignore[assignment]
-    time.monotonic_ns = time.perf_counter_ns = lambda: sim.STATE.now_ns  # type: ignore[assignment]
+    time.sleep = sim.sleep
+    time.time = lambda: (start + sim.STATE.now_ns) / 1e9
+    time.time_ns = lambda: start + sim.STATE.now_ns
+    time.monotonic = time.perf_counter = lambda: sim.STATE.now_ns / 1e9
+    time.monotonic_ns = time.perf_counter_ns = lambda: sim.STATE.now_ns
     return saved
 
 
@@ -252,9 +252,9 @@ def run_node_here(target: Target, duration: float, echo: bool, workdir: str, wat
     if not echo:
         sys.stdout = output
     else:  # shown live: the learner's prints and logs with their control characters shown, not obeyed
-        from ..inert import TerminalWriter
+        from ..trust.inert import TerminalWriter
 
-        sys.stdout, sys.stderr = TerminalWriter(sys.stdout), TerminalWriter(sys.stderr)  # type: ignore[assignment]
+        sys.stdout, sys.stderr = TerminalWriter(sys.stdout), TerminalWriter(sys.stderr)
     saved = _patch_time(sim)
     saved_threads = _patch_threads(sim)
     ended, failure = "returned", None

@@ -9,7 +9,7 @@ from __future__ import annotations
 import os
 from dataclasses import dataclass, field
 
-from .. import scratch
+from ..trust import scratch
 from .build import BuildRecord, build_package
 from .launching import (
     MAX_LAUNCH_NODES,

@@ -17,10 +17,10 @@ import re
 from dataclasses import dataclass, field
 from typing import Any
 
-from .. import scratch
-from ..errors import BrasKitError
-from ..model import robot_from_xml  # robot_state_publisher's description, read as it reads it
-from ..xmlio import parse_xml
+from ..core.errors import BrasKitError
+from ..model.robot import robot_from_xml  # robot_state_publisher's description, read as it reads it
+from ..model.xmlio import parse_xml
+from ..trust import scratch
 from .attempts import Attempt
 
 PLAN_CPU_SECONDS = 20
@@ -137,11 +137,11 @@ def simulated_ros_prefix(base: str) -> str:
 def plan_launch(launch_file: str, prefixes: list[str], arguments: dict[str, str] | None = None, *,
                 learner_roots: tuple[str, ...] = ()) -> LaunchPlan:
     """Evaluate ``launch_file`` (from an install tree) with the packages at ``prefixes``."""
-    from ..sandbox import ResourceLimitError, run_limited
+    from ..trust.sandbox import ResourceLimitError, run_limited
 
     with scratch.folder("bras-kit-launch-") as workdir:
         ros, cwd = _planning_folders(workdir)
-        from .contain import containment
+        from ..trust.contain import containment
 
         roots = tuple(os.path.abspath(r) for r in learner_roots) + tuple(prefixes)
         # the launch file reads its packages' install trees and writes only in its own folder
@@ -185,7 +185,7 @@ class PlanAhead:
         """The evaluation of ``launch_file`` (under the install base given to :func:`begin_plan`)."""
         import pickle
 
-        from ..sandbox import ResourceLimitError
+        from ..trust.sandbox import ResourceLimitError
 
         told = (os.path.abspath(launch_file), [*prefixes, self._ros], dict(arguments or {}), self._cwd,
                 (*self._roots, *prefixes))
@@ -196,7 +196,7 @@ class PlanAhead:
         except OSError:  # the child is gone: its end is reported by result()
             pass
         try:
-            return self._pending.result()  # type: ignore[no-any-return]
+            return self._pending.result()
         except ResourceLimitError as exc:  # a launch file that never ends: as data
             return _stopped(launch_file, exc)
         finally:
@@ -219,8 +219,8 @@ def begin_plan(install_base: str, prefixes: list[str], *, learner_roots: tuple[s
     (validate's throwaway install tree). None where children come from a fork server."""
     from dataclasses import replace
 
-    from .. import sandbox
-    from .contain import containment
+    from ..trust import sandbox
+    from ..trust.contain import containment
 
     if sandbox.children_from_the_server():  # a process with threads: plan_launch's child, after the build
         return None
@@ -445,7 +445,7 @@ def description_too_large(text: str, most_chars: int = MAX_DESCRIPTION_CHARS) ->
 def robot_state_publisher_start(node: PlannedNode, roots: tuple[str, ...] = ()) -> tuple[str | None, list[StartProblem]]:
     """The URDF robot_state_publisher 3.3 (Jazzy) would load, and what it says on the way
     (robot_state_publisher.cpp: the constructor, lines 81-113; parseURDF, lines 164-176). A URDF
-    file named by the launch file is read only through :mod:`bras_kit.learner_files`, inside
+    file named by the launch file is read only through :mod:`bras_kit.trust.learner_files`, inside
     ``roots`` (the package, its install tree): never a device, a pipe, or a file elsewhere
     ("file_refused", and nothing of it is quoted)."""
     text = node.parameters.get("robot_description", "")
@@ -456,7 +456,7 @@ def robot_state_publisher_start(node: PlannedNode, roots: tuple[str, ...] = ()) 
         if node.arguments:
             problems.append(StartProblem("file_fallback", (f"[WARN] [robot_state_publisher]: {RSP_FALLBACK}",),
                                          node.arguments[0]))
-            from ..learner_files import Unreadable, read_text
+            from ..trust.learner_files import Unreadable, read_text
 
             try:
                 text = read_text(node.arguments[0], roots)

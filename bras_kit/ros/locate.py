@@ -10,8 +10,8 @@ from __future__ import annotations
 import os
 from dataclasses import dataclass
 
-from ..errors import ParameterError
-from ..message import M
+from ..core.errors import ParameterError
+from ..core.message import M
 
 
 @dataclass(frozen=True)
@@ -49,7 +49,7 @@ def locate(where: str, executable: str | None = None) -> Target:
 
 
 def _from_package(where: str, executable: str | None) -> Target:
-    from ..validate.package.sources import SETUP_PY, Package
+    from .package import SETUP_PY, Package
 
     package = Package(where)
     setup = package.setup

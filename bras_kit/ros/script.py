@@ -15,9 +15,9 @@ import os
 from dataclasses import dataclass, field
 from typing import Any
 
-from .. import scratch
+from ..trust import scratch
+from ..trust.contain import containment
 from .attempts import Attempt
-from .contain import containment
 from .locate import Target
 from .recording import NodeFailure
 
@@ -36,9 +36,9 @@ def run_script(path: str, *, root: str | None = None, call: str | None = None, a
                wall_seconds: float = 60.0) -> ScriptRun:
     """Run ``path`` as ``__main__`` (``sys.argv`` = the file and ``argv``), then its function
     ``call`` when given, in a limited child contained by ``contain`` (see
-    :func:`bras_kit.ros.contain.containment`), with ``root`` (its package, default its folder)
+    :func:`bras_kit.trust.contain.containment`), with ``root`` (its package, default its folder)
     readable and on ``sys.path``."""
-    from ..sandbox import run_limited
+    from ..trust.sandbox import run_limited
 
     path = os.path.abspath(path)
     root = os.path.abspath(root or os.path.dirname(path))

@@ -10,7 +10,7 @@ learner chose, so each name and path in it is checked before bras-kit's own proc
   conventions``); it becomes one folder directly under the install base, nothing else;
 * ``data_files``: each target folder relative and below the prefix (setuptools' install_data
   would write an absolute one where it says), each source resolved, links followed, inside the
-  package folder (:func:`bras_kit.beneath.beneath`) and a regular file;
+  package folder (:func:`bras_kit.trust.beneath.beneath`) and a regular file;
 * ``packages`` and ``package_dir``: dotted Python names, folders inside the package;
 * ``entry_points['console_scripts']``: ``name = module:function`` with a script name that is one
   file name and a module and function that are Python identifiers (they are written into the
@@ -29,7 +29,7 @@ import re
 from dataclasses import dataclass
 from typing import Any
 
-from ..beneath import FOLDER, Outside, beneath, is_name_component
+from ..trust.beneath import FOLDER, Outside, beneath, is_name_component
 
 # catkin_pkg/package.py, Package.validate (read by colcon-ros for every package.xml)
 CATKIN_NAME = re.compile(r"^[a-zA-Z0-9][a-zA-Z0-9_-]*$")
@@ -53,7 +53,7 @@ class Refusal:
     """What ``setup()`` was given that bras-kit does not act on. ``kind``: "name", "outside"
     (a data_files target), "source" (a path outside the package, a link out, a device...),
     "missing_source" (setuptools' own refusal), "module", "entry_point", "value"; ``why`` the
-    :data:`bras_kit.beneath.KINDS` of a refused path; ``line`` in ``file``."""
+    :data:`bras_kit.trust.beneath.KINDS` of a refused path; ``line`` in ``file``."""
 
     kind: str
     value: str

@@ -19,7 +19,7 @@ Outside any workspace, the one whose ``install/setup.bash`` was sourced in this 
 
 ::
 
-    from bras_kit.ros.workspace import find_workspace, resolve_package
+    from ..ros.workspace import find_workspace, resolve_package
     workspace = find_workspace(".")             # None outside a workspace
     [p.name for p in workspace.packages]        # ['bras_description', 'cellule_bringup'], build order
     folder, workspace = resolve_package("bras_description")
@@ -32,8 +32,8 @@ from collections.abc import Iterable
 from dataclasses import dataclass
 from typing import Any
 
-from ..errors import ParameterError
-from ..message import M
+from ..core.errors import ParameterError
+from ..core.message import M
 
 IGNORE_MARKERS = ("COLCON_IGNORE", "AMENT_IGNORE", "CATKIN_IGNORE")
 # package.xml's dependency tags colcon orders a build by (build and run categories of catkin_pkg)
@@ -82,8 +82,8 @@ class Workspace:
 def _manifest(folder: str) -> tuple[str, tuple[str, ...]]:
     """(name, dependencies) from ``folder/package.xml``; the folder's name when it cannot be read
     (the build then says what is wrong with it)."""
-    from ..errors import BrasKitError
-    from ..xmlio import read_xml
+    from ..core.errors import BrasKitError
+    from ..model.xmlio import read_xml
 
     try:
         xml = read_xml(os.path.join(folder, "package.xml"))

@@ -16,24 +16,6 @@ from typing import Any
 from ..ros.recording import Recording
 
 
-def robot_of(where: str, urdf: str | None = None) -> Any:
-    """The robot the node drives: ``urdf`` when given, else the package's robot description
-    (the one its launch file reads, else ``urdf/*.urdf``), else None (a lone .py file)."""
-    from ..authoring import load
-
-    if urdf is not None:
-        return load(urdf)
-    folder = where if os.path.isdir(where) else None
-    if folder is None:  # a .py file: its package folder, when it sits in one
-        parent = os.path.dirname(os.path.dirname(os.path.abspath(where)))
-        folder = parent if os.path.isfile(os.path.join(parent, "setup.py")) else None
-    if folder is None:
-        return None
-    from ..validate.package.sources import Package
-
-    return Package(folder).robot
-
-
 def run_findings(recording: Recording, robot: Any, *, lang: str | None = None, select: Iterable[str] = (),
                  ignore: Iterable[str] = ()) -> list[Any]:
     """The findings of the run rules (BK640-BK659) for ``recording``, worded in ``lang``.
@@ -41,10 +23,10 @@ def run_findings(recording: Recording, robot: Any, *, lang: str | None = None, s
     ``data["file"]`` of each finding is the learner's file it points at (relative to the
     package folder), its ``line`` the line there when known.
     """
-    from ..i18n import current_language
-    from ..validate.findings import finding, sort_key
+    from ..core.i18n import current_language
+    from ..findings.data import finding, sort_key
+    from ..findings.registry import select_rules
     from ..validate.package.run_rules import RUN_CHECKS, run_hits
-    from ..validate.registry import select_rules
 
     lang = lang or current_language()
     chosen = {rule.code: rule for rule in select_rules(select, ignore) if rule.code in RUN_CHECKS}
@@ -56,9 +38,9 @@ def node_file_results(path: str, *, lang: str | None = None, select: Iterable[st
                       ignore: Iterable[str] = (), duration: float = 10.0, **limits: Any) -> list[Any]:
     """``validate FILE.py --run``: the one node file run as ``bras-kit run FILE.py`` runs it (its
     package's robot, else the built-in tutorial arm), its run rules' findings as FileResults."""
-    from ..authoring import arm
-    from ..validate.findings import FileResult, sort_key
-    from . import run_node
+    from ..findings.data import FileResult, sort_key
+    from ..model.authoring import arm
+    from .node import robot_of, run_node
 
     recording = run_node(path, duration=duration, **limits)
     robot = robot_of(path)
@@ -75,17 +57,17 @@ def node_file_results(path: str, *, lang: str | None = None, select: Iterable[st
 def package_run_results(path: str, *, lang: str | None = None, select: Iterable[str] = (),
                         ignore: Iterable[str] = (), duration: float = 10.0, **limits: Any) -> list[Any]:
     """Run every executable of the package's console_scripts and return the run rules'
-    findings as :class:`~bras_kit.validate.findings.FileResult` objects, one per file with a
+    findings as :class:`~bras_kit.findings.data.FileResult` objects, one per file with a
     finding (paths shown under ``path``, like :func:`~bras_kit.validate.package.validate_package`).
 
     A node stopped by a limit of the sandbox (CPU, memory, wall clock) is reported as BK640.
     """
-    from ..errors import BrasKitError
-    from ..ros.contain import ContainmentError
+    from ..core.errors import BrasKitError
+    from ..findings.data import FileResult
+    from ..ros.package import Package
     from ..ros.recording import NodeFailure
-    from ..validate.findings import FileResult
-    from ..validate.package.sources import Package
-    from . import NodeRunError, locate, run_node
+    from ..trust.contain import ContainmentError
+    from .node import NodeRunError, locate, run_node
 
     package = Package(path)
     scripts = package.setup.scripts if package.setup is not None else None
@@ -95,7 +77,7 @@ def package_run_results(path: str, *, lang: str | None = None, select: Iterable[
         try:
             recording = run_node(path, entry.name, duration=duration, **limits)
         except NodeRunError as exc:
-            from ..i18n import say
+            from ..core.i18n import say
 
             target = locate(path, entry.name)
             source = os.path.relpath(target.path, target.root).replace(os.sep, "/")
@@ -108,6 +90,6 @@ def package_run_results(path: str, *, lang: str | None = None, select: Iterable[
             continue
         for finding in run_findings(recording, robot, lang=lang, select=select, ignore=ignore):
             by_file.setdefault(str(finding.data.get("file") or recording.source), []).append(finding)
-    from ..validate.findings import sort_key
+    from ..findings.data import sort_key
 
     return [FileResult(package.path(file), sorted(findings, key=sort_key)) for file, findings in sorted(by_file.items())]

@@ -21,7 +21,7 @@ import threading
 from collections.abc import Callable, Iterable, Sequence
 from typing import Any
 
-from ..errors import BrasKitError
+from ..core.errors import BrasKitError
 
 SKIPPED_FOLDERS = frozenset({"build", "install", "log", "__pycache__"})  # colcon's own output
 MAX_STAMPED = 2000
@@ -34,7 +34,7 @@ class LiveNodes:
     def __init__(self, folder: str, executables: Sequence[str], deliver: Callable[[Sequence[str], Sequence[float]], None],
                  parameters: dict[str, dict[str, Any]] | None = None, lang: str | None = None,
                  seconds: float | None = None, beside: Sequence[str] = ()) -> None:
-        from . import MAX_DURATION
+        from .node import MAX_DURATION
 
         self.folder = folder
         self.executables = list(executables)
@@ -50,8 +50,8 @@ class LiveNodes:
     def start(self) -> LiveNodes:
         # what the threads import, imported here first: a child forked by one thread while another
         # imports a module it needs would wait forever for that module's lock
-        from ..ros import build, child, contain  # noqa: F401
-        from . import _preload, run_node  # noqa: F401
+        from ..trust import contain  # noqa: F401
+        from .node import _preload, run_node  # noqa: F401
 
         _preload()
         contain.available()  # its probe forks a throwaway child: now, not beside a fork of a thread
@@ -63,9 +63,9 @@ class LiveNodes:
         return self
 
     def _run(self, executable: str) -> None:
-        from ..i18n import say
-        from ..sandbox import Stopped
-        from . import run_node
+        from ..core.i18n import say
+        from ..trust.sandbox import Stopped
+        from .node import run_node
 
         try:
             run_node(self.folder, executable, duration=self.seconds, echo=True,

@@ -2,9 +2,9 @@
 
 from __future__ import annotations
 
-from ..inert import for_terminal
-from ..message import M, Message, Mn
+from ..core.message import M, Message, Mn
 from ..ros.recording import Recording
+from ..trust.inert import for_terminal
 
 
 def ending(recording: Recording) -> Message:

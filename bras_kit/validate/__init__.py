@@ -12,7 +12,7 @@ Every rule lives in the registry (:data:`RULES`), one module per family: :mod:`.
 :mod:`.inertia` (BK5xx), :mod:`.package` (BK6xx, a whole ROS 2 package).
 Each rule's English texts are registered beside the rules (modules ``texts``); the French is in
 ``locale/fr/LC_MESSAGES/validate.po``. Findings are data, worded where shown
-(:meth:`Finding.text`, :func:`bras_kit.validate.report.format_text`).
+(:meth:`Finding.text`, :func:`bras_kit.findings.report.format_text`).
 """
 
 from __future__ import annotations
@@ -25,11 +25,13 @@ import re
 from collections.abc import Iterable, Iterator, Mapping, Sequence
 from typing import Any
 
-from ..errors import BrasKitError, ParameterError, XacroError, XMLSafetyError, XMLSyntaxError
-from ..i18n import LANGUAGES, resolve_language
-from ..message import M, Message, Mn
-from ..model import Robot
-from ..wording import quoted
+from ..core.errors import BrasKitError, ParameterError, XacroError, XMLSafetyError, XMLSyntaxError
+from ..core.i18n import LANGUAGES, resolve_language
+from ..core.message import M, Message, Mn
+from ..core.wording import quoted
+from ..findings.data import UNREADABLE_CODES, FileResult, Finding, finding, sort_key
+from ..findings.registry import ERROR, INFO, RULES, WARNING, Hit, Rule, run_rules, select_rules
+from ..model.robot import Robot
 from . import (  # noqa: F401  (importing registers the rules)
     gazebo,
     gazebo_texts,
@@ -46,8 +48,6 @@ from . import (  # noqa: F401  (importing registers the rules)
     texts,
 )
 from .context import Context
-from .findings import UNREADABLE_CODES, FileResult, Finding, finding, sort_key
-from .registry import ERROR, INFO, RULES, WARNING, Hit, Rule, run_rules, select_rules
 
 __all__ = [
     "ERROR", "INFO", "LANGUAGES", "RULES", "UNREADABLE_CODES", "WARNING", "FileResult", "Finding",
@@ -124,7 +124,7 @@ def validate_path(
     gives a single finding BK100-BK103 instead of raising; ``bras-kit validate`` exits 2 on
     those. ``motion`` specs (``"tutorial"``, ``"coude=1.2*sin(0.7*t)"``, a waypoint file) are
     sampled at 20 Hz for ``duration`` seconds and checked like ``states``. Only a bad ``pose``
-    or ``motion`` raises (:class:`~bras_kit.errors.ParameterError`).
+    or ``motion`` raises (:class:`~bras_kit.core.errors.ParameterError`).
     """
     path = os.fspath(path)
     with _collector_paused():
@@ -210,8 +210,8 @@ def compare_generated(urdf: str, xacro: str, *, mappings: Mapping[str, str] | No
     chosen = {rule.code for rule in _rules(select, ignore)}
     if not chosen & {"BK126", "BK127"}:
         return []
-    from ..xacrotools import expand_xacro
-    from ..xmlio import parse_xml, read_bytes
+    from ..model.xacro import expand_xacro
+    from ..model.xmlio import parse_xml, read_bytes
 
     try:
         expected = parse_xml(expand_xacro(xacro, mappings, package_paths), xacro)
@@ -260,7 +260,7 @@ def _same_value(x: str, y: str) -> bool:
 def load_for_validation(path: str, *, mappings: Mapping[str, str] | None = None,
                         package_paths: Sequence[str] = (), lang: str | None = None) -> Robot | Finding:
     """The robot in ``path``, or the finding (BK100-BK103) saying why it cannot be read."""
-    from ..authoring import load
+    from ..model.authoring import load
 
     if path == "-":  # standard input: bras-kit urdf | bras-kit validate -
         pass
@@ -442,7 +442,7 @@ def motion_states(robot: Robot, specs: Sequence[str] | None, duration: float | N
 
     Returns None when the robot's links do not form a tree (the structure rules say why).
     """
-    from ..errors import ModelError
+    from ..core.errors import ModelError
     from ..motion import motion_from_specs, sample
 
     try:

@@ -21,9 +21,9 @@ from typing import TYPE_CHECKING
 if TYPE_CHECKING:
     import numpy as np
 else:
-    from ..lazy_numpy import np
+    from ..core.lazy_numpy import np
 
-from ..model import Inertial, Origin
+from ..model.robot import Inertial, Origin
 
 EPSILON = sys.float_info.epsilon  # np.finfo(float).eps, without importing numpy
 TOLERANCE = 10.0  # IGN_MASSMATRIX3_DEFAULT_TOLERANCE

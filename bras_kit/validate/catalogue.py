@@ -11,11 +11,18 @@ from __future__ import annotations
 
 import difflib
 
-from ..errors import ParameterError
-from ..i18n import catalog, current_language, say
-from ..message import M
+from ..core.errors import ParameterError
+from ..core.i18n import catalog, current_language, say
+from ..core.message import M
+from ..findings.registry import (
+    FAMILIES,
+    FAMILY_TITLES,
+    SEVERITY_WORDS,
+    Rule,
+    Template,
+    sorted_rules,
+)
 from . import RULES
-from .registry import FAMILIES, FAMILY_TITLES, SEVERITY_WORDS, Rule, Template, sorted_rules
 
 
 def find_rule(code_or_name: str) -> Rule:

@@ -1,7 +1,7 @@
 """What every rule reads: the robot, the options, and indexes built once (so rules stay linear).
 
 Nothing here re-reads XML: links, joints, materials and the parser's issues come from the
-:class:`~bras_kit.model.Robot`. The link graph (roots, loops, links with two parents) is
+:class:`~bras_kit.model.robot.Robot`. The link graph (roots, loops, links with two parents) is
 analysed once, in linear time, without building a kinematic tree (which would stop at the
 first defect).
 """
@@ -14,7 +14,7 @@ from dataclasses import dataclass, field
 from functools import cached_property
 from typing import Any
 
-from ..model import Collision, Issue, Joint, Link, Material, Robot, Visual
+from ..model.robot import Collision, Issue, Joint, Link, Material, Robot, Visual
 from .solids import Bounds, shape_bounds
 
 # tags that only occur inside a <joint>; everything else named in an issue belongs to a link

@@ -18,8 +18,8 @@ from __future__ import annotations
 import math
 from collections.abc import Iterator
 
+from ..findings.registry import ERROR, INFO, WARNING, Hit, hit, rule
 from .context import Context
-from .registry import ERROR, INFO, WARNING, Hit, hit, rule
 from .urdf2sdf import GazeboModel, gazebo_model
 
 GAZEBO = "gazebo"
@@ -52,7 +52,7 @@ def heading_there(ctx: Context) -> bool:
 
 def model(ctx: Context) -> GazeboModel | None:
     """The predicted SDF model, computed once per validation (None: not one tree, BK1xx say why)."""
-    return ctx.derived("gazebo.model", lambda c: gazebo_model(c.robot))  # type: ignore[no-any-return]
+    return ctx.derived("gazebo.model", lambda c: gazebo_model(c.robot))
 
 
 def names(items: list[str] | tuple[str, ...]) -> str:

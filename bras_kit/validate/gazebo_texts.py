@@ -3,7 +3,7 @@
 
 from __future__ import annotations
 
-from .registry import describe
+from ..findings.registry import describe
 
 describe(
     "BK700",

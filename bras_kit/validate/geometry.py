@@ -11,11 +11,11 @@ import math
 import os
 from collections.abc import Iterator
 
-from ..errors import BrasKitError
-from ..model import Collision, Geometry, Link, Visual
-from ..xacrotools import find_package, package_roots
+from ..core.errors import BrasKitError
+from ..findings.registry import ERROR, WARNING, Hit, hit, rule
+from ..model.robot import Collision, Geometry, Link, Visual
+from ..model.xacro import find_package, package_roots
 from .context import Context
-from .registry import ERROR, WARNING, Hit, hit, rule
 from .solids import number
 
 PACKAGE_SCHEME = "package://"

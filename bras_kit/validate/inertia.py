@@ -15,11 +15,11 @@ from typing import TYPE_CHECKING
 if TYPE_CHECKING:
     import numpy as np
 else:
-    from ..lazy_numpy import np
+    from ..core.lazy_numpy import np
 
-from ..model import MOVABLE_TYPES, Inertial, Link
+from ..findings.registry import ERROR, INFO, WARNING, Hit, hit, rule
+from ..model.robot import MOVABLE_TYPES, Inertial, Link
 from .context import Context
-from .registry import ERROR, INFO, WARNING, Hit, hit, rule
 from .solids import finite, number, rotation, solid_moments, vector
 
 MISMATCH_FACTOR = 2.0
@@ -39,7 +39,7 @@ class Body:
 
 def bodies(ctx: Context) -> list[Body]:
     """Every link whose six inertia values are finite numbers, moments computed in one batch."""
-    return ctx.derived("inertia.bodies", _bodies)  # type: ignore[no-any-return]
+    return ctx.derived("inertia.bodies", _bodies)
 
 
 def _bodies(ctx: Context) -> list[Body]:
@@ -53,7 +53,7 @@ def _bodies(ctx: Context) -> list[Body]:
     scale[scale == 0] = 1.0
     moments = np.linalg.eigvalsh(tensors / scale[:, None, None]) * scale[:, None]
     definite = (moments[:, 2] > 0) & (moments[:, 0] > 1e-12 * moments[:, 2])
-    return [Body(link, inertial, tensors[i], tuple(moments[i].tolist()), bool(definite[i]))  # type: ignore[arg-type]
+    return [Body(link, inertial, tensors[i], tuple(moments[i].tolist()), bool(definite[i]))
             for i, (link, inertial) in enumerate(readable)]
 
 
@@ -221,7 +221,7 @@ def expected_inertia(ctx: Context, link: Link) -> np.ndarray | None:
     if element.origin.rpy == (0.0, 0.0, 0.0) and inertial.origin.rpy == (0.0, 0.0, 0.0):
         return solid
     to_inertial = rotation(inertial.origin).T @ rotation(element.origin)
-    return to_inertial @ solid @ to_inertial.T  # type: ignore[no-any-return]
+    return to_inertial @ solid @ to_inertial.T
 
 
 def _spread(given: float, wanted: float) -> float:

@@ -5,9 +5,9 @@ from __future__ import annotations
 import math
 from collections.abc import Iterator
 
-from ..model import MOVABLE_TYPES, Joint
+from ..findings.registry import ERROR, INFO, WARNING, Hit, hit, rule
+from ..model.robot import MOVABLE_TYPES, Joint
 from .context import Context
-from .registry import ERROR, INFO, WARNING, Hit, hit, rule
 from .solids import finite, number
 from .structure import comma_fix
 
@@ -187,7 +187,7 @@ SAFETY_ATTRIBUTES = ("soft_lower_limit", "soft_upper_limit", "k_position", "k_ve
 @rule("BK230", "safety-controller-unreadable", ERROR)
 def safety_controller_unreadable(ctx: Context) -> Iterator[Hit]:
     """urdfdom refuses the whole file when a <safety_controller> number cannot be read or k_velocity is missing."""
-    from ..model import parse_number
+    from ..model.robot import parse_number
 
     for joint in ctx.robot.joints:
         safety = joint.safety

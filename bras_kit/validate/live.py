@@ -16,12 +16,12 @@ from collections.abc import Callable, Iterable, Iterator
 from dataclasses import dataclass
 from typing import TYPE_CHECKING, Any
 
-from ..model import Robot
+from ..findings.registry import ERROR, WARNING, Hit, hit, rule
+from ..model.robot import Robot
 from ..ros.topics import CLOCK, DESCRIPTION, JOINT_STATES
-from .registry import ERROR, WARNING, Hit, hit, rule
 
 if TYPE_CHECKING:  # the snapshot's records are imported with a live graph (doctor --ros), not by validate
-    from ..live.snapshot import Snapshot
+    from ..ros.graph import Snapshot
 
 TUTORIAL_RATE = 20.0  # the tutorial's node: create_timer(0.05, ...)
 SLOW_RATE = 15.0  # below this the arm visibly steps (a fifth under the tutorial's rate, with jitter)

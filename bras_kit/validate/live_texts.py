@@ -2,7 +2,7 @@
 
 from __future__ import annotations
 
-from .registry import describe
+from ..findings.registry import describe
 
 describe(
     "BK800",

@@ -18,10 +18,10 @@ import math
 from collections.abc import Iterator
 from typing import Any
 
-from ..model import MOVABLE_TYPES, Joint, Link, Visual
+from ..findings.registry import ERROR, WARNING, Hit, hit, rule
+from ..model.robot import MOVABLE_TYPES, Joint, Link, Visual
 from .context import Context
 from .joints import unit
-from .registry import ERROR, WARNING, Hit, hit, rule
 from .solids import AXES, Bounds, finite, number, vector
 
 LIMIT_TOLERANCE = 1e-9

@@ -15,9 +15,9 @@ import re
 from collections.abc import Iterator
 from typing import Any
 
-from ..model import Origin
+from ..findings.registry import ERROR, WARNING, Hit, hit, rule
+from ..model.robot import Origin
 from .context import Context
-from .registry import ERROR, WARNING, Hit, hit, rule
 from .solids import half_extents, number
 
 FULL_TURN = 2 * math.pi

@@ -3,7 +3,7 @@ French: ``locale/fr/LC_MESSAGES/validate.po`` (msgctxt = the rule code)."""
 
 from __future__ import annotations
 
-from .registry import describe
+from ..findings.registry import describe
 
 describe(
     "BK214",

@@ -12,11 +12,11 @@ from typing import TYPE_CHECKING
 if TYPE_CHECKING:
     import numpy as np
 else:
-    from ..lazy_numpy import np
+    from ..core.lazy_numpy import np
 
-from ..kinematics import rpy_to_matrix
-from ..message import number as format_number
-from ..model import Geometry, Origin
+from ..core.message import number as format_number
+from ..kinematics.frames import rpy_to_matrix
+from ..model.robot import Geometry, Origin
 
 AXES = "xyz"
 
@@ -69,7 +69,7 @@ class Bounds:
 
 def number(value: float) -> str:
     """A number the way a person writes it in a URDF: ``0.6``, ``-1.57``, ``0.0305``, ``0``
-    (the one formatter of numbers in text, :func:`bras_kit.message.number`)."""
+    (the one formatter of numbers in text, :func:`bras_kit.core.message.number`)."""
     return format_number(float(value))
 
 

@@ -6,9 +6,9 @@ import difflib
 import re
 from collections.abc import Iterable, Iterator
 
-from ..model import JOINT_TYPES, Joint, parse_numbers
+from ..findings.registry import ERROR, INFO, WARNING, Hit, hit, loader_rule, rule
+from ..model.robot import JOINT_TYPES, Joint, parse_numbers
 from .context import Context, find_loops
-from .registry import ERROR, INFO, WARNING, Hit, hit, loader_rule, rule
 
 # Reported by the loader when a file cannot be read at all (bras-kit validate then exits 2),
 # or when a .xacro holds only macros.

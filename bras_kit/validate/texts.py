@@ -4,7 +4,7 @@ explanation ``bras-kit explain CODE`` shows. French: ``locale/fr/LC_MESSAGES/val
 
 from __future__ import annotations
 
-from .registry import describe
+from ..findings.registry import describe
 
 # ------------------------------------------------------------------ BK1xx structure
 

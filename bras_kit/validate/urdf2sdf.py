@@ -29,7 +29,7 @@ from __future__ import annotations
 
 from dataclasses import dataclass, field
 
-from ..model import Link, Origin, Robot
+from ..model.robot import Link, Origin, Robot
 from ._dmass import UrdfInertial, finite_pose, merge_into_parent, valid_mass_matrix
 
 MASS_EPSILON = 1e-6  # ignition::math::equal's default tolerance (math/Helpers.hh)
@@ -105,8 +105,8 @@ def preserved_joints(robot: Robot) -> frozenset[str]:
     source text does)."""
     if not robot.source_text or "<gazebo" not in robot.source_text:
         return frozenset()
-    from ..errors import BrasKitError
-    from ..xmlio import parse_xml
+    from ..core.errors import BrasKitError
+    from ..model.xmlio import parse_xml
 
     try:
         root = parse_xml(robot.source_text, robot.path)
@@ -288,7 +288,7 @@ def as_gazebo_shows(robot: Robot, found: GazeboModel, *, only_kept: bool = False
     the parts it loses in red (``only_kept``: left out). A refused model is all lost."""
     import dataclasses
 
-    from ..model import Material
+    from ..model.robot import Material
 
     kept = frozenset() if found.refused else found.kept_links
     links = []

@@ -1,9 +1,9 @@
 """Which of the validator's errors stop a command: those about a value the command computes with.
 
 A value the reader could not use (text where a number is, a decimal comma, nan, inf, a zero
-axis) is kept as NaN in the model, never replaced by a default (:mod:`bras_kit.model`). Before a
+axis) is kept as NaN in the model, never replaced by a default (:mod:`bras_kit.model.robot`). Before a
 command computes anything, it asks :func:`blocking_findings` for the validator's own errors about
-the parts of the model it uses (:data:`bras_kit.model.PARTS`): ``fk`` needs the joints' origins
+the parts of the model it uses (:data:`bras_kit.model.robot.PARTS`): ``fk`` needs the joints' origins
 and axes, ``motion`` their limits, ``simulate`` everything but ``<safety_controller>``. A NaN
 inertia does not stop ``fk``; a NaN axis does.
 """
@@ -12,9 +12,9 @@ from __future__ import annotations
 
 from collections.abc import Collection, Iterable
 
-from ..model import PARTS, Robot
-from .findings import Finding
-from .registry import ERROR
+from ..findings.data import Finding
+from ..findings.registry import ERROR
+from ..model.robot import PARTS, Robot
 
 # the rules about values: unreadable, missing, not finite, or out of their domain
 VALUE_RULES = ("BK122", "BK123", "BK202", "BK204", "BK206", "BK207", "BK401", "BK500", "BK501", "BK507")
@@ -28,7 +28,7 @@ EVERY_PART = frozenset(PARTS) - {"safety"}  # urdfdom checks <safety_controller>
 
 
 def part_of(finding: Finding) -> str:
-    """What the value a finding is about is for (a :data:`~bras_kit.model.PARTS` entry), "" if none."""
+    """What the value a finding is about is for (a :data:`~bras_kit.model.robot.PARTS` entry), "" if none."""
     params = finding.params
     own = _RULE_PARTS.get(finding.code)
     return str(params.get("part") or params.get("where") or (next(iter(own)) if own and len(own) == 1 else ""))

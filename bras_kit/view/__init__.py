@@ -17,16 +17,16 @@ from .viewer import Source, Viewer
 
 def view(robot: Any = None, *, motion: Any = (), port: int = 8080, lang: str | None = None,
          height: int = 500, package_paths: tuple[str, ...] = (), geometry: str = "visual") -> Viewer:
-    """Show ``robot`` (a :class:`~bras_kit.model.Robot`, a file path, or the tutorial arm) live.
+    """Show ``robot`` (a :class:`~bras_kit.model.robot.Robot`, a file path, or the tutorial arm) live.
 
     In a Jupyter notebook with a local kernel the page appears inline; elsewhere the URL is
     printed. ``geometry``: "visual", "collision" or "both", what is shown first. Returns the
     :class:`Viewer` (``viewer.stop()`` ends it).
     """
-    from ..i18n import resolve_language
+    from ..core.i18n import resolve_language
 
     if robot is None:
-        from ..authoring import arm
+        from ..model.authoring import arm
 
         robot = arm()
     source = Source(path=str(robot), package_paths=package_paths) if isinstance(robot, str) \

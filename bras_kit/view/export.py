@@ -7,8 +7,8 @@ from typing import Any
 
 import numpy as np
 
-from .. import backends
-from ..model import Robot
+from ..core import backends
+from ..model.robot import Robot
 from .model import view_model, wxyz
 from .origin import refuse_other_origins
 from .panel import label_name, label_places

@@ -24,9 +24,9 @@ import threading
 import time
 from typing import Any
 
-from ..live.snapshot import merge_stream
 from ..live.watch import open_stream, read_records
-from ..model import Robot
+from ..model.robot import Robot
+from ..ros.graph import merge_stream
 
 WINDOW = 3.0  # seconds of joint states the live findings judge (as doctor --ros watches 3 s)
 MAX_SAMPLES = 4000

@@ -10,8 +10,8 @@ from dataclasses import dataclass, field
 
 import numpy as np
 
-from ..kinematics import TFTree, fk_batch, tf_tree
-from ..model import Robot
+from ..kinematics.frames import TFTree, fk_batch, tf_tree
+from ..model.robot import Robot
 from ..motion.limits import TOLERANCE
 
 Color = tuple[int, int, int]
@@ -131,10 +131,10 @@ def _rgb(color: Sequence[float]) -> Color:
     return tuple(int(round(255 * min(max(float(c), 0.0), 1.0))) for c in color[:3])  # type: ignore[return-value]
 
 
-def _merged_by_colour(parts) -> list[Mesh]:  # type: ignore[no-untyped-def]
+def _merged_by_colour(parts) -> list[Mesh]:
     """One mesh per link and colour: a mesh file's material pieces (Panda's link0 has 12) and a
     link's visuals of one colour reach the browser as one object."""
-    groups: dict[tuple[int, tuple[float, ...]], list] = {}  # type: ignore[type-arg]
+    groups: dict[tuple[int, tuple[float, ...]], list] = {}
     for part in parts:
         groups.setdefault((part.link, tuple(part.color)), []).append(part)
     out = []
@@ -148,8 +148,8 @@ def _merged_by_colour(parts) -> list[Mesh]:  # type: ignore[no-untyped-def]
 
 def view_model(robot: Robot, package_paths: Sequence[str] = ()) -> ViewModel:
     """The robot ready to show: visual and collision meshes per link, sliders, the tool tip."""
+    from ..kinematics.tip import tool_tip
     from ..render.scene import collision_parts, robot_parts
-    from ..tip import tool_tip
 
     tree = tf_tree(robot)
     visuals = _merged_by_colour(robot_parts(tree, package_paths))
@@ -181,7 +181,7 @@ def view_model(robot: Robot, package_paths: Sequence[str] = ()) -> ViewModel:
 
 def wxyz(matrix: np.ndarray) -> tuple[float, float, float, float]:
     """viser's quaternion order (w, x, y, z) of a rotation matrix."""
-    from ..kinematics import matrix_to_quat_xyzw
+    from ..kinematics.frames import matrix_to_quat_xyzw
 
     x, y, z, w = matrix_to_quat_xyzw(matrix)
     return (w, x, y, z)

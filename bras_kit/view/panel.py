@@ -12,8 +12,8 @@ from typing import Any
 
 import numpy as np
 
-from ..i18n import say
-from ..message import M, Message, Mn
+from ..core.i18n import say
+from ..core.message import M, Message, Mn
 
 ERROR_RED = "#c62828"
 AXIS_COLOURS = (("x", "#e53935"), ("y", "#43a047"), ("z", "#1e88e5"))  # RViz's TF display
@@ -67,7 +67,7 @@ def banner(error: Any, findings: Sequence[Any], lang: str, checking: bool = Fals
 def echo_rows(fixed: str, link: str, pose: np.ndarray, lang: str) -> str:
     """``link``'s pose in ``fixed`` as ``ros2 run tf2_ros tf2_echo FIXED LINK`` prints it:
     translation, quaternion (x y z w), roll-pitch-yaw in radians and in degrees."""
-    from ..kinematics import describe_transform
+    from ..kinematics.frames import describe_transform
 
     facts = describe_transform(pose)
     xyz, quat, rpy = facts["xyz"], facts["quat_xyzw"], facts["rpy"]
@@ -96,8 +96,8 @@ def read_joint_box(text: str, slider: Any, joint: Any, allow_past: bool) -> tupl
     """What a value typed in a joint's box means: ``(value, note, accepted)``. It is read by the
     CLI's parser (``0,5``, ``pi/4``, ``30deg``); past the joint's limits it is refused unless
     ``allow_past``, with the CLI's hint when the number reads as degrees."""
-    from ..errors import BrasKitError
-    from ..expr import parse_joint_value
+    from ..core.errors import BrasKitError
+    from ..model.expr import parse_joint_value
     from ..motion import value_in_degrees
     from ..motion.limits import TOLERANCE
 

@@ -13,8 +13,8 @@ from typing import Any
 
 import numpy as np
 
-from ..i18n import say
-from ..message import M, Message
+from ..core.i18n import say
+from ..core.message import M, Message
 from ..motion.sources import motion_title
 from .model import ViewModel, wxyz
 from .panel import (

@@ -12,16 +12,16 @@ from collections.abc import Callable, Iterator, Sequence
 from dataclasses import dataclass, field
 from typing import TYPE_CHECKING, Any
 
-from .. import backends
-from ..errors import BrasKitError
-from ..message import M
-from ..model import Robot
+from ..core import backends
+from ..core.errors import BrasKitError
+from ..core.message import M
+from ..model.robot import Robot
 from .model import ViewModel, view_model
 from .origin import refuse_other_origins
 from .session import Session
 
 if TYPE_CHECKING:
-    from ..evaluation import LaunchEvaluation
+    from ..ros.evaluation import LaunchEvaluation
 
 LOCAL_HOST = "127.0.0.1"
 TICK_SECONDS = 1 / 30  # playback frame period
@@ -41,7 +41,7 @@ class Source:
         if self.path is None:
             assert self.robot is not None
             return self.robot
-        from ..authoring import load
+        from ..model.authoring import load
 
         return load(self.path, mappings=self.mappings, package_paths=self.package_paths)
 
@@ -67,7 +67,7 @@ class Viewer:
         from .session import GEOMETRIES
 
         if geometry not in GEOMETRIES:
-            from ..errors import ParameterError
+            from ..core.errors import ParameterError
 
             raise ParameterError(M("geometry '{value}' is not one of {choices}", value=geometry, choices=list(GEOMETRIES)),
                                  hint=M("visual (the default), collision or both, as RViz's Visual/Collision Enabled"))

@@ -263,7 +263,7 @@ LESSON.cells = [
     ),
     code(
         """
-        from bras_kit.i18n import say
+        from bras_kit.core.i18n import say
         from bras_kit.run import joint_states, run_node
         from bras_kit.run.findings import run_findings
         from bras_kit.run.report import summary

@@ -58,7 +58,7 @@ LESSON.cells = [
         import yaml
 
         import bras_kit
-        from bras_kit.i18n import say
+        from bras_kit.core.i18n import say
         from bras_kit.motion import formula_motion, sample, tutorial_motion
         from bras_kit.render import Renderer
         from bras_kit.scaffold import scaffold_package
@@ -101,7 +101,7 @@ LESSON.cells = [
         import yaml
 
         import bras_kit
-        from bras_kit.i18n import say
+        from bras_kit.core.i18n import say
         from bras_kit.motion import formula_motion, sample, tutorial_motion
         from bras_kit.render import Renderer
         from bras_kit.scaffold import scaffold_package

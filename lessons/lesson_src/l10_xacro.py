@@ -112,7 +112,7 @@ LESSON.cells = [
     ),
     code(
         """
-        from bras_kit._resources import robot_template
+        from bras_kit.core.resources import robot_template
 
         template = robot_template().read_text(encoding="utf-8")
         print(robot_template().name, "-", len(template.splitlines()), "lignes")
@@ -129,7 +129,7 @@ LESSON.cells = [
         show_block(template, '<xacro:macro name="revolute"', "</xacro:macro>")
         """,
         """
-        from bras_kit._resources import robot_template
+        from bras_kit.core.resources import robot_template
 
         template = robot_template().read_text(encoding="utf-8")
         print(robot_template().name, "-", len(template.splitlines()), "lines")

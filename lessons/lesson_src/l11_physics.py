@@ -36,7 +36,7 @@ LESSON.cells = [
         import numpy as np
 
         import bras_kit
-        from bras_kit.i18n import say_error
+        from bras_kit.core.i18n import say_error
         from bras_kit.physics.diagnostics import report_text
 
         bras_kit.set_language("@LANG@")  # the library's messages and picture words in this notebook's language

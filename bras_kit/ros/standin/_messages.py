@@ -183,7 +183,7 @@ class Kind:
 
             return numpy.array(value, dtype=DTYPES[self.base])
         if self.base in TYPE_CODES and self.nested == "sequence":
-            return array.array(TYPE_CODES[self.base], value)  # type: ignore[arg-type]
+            return array.array(TYPE_CODES[self.base], value)
         return value
 
 
@@ -263,10 +263,10 @@ def _assert_field(name: str, kind: Kind, value: Any) -> bool:
 def _property(name: str, kind: Kind) -> property:
     slot = "_" + name
 
-    def getter(self):  # type: ignore[no-untyped-def]
+    def getter(self):
         return getattr(self, slot)
 
-    def setter(self, value) -> None:  # type: ignore[no-untyped-def]
+    def setter(self, value) -> None:
         if self._check_fields and _assert_field(name, kind, value):
             object.__setattr__(self, slot, value)
             return
@@ -282,7 +282,7 @@ def _make_class(type_name: str, constants: list, fields: list) -> type:
     kinds = {field: Kind(definition) for field, definition in fields
              if not (len(fields) == 1 and field == "structure_needs_at_least_one_member")}
 
-    def __init__(self, **kwargs) -> None:  # type: ignore[no-untyped-def]
+    def __init__(self, **kwargs) -> None:
         object.__setattr__(self, "_check_fields", kwargs["check_fields"] if "check_fields" in kwargs
                            else CHECK_FIELDS)
         if self._check_fields:
@@ -306,7 +306,7 @@ def _make_class(type_name: str, constants: list, fields: list) -> type:
             args.append(f"{field}={text}")
         return f"{package}.msg.{name}({', '.join(args)})"
 
-    def __eq__(self, other) -> bool:  # type: ignore[no-untyped-def]
+    def __eq__(self, other) -> bool:
         if not isinstance(other, self.__class__):
             return False
         for field, kind in kinds.items():
@@ -318,7 +318,7 @@ def _make_class(type_name: str, constants: list, fields: list) -> type:
                 return False
         return True
 
-    def get_fields_and_field_types(cls) -> dict:  # type: ignore[no-untyped-def]
+    def get_fields_and_field_types(cls) -> dict:
         return dict(cls._fields_and_field_types)
 
     namespace: dict = {
@@ -440,13 +440,13 @@ def type_name(message_type: object) -> str | None:
 
 
 class _Loader(importlib.abc.Loader):
-    def create_module(self, spec):  # type: ignore[no-untyped-def]
+    def create_module(self, spec):
         return None
 
     def exec_module(self, module: types.ModuleType) -> None:
         name = module.__name__
         package, _, interface = name.partition(".")
-        module.__path__ = []  # type: ignore[attr-defined]
+        module.__path__ = []
         if interface == "msg":
             prefix = f"{package}/msg/"
             for type_name_, (constants, fields) in sorted(definitions().items()):
@@ -468,17 +468,17 @@ class _Loader(importlib.abc.Loader):
         # Python's "cannot import name 'JointState' from 'std_msgs.msg' (.../__init__.py)", and
         # `from sensor_msgs import JointState` (.msg forgotten) from 'sensor_msgs' (an empty __init__.py)
         module.__file__ = "/".join(filter(None, (JAZZY_SITE, package, interface, "__init__.py")))
-        module.__getattr__ = _missing(name, complete=True)  # type: ignore[attr-defined,method-assign]
+        module.__getattr__ = _missing(name, complete=True)  # type: ignore[method-assign]
 
 
 JAZZY_SITE = "/opt/ros/jazzy/lib/python3.12/site-packages"
 
 
-def _missing(module: str, complete: bool = False):  # type: ignore[no-untyped-def]
+def _missing(module: str, complete: bool = False):
     """A name a message module lacks: Jazzy's definitions of the package are all there, so it
     does not exist on Jazzy either (AttributeError, which ``from ... import`` makes the
     ImportError Python raises on Jazzy); elsewhere, something bras-kit does not simulate."""
-    def __getattr__(attribute: str):  # type: ignore[no-untyped-def]
+    def __getattr__(attribute: str):
         import _bras_sim
 
         if complete and not attribute.startswith("_"):

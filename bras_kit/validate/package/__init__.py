@@ -15,10 +15,11 @@ from __future__ import annotations
 
 from collections.abc import Iterable
 
+from ...findings.data import FileResult, Finding, finding, sort_key
+from ...findings.registry import select_rules
 from ...ros.launched import launch_package  # noqa: F401  (the package built and launched)
+from ...ros.package import Package
 from ...ros.workspace import find_packages, is_package  # noqa: F401  (light: the CLI finds packages before importing the rules)
-from ..findings import FileResult, Finding, finding, sort_key
-from ..registry import select_rules
 from . import (
     build_reach,  # noqa: F401  (BK639: what setup.py and launch files tried)
     node_mistakes,  # noqa: F401  (BK627, registered on import)
@@ -26,10 +27,10 @@ from . import (
     run_record,  # noqa: F401  (BK657-BK658: the run's record, bounded and checked)
     texts,  # noqa: F401  (the rules' words)
 )
-from .launch_rules import LAUNCH_CHECKS, installed_descriptions, launched  # noqa: F401  (BK630-BK633)
+from .evaluated import launched  # noqa: F401
+from .launch_rules import LAUNCH_CHECKS, installed_descriptions  # noqa: F401  (BK630-BK633)
 from .rules import PACKAGE_CHECKS  # importing registers the rules
 from .run_rules import RUN_CHECKS  # the rules over a run of the node (BK640-BK659)
-from .sources import Package
 
 # Rules that read nothing of the build and launch evaluation and take time (BK623 follows each
 # formula for a minute of motion): they run first, while ``validate PKG_DIR``'s worker is still

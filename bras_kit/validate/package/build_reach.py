@@ -11,11 +11,12 @@ from __future__ import annotations
 import os
 from collections.abc import Iterable, Iterator
 
+from ...findings.registry import ERROR, Hit, describe
 from ...ros.attempts import Attempt
-from ..registry import ERROR, Hit, describe
-from .launch_rules import _each, launched
+from ...ros.package import Package
+from .evaluated import launched
+from .launch_rules import _each
 from .rules import _at, package_rule
-from .sources import Package
 
 
 def setup_blocked_hits(blocked: Iterable[Attempt]) -> Iterator[Hit]:

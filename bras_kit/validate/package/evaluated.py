@@ -12,7 +12,8 @@ from collections.abc import Iterator
 from dataclasses import dataclass
 from typing import Any
 
-from .sources import JOINT_STATE_PUBLISHERS, Package
+from ...ros.launched import Launched, evaluate_package
+from ...ros.package import JOINT_STATE_PUBLISHERS, Package, relative
 
 RSP = "robot_state_publisher"
 DESCRIPTION_TOPIC = "robot_description"  # robot_state_publisher.cpp: create_publisher(..., "robot_description", ...)
@@ -20,10 +21,8 @@ DESCRIPTION_TOPIC = "robot_description"  # robot_state_publisher.cpp: create_pub
 
 def evaluations(pkg: Package) -> list[Any] | None:
     """The evaluated launch files that did not stop (``Launched``), or None if none was evaluated."""
-    top = getattr(pkg, "_launched", None)
+    top = pkg.launched
     if top is None and pkg.evaluate:
-        from .launch_rules import launched
-
         top = launched(pkg)
     if top is None or top.plan is None:
         return None
@@ -37,10 +36,28 @@ def standing_alone(results: list[Any]) -> list[Any]:
     return [r for r in results if os.path.realpath(r.plan.launch_file) not in included]
 
 
-def place(result: Any, file: str, line: int) -> tuple[str, int]:
-    from .launch_rules import _place
+def launched(pkg: Package) -> Launched | None:
+    """The package built and its launch files evaluated (kept on the Package; begun ahead in a
+    worker where the CLI did, see :attr:`Package.ahead`)."""
+    if pkg.launched is not None:
+        return pkg.launched
+    result = pkg.ahead(pkg.root) if pkg.ahead is not None else None
+    if result is None:
+        result = evaluate_package(pkg.root)
+    pkg.launched = result
+    return result
 
-    return _place(result, file, line)
+
+def place(result: Launched, file: str, line: int) -> tuple[str, int]:
+    """A file of the install tree (or the package) as the package file it came from."""
+    if not file:
+        return result.launch_file, 0
+    source = result.build.source_of(file)
+    if source is not None:
+        return source, line
+    if file.startswith(result.build.root + os.sep):
+        return relative(result.build.root, file), line
+    return result.launch_file, 0
 
 
 def description_topics(result: Any) -> set[str]:

@@ -14,30 +14,18 @@ import re
 from collections.abc import Iterator
 from typing import Any
 
+from ...findings.registry import ERROR, Hit
 from ...ros.build import BuildRecord
-from ...ros.launched import Launched, evaluate_package
+from ...ros.launched import Launched
 from ...ros.launching import LaunchPlan
-from ..registry import ERROR, Hit
+from ...ros.package import Package
+from .evaluated import launched, place
 from .rules import _at, package_rule
-from .sources import Package, relative
 
 LAUNCH_CHECKS = ("BK630", "BK631", "BK632", "BK633", "BK634", "BK635", "BK639")  # BK639: build_reach (what setup.py and launch files tried)
 
 
 # ------------------------------------------------------------------ reading, once per package
-
-
-def launched(pkg: Package) -> Launched | None:
-    """The package built and its launch files evaluated (kept on the Package; begun ahead in a
-    worker where the CLI did, see :attr:`Package.ahead`)."""
-    kept = getattr(pkg, "_launched", None)
-    if kept is not None:
-        return kept
-    result = pkg.ahead(pkg.root) if pkg.ahead is not None else None
-    if result is None:
-        result = evaluate_package(pkg.root)
-    pkg._launched = result  # type: ignore[attr-defined]
-    return result  # type: ignore[no-any-return]
 
 
 def installed_descriptions(packages: list[Package]) -> list[str]:
@@ -54,18 +42,6 @@ def installed_descriptions(packages: list[Package]) -> list[str]:
 def _each(result: Launched) -> Iterator[Launched]:
     yield result
     yield from result.others.values()
-
-
-def _place(result: Launched, file: str, line: int) -> tuple[str, int]:
-    """A file of the install tree (or the package) as the package file it came from."""
-    if not file:
-        return result.launch_file, 0
-    source = result.build.source_of(file)
-    if source is not None:
-        return source, line
-    if file.startswith(result.build.root + os.sep):
-        return relative(result.build.root, file), line
-    return result.launch_file, 0
 
 
 # ------------------------------------------------------------------ the rules
@@ -221,7 +197,7 @@ def _ros_words(plan: LaunchPlan, variant: str) -> str:
 
 def _where_generate(pkg: Package, result: Launched) -> int:
     """The line of ``def generate_launch_description`` in the launch file (0 if not found)."""
-    from ...learner_files import read_text
+    from ...trust.learner_files import read_text
 
     try:
         text = read_text(os.path.join(pkg.root, result.launch_file), (pkg.root,), errors="replace")
@@ -251,7 +227,7 @@ def ros2_launch_fails(pkg: Package) -> Iterator[Hit]:
         plan = result.plan
         if plan is None or plan.failure is None:
             continue
-        file, line = _place(result, plan.failure.file, plan.failure.line)
+        file, line = place(result, plan.failure.file, plan.failure.line)
         if (file, line, plan.failure.message) in seen:
             continue  # an included file stops the file that includes it at the same line
         seen.add((file, line, plan.failure.message))
@@ -280,7 +256,7 @@ def node_dies_on_its_ros_arguments(pkg: Package) -> Iterator[Hit]:
     seen = set()
     for result in _each(top):
         for node, problem in result.start_problems:
-            file, line = _place(result, node.file, node.line)
+            file, line = place(result, node.file, node.line)
             if (file, line, problem.detail) in seen:
                 continue
             seen.add((file, line, problem.detail))
@@ -299,7 +275,7 @@ def robot_description_rejected(pkg: Package) -> Iterator[Hit]:
         for node, problem in result.problems:
             if problem.kind == "file_fallback":
                 continue
-            file, line = _place(result, node.file, node.line)
+            file, line = place(result, node.file, node.line)
             yield _at(file, line or None, problem.kind, ros="\n".join(problem.ros), detail=problem.detail,
                       launch=result.launch_file)
 
@@ -317,7 +293,7 @@ def event_handler_never_fires(pkg: Package) -> Iterator[Hit]:
         if result.plan is None or result.plan.failure is not None:
             continue
         for unfired in result.plan.unfired:
-            file, line = _place(result, unfired["file"], unfired["line"])
+            file, line = place(result, unfired["file"], unfired["line"])
             if (file, line) in seen:
                 continue
             seen.add((file, line))

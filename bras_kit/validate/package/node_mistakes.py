@@ -14,9 +14,9 @@ from __future__ import annotations
 import ast
 from collections.abc import Iterator
 
-from ..registry import ERROR, Hit, hit
+from ...findings.registry import ERROR, Hit, hit
+from ...ros.package import Package
 from .rules import package_rule
-from .sources import Package
 
 
 def _at(file: str, line: int | None, variant: str, **params: object) -> Hit:

@@ -17,8 +17,8 @@ import re
 from collections.abc import Callable, Iterable, Iterator
 from typing import Any
 
-from ..registry import ERROR, INFO, Hit, hit, rule
-from .sources import (
+from ...findings.registry import ERROR, INFO, Hit, hit, rule
+from ...ros.package import (
     INDEX_FOLDER,
     JOINT_STATE_PUBLISHERS,
     PACKAGE_XML,
@@ -28,7 +28,7 @@ from .sources import (
     Publisher,
     share_targets,
 )
-from .staticpy import ShareFile, known
+from ...ros.staticpy import ShareFile, known
 
 # catkin_pkg's own test of a maintainer's email (catkin_pkg.package.Person.validate)
 EMAIL = re.compile(r"^[-a-zA-Z0-9_%+]+(\.[-a-zA-Z0-9_%+]+)*@[-a-zA-Z0-9%]+(\.[-a-zA-Z0-9%]+)*\.[a-zA-Z]{2,}$")
@@ -79,7 +79,7 @@ def _inside(pkg: Package, relative: str, line: int | None) -> int | None:
     """``line``, or the file's last line when a parser points past the end ("no element found")."""
     if line is None or line <= 1:
         return line
-    from ...learner_files import read_bytes
+    from ...trust.learner_files import read_bytes
 
     try:
         count = len(read_bytes(os.path.join(pkg.root, relative), (pkg.root,)).splitlines())
@@ -456,7 +456,7 @@ def _rviz_configs_missing_in_front_end_files(pkg: Package) -> Iterator[Hit]:
 def _included(pkg: Package, path: str) -> bool:
     """Whether another launch file of the package names this one (IncludeLaunchDescription): the
     nodes it starts are only part of the launch, checked with the file that includes it."""
-    from ...learner_files import read_text
+    from ...trust.learner_files import read_text
 
     name = os.path.basename(path)
     named = re.compile(r"(?<![\w.-])" + re.escape(name) + r"(?![\w.-])")
@@ -620,7 +620,7 @@ def _violations(robot: Any, formulas: dict[str, str]) -> Iterator[tuple[str, str
     them (followed with Python floats: validating a package needs no numpy, issue 43)."""
     if not formulas:
         return
-    from ...errors import BrasKitError
+    from ...core.errors import BrasKitError
     from ...motion.formula_limits import formula_position_violations
 
     for joint, text in formulas.items():

@@ -1,6 +1,6 @@
 """BK659: the node reached beyond its folder, and the containment stopped it (docs/security.md).
 
-A contained run (:mod:`bras_kit.ros.contain`) records what the node tried that its walls
+A contained run (:mod:`bras_kit.trust.contain`) records what the node tried that its walls
 forbid (:mod:`bras_kit.ros.attempts`): each attempt is one hit, at the learner's line.
 """
 
@@ -8,7 +8,7 @@ from __future__ import annotations
 
 from collections.abc import Iterator
 
-from ..registry import ERROR, Hit, describe, hit
+from ...findings.registry import ERROR, Hit, describe, hit
 from .run_rules import RunContext, run_rule
 
 

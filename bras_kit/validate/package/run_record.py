@@ -9,8 +9,8 @@ from __future__ import annotations
 
 from collections.abc import Iterator
 
+from ...findings.registry import ERROR, WARNING, Hit, describe, hit
 from ...ros.record_wire import MAX_LINE_BYTES, MAX_MESSAGE_BYTES
-from ..registry import ERROR, WARNING, Hit, describe, hit
 from .run_rules import RunContext, run_rule
 
 _KINDS = ("messages", "too_big", "logs")

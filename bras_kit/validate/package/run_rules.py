@@ -13,8 +13,8 @@ from collections.abc import Callable, Iterable, Iterator
 from dataclasses import dataclass
 from typing import TYPE_CHECKING, Any
 
+from ...findings.registry import ERROR, WARNING, Hit, hit, rule
 from ...ros.topics import JOINT_STATE_TYPE, JOINT_STATES
-from ..registry import ERROR, WARNING, Hit, hit, rule
 
 if TYPE_CHECKING:  # the records are imported with a run: validate PKG_DIR without --run has none
     from ...ros.recording import Recording
@@ -27,7 +27,7 @@ class RunContext:
     """What the run rules read: a run's recording and the robot it was run against."""
 
     recording: Recording
-    robot: Any  # bras_kit.model.Robot or None
+    robot: Any  # bras_kit.model.robot.Robot or None
 
 
 RunCheck = Callable[[RunContext], Iterable[Hit]]

@@ -2,7 +2,7 @@
 
 from __future__ import annotations
 
-from ..registry import describe
+from ...findings.registry import describe
 
 # ------------------------------------------------------------------ BK6xx the ROS 2 package
 

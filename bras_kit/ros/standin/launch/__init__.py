@@ -29,7 +29,7 @@ SomeActionsType_types_tuple = (LaunchDescriptionEntity,)
 class LaunchService:
     """Running a launch description outside ``ros2 launch`` is not simulated."""
 
-    def __init__(self, *args, **kwargs):  # type: ignore[no-untyped-def]
+    def __init__(self, *args, **kwargs):
         import _bras_sim
 
         raise _bras_sim.NotSimulated("launch.LaunchService")

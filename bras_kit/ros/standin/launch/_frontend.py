@@ -330,16 +330,16 @@ class _LineDict(dict):
     line = 0
 
 
-class _LineLoader(__import__("yaml").SafeLoader):  # type: ignore[misc, name-defined]
+class _LineLoader(__import__("yaml").SafeLoader):  # type: ignore[misc]
     """yaml's safe loader, each mapping keeping the line it starts on (for the learner's place)."""
 
-    def construct_mapping(self, node: Any, deep: bool = False) -> Any:  # type: ignore[override]
+    def construct_mapping(self, node: Any, deep: bool = False) -> Any:
         mapping = _LineDict(super().construct_mapping(node, deep=True))
         mapping.line = node.start_mark.line + 1
         return mapping
 
 
-_LineLoader.add_constructor(  # type: ignore[no-untyped-call]
+_LineLoader.add_constructor(
     "tag:yaml.org,2002:map", lambda loader, node: loader.construct_mapping(node))
 
 
@@ -369,7 +369,7 @@ def _xml_root(path: str) -> _XmlEntity:
 
 
 def _yaml_root(path: str) -> _YamlEntity:
-    from bras_kit import yaml_gate
+    from bras_kit.trust import yaml_gate
 
     with open(path, encoding="utf-8") as handle:
         text = handle.read(yaml_gate.MAX_CHARS + 1)

@@ -41,7 +41,7 @@ def coerce_to_type(value: str, data_type: Any = None, *, can_be_str: bool = Fals
     def convert_as_yaml(text: str, error_msg: str) -> Any:
         if not text:
             return text
-        from bras_kit import yaml_gate
+        from bras_kit.trust import yaml_gate
 
         try:
             output = yaml_gate.load(text, loader=yaml.SafeLoader)

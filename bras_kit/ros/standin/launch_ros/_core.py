@@ -179,7 +179,7 @@ def evaluate_parameter_dict(context: LaunchContext, parameters: Mapping) -> dict
             text = perform_substitutions(context, list(value))
             if len(text) == 0:
                 text = "''"
-            from bras_kit import yaml_gate
+            from bras_kit.trust import yaml_gate
 
             try:
                 loaded = yaml_gate.load(text, loader=yaml.SafeLoader)
@@ -208,8 +208,8 @@ def evaluate_parameter_dict(context: LaunchContext, parameters: Mapping) -> dict
 
 def _parameters_file(path: str, node_name: str | None) -> dict[str, Any]:
     """A parameters file's values for this node (``/**`` or the node's name)."""
-    from bras_kit import yaml_gate
-    from bras_kit.learner_files import Unreadable, read_text
+    from bras_kit.trust import yaml_gate
+    from bras_kit.trust.learner_files import Unreadable, read_text
 
     try:
         # any file the launch file names (as launch_ros), but a regular one, of a bounded size
@@ -269,8 +269,8 @@ class SetParameter(Action):
 
     def execute(self, context: LaunchContext) -> None:
         name, value = self.__param.evaluate(context)
-        context.launch_configurations.setdefault('global_params', [])  # type: ignore[arg-type]
-        context.launch_configurations['global_params'].append((name, value))  # type: ignore[attr-defined]
+        context.launch_configurations.setdefault('global_params', [])
+        context.launch_configurations['global_params'].append((name, value))
 
 
 class SetUseSimTime(SetParameter):
@@ -285,8 +285,8 @@ class SetRemap(Action):
         self.__dst = normalize_to_list_of_substitutions(dst)
 
     def execute(self, context: LaunchContext) -> None:
-        context.launch_configurations.setdefault('ros_remaps', [])  # type: ignore[arg-type]
-        context.launch_configurations['ros_remaps'].append(  # type: ignore[attr-defined]
+        context.launch_configurations.setdefault('ros_remaps', [])
+        context.launch_configurations['ros_remaps'].append(
             (perform_substitutions(context, self.__src), perform_substitutions(context, self.__dst)))
 
 
@@ -347,7 +347,7 @@ class Node(ExecuteProcess):
                                                              namespace))
         parameters: dict[str, Any] = {}
         files: list[str] = []
-        for name_value in context.launch_configurations.get('global_params', []):  # type: ignore[union-attr]
+        for name_value in context.launch_configurations.get('global_params', []):
             if isinstance(name_value, tuple):
                 parameters[name_value[0]] = name_value[1]
         for item in self.__parameters:
@@ -361,7 +361,7 @@ class Node(ExecuteProcess):
                         else perform_substitutions(context, normalize_to_list_of_substitutions(item)))
                 files.append(file)
                 parameters.update(_parameters_file(file, name))
-        remappings = list(context.launch_configurations.get('ros_remaps', []))  # type: ignore[arg-type]
+        remappings = list(context.launch_configurations.get('ros_remaps', []))
         for src, dst in self.__remappings:
             remappings.append((perform_substitutions(context, normalize_to_list_of_substitutions(src)),
                                perform_substitutions(context, normalize_to_list_of_substitutions(dst))))

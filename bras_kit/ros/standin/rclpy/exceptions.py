@@ -11,6 +11,13 @@ class NotInitializedException(Exception):
             Exception.__init__(self, 'rclpy.init() has not been called.')
 
 
+class NoTypeSupportImportedException(Exception):
+    """Raised when a message or service type has no type support (rclpy's type_support checks)."""
+
+    def __init__(self):
+        Exception.__init__(self, 'no type_support imported')
+
+
 class InvalidHandle(Exception):
     """Raised when using something that was destroyed (rclpy's _rclpy.InvalidHandle)."""
 

@@ -15,6 +15,7 @@ from .exceptions import (
     InvalidParameterTypeException,
     InvalidParameterValueException,
     NotInitializedException,
+    NoTypeSupportImportedException,
     ParameterAlreadyDeclaredException,
     ParameterNotDeclaredException,
     ParameterUninitializedException,
@@ -54,7 +55,7 @@ def _yaml_value(text):
     """A -p value as rcl reads it (rcl_yaml_param_parser: YAML, '' an empty string)."""
     import yaml
 
-    from bras_kit import yaml_gate
+    from bras_kit.trust import yaml_gate
 
     try:
         value = yaml_gate.load(text, loader=yaml.SafeLoader) if text.strip() else ''
@@ -67,11 +68,6 @@ def _check_msg_type(msg_type):
     # rclpy/type_support.py check_is_valid_msg_type
     if not hasattr(msg_type, '_type_name'):
         raise NoTypeSupportImportedException()
-
-
-class NoTypeSupportImportedException(Exception):
-    def __init__(self):
-        Exception.__init__(self, 'no type_support imported')
 
 
 class Node:

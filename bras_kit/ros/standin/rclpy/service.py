@@ -12,7 +12,7 @@ from .qos import QoSProfile
 
 def check_is_valid_srv_type(srv_type):
     """rclpy/type_support.py check_is_valid_srv_type: a service class has Request and Response."""
-    from .node import NoTypeSupportImportedException
+    from .exceptions import NoTypeSupportImportedException
 
     if not (hasattr(srv_type, 'Request') and hasattr(srv_type, 'Response')):
         raise NoTypeSupportImportedException()

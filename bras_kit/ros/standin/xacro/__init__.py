@@ -1,6 +1,6 @@
 """Stand-in for the xacro package as a launch file uses it: ``xacro.process_file(path).toxml()``
 and the ``xacro FILE NAME:=VALUE`` program that ``Command(['xacro ', path])`` runs. Both expand
-with the real xacro behind bras-kit's walls (bras_kit.xacrotools), imported past the stand-in's
+with the real xacro behind bras-kit's walls (bras_kit.model.xacro), imported past the stand-in's
 import hook the first time a file is expanded (``_REAL``): a launch file that expands none never
 pays for it."""
 
@@ -64,7 +64,7 @@ def _real_modules() -> Iterator[None]:
 
 
 def _expand(path: str, mappings: dict[str, str]) -> str:
-    from bras_kit.xacrotools import _expand as expand
+    from bras_kit.model.xacro import _expand as expand
 
     with _real_modules():
         return expand(path, mappings, ())

@@ -3,5 +3,5 @@ class Shutdown:
         self.reason = reason
 
 
-def matches_action(target_action):  # type: ignore[no-untyped-def]
+def matches_action(target_action):
     return target_action

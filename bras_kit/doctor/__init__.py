@@ -1,0 +1,1 @@
+"""``bras-kit doctor``: what this machine has (the install checks)."""
