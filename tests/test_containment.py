@@ -226,7 +226,7 @@ IMPORT_PYSECCOMP = """
 import ctypes.util, json, sys
 spawned = []
 sys.addaudithook(lambda event, args: spawned.append(str(args[1])) if event == "subprocess.Popen" else None)
-from bras_kit.ros import contain
+from bras_kit.trust import contain
 contain.SONAMES.update(json.loads(sys.argv[1]))
 looked_up = ctypes.util.find_library
 contain._import_pyseccomp()

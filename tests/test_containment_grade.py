@@ -25,7 +25,7 @@ HOSTILE_NODE = DATA / "hostile_code" / "nodes" / "write_home.py"
 WITHOUT = """
 import sys
 from bras_kit.core.message import M
-from bras_kit.ros import contain
+from bras_kit.trust import contain
 contain.available = lambda: contain.Status(False, M("the kernel refuses new namespaces to this user (test)"),
                                            M("unprivileged user namespaces"),
                                            M("enable them: sudo sysctl -w kernel.unprivileged_userns_clone=1"))

@@ -296,7 +296,7 @@ ALLOWED = {
     "bras_kit/cli/render.py": {"buffer"},  # a PNG to stdout
     "bras_kit/trust/sandbox.py": {"os.write"},  # the child's answer to its own pipe
     "bras_kit/trust/contain.py": {"os.write"},  # pipes between the contained processes
-    "bras_kit/run/__init__.py": {"os.write"},  # the child's joint states to their pipe
+    "bras_kit/run/node.py": {"os.write"},  # the child's joint states to their pipe
 }
 
 

@@ -20,7 +20,7 @@ A value the constructor cannot make (an integer of more than 4,300 digits, a 13t
 :class:`yaml.YAMLError` too, as are the refusals above (:class:`YamlRefused`), so a caller's
 ``except yaml.YAMLError`` covers them::
 
-    from bras_kit import yaml_gate
+    from bras_kit.trust import yaml_gate
     data = yaml_gate.load(text)                  # as yaml.safe_load(text), bounded
     data = yaml_gate.load(text, loader=MyLoader)  # a SafeLoader subclass of the caller's
 
