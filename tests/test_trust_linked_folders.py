@@ -165,3 +165,33 @@ def test_robot_state_publisher_never_gets_the_outside_file_while_a_folder_is_swa
         stop.set()
         process.join(10)
     assert given > 10
+
+
+def test_a_folder_given_to_validate_is_walked_without_entering_linked_folders(tmp_path):
+    """validate DIR lists the .urdf files of the folder through the one reader: a link to a folder
+    outside (holding a broken URDF with the canary) is never walked into."""
+    outside = tmp_path / "outside"
+    outside.mkdir()
+    (outside / "piege.urdf").write_text(f"<robot name='{CANARY}'><link name='a'/><joint/></robot>")
+    inside = tmp_path / "mine"
+    inside.mkdir()
+    (inside / "ok.urdf").write_text("<robot name='ok'><link name='base'/></robot>")
+    (inside / "dehors").symlink_to(outside, target_is_directory=True)
+    done = bras_kit("validate", str(inside), cwd=tmp_path)
+    assert CANARY not in done.stdout + done.stderr and "piege" not in done.stdout + done.stderr
+    assert "ok.urdf" in done.stdout + done.stderr
+
+
+def test_a_submission_is_measured_without_counting_what_links_reach(tmp_path):
+    """The grader's size limit counts the submission's own files: a link to a big file outside
+    adds nothing (os.stat of the kernel is the oracle), a file inside counts its bytes."""
+    from bras_kit.trust.learner_files import folder_size
+
+    big = tmp_path / "big.bin"
+    big.write_bytes(b"\0" * 100_000)
+    sub = tmp_path / "eleve"
+    (sub / "urdf").mkdir(parents=True)
+    (sub / "urdf" / "bras.urdf").write_text("<robot name='r'/>")
+    (sub / "urdf" / "lien.bin").symlink_to(big)
+    (sub / "lien_dossier").symlink_to(tmp_path, target_is_directory=True)
+    assert folder_size(str(sub), (str(tmp_path),)) == os.stat(sub / "urdf" / "bras.urdf").st_size

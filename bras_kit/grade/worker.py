@@ -114,16 +114,10 @@ def _materialise(submission: Submission, workdir: str) -> str:
 
 
 def _size(path: str) -> int:
-    if not os.path.isdir(path):
-        return os.path.getsize(path)
-    total = 0
-    for folder, dirs, files in os.walk(path):
-        dirs[:] = [d for d in dirs if not os.path.islink(os.path.join(folder, d))]
-        total += sum(os.path.getsize(os.path.join(folder, f)) for f in files
-                     if not os.path.islink(os.path.join(folder, f)))
-        if total > MAX_SUBMISSION_BYTES:
-            break
-    return total
+    """The submission's bytes, counted through the one reader (links neither followed nor counted)."""
+    from ..trust.learner_files import folder_size
+
+    return folder_size(path, (os.path.dirname(os.path.abspath(path)),), stop_past=MAX_SUBMISSION_BYTES)
 
 
 def node_containment(unsafe: bool = False) -> Message | None:

@@ -178,7 +178,10 @@ def collect_files(paths: Iterable[str]) -> list[str]:
         if not os.path.isdir(path):
             out.append(path)
             continue
-        for folder, dirs, files in os.walk(path):
+        from ..trust.learner_files import walk
+
+        # through the one reader (links to folders never walked into), as every folder walk is
+        for folder, dirs, files in walk(path, (path,)):
             dirs[:] = sorted(d for d in dirs if not d.startswith("."))
             out.extend(os.path.join(folder, f) for f in sorted(files) if f.endswith(SOURCE_SUFFIXES))
     return out
