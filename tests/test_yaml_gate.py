@@ -27,7 +27,7 @@ from hypothesis import strategies as st
 from bras_kit.trust import yaml_gate
 
 PACKAGE = Path(__file__).resolve().parents[1] / "bras_kit"
-GATE = PACKAGE / "yaml_gate.py"
+GATE = PACKAGE / "trust" / "yaml_gate.py"
 # every function of PyYAML that parses, composes or constructs
 LOADERS = {"load", "safe_load", "full_load", "unsafe_load", "load_all", "safe_load_all", "full_load_all",
            "unsafe_load_all", "compose", "compose_all", "parse", "scan"}
