@@ -30,6 +30,10 @@ def run_ros(args: argparse.Namespace) -> int:
             from ._common import check_writable
 
             check_writable(args.save, args.force, option="--save")
+        if args.format == "text":  # what the workspace, the shell and the machine got wrong, first
+            from .doctor import print_surroundings
+
+            print_surroundings(lang, graphics=False, shown=("note", "fail"))
         python = ros_python()  # no rclpy: said before anything is announced
         if args.format == "text":
             print(say(M("watching the ROS 2 graph for {seconds:g} s...", seconds=args.duration), lang),
