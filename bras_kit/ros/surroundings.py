@@ -322,10 +322,11 @@ def discovery_concerns(environ: Mapping[str, str] | None = None) -> list[Concern
         concerns.append(Concern("machine", NOTE, M("ROS_STATIC_PEERS"), M(
             "ROS_STATIC_PEERS is ignored while ROS_LOCALHOST_ONLY=1 (rcl: {words})", words=RCL_LOCALHOST_WINS),
             M("type: unset ROS_LOCALHOST_ONLY")))
-    for peer in skipped:
-        concerns.append(Concern("machine", NOTE, M("ROS_STATIC_PEERS"), M(
-            "rcl skips a peer: {words}", words=RCL_PEER_TOO_LONG.format(peer=peer[:40] + "...",
-                                                                         maximum=STATIC_PEER_MAX)),
+    for peer in skipped:  # rcl's loop leaves the skipped peer's slot empty (discovery_options.c lines 145-158),
+        # and rmw_fastrtps refuses the empty peer: the node is never made (seen with the real rclpy of Jazzy)
+        concerns.append(Concern("machine", FAIL, M("ROS_STATIC_PEERS"), M(
+            "rcl skips a peer: {words}; its empty place is left in the list, and every node started here fails "
+            "to start", words=RCL_PEER_TOO_LONG.format(peer=peer[:40] + "...", maximum=STATIC_PEER_MAX)),
             M("give each peer as an address or host name, separated by ';'")))
     if kept:
         concerns.append(Concern("machine", OK, M("ROS_STATIC_PEERS"), M("{peers}", peers=kept)))
