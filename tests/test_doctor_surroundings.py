@@ -85,6 +85,23 @@ def test_edited_node_module_is_stale_too(tmp_path):
     assert f"src/{PKG}/{PKG}/animation.py" in texts([stale])[0]
 
 
+def test_urdf_installed_under_another_folder_is_followed_through_data_files(tmp_path):
+    """setup.py installs urdf/bras.urdf into share/PKG/description/: the copy there is compared."""
+    root = workspace(tmp_path, build=False)
+    setup = root / "src" / PKG / "setup.py"
+    text = setup.read_text()
+    entry = "installed('urdf', '*.urdf', '*.xacro'),"
+    assert text.count(entry) == 1
+    setup.write_text(text.replace(entry, "(os.path.join('share', package_name, 'description'), glob('urdf/*.urdf')),"))
+    subprocess.run([*BRAS_KIT, "build"], cwd=root, env=clean_env(), capture_output=True, timeout=300, check=True)
+    assert list((root / "install" / PKG / "share" / PKG / "description").iterdir())
+    assert not of(sr.workspace_concerns(find_workspace(str(root))))
+    urdf = next((root / "src" / PKG / "urdf").iterdir())
+    urdf.write_text(urdf.read_text() + "<!-- x -->\n")
+    (stale,) = of(sr.workspace_concerns(find_workspace(str(root))))
+    assert f"src/{PKG}/urdf/{urdf.name}" in texts([stale])[0]
+
+
 def test_symlink_install_is_never_stale(tmp_path):
     root = workspace(tmp_path)
     share = root / "install" / PKG / "share" / PKG / "urdf"

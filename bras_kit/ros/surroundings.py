@@ -90,9 +90,12 @@ def package_prefix(workspace: Workspace, name: str) -> str:
 
 
 def _installed_pairs(workspace: Workspace, folder: str, name: str) -> Iterator[tuple[str, str]]:
-    """(installed file, its source) for the files of the install tree that have a source at the
-    same place in the package: share/NAME/REL from REL, and the Python modules."""
+    """(installed file, its source): each data_files entry of setup.py (read statically, as the
+    package rules read it: a file lands in DESTINATION under its own name, setuptools'
+    install_data), then the files of share/NAME that have a source at the same place in the
+    package, and the Python modules."""
     prefix = package_prefix(workspace, name)
+    yield from _data_files_pairs(prefix, folder)
     share = os.path.join(prefix, "share", name)
     for here, dirs, files in os.walk(share):
         rel_dir = os.path.relpath(here, share)
@@ -113,6 +116,18 @@ def _installed_pairs(workspace: Workspace, folder: str, name: str) -> Iterator[t
                 yield os.path.join(here, file), os.path.join(folder, rel_dir, file)
 
 
+def _data_files_pairs(prefix: str, folder: str) -> Iterator[tuple[str, str]]:
+    from .package import Package
+
+    setup = Package(folder).setup
+    for entry in (setup.data_files or []) if setup is not None else []:
+        if os.path.isabs(entry.destination):
+            continue
+        for source in entry.sources:
+            yield (os.path.normpath(os.path.join(prefix, entry.destination, os.path.basename(source))),
+                   os.path.normpath(os.path.join(folder, source)))
+
+
 def _differs(installed: str, source: str) -> bool:
     try:
         with open(installed, "rb") as a, open(source, "rb") as b:
@@ -124,8 +139,11 @@ def _differs(installed: str, source: str) -> bool:
 def stale_copies(workspace: Workspace, name: str, folder: str) -> list[tuple[str, str, float, float]]:
     """(source relative to the root, installed file, source's mtime, installed's mtime) of each
     installed copy that differs from its source. A link (``--symlink-install``) is never stale."""
-    out = []
+    out, seen = [], set()
     for installed, source in _installed_pairs(workspace, folder, name):
+        if installed in seen:
+            continue
+        seen.add(installed)
         if os.path.islink(installed) or not os.path.isfile(source) or os.path.islink(source):
             continue
         if _differs(installed, source):
