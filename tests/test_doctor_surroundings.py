@@ -8,6 +8,7 @@ from __future__ import annotations
 import json
 import os
 import re
+import shutil
 import subprocess
 import sys
 import time
@@ -163,6 +164,14 @@ def test_a_learners_own_folder_named_build_is_not_colcons(tmp_path):
     (root / "src" / "build").mkdir()
     (root / "src" / "build" / "notes.txt").write_text("mes notes")
     assert sr.workspace_concerns(find_workspace(str(root))) == []
+
+
+def test_two_packages_of_one_name_are_a_failure_not_a_traceback(tmp_path):
+    root = workspace(tmp_path, build=False)
+    shutil.copytree(root / "src" / PKG, root / "src" / "copie")
+    done = doctor(root / "src")
+    assert done.returncode == 1 and "Traceback" not in done.stderr
+    assert "Duplicate package names not supported" in done.stdout and "copie" in done.stdout
 
 
 # ---------------------------------------------------------------- the shell
