@@ -200,6 +200,18 @@ def test_package_built_after_sourcing(tmp_path):
     assert "'cellule_bringup'" in texts([fail])[0] and "not see them yet" in texts([fail])[0]
 
 
+def test_outside_the_workspace_the_sourced_one_is_examined(tmp_path):
+    root = workspace(tmp_path)
+    env = sourced_env(root)
+    urdf = next((root / "src" / PKG / "urdf").iterdir())
+    urdf.write_text(urdf.read_text() + "<!-- x -->\n")
+    elsewhere = tmp_path / "ailleurs"
+    elsewhere.mkdir()
+    done = doctor(elsewhere, env)
+    assert done.returncode == 1 and f"src/{PKG}/urdf/{urdf.name}" in done.stdout
+    assert f"src/{PKG}/urdf" not in doctor(elsewhere).stdout
+
+
 def test_older_workspace_earlier_on_the_path_shadows_this_one(tmp_path):
     old = workspace(tmp_path / "old")
     new = workspace(tmp_path / "new")

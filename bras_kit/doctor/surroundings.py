@@ -40,13 +40,13 @@ def egl_renderer() -> str | None:
 def look(start: str = ".", environ: Mapping[str, str] | None = None, *, renderer: str | None = None,
          graphics: bool = True) -> list[Concern]:
     """Every concern for a command typed in ``start``: the workspace and the shell when ``start``
-    is in a workspace, the machine always (graphics when ``graphics``; ``renderer`` given, else
+    is in a workspace (or one is sourced), the machine always (graphics when ``graphics``; ``renderer`` given, else
     asked of EGL)."""
-    from ..ros.workspace import find_workspace
+    from ..ros.workspace import find_workspace, sourced_workspace
 
     concerns: list[Concern] = []
-    try:
-        workspace = find_workspace(start)
+    try:  # outside any workspace, the one this shell sourced (as ros2 launch finds its packages from anywhere)
+        workspace = find_workspace(start) or sourced_workspace(environ)
     except BrasKitError as exc:  # two packages of one name: colcon builds none
         concerns.append(Concern("workspace", FAIL, M("packages"), exc.message, exc.hint))
         workspace = None
