@@ -31,6 +31,10 @@ def run_ros(args: argparse.Namespace) -> int:
 
             check_writable(args.save, args.force, option="--save")
         python = ros_python()  # no rclpy: said before anything is announced
+        if args.format == "text":  # what the workspace, the shell and the machine got wrong, first
+            from .doctor import print_surroundings
+
+            print_surroundings(lang, graphics=False, shown=("note", "fail"))
         if args.format == "text":
             print(say(M("watching the ROS 2 graph for {seconds:g} s...", seconds=args.duration), lang),
                   file=sys.stderr, flush=True)
@@ -44,7 +48,10 @@ def run_ros(args: argparse.Namespace) -> int:
     errors = sum(r.count("error") for r in results)
     code = 1 if errors else 0
     if args.format == "json":
-        print(json.dumps(_document(snapshot, results, code, lang), ensure_ascii=False, indent=2))
+        document = _document(snapshot, results, code, lang)
+        # of this terminal and machine: said of a live look only, not of one read back
+        document["surroundings"] = [] if args.from_file else _surroundings(lang)
+        print(json.dumps(document, ensure_ascii=False, indent=2))
         return code
     print(_text(snapshot, results, lang), end="")
     return code
@@ -136,6 +143,15 @@ def _root_link(snapshot: Any) -> str | None:
         return tf_tree(robot).root
     except BrasKitError:  # a tree the kinematics refuse: the findings said why, the words stay general
         return None
+
+
+def _surroundings(lang: str | None) -> list[dict[str, Any]]:
+    """What the workspace, the shell and the machine got wrong (bras_kit.ros.surroundings), worded."""
+    from ..doctor.surroundings import look
+
+    return [{"area": c.area, "status": c.status, "name": say(c.name, lang), "found": say(c.found, lang),
+             "fix": say(c.fix, lang) if c.fix is not None else None}
+            for c in look(".", graphics=False) if c.status != "ok"]
 
 
 def _document(snapshot: Any, results: list[Any], code: int, lang: str | None) -> dict[str, Any]:

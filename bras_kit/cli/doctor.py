@@ -7,13 +7,14 @@ import argparse
 
 EPILOG = """\
 examples:
-  bras-kit doctor                         what this install can do
+  bras-kit doctor                         what this install can do; in a colcon workspace (its root or below),
+                                          what is stale, unsourced or shadowed there; this machine's ROS 2 settings
   bras-kit doctor --ros                   join the running ROS 2 graph for 3 s: why RViz stays empty or the arm still
   bras-kit doctor --ros --format json     the same, for programs
   bras-kit doctor --ros --save look.json  keep what was seen; 'bras-kit doctor --ros --from look.json' reports it again
 
-exit codes with --ros: 0 nothing keeps RViz from showing the arm moving, 1 something does,
-3 could not look (no rclpy: source ROS 2 or install 'bras-kit[ros]')
+exit codes: 0 nothing to fix, 1 something to fix (see 'fix'); with --ros: 0 nothing keeps RViz from showing the
+arm moving, 1 something does, 3 could not look (no rclpy: source ROS 2 or install 'bras-kit[ros]')
 """
 
 
@@ -71,9 +72,35 @@ def run(args: argparse.Namespace) -> int:
         if result.fix is not None:
             label = M("fix") if result.status == "fail" else M("hint")
             print(f"{'':<{width}}  " + labelled(label, say(result.fix, lang), lang), flush=True)
+    results += print_surroundings(lang, width=width, graphics=True)
     failed = sum(result.status == "fail" for result in results)
     if healthy(results):
         print(say(M("everything bras-kit needs works here"), lang))
         return 0
     print(say(Mn("{n} problem to fix: see 'fix' above", "{n} problems to fix: see 'fix' above", failed), lang))
     return 1
+
+
+def print_surroundings(lang: str | None, *, width: int | None = None, graphics: bool = True,
+                       shown: tuple[str, ...] = ("ok", "note", "fail")) -> list:
+    """The workspace, shell and machine checks, printed under a title per area; the shown ones returned."""
+    from ..core.i18n import labelled, say
+    from ..core.message import M
+    from ..doctor.install import Check
+    from ..doctor.surroundings import AREAS, look
+
+    status_words = {"ok": say(M("ok"), lang), "note": say(M("note"), lang), "fail": say(M("fail"), lang)}
+    width = width or max(len(word) for word in status_words.values())
+    titles = {"workspace": M("the workspace"), "shell": M("this terminal"), "machine": M("this machine")}
+    concerns = [c for c in look(".", graphics=graphics) if c.status in shown]
+    for area in AREAS:
+        mine = [c for c in concerns if c.area == area]
+        if mine:
+            print(say(titles[area], lang), flush=True)
+        for concern in mine:
+            print(f"{status_words[concern.status]:<{width}}  " + labelled(concern.name, say(concern.found, lang), lang),
+                  flush=True)
+            if concern.fix is not None:
+                label = M("fix") if concern.status == "fail" else M("hint")
+                print(f"{'':<{width}}  " + labelled(label, say(concern.fix, lang), lang), flush=True)
+    return [Check(c.name, c.status, c.found, c.fix) for c in concerns]

@@ -25,6 +25,7 @@ from . import (
     node_mistakes,  # noqa: F401  (BK627, registered on import)
     run_reach,  # noqa: F401  (BK659: what the containment stopped)
     run_record,  # noqa: F401  (BK657-BK658: the run's record, bounded and checked)
+    setup_cfg,  # noqa: F401  (BK628-BK629: what colcon and setuptools do with setup.cfg)
     texts,  # noqa: F401  (the rules' words)
 )
 from .evaluated import launched  # noqa: F401

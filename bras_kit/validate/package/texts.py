@@ -853,3 +853,46 @@ tutorial's `mkdir urdf launch` is typed in the package folder, beside `setup.py`
 the module folder, the files are not where `data_files` looks (`glob('urdf/*.urdf')` is relative
 to `setup.py`), nothing is installed, and `ros2 launch` fails with file not found.""",
 )
+describe(
+    "BK628",
+    title="the console scripts will not be installed in lib/PKG",
+    message={
+        "missing": "setup.cfg is missing: colcon installs {scripts} in install/{package}/bin/, and "
+                   "'ros2 run {package} {executable}' says No executable found",
+        "no_key": "setup.cfg has no [install] install_scripts: colcon installs {scripts} in install/{package}/bin/, "
+                  "and 'ros2 run {package} {executable}' says No executable found",
+        "elsewhere": "setup.cfg installs the scripts in {value}, not {target}: 'ros2 run {package} {executable}' "
+                     "says No executable found",
+        "unparsed": "setup.cfg cannot be read as setuptools reads it: {detail}",
+    },
+    hint={
+        "elsewhere": "write install_scripts=$base/lib/{package} under [install] (and script_dir=$base/lib/{package} "
+                     "under [develop]), then run colcon build again",
+        "unparsed": "fix this line: setuptools stops on it during colcon build",
+        "": "write a setup.cfg beside setup.py with [develop] script_dir=$base/lib/{package} and [install] "
+            "install_scripts=$base/lib/{package} ('bras-kit new' shows one), then run colcon build again",
+    },
+    explanation="""\
+`ros2 run PKG EXE` only looks in `install/PKG/lib/PKG/`. The console scripts that `setup.py`
+declares land there because `setup.cfg` says so: colcon reads `[install] install_scripts`
+and hands it to setuptools on the command line (colcon-core `task/python/build.py`, lines
+37-49 and 125-131). When the key is missing, or names another folder (a package copied and
+renamed keeps the old name here), setuptools uses its own default, `install/PKG/bin/`. The
+build reports success, and only `ros2 run` fails, with "No executable found". A launch file's
+`Node(executable=...)` fails the same way.""",
+)
+describe(
+    "BK629",
+    title="setup.cfg uses a dash-separated key",
+    message="'{key}' in [{section}]: setuptools warns Usage of dash-separated '{key}' will not be supported in "
+            "future versions. Please use the underscore name '{underscore}' instead",
+    hint="write {underscore} instead of {key}",
+    explanation="""\
+Older package templates wrote `script-dir` and `install-scripts`. setuptools still reads such
+keys in its own sections (`metadata`, `options`, and its commands such as `develop` and
+`install`), turning the dash into an underscore, but prints a SetuptoolsDeprecationWarning on
+every build (setuptools 68.1.2, Ubuntu 24.04's: `setuptools/dist.py`, `warn_dash_deprecation`,
+lines 770-802; newer releases word it "Invalid dash-separated key"). Its release 78.0.0
+refused them outright for a few days, and a later release may do so again: with the underscore
+names the package builds the same, without the warning.""",
+)
