@@ -330,14 +330,15 @@ def shown(config: RvizConfig, robot: Any, transforms: Iterable[Any], description
     from .frames import placed_links
 
     tfs = list(transforms)
-    frames = {t.parent for t in tfs} | {t.child for t in tfs}
+    kept = [t for t in tfs if not getattr(t, "nan", False)]  # tf2 refuses NaN: no frame made of it
+    frames = {t.parent for t in kept} | {t.child for t in kept}
     topics = set(description_topics)
     fixed = config.fixed_frame
     # visualization_manager.cpp:431-451, the "Fixed Frame" row of the Global Status; a frame exists
     # once a transform names it (tf_frame_transformer.cpp:213-219)
     if fixed in frames:
         status = Status(OK, "Fixed Frame", "OK")
-    elif not tfs:
+    elif not kept:
         status = Status(WARN, "Fixed Frame", f"No tf data.  Actual error: Frame [{fixed}] does not exist")
     else:
         status = Status(ERROR, "Fixed Frame", f"Frame [{fixed}] does not exist")

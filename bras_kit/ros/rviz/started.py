@@ -57,9 +57,10 @@ def description_topics(plan: Any) -> set[str]:
 
 
 def launch_transforms(robot: Any, joint_states: bool, positions: dict[str, float] | None = None,
-                      stamp_ns: int = 1) -> list[Any]:
+                      stamp_ns: int = 10**9) -> list[Any]:
     """What tf holds while the launch runs: robot_state_publisher's static transforms, and the moving
-    ones once a JointState naming the movable joints reaches it (``joint_states``: something publishes
+    ones once a JointState naming the movable joints reaches it, stamped past rsp's first interval
+    (robot_state_publisher.cpp:334-340) (``joint_states``: something publishes
     /joint_states, joint_state_publisher(_gui) or the learner's node)."""
     from .frames import JointStateIn, RobotStatePublisher
 
