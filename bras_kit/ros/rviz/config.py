@@ -411,3 +411,60 @@ def _shown_robot_model(display: Display, robot: Any, placed: Mapping[str, Any], 
             text = str(reason) if reason is not None else f"No transform from [{link.name}] to [{fixed}]"
             statuses.append(Status(ERROR, link.name, text))
     return DisplayShown(display, tuple(statuses), tuple(drawn))
+
+
+# ---------------------------------------------------------------------------- why, in the learner's words
+
+
+def why_not_drawn(seen: Shown, robot: Any, published: Iterable[str] = ()) -> Message | None:
+    """Why RViz draws no arm (or only part of it) in ``seen``, with what to do; None when the whole
+    arm is drawn. RViz's own words are quoted; the rest is ours (translated)."""
+    links = [link.name for link in robot.links if link.name] if robot is not None else []
+    if robot is None or (links and set(seen.links) == set(links)):
+        return None
+    root = _root(robot) or (links[0] if links else "base")
+    models = [d for d in seen.displays if d.display.kind == ROBOT_MODEL]
+    topics = sorted(published)
+    topic = topics[0] if topics else "/robot_description"
+    status = seen.global_status
+    fixed = seen.config.fixed_frame
+    if status.level != OK and fixed not in links:
+        return M("Fixed Frame [{frame}] does not exist: RViz's Global Status says \"{status}\". Set Fixed Frame "
+                 "to {root}, the robot's root link (its frames: {links}).", frame=fixed, status=status.text,
+                 root=root, links=", ".join(links))
+    if not models:
+        return M("No RobotModel display: click Add, choose RobotModel, then set its Description Topic to {topic}.",
+                 topic=topic)
+    enabled = [d for d in models if d.display.enabled]
+    if not enabled:
+        return M("The RobotModel display is unchecked: tick it to draw the robot.")
+    model = enabled[0]
+    if seen.links:
+        missing = [s for s in model.statuses if s.level == ERROR and s.name in links]
+        if missing:
+            return M("RViz draws only {drawn}: the RobotModel says \"{status}\". robot_state_publisher publishes "
+                     "the moving links once something publishes /joint_states.",
+                     drawn=", ".join(seen.links), status=missing[0].text)
+        return None
+    display = model.display
+    if display.description_source == "File":
+        if not display.description_file:
+            return M("The RobotModel reads its description from a file and none is given: set Description "
+                     "Source to Topic and Description Topic to {topic}.", topic=topic)
+        return M("The RobotModel says \"URDF is empty\": RViz cannot read {file}.", file=display.description_file)
+    if not display.description_topic:
+        return M("The RobotModel says \"Error subscribing: Empty topic name\": set its Description Topic to "
+                 "{topic}.", topic=topic)
+    if display.description_topic not in set(topics):
+        return M("Nothing publishes {topic}: robot_state_publisher publishes the robot on {published}. Set the "
+                 "RobotModel's Description Topic to it.", topic=display.description_topic,
+                 published=", ".join(topics) or "-")
+    errors = [s for s in model.statuses if s.level == ERROR]
+    if errors:
+        return M("The RobotModel says \"{status}\".", status=errors[0].text)
+    return None
+
+
+def _root(robot: Any) -> str | None:
+    children = {j.child for j in robot.joints}
+    return next((link.name for link in robot.links if link.name and link.name not in children), None)
