@@ -52,9 +52,10 @@ class RvizState:
         with self.lock:
             self.launch = launch
             started = getattr(launch, "rviz", None)
+            # a build that fails starts no rviz2: the learner's RViz waits for the next one that does
             if started is not None and started != self.started:
                 self.config = started
-            self.started = started
+                self.started = started
 
     @property
     def active(self) -> bool:
