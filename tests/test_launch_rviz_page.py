@@ -77,6 +77,8 @@ def test_the_tutorials_launch_opens_an_empty_rviz(browser, tmp_path, lang, title
         for label in ("Fixed Frame", "Add"):  # the tutorial's words, in every language
             assert page.get_by_text(label, exact=True).count() >= 1
         codes = launched.page_codes()
+        order = page.locator("[data-finding]").evaluate_all("(all) => all.map(e => e.dataset.finding)")
+        hints = page.locator("[data-hint]").evaluate_all("(all) => all.map(e => e.innerText)")
         time.sleep(3.0)  # the grid is drawn by now: no arm in it
         assert _arm_pixels(page) == 0, _seen(page, tmp_path, "an arm is drawn in an empty RViz")
     finally:
@@ -84,6 +86,10 @@ def test_the_tutorials_launch_opens_an_empty_rviz(browser, tmp_path, lang, title
     assert "Traceback" not in err
     assert "BK613" in codes
     assert sorted(FINDING.findall(out)) == codes, out
+    assert order[0] == "BK613"  # all infos here: the one about what RViz shows comes first
+    if lang == "en":  # each finding's fix, as the terminal gives it
+        said = [line.split("hint: ", 1)[1].strip() for line in out.splitlines() if line.startswith("  hint: ")]
+        assert sorted(h.lstrip("\u2192 ").strip() for h in hints) == sorted(said), (hints, said)
 
 
 def test_step_six_by_clicks_then_save_config_reads_back(browser, tmp_path):

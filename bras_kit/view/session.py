@@ -470,13 +470,16 @@ class Session:
         if viewer.error is not None:
             rows.append(f"<p style='color:{ERROR_RED}'><b>{self.w(M('The file cannot be read'))}</b>: "
                         f"{html.escape(say(viewer.error, self.lang))}</p>")
-        for file, finding in viewer.checks:
+        for file, finding in sorted(viewer.checks, key=_what_matters):
             colour = {"error": ERROR_RED, "warning": "#e65100"}.get(finding.severity, "#455a64")
             line = f":{finding.line}" if finding.line else ""
             place = f"{html.escape(file)}{line} " if file else ""
+            hint = finding.hint
+            fix = "" if hint is None else \
+                f"<br><small data-hint='{finding.code}'>&rarr; {html.escape(say(hint, self.lang))}</small>"
             rows.append(f"<p style='margin:2px 0' data-finding='{finding.code}'><b style='color:{colour}'>"
                         f"{finding.code}</b>{'' if file else line} {place}"
-                        f"{html.escape(say(finding.message, self.lang))}</p>")
+                        f"{html.escape(say(finding.message, self.lang))}{fix}</p>")
         if checking:  # a launch's checks still running: neither "No finding" nor a count yet
             rows = [f"<p><i>{self.w(M('checking the package...'))}</i></p>"]
         elif not rows:
@@ -733,6 +736,18 @@ class Session:
         if self.rviz_panel is not None:
             return launch.blank() or self.viewer.rviz_state.why(self.viewer.rviz_shown())
         return launch.blank() or launch.frame_missing(self.fixed_name)
+
+
+_SEVERITY_RANK = {"error": 0, "warning": 1, "info": 2}
+# what decides what RViz shows of the launch: its configuration (BK610-BK613), /joint_states (BK620)
+_VIEW_CODES = ("BK61", "BK62")
+
+
+def _what_matters(check: tuple[str, Any]) -> tuple[int, int]:
+    """The page's order of findings: errors, warnings, infos; within each, those about what RViz
+    shows first (sorted() keeps the terminal's order otherwise)."""
+    finding = check[1]
+    return _SEVERITY_RANK.get(finding.severity, 3), 0 if str(finding.code).startswith(_VIEW_CODES) else 1
 
 
 def _moved_labels(places: np.ndarray, sent: list[tuple[float, float, float]]) -> np.ndarray:
