@@ -92,6 +92,35 @@ class Launched:
         return out, self.errors.read_text()
 
 
+def _field(page, label: str):
+    """The input of the panel's row labelled ``label`` (viser's labels name no input by id)."""
+    return page.locator(f"xpath=//label[normalize-space()='{label}']/ancestor::div[.//input[not(@type='hidden')]][1]"
+                        "//input[not(@type='hidden')]").first
+
+
+def _type(page, label: str, value: str) -> None:
+    box = _field(page, label)
+    box.fill(value)
+    box.press("Enter")
+
+
+def _add(page, kind: str) -> None:
+    """RViz's Add: the display's class chosen, then the button."""
+    before = page.locator("[data-rviz-display]").count()
+    _field(page, "Add").click()
+    page.get_by_role("option", name=kind, exact=True).click()
+    page.get_by_role("button", name="Add", exact=True).click()
+    assert _wait(lambda: page.locator("[data-rviz-display]").count() == before + 1, 20)
+
+
+def _step_six(page) -> None:
+    """The tutorial's step 6 in the page's RViz: Fixed Frame base, Add RobotModel, its Description Topic."""
+    assert _wait(lambda: page.locator("[data-rviz='global-status']").count() == 1, 60), page.inner_text("body")
+    _type(page, "Fixed Frame", "base")
+    _add(page, "RobotModel")
+    _type(page, "Description Topic", "/robot_description")
+
+
 def _copy_tutorial(tmp_path: Path) -> Path:
     package = tmp_path / "bras_description"
     shutil.copytree(TUTORIAL, package)
@@ -132,8 +161,7 @@ def test_a_fixed_frame_that_is_no_frame_draws_no_arm_and_the_page_says_why(brows
         time.sleep(3.0)  # the scene has drawn its grid by now: no arm in it
         assert _arm_pixels(page) == 0
         page.screenshot(path=str(tmp_path / "fixed_frame_monde.png"))
-        page.locator("input[role='combobox'][value='monde']").click()
-        page.get_by_role("option", name="base", exact=True).click()
+        _type(page, "Fixed Frame", "base")  # RViz's Global Options field
         assert _wait(lambda: _arm_pixels(page) > 500, 60), \
             _seen(page, tmp_path, "choosing the base frame does not draw the arm")
         assert _wait(lambda: blank.count() == 0, 10)
@@ -146,7 +174,9 @@ def test_a_fixed_frame_that_is_no_frame_draws_no_arm_and_the_page_says_why(brows
 
 def test_without_joint_state_publisher_the_page_has_no_sliders(browser, tmp_path):
     """No joint_state_publisher(_gui) in the launch file: no slider window in ROS, BK620 in the
-    terminal; the page has no joint sliders either, says why, and lists the same findings."""
+    terminal; the page has no joint sliders either, says why, and lists the same findings. With
+    step 6 done, RViz draws the base alone: nothing publishes /joint_states, so robot_state_publisher
+    sends no transform for the moving links ("No transform from [bras] to [base]")."""
     package = _copy_tutorial(tmp_path)
     _without_lines(package / "launch" / "affichage.launch.py", "joint_state_publisher_gui")
     launched = Launched(browser, tmp_path, package, [], "en")
@@ -156,8 +186,12 @@ def test_without_joint_state_publisher_the_page_has_no_sliders(browser, tmp_path
         assert page.get_by_text("coude =", exact=True).count() == 0  # the joints' boxes under their sliders
         assert page.get_by_role("button", name="Random pose").count() == 0 or \
             not page.get_by_role("button", name="Random pose").is_visible()
-        assert _wait(lambda: _arm_pixels(page) > 500, 60), \
-            _seen(page, tmp_path, "the arm is not drawn (its joints at 0 without a joint_state_publisher)")
+        _step_six(page)
+        blank = page.locator("[data-banner='blank']")
+        assert _wait(lambda: blank.count() == 1 and "No transform from [bras] to [base]" in blank.inner_text(), 30), \
+            page.inner_text("body")
+        time.sleep(3.0)
+        assert _arm_pixels(page) == 0, _seen(page, tmp_path, "moving links drawn without /joint_states")
         codes = launched.page_codes()
     finally:
         out, err = launched.stop()
@@ -256,6 +290,7 @@ def test_a_rebuild_shows_what_the_install_tree_now_holds(browser, tmp_path):
     launched = Launched(browser, tmp_path, package, [], "en")
     try:
         page = launched.page
+        _step_six(page)  # RViz set up in the page: it stays so across the rebuilds
         assert _wait(lambda: _arm_pixels(page) > 500, 60), _seen(page, tmp_path, "the arm is not drawn")
         setup = package / "setup.py"
         before = _without_lines(setup, "'urdf'")

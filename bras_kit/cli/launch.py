@@ -278,6 +278,8 @@ def _open_page(args: argparse.Namespace, evaluation, package_paths: tuple[str, .
 
     viewer = Viewer(Source(robot=evaluation.robot, package_paths=package_paths), port=args.port, lang=args.lang,
                     watch=False, launch=evaluation)
+    if viewer.rviz_state is not None:  # Save Config in the page: the terminal says what makes the launch use it
+        viewer.rviz_state.on_saved = lambda relative, package: _print_rviz_lines(relative, package, args.lang)
     try:
         bus: Bus | None = Bus.listen()
     except BrasKitError as exc:  # no Zenoh: the launch is shown, bras-kit run cannot publish into it
@@ -292,6 +294,21 @@ def _open_page(args: argparse.Namespace, evaluation, package_paths: tuple[str, .
         # a run asks which joints the page moves, and names those it publishes that are not among them
         bus.offer_robot(lambda: LaunchRobot(evaluation.package, tuple(viewer.model.tree.dof)))
     return viewer, bus
+
+
+def _print_rviz_lines(relative: str, package: str, lang: str | None) -> None:
+    """After Save Config: the data_files entry that installs the file, and the rviz2 argument that
+    loads it (RViz reads -d, rviz2's --display-config)."""
+    from ..core.i18n import say
+
+    name = os.path.basename(relative)
+    print(say(M("{file} saved. For ros2 launch to open RViz with it, add to setup.py's data_files:",
+                file=relative), lang), file=sys.stderr)
+    print("    (os.path.join('share', package_name, 'rviz'), glob('rviz/*.rviz')),", file=sys.stderr)
+    print(say(M("and to the rviz2 Node of the launch file:"), lang), file=sys.stderr)
+    print(f"    arguments=['-d', os.path.join(get_package_share_directory('{for_terminal(package)}'), 'rviz', "
+          f"'{for_terminal(name)}')],", file=sys.stderr)
+    print(say(M("then build again (colcon build) and launch again."), lang), file=sys.stderr, flush=True)
 
 
 def _close(viewer, bus) -> None:
@@ -336,7 +353,10 @@ def _live(args: argparse.Namespace, launch_file: str | None, arguments: dict[str
     def changed() -> bool:
         nonlocal stamps
         now = package_stamps(args.target)
-        saved[:] = changed_files(stamps, now)
+        written = viewer.rviz_state.written if viewer.rviz_state is not None else set()
+        files = changed_files(stamps, now)
+        saved[:] = [p for p in files if os.path.abspath(p) not in written]  # Save Config's own file: no save
+        written.difference_update(os.path.abspath(p) for p in files)
         stamps = now
         return bool(saved)
 

@@ -48,6 +48,8 @@ class LaunchEvaluation:
     own_nodes: list[Any] = field(default_factory=list)  # the package's own PlannedNodes
     results: list[FileResult] = field(default_factory=list)  # every finding, by file
     checked: bool = False  # the results are in (the page may show the robot before)
+    rviz: Any = None  # the RvizConfig rviz2 opens with (ros.rviz.started), None when no rviz2 is started
+    rviz_file: str | None = None  # the -d file it was read from (None: RViz's default)
 
     @property
     def package(self) -> str:
@@ -100,6 +102,9 @@ def evaluate_launch(root: str, install_base: str, launch_file: str | None, argum
     if launched.build.failure is not None or plan is None:
         return evaluation
     evaluation.fixed_frame = rviz_fixed_frame(plan)
+    from .rviz.started import started_config
+
+    evaluation.rviz, evaluation.rviz_file = started_config(plan) or (None, None)
     evaluation.sliders = any(node.package in JOINT_STATE_PUBLISHERS for node in plan.nodes)
     evaluation.own_nodes = [node for node in plan.nodes if node.package == launched.build.package]
     if launched.description is not None and plan.failure is None:

@@ -211,6 +211,7 @@ class Session:
         self._placed: tuple[np.ndarray, np.ndarray] | None = None  # where it was put: position, look_at
         self._sent: np.ndarray | None = None  # the link poses the browser has, to send only changes
         self._plain_light: Any = None  # the ambient light of a heavy robot (None: viser's lighting)
+        self.rviz_panel: Any = None  # bras-kit launch with rviz2: RViz's own panel (view.rviz_panel)
         self._build_panel()
         self.show_model(viewer.model)
         client.camera.on_update(self._camera_reported)
@@ -294,6 +295,12 @@ class Session:
         for handle in (self.show_visual, self.show_collision, self.show_frames, self.show_names, self.show_grid):
             handle.on_update(lambda _event: self._apply_visibility())
         self.fixed.on_update(lambda _event: self._choose_fixed_frame())
+        if self.viewer.rviz_on():  # RViz's own panel sets the Fixed Frame, the TF and Grid displays
+            from .rviz_panel import RvizPanel
+
+            for handle in (self.fixed, self.show_frames, self.show_grid):
+                handle.visible = False
+            self.rviz_panel = RvizPanel(self)
         with gui.add_folder(s(M("Joints")), order=2):
             gui.add_html(_HIDE_SLIDER_BOXES)
             self.joint_folder = gui.add_folder(s(M("Sliders")))
@@ -373,6 +380,8 @@ class Session:
                 self._collision_nodes.append(node)
             links = tuple(model.tree.links)
             choices = links
+            if self.rviz_panel is not None:
+                self.fixed_name = self.viewer.rviz.fixed_frame
             if self.fixed_name in links:
                 self.fixed_frame = links.index(self.fixed_name)
             elif self.viewer.launch is not None and self.fixed_name:
@@ -402,6 +411,8 @@ class Session:
                     self._model_gui.append(self.client.gui.add_markdown(self.s(M("This robot has no movable joint."))))
             self.past_limits.visible = sliders
             self.buttons.visible = sliders
+            if self.rviz_panel is not None:
+                self.rviz_panel.rebuild()
             self._apply_visibility()
             self.update()
         self.show_checks()
@@ -459,13 +470,16 @@ class Session:
         if viewer.error is not None:
             rows.append(f"<p style='color:{ERROR_RED}'><b>{self.w(M('The file cannot be read'))}</b>: "
                         f"{html.escape(say(viewer.error, self.lang))}</p>")
-        for file, finding in viewer.checks:
+        for file, finding in sorted(viewer.checks, key=_what_matters):
             colour = {"error": ERROR_RED, "warning": "#e65100"}.get(finding.severity, "#455a64")
             line = f":{finding.line}" if finding.line else ""
             place = f"{html.escape(file)}{line} " if file else ""
+            hint = finding.hint
+            fix = "" if hint is None else \
+                f"<br><small data-hint='{finding.code}'>&rarr; {html.escape(say(hint, self.lang))}</small>"
             rows.append(f"<p style='margin:2px 0' data-finding='{finding.code}'><b style='color:{colour}'>"
                         f"{finding.code}</b>{'' if file else line} {place}"
-                        f"{html.escape(say(finding.message, self.lang))}</p>")
+                        f"{html.escape(say(finding.message, self.lang))}{fix}</p>")
         if checking:  # a launch's checks still running: neither "No finding" nor a count yet
             rows = [f"<p><i>{self.w(M('checking the package...'))}</i></p>"]
         elif not rows:
@@ -649,6 +663,9 @@ class Session:
             if self.show_names.value and not self._labels:
                 self._make_labels()
                 self.update()  # places the new names
+            if self.rviz_panel is not None:
+                self._apply_rviz()
+                return
             drawn = self.blank() is None  # as RViz: no robot, or no Fixed Frame to draw it in
             for node in self._visual_nodes:
                 node.visible = bool(self.show_visual.value)
@@ -660,6 +677,44 @@ class Session:
             for label in self._labels:
                 label.visible = bool(self.show_names.value) and drawn
             self.grid.visible = bool(self.show_grid.value)
+
+    def _apply_rviz(self) -> None:
+        """What RViz draws: each link the RobotModel places, the axes of each frame the TF display
+        places, the Grid while a Grid display is on (ros.rviz.config.shown)."""
+        from ..ros.rviz.config import GRID, ROBOT_MODEL, TF
+
+        seen = self.viewer.rviz_shown()
+        links = list(self.model.tree.links)
+        drawn = set(seen.links) if self.viewer.launch.blank() is None else set()
+        axes = {f for d in seen.displays if d.display.kind == TF for f in d.drawn}
+        model_on = any(d.display.kind == ROBOT_MODEL and d.drawn for d in seen.displays)
+        for k, frame in enumerate(self._frames):
+            frame.visible = links[k] in drawn or links[k] in axes
+            frame.show_axes = links[k] in axes
+        for node, mesh in zip(self._visual_nodes, self.model.visuals):
+            node.visible = bool(self.show_visual.value) and model_on and links[mesh.link] in drawn
+        for node, mesh in zip(self._collision_nodes, self.model.collisions):
+            node.visible = bool(self.show_collision.value) and model_on and links[mesh.link] in drawn
+        for k, label in enumerate(self._labels):
+            label.visible = bool(self.show_names.value) and links[k] in axes
+        self.grid.visible = any(d.display.kind == GRID and d.drawn for d in seen.displays)
+
+    def rviz_changed(self, rebuild: bool) -> None:
+        """The learner changed RViz's configuration (here or in another page): show what RViz shows."""
+        if self.rviz_panel is None:
+            return
+        with self._lock, self.client.atomic():
+            frame = self.viewer.rviz.fixed_frame
+            links = list(self.model.tree.links)
+            self.fixed_name = frame
+            self.fixed_frame = links.index(frame) if frame in links else 0
+            if rebuild:
+                self.rviz_panel.rebuild()
+            else:
+                self.rviz_panel.show()
+            self.update()
+            self._apply_visibility()
+        self.show_checks()
 
     def _choose_fixed_frame(self) -> None:
         links = list(self.model.tree.links)
@@ -678,7 +733,21 @@ class Session:
         launch = self.viewer.launch
         if launch is None:
             return None
+        if self.rviz_panel is not None:
+            return launch.blank() or self.viewer.rviz_state.why(self.viewer.rviz_shown())
         return launch.blank() or launch.frame_missing(self.fixed_name)
+
+
+_SEVERITY_RANK = {"error": 0, "warning": 1, "info": 2}
+# what decides what RViz shows of the launch: its configuration (BK610-BK613), /joint_states (BK620)
+_VIEW_CODES = ("BK61", "BK62")
+
+
+def _what_matters(check: tuple[str, Any]) -> tuple[int, int]:
+    """The page's order of findings: errors, warnings, infos; within each, those about what RViz
+    shows first (sorted() keeps the terminal's order otherwise)."""
+    finding = check[1]
+    return _SEVERITY_RANK.get(finding.severity, 3), 0 if str(finding.code).startswith(_VIEW_CODES) else 1
 
 
 def _moved_labels(places: np.ndarray, sent: list[tuple[float, float, float]]) -> np.ndarray:

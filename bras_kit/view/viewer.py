@@ -87,6 +87,7 @@ class Viewer:
         # bras-kit launch: the one evaluation the terminal printed, shown as RViz would show it
         # (its robot, findings, Fixed Frame and slider window); None for bras-kit view
         self.launch: LaunchEvaluation | None = None
+        self.rviz_state: Any = None  # bras-kit launch: RViz's configuration as the learner edits it (view.rviz_state)
         self.reloads = 0
         self.loaded_at = time.time()
         self.model: ViewModel = self._build(source.load())  # a first model that cannot load is an error
@@ -136,6 +137,12 @@ class Viewer:
         values = {n: float(p) for n, p in zip(names, positions)}
         with self._lock:
             sessions = list(self.sessions.values())
+        state = self.rviz_state
+        if state is not None and not state.heard:  # /joint_states heard: robot_state_publisher moves the links
+            state.heard = True
+            for session in sessions:
+                with contextlib.suppress(Exception):
+                    session.rviz_changed(False)
         for session in sessions:
             with contextlib.suppress(Exception):  # a browser that left mid-frame
                 session.take_joint_state(values)
@@ -157,12 +164,45 @@ class Viewer:
 
     def _take(self, launch: LaunchEvaluation) -> None:
         self.launch = launch
+        if self.rviz_state is None:
+            from .rviz_state import RvizState
+
+            self.rviz_state = RvizState(launch)
+        else:
+            self.rviz_state.take(launch)
         self.fixed_frame = launch.fixed_frame
         self.checks = launch.findings()
         self.checking = not launch.checked
         self.error = None
         if launch.robot_file is not None:
             self.source_label = launch.robot_file
+
+    # -- RViz, as the launch starts it (bras-kit launch) -----------------------------------------
+    def rviz_on(self) -> bool:
+        """Whether the page shows RViz's panel: a launch that starts rviz2."""
+        return self.rviz_state is not None and self.rviz_state.active
+
+    @property
+    def rviz(self) -> Any:
+        return self.rviz_state.config
+
+    def rviz_shown(self) -> Any:
+        return self.rviz_state.shown()
+
+    def rviz_save_name(self) -> str:
+        return str(self.rviz_state.save_name())
+
+    def set_rviz(self, config: Any, rebuild: bool = False, by: Any = None) -> None:  # noqa: ARG002 - who acted
+        """The learner changed RViz's configuration in one page: every page shows it."""
+        with self._lock:
+            self.rviz_state.config = config
+            sessions = list(self.sessions.values())
+        for session in sessions:
+            with contextlib.suppress(Exception):  # a browser that left mid-change
+                session.rviz_changed(rebuild)
+
+    def save_rviz(self, name: str, force: bool) -> Any:
+        return self.rviz_state.save(name, force)
 
     def show_checks(self) -> None:
         """The launch's findings are in (its checks run once the page is open) and said in the

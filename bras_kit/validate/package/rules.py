@@ -372,19 +372,23 @@ def rviz_robot_model_not_shown(pkg: Package) -> Iterator[Hit]:
         parsed = pkg.rviz(source)
         if parsed is None:
             continue
-        data, lines = parsed
-        models = [d for d in _displays(data) if str(d.get("Class", "")).endswith("/RobotModel")]
+        _, lines = parsed
+        # the page's reading, RViz's (bras_kit.ros.rviz.config): every scalar a string, a display
+        # unchecked unless Value/Enabled say so and Enabled read last (display.cpp:277-291), an
+        # unknown Description Source read as Topic (enum_property.cpp:65-73)
+        from ...ros.rviz.config import read_config
+
+        models = [d for d in read_config("\n".join(lines)).displays if d.kind.endswith("/RobotModel")]
         if not models:
             yield _at(source, _rviz_lines(lines, "Displays:"), "missing")
             continue
         model = models[0]
         start = (_rviz_lines(lines, "Class: rviz_default_plugins/RobotModel") or 1) - 1
-        if model.get("Enabled") is False or model.get("Value") is False:
+        if not model.enabled:
             yield _at(source, start + 1, "disabled")
-        if str(model.get("Description Source", "Topic")) != "Topic":
+        if model.description_source != "Topic":
             continue
-        topic = model.get("Description Topic")
-        value = topic.get("Value") if isinstance(topic, dict) else topic
+        value = model.description_topic
         line = _rviz_lines(lines, "Description Topic:", start) or start + 1
         mismatches = _description_topic_mismatches(pkg, source, str(value)) if isinstance(value, str) and value \
             else None
