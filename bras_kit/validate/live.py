@@ -311,3 +311,85 @@ def use_sim_time_without_clock(graph: LiveGraph) -> Iterator[Hit]:
     for node, value in sorted(snap.use_sim_time.items()):
         if value:
             yield _at(node, node=node)
+
+
+# ---------------------------------------------------------------- RViz's arm, from the model of rsp and tf2
+
+STEP_RATE = 5.0  # moves a second under which the arm RViz draws visibly jumps
+STOP_GAP = 1.0  # seconds without a message, at the end of the watch, before the source "stopped"
+
+
+def rviz_replay(graph: LiveGraph) -> Any:
+    """The recorded joint states through robot_state_publisher and RViz (:mod:`bras_kit.ros.rviz.replay`),
+    with the root link as Fixed Frame (the tutorial's step 6 sets it to base). None without a robot."""
+    if graph.robot is None or not graph.snapshot.joint_states:
+        return None
+    from ..core.errors import BrasKitError
+    from ..ros.rviz.replay import Sample, replay
+
+    samples = [Sample(s.received, s.stamp[0] * 1_000_000_000 + s.stamp[1], s.name, s.position)
+               for s in graph.snapshot.joint_states]
+    try:
+        return replay(graph.robot, samples, _root_link(graph.robot) or "", start=graph.snapshot.started)
+    except BrasKitError:
+        return None
+
+
+@live_rule("BK840", "rviz-arm-still", ERROR)
+def rviz_arm_still(graph: LiveGraph) -> Iterator[Hit]:
+    from ..ros.rviz.replay import NAN, SIZES, STAMP, UNKNOWN, ZERO
+
+    seen = rviz_replay(graph)
+    if seen is None or seen.received < 2 or seen.moves > 1 or not seen.reasons:
+        return
+    kind, words, _ = seen.reasons[0]
+    if kind in (SIZES, ZERO, UNKNOWN, NAN):  # BK819, BK814, BK816 and BK841 name these causes
+        return
+    yield _at(JOINT_STATES, "stamp" if kind == STAMP else "", received=seen.received, published=seen.published,
+              reason=words, nodes=_nodes(graph.snapshot.publishers(JOINT_STATES)))
+
+
+@live_rule("BK841", "joint-states-not-finite", ERROR)
+def joint_states_not_finite(graph: LiveGraph) -> Iterator[Hit]:
+    seen = rviz_replay(graph)
+    if seen is None or graph.robot is None:
+        return
+    for joint, (count, value) in sorted(seen.refused.items()):
+        found = graph.robot.joint(joint)
+        link = (found.child if found else "") or ""
+        placed = seen.placed.get(link)
+        yield _at(JOINT_STATES, "never" if placed is not None else "", joint=joint, value=repr(value), count=count,
+                  total=seen.received, link=link, rviz=placed or "")
+
+
+@live_rule("BK842", "joint-states-stopped", ERROR)
+def joint_states_stopped(graph: LiveGraph) -> Iterator[Hit]:
+    snap = graph.snapshot
+    samples = snap.joint_states
+    if len(samples) < 2:
+        return
+    gaps = sorted(b.received - a.received for a, b in zip(samples, samples[1:]))
+    period = gaps[len(gaps) // 2]
+    silent = snap.ended - samples[-1].received
+    if silent > max(STOP_GAP, 5 * period):
+        yield _at(JOINT_STATES, "" if snap.publishers(JOINT_STATES) else "left", seconds=round(silent, 1),
+                  after=round(samples[-1].received - snap.started, 1), count=len(samples))
+
+
+@live_rule("BK843", "rviz-arm-steps", WARNING)
+def rviz_arm_steps(graph: LiveGraph) -> Iterator[Hit]:
+    from ..ros.rviz.replay import STAMP
+
+    seen = rviz_replay(graph)
+    if seen is None or seen.moves < 2 or not seen.reason_of(STAMP) or seen.first_move is None:
+        return
+    span = (seen.last_move or 0.0) - seen.first_move
+    rate = (seen.moves - 1) / span if span > 0 else 0.0
+    # a 20 Hz timer's jitter alone drops about one message in three (a gap of 49.9 ms): only a
+    # rate far under that, with most messages dropped, is the stepping the learner sees
+    if rate >= STEP_RATE or seen.moves > 0.5 * seen.received:
+        return
+    stamps = sorted({s.stamp for s in graph.snapshot.joint_states})
+    steps = sorted((b[0] - a[0]) + (b[1] - a[1]) * 1e-9 for a, b in zip(stamps, stamps[1:]))
+    yield _at(JOINT_STATES, moves=seen.moves, received=seen.received, rate=round(rate, 1),
+              step=round(steps[len(steps) // 2], 3) if steps else 0)

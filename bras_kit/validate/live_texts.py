@@ -278,3 +278,74 @@ With `use_sim_time` true a node reads its time from `/clock` (a simulator, `ros2
 --clock`). Without anything on `/clock` its time stays at zero: its timers never fire and what it
 stamps is stamped zero, so robot_state_publisher publishes no transform and the arm stays still.""",
 )
+describe(
+    "BK840",
+    title="robot_state_publisher turns almost none of /joint_states into transforms",
+    message={
+        "stamp": "robot_state_publisher turns {published} of the {received} /joint_states messages into "
+                 "transforms, their stamps do not advance ({reason}): RViz's arm stays still",
+        "": "robot_state_publisher turns {published} of the {received} /joint_states messages into "
+            "transforms ({reason}): RViz's arm stays still",
+    },
+    hint={
+        "stamp": "stamp each message when it is sent: msg.header.stamp = self.get_clock().now().to_msg()",
+        "": "send messages robot_state_publisher takes: the URDF's joint names, one position each, "
+            "stamped with self.get_clock().now().to_msg()",
+    },
+    explanation="""\
+`doctor --ros` hands every JointState it received to a model of robot_state_publisher 3.3.3
+(`callbackJointState`, src/robot_state_publisher.cpp:300-363). A message goes out as transforms
+only when its stamp is at least one publish interval (50 ms at the default 20 Hz) after the
+stamp last used for its joints. A stamp made once and reused, or one that is set only at the
+start, passes the first time and never again: the arm RViz draws stays where the first message
+put it, however the angles change.""",
+)
+describe(
+    "BK841",
+    title="/joint_states carries NaN or infinite positions",
+    message={
+        "never": "{count} of {total} /joint_states messages give '{joint}' = {value}: tf2 refuses the transform "
+                 "of '{link}' (TF_NAN_INPUT) and RViz cannot place it ({rviz})",
+        "": "{count} of {total} /joint_states messages give '{joint}' = {value}: tf2 refuses the transform of "
+            "'{link}' (TF_NAN_INPUT) and RViz keeps it at its last valid angle",
+    },
+    hint="give '{joint}' a finite angle in radians (check the computation: a division by zero, math.acos "
+         "of a value past 1, an unset variable)",
+    explanation="""\
+robot_state_publisher does not check the values it receives: it computes the transform and
+publishes it. tf2 refuses every transform holding a NaN (tf2/src/buffer_core.cpp:235-243, error
+TF_NAN_INPUT); an infinite angle gives NaN once turned into a rotation. RViz keeps the link at the
+last transform it accepted, or cannot place it at all when none came.""",
+)
+describe(
+    "BK842",
+    title="/joint_states stopped during the watch",
+    message={
+        "left": "the last /joint_states message came {seconds} s before the end of the watch ({after} s into "
+                "it, {count} messages) and nothing publishes /joint_states any more: its node stopped or "
+                "crashed, RViz's arm is still",
+        "": "the last /joint_states message came {seconds} s before the end of the watch ({after} s into it, "
+            "{count} messages): its node stopped publishing, RViz's arm is still",
+    },
+    hint={
+        "left": "look at the node's terminal for its error (a traceback ends the node), fix it and start it again",
+        "": "look at the node's timer and its terminal: it publishes no more",
+    },
+    explanation="""\
+The messages came at first, then stopped before `doctor --ros` finished watching. When the
+publisher is also gone from the graph, its process ended (an exception in a callback ends
+`rclpy.spin`). RViz keeps the arm at the last transforms it received.""",
+)
+describe(
+    "BK843",
+    title="robot_state_publisher moves RViz's arm in steps",
+    message="robot_state_publisher turns only {moves} of the {received} /joint_states messages into transforms "
+            "({rate} a second): the stamps advance in steps of {step} s, and it waits one publish interval "
+            "between two stamps",
+    hint="stamp with the full time, seconds and nanoseconds: msg.header.stamp = self.get_clock().now().to_msg()",
+    explanation="""\
+robot_state_publisher publishes a joint's transform only when the stamp is at least one publish
+interval newer than the last it published for that joint (src/robot_state_publisher.cpp:334-340).
+Stamps that advance in steps (whole seconds, a counter) let through one message per step: the
+arm RViz draws jumps from pose to pose.""",
+)
