@@ -121,3 +121,61 @@ def test_sizes_zero_stamps_unknown_names_are_named_once_by_their_own_rule():
     assert codes(look([(at, T0 + at, ("epaule", "coude"), (0.1,)) for at in at_20_hz()]), "error") == ["BK819"]
     assert codes(look([tutorial(at, 0.0) for at in at_20_hz()]), "error") == ["BK814"]
     assert "BK840" not in codes(look([tutorial(at, names=("shoulder", "elbow")) for at in at_20_hz()]))
+
+
+def test_a_typo_topic_is_named_not_a_missing_node():
+    typo = {"/joint_state": {"types": ["sensor_msgs/msg/JointState"], "publishers": [NODE], "subscribers": []},
+            "/joint_states": {"types": ["sensor_msgs/msg/JointState"], "publishers": [],
+                              "subscribers": [{**RSP, "reliability": "best_effort", "durability": "volatile"}]}}
+    snapshot = look([], topics=typo)
+    assert codes(snapshot, "error") == ["BK810"]
+    assert "publish on /joint_state:" in message(snapshot, "BK810")
+
+
+def test_a_robot_under_another_namespace_is_named_with_its_topic():
+    moved = {"/robot_description": None,
+             "/arm/robot_description": {"types": ["std_msgs/msg/String"],
+                                        "publishers": [{**RSP, "node": "/arm/robot_state_publisher"}],
+                                        "subscribers": []}}
+    snapshot = look([tutorial(at) for at in at_20_hz()], topics=moved, descriptions=[])
+    assert "BK801" in codes(snapshot, "error")
+    assert "/arm/robot_state_publisher" in message(snapshot, "BK801") and "/arm/robot_description" in message(
+        snapshot, "BK801")
+
+
+def test_the_wrong_type_on_joint_states_is_named_not_a_silent_timer():
+    wrong = {"/joint_states": {"types": ["std_msgs/msg/Float64MultiArray"], "publishers": [NODE], "subscribers": []}}
+    snapshot = look([], topics=wrong)
+    assert codes(snapshot, "error") == ["BK812"]
+    assert "std_msgs/msg/Float64MultiArray" in message(snapshot, "BK812")
+
+
+WRIST = URDF.replace("</robot>", """  <link name="main"/>
+  <joint name="poignet" type="revolute"><parent link="avant_bras"/><child link="main"/>
+    <origin xyz="0 0 0.5"/><axis xyz="0 1 0"/><limit effort="5" lower="-1.5" upper="1.5" velocity="1"/></joint>
+</robot>""")
+WRIST_NODE = {"node": "/animation_poignet", "reliability": "reliable", "durability": "volatile"}
+
+
+def test_a_second_node_animating_the_wrist_is_not_a_jumping_arm():
+    messages = []
+    for at in at_20_hz():
+        messages.append(tutorial(at))
+        messages.append((at + 0.01, T0 + at + 0.01, ("poignet",), (0.5 * math.sin(at),)))
+    snapshot = look(messages, publishers=(NODE, WRIST_NODE),
+                    descriptions=[{"text": WRIST, "received": T0 + 0.1, "length": len(WRIST)}])
+    assert [c for c in codes(snapshot) if c.startswith("BK8")] == []  # (BK308: the hand has no visual)
+
+
+def test_two_sources_of_the_same_joints_still_jump():
+    messages = []
+    for at in at_20_hz():
+        messages.append(tutorial(at))
+        messages.append((at + 0.01, T0 + at + 0.01, ("epaule", "coude"), (0.0, 0.0)))
+    assert "BK811" in codes(look(messages, publishers=(NODE, WRIST_NODE)), "warning")
+
+
+def test_old_stamps_are_said_to_be_drawn_still():
+    snapshot = look([tutorial(at, T0 + at - 30) for at in at_20_hz()])
+    assert codes(snapshot) == ["BK815"]
+    assert "RViz still draws the latest transforms" in message(snapshot, "BK815")

@@ -91,8 +91,32 @@ def graph_empty(graph: LiveGraph) -> Iterator[Hit]:
 def description_not_published(graph: LiveGraph) -> Iterator[Hit]:
     snap = graph.snapshot
     if snap.nodes and not snap.publishers(DESCRIPTION) and not snap.descriptions:
+        near = near_topics(snap, DESCRIPTION, STRING)
+        if near:  # another namespace, a remap, a typo: the graph shows where it went
+            topic, nodes = near[0]
+            yield _at(DESCRIPTION, "near", topic=topic, nodes=nodes)
+            return
         readers = _nodes(snap.subscribers(DESCRIPTION))
         yield _at(DESCRIPTION, "readers" if readers else "", readers=readers, nodes=list(snap.nodes))
+
+
+STRING = "std_msgs/msg/String"
+JOINT_STATE = "sensor_msgs/msg/JointState"
+
+
+def near_topics(snap: Snapshot, expected: str, kind: str) -> list[tuple[str, list[str]]]:
+    """Published topics that look meant for ``expected``: the same last name under another namespace,
+    a name a typo away, or (for JointState, a type no other topic of the tutorial carries) any name."""
+    want = expected.rsplit("/", 1)[-1]
+    found = []
+    for name, topic in sorted(snap.topics.items()):
+        if name == expected or not topic.publishers:
+            continue
+        last = name.rsplit("/", 1)[-1]
+        close = last == want or difflib.SequenceMatcher(None, last, want).ratio() >= 0.8
+        if (kind in topic.types and (close or kind == JOINT_STATE)) or (close and not topic.types):
+            found.append((name, _nodes(topic.publishers)))
+    return found
 
 
 @live_rule("BK802", "robot-description-volatile", ERROR)
@@ -142,6 +166,11 @@ def joint_states_not_published(graph: LiveGraph) -> Iterator[Hit]:
     snap = graph.snapshot
     if not snap.nodes or snap.publishers(JOINT_STATES) or snap.joint_states:
         return
+    near = near_topics(snap, JOINT_STATES, JOINT_STATE)
+    if near:  # "start your node" would be wrong: it runs, and publishes elsewhere
+        topic, nodes = near[0]
+        yield _at(JOINT_STATES, "near", topic=topic, nodes=nodes)
+        return
     robot = graph.robot
     moving = [j.child for j in robot.movable_joints() if j.child] if robot else []
     root = _root_link(robot)
@@ -160,6 +189,11 @@ def _root_link(robot: Robot | None) -> str | None:
 @live_rule("BK811", "joint-states-several-publishers", WARNING)
 def joint_states_several_publishers(graph: LiveGraph) -> Iterator[Hit]:
     nodes = _nodes(graph.snapshot.publishers(JOINT_STATES))
+    sets = {frozenset(s.name) for s in graph.snapshot.joint_states}
+    if len(sets) >= 2 and all(not (a & b) for a in sets for b in sets if a != b):
+        # each source drives joints of its own (a second node for the wrist): robot_state_publisher
+        # keeps a stamp per joint (src/robot_state_publisher.cpp:326-329, 359-361), nothing jumps
+        return
     if len(nodes) >= 2:
         slider = [n for n in nodes if n.rsplit("/", 1)[-1].startswith(SLIDER_NODE)]
         yield _at(JOINT_STATES, "slider" if slider else "", nodes=nodes, n=len(nodes),
@@ -170,6 +204,10 @@ def joint_states_several_publishers(graph: LiveGraph) -> Iterator[Hit]:
 def joint_states_not_received(graph: LiveGraph) -> Iterator[Hit]:
     snap = graph.snapshot
     publishers = snap.publishers(JOINT_STATES)
+    types = [t for t in snap.topics[JOINT_STATES].types if t != JOINT_STATE] if publishers else []
+    if publishers and types and not snap.joint_states:  # the probe reads JointState only, as rsp does
+        yield _at(JOINT_STATES, "type", nodes=_nodes(publishers), types=types)
+        return
     if publishers and not snap.joint_states:
         sim = sorted(n for n in _nodes(publishers) if snap.use_sim_time.get(n))
         no_clock = not snap.publishers(CLOCK)

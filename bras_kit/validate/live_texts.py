@@ -32,12 +32,18 @@ describe(
     "BK801",
     title="nothing publishes /robot_description",
     message={
+        "near": "nothing publishes /robot_description, but {nodes} publish {topic}: RViz's RobotModel reads "
+                "/robot_description unless its Description Topic says otherwise",
         "readers": "nothing publishes /robot_description, yet {readers} wait for it: RViz stays empty "
                    "(\"Waiting for robot_description...\" is not a hang: nothing will come)",
         "": "nothing publishes /robot_description (nodes seen: {nodes}): RViz's RobotModel has no robot to show",
     },
-    hint="start robot_state_publisher with the URDF as its robot_description parameter: the tutorial's "
-         "launch file does it (ros2 launch bras_description affichage.launch.py)",
+    hint={
+        "near": "set the RobotModel's Description Topic to {topic} in RViz, or start robot_state_publisher "
+                "without the namespace or remapping that moved it",
+        "": "start robot_state_publisher with the URDF as its robot_description parameter: the tutorial's "
+            "launch file does it (ros2 launch bras_description affichage.launch.py)",
+    },
     explanation="""\
 RViz's RobotModel display reads the robot from the topic `/robot_description`, which
 robot_state_publisher publishes from its `robot_description` parameter. When it is not running
@@ -92,12 +98,18 @@ describe(
     "BK810",
     title="nothing publishes /joint_states",
     message={
+        "near": "nothing publishes /joint_states, but {nodes} publish on {topic}: robot_state_publisher "
+                "reads /joint_states only, the arm does not move",
         "links": "nothing publishes /joint_states: robot_state_publisher publishes no transform for the moving "
                  "links, RViz says \"No transform from [{link}] to [{root}]\" and the arm does not move",
         "": "nothing publishes /joint_states: the arm does not move",
     },
-    hint="start the slider window (ros2 run joint_state_publisher_gui joint_state_publisher_gui) or your "
-         "node (ros2 run bras_description animation), in a terminal with the same ROS_DOMAIN_ID",
+    hint={
+        "near": "publish on 'joint_states' (self.create_publisher(JointState, 'joint_states', 10)), in the "
+                "namespace of robot_state_publisher",
+        "": "start the slider window (ros2 run joint_state_publisher_gui joint_state_publisher_gui) or your "
+            "node (ros2 run bras_description animation), in a terminal with the same ROS_DOMAIN_ID",
+    },
     explanation="""\
 robot_state_publisher turns the angles it receives on `/joint_states` into the transforms of the
 moving links. With nobody publishing them, only the fixed links have a transform: RViz draws
@@ -127,11 +139,15 @@ describe(
     "BK812",
     title="/joint_states has publishers but no message came",
     message={
+        "type": "{nodes} publish {types} on /joint_states, not sensor_msgs/msg/JointState: "
+                "robot_state_publisher cannot read them, the arm does not move",
         "sim": "{nodes} publish /joint_states but sent nothing in {seconds} s: {sim} use simulated time and "
                "nothing publishes /clock, so their timers never fire",
         "": "{nodes} publish /joint_states but sent nothing in {seconds} s: the arm does not move",
     },
     hint={
+        "type": "publish sensor_msgs.msg.JointState on /joint_states (from sensor_msgs.msg import JointState), "
+                "with the URDF's joint names in msg.name",
         "sim": "set use_sim_time to false (or start what publishes /clock)",
         "": "make sure the node's timer runs: rclpy.spin(node) after creating it, and a timer callback that "
             "calls publish",
@@ -173,18 +189,21 @@ describe(
     "BK815",
     title="/joint_states stamps are far from this computer's clock",
     message={
-        "behind": "/joint_states messages are stamped {seconds} s before this computer's clock: RViz may "
-                  "drop the transforms as too old",
+        "behind": "/joint_states messages are stamped {seconds} s before this computer's clock: RViz still "
+                  "draws the latest transforms, but what looks them up at the current time fails",
         "ahead": "/joint_states messages are stamped {seconds} s after this computer's clock: RViz may "
                  "wait for them or drop them",
     },
     hint="stamp with the node's clock, self.get_clock().now().to_msg(), and keep every node on the same time "
          "(use_sim_time on all of them or on none)",
     explanation="""\
-The transforms robot_state_publisher publishes carry the stamp of the joint states. RViz looks
-transforms up near its own clock; stamps far in the past or the future give "extrapolation"
-warnings and a still or missing arm. A stamp made by hand (a counter, a clock of another
-machine) or simulated time on only some of the nodes cause it.""",
+The transforms robot_state_publisher publishes carry the stamp of the joint states. tf2 keeps
+the latest of each frame however old (tf2/src/cache.cpp:255-290 prunes by the newest it holds,
+not by the clock), and RViz's RobotModel asks for the latest (rviz_common frame_manager.cpp,
+SyncOff): old stamps that advance still move the arm. What asks for the current time (a tf2
+lookup in a node, RViz's displays in synchronised modes) gets an "extrapolation" error. A stamp
+made by hand (a counter, a clock of another machine) or simulated time on only some of the nodes
+cause it.""",
 )
 describe(
     "BK816",
