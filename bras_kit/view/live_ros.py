@@ -3,7 +3,9 @@
 The probe (:mod:`bras_kit.live._probe`, stream mode) runs beside the viewer and prints JSON lines:
 the text of /robot_description when it arrives (the page shows that robot, and shows the new one
 when it is replaced), every JointState as it arrives (every page moves at once, as
-robot_state_publisher turns it into TF for RViz), and the graph every two seconds (the doctor's
+robot_state_publisher turns it into TF for RViz, and only as it does: each message goes through
+the model of robot_state_publisher 3.3.3, :mod:`bras_kit.ros.rviz.frames`, so a message it ignores
+or a stamp that does not advance leaves the arm where RViz leaves it), and the graph every two seconds (the doctor's
 findings, the same rules as ``bras-kit doctor --ros``, on the page's "Checks"). A record that
 does not fit, a node leaving, a description that is not a URDF: each shows as a finding, the
 page keeps the last robot it could draw, never a traceback.
@@ -19,6 +21,7 @@ from __future__ import annotations
 
 import collections
 import contextlib
+import math
 import subprocess
 import threading
 import time
@@ -47,6 +50,8 @@ class RosFeed:
         self.robot: Robot | None = None
         self.viewer: Any = None
         self.latencies: collections.deque[float] = collections.deque(maxlen=1000)  # s, publish -> page
+        self._rsp: Any = None  # robot_state_publisher as modelled, for self._rsp_robot
+        self._rsp_robot: Robot | None = None
         self._robot_ready = threading.Event()
         self._lock = threading.Lock()
         self._thread: threading.Thread | None = None
@@ -104,10 +109,34 @@ class RosFeed:
         if viewer is not None:
             pairs = [(n, float(p)) for n, p in zip(names, positions)
                      if isinstance(n, str) and isinstance(p, (int, float)) and not isinstance(p, bool)]
-            viewer.show_joint_state([n for n, _ in pairs], [p for _, p in pairs])
+            moved = self._as_rsp_publishes(record, pairs)
+            if moved:
+                viewer.show_joint_state(list(moved), list(moved.values()))
             sent = record.get("sent")
             if isinstance(sent, int) and sent > 0:
                 self.latencies.append(time.time() - sent * 1e-9)
+
+    def _as_rsp_publishes(self, record: dict[str, Any], pairs: list[tuple[str, float]]) -> dict[str, float]:
+        """The joint values robot_state_publisher would turn into transforms for this message, and
+        tf2 keep (none when it ignores the message): what RViz's arm does with it."""
+        from ..ros.rviz.frames import JointStateIn, RobotStatePublisher
+
+        robot = self.robot
+        if robot is None:
+            return dict(pairs)
+        if self._rsp is None or self._rsp_robot is not robot:  # a new description: a new node
+            self._rsp, self._rsp_robot = RobotStatePublisher(robot), robot
+        stamp, received = record.get("stamp"), record.get("received")
+        if not (isinstance(stamp, list) and len(stamp) == 2 and all(isinstance(v, int) for v in stamp)):
+            return {}
+        names = tuple(n if isinstance(n, str) else "" for n in record["name"])
+        positions = tuple(float(p) if isinstance(p, (int, float)) and not isinstance(p, bool) else math.nan
+                          for p in record["position"])
+        got = self._rsp.on_joint_state(JointStateIn(
+            stamp[0] * 1_000_000_000 + stamp[1], names, positions,
+            received_ns=int(received * 1e9) if isinstance(received, (int, float)) else None))
+        movable = {j.name for j in robot.movable_joints()}
+        return {tf.joint: tf.position for tf in got.published if not tf.nan and tf.joint in movable}
 
     def _description(self, record: dict[str, Any]) -> None:
         from ..live.doctor import robot_of
