@@ -179,3 +179,17 @@ def test_old_stamps_are_said_to_be_drawn_still():
     snapshot = look([tutorial(at, T0 + at - 30) for at in at_20_hz()])
     assert codes(snapshot) == ["BK815"]
     assert "RViz still draws the latest transforms" in message(snapshot, "BK815")
+
+
+def test_degrees_where_radians_are_meant_are_named_as_degrees():
+    messages = [(at, T0 + at, ("epaule", "coude"), (math.degrees(0.8 * math.sin(at)), math.degrees(0.1)))
+                for at in at_20_hz()]
+    snapshot = look(messages)
+    found = [f for r in diagnose(snapshot) for f in r.findings]
+    assert [f.code for f in found] == ["BK818", "BK818"]  # coude's 5.7 is past 2 rad too: degrees both
+    assert all("a number of degrees" in str(f.message) for f in found)
+
+
+def test_radians_past_the_limits_stay_limit_overruns():
+    snapshot = look([(at, T0 + at, ("epaule", "coude"), (2.4 * math.sin(at), 0.1)) for at in at_20_hz()])
+    assert codes(snapshot) == ["BK818"] and "above its upper limit" in message(snapshot, "BK818")

@@ -307,10 +307,32 @@ def joint_states_past_limits(graph: LiveGraph) -> Iterator[Hit]:
             excess = max(lower - value, value - upper)
             if excess > 1e-9 and excess > worst.get(name, (0.0, 0.0, 0.0))[0]:
                 worst[name] = (excess, value, lower if value < lower else upper)
+    degrees = _in_degrees(graph.robot, graph.snapshot.joint_states)
     for name, (excess, value, bound) in sorted(worst.items()):
         lower, upper = graph.robot.joint(name).bounds()  # type: ignore[union-attr]
+        if degrees:  # the limit is not the mistake: the unit is
+            yield _at(JOINT_STATES, "degrees", joint=name, value=round(value, 3),
+                      radians=round(math.radians(value), 3), lower=lower, upper=upper, bound=bound,
+                      excess=round(excess, 3))
+            continue
         yield _at(JOINT_STATES, "lower" if value < bound else "upper", joint=name, value=round(value, 3),
                   bound=bound, excess=round(excess, 3), lower=lower, upper=upper)
+
+
+def _in_degrees(robot: Robot, samples: Iterable[Any]) -> bool:
+    """Angles that read as degrees: some past a full turn (2 pi rad), and every value of every
+    revolute joint within its limits once converted to radians (URDF's unit)."""
+    past_a_turn = False
+    for sample in samples:
+        for name, value in zip(sample.name, sample.position):
+            joint = robot.joint(name)
+            if joint is None or joint.type != "revolute" or not joint.movable or not math.isfinite(value):
+                continue
+            lower, upper = joint.bounds()
+            if not lower - 1e-6 <= math.radians(value) <= upper + 1e-6:
+                return False
+            past_a_turn = past_a_turn or abs(value) > 2 * math.pi
+    return past_a_turn
 
 
 @live_rule("BK819", "joint-states-names-and-positions-differ", ERROR)

@@ -240,11 +240,16 @@ describe(
     "BK818",
     title="/joint_states positions are past the joint limits",
     message={
+        "degrees": "joint '{joint}' reaches {value}, a number of degrees: read as radians it is past its "
+                   "limit {bound}, as degrees ({radians} rad) it is within {lower}..{upper} rad",
         "upper": "joint '{joint}' reaches {value} rad, {excess} rad above its upper limit {bound}",
         "lower": "joint '{joint}' reaches {value} rad, {excess} rad below its lower limit {bound}",
     },
-    hint="stay within {lower}..{upper} rad (the <limit> of the URDF), or widen the limit if the mechanism "
-         "allows it",
+    hint={
+        "degrees": "send radians, as JointState and the URDF mean them: math.radians(angle)",
+        "": "stay within {lower}..{upper} rad (the <limit> of the URDF), or widen the limit if the mechanism "
+            "allows it",
+    },
     explanation="""\
 robot_state_publisher draws any angle it receives, even past the `<limit>` of the URDF: RViz
 shows the arm through itself. A real arm or a controller would stop at the limit. The tutorial's
