@@ -193,3 +193,24 @@ def test_degrees_where_radians_are_meant_are_named_as_degrees():
 def test_radians_past_the_limits_stay_limit_overruns():
     snapshot = look([(at, T0 + at, ("epaule", "coude"), (2.4 * math.sin(at), 0.1)) for at in at_20_hz()])
     assert codes(snapshot) == ["BK818"] and "above its upper limit" in message(snapshot, "BK818")
+
+
+def test_two_nodes_of_one_name_are_counted_and_named():
+    snapshot = look([tutorial(at) for at in at_20_hz()])
+    shared = snapshot_from_json({"kind": "snapshot", "nodes": ["/animation_bras"], "started": T0, "ended": T0 + 3,
+                                 "shared_names": {"/animation_bras": 2}})
+    assert "BK844" not in codes(snapshot)
+    assert "BK844" in codes(shared, "warning") and "2 nodes are named /animation_bras" in message(shared, "BK844")
+
+
+def test_two_description_publishers_with_different_robots_are_named_with_what_differs():
+    old = {**RSP, "node": "/old/robot_state_publisher"}
+    topics = {"/robot_description": {"types": ["std_msgs/msg/String"], "publishers": [RSP, old], "subscribers": []}}
+    descriptions = [{"text": URDF, "received": T0 + 0.1, "length": len(URDF)},
+                    {"text": WRIST, "received": T0 + 0.2, "length": len(WRIST)}]
+    snapshot = look([tutorial(at) for at in at_20_hz()], topics=topics, descriptions=descriptions)
+    assert "BK845" in codes(snapshot, "error")
+    assert "main, poignet" in message(snapshot, "BK845")
+    # the same order or the other: the same verdict
+    swapped = look([tutorial(at) for at in at_20_hz()], topics=topics, descriptions=descriptions[::-1])
+    assert message(swapped, "BK845") == message(snapshot, "BK845")

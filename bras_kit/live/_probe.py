@@ -146,12 +146,16 @@ class Probe:
                 return
 
     def nodes(self) -> list[str]:
+        return sorted(set(self.node_instances()))
+
+    def node_instances(self) -> list[str]:
+        """Every node the graph lists, a name twice when two nodes share it (rcl lets them)."""
         names = []
         for name, namespace in self.node.get_node_names_and_namespaces():
             if name.startswith("_"):  # hidden nodes: ours, the ros2 daemon's
                 continue
             names.append(namespace.rstrip("/") + "/" + name)
-        return sorted(set(names))
+        return names
 
     def unnamed_endpoints(self) -> bool:
         """An endpoint whose node is not known yet: its participant is discovered, the node names
@@ -186,7 +190,9 @@ class Probe:
                         "level": "error" if compatibility == QoSCompatibility.ERROR else "warning",
                         "reason": reason,
                     })
-        return {"nodes": self.nodes(), "topics": topics, "incompatible": incompatible}
+        instances = self.node_instances()
+        shared = {name: instances.count(name) for name in sorted(set(instances)) if instances.count(name) > 1}
+        return {"nodes": self.nodes(), "shared_names": shared, "topics": topics, "incompatible": incompatible}
 
     def parameter_clients(self, nodes: list[str]) -> list[tuple[str, Any]]:
         """A client of each node's ``get_parameters`` service, made once: made while the graph is

@@ -453,3 +453,40 @@ def rviz_arm_steps(graph: LiveGraph) -> Iterator[Hit]:
     steps = sorted((b[0] - a[0]) + (b[1] - a[1]) * 1e-9 for a, b in zip(stamps, stamps[1:]))
     yield _at(JOINT_STATES, moves=seen.moves, received=seen.received, rate=round(rate, 1),
               step=round(steps[len(steps) // 2], 3) if steps else 0)
+
+
+# ---------------------------------------------------------------- the graph as a whole
+
+@live_rule("BK844", "node-name-shared", WARNING)
+def node_name_shared(graph: LiveGraph) -> Iterator[Hit]:
+    for node, count in sorted(graph.snapshot.shared_names.items()):
+        yield _at(node, node=node, count=count)
+
+
+def _robot_names(text: str) -> tuple[set[str], set[str]] | None:
+    """The link and joint names of a URDF text (None when it does not read)."""
+    from ..core.errors import BrasKitError
+    from ..model.robot import robot_from_xml
+    from ..model.xmlio import parse_xml
+
+    try:
+        robot = robot_from_xml(parse_xml(text, DESCRIPTION), path=DESCRIPTION, source_text=text)
+    except BrasKitError:
+        return None
+    return set(robot.link_names), set(robot.joint_names)
+
+
+@live_rule("BK845", "robot-description-two-robots", ERROR)
+def description_two_robots(graph: LiveGraph) -> Iterator[Hit]:
+    snap = graph.snapshot
+    texts = list(dict.fromkeys(d.text for d in snap.descriptions))
+    publishers = _nodes(snap.publishers(DESCRIPTION))
+    if len(texts) < 2 or len(publishers) < 2:
+        return  # one publisher that replaced its robot is a new description, not two robots
+    first, last = _robot_names(texts[0]), _robot_names(texts[-1])
+    if first is None or last is None:
+        differ = []
+    else:
+        differ = sorted((first[0] ^ last[0]) | (first[1] ^ last[1]))
+    yield _at(DESCRIPTION, "names" if differ else "", nodes=publishers, n=len(texts),
+              names=", ".join(differ[:MAX_SAMPLES_NAMED]))

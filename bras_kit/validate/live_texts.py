@@ -373,3 +373,33 @@ interval newer than the last it published for that joint (src/robot_state_publis
 Stamps that advance in steps (whole seconds, a counter) let through one message per step: the
 arm RViz draws jumps from pose to pose.""",
 )
+describe(
+    "BK844",
+    title="several nodes share one name",
+    message="{count} nodes are named {node}: the graph cannot tell them apart, their parameters, services "
+            "and logs mix",
+    hint="stop the copy left running (a launch still open in another terminal), or give each node a name of "
+         "its own (name='...' in the launch file)",
+    explanation="""\
+ROS 2 lets two nodes bear the same name and only warns in their logs. Tools that address a node
+by its name (`ros2 param`, `ros2 node info`, the parameter services) reach one of them at random.
+A second launch started before the first was stopped gives two robot_state_publishers, each
+publishing its own transforms.""",
+)
+describe(
+    "BK845",
+    title="/robot_description carries two different robots",
+    message={
+        "names": "{nodes} publish {n} different robots on /robot_description (they differ in {names}): RViz "
+                 "shows whichever came last, and each robot_state_publisher publishes its own transforms",
+        "": "{nodes} publish {n} different robots on /robot_description: RViz shows whichever came last, and "
+            "each robot_state_publisher publishes its own transforms",
+    },
+    hint="stop the old launch (Ctrl-C in its terminal), rebuild the package (colcon build) and start the launch "
+         "once",
+    explanation="""\
+Each robot_state_publisher publishes its URDF on `/robot_description`, kept for late readers
+(transient local). With two of them running, from an old launch and a new one, a reader gets
+both and keeps the one that reached it last: RViz may show the old arm, and the joint names of
+the new one look unknown. Which one wins changes from run to run.""",
+)
