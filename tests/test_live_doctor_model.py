@@ -13,11 +13,12 @@ from __future__ import annotations
 import concurrent.futures
 
 import pytest
-from test_live_doctor import ANIMATION, STATE_PUBLISHER, URDF, _codes, _finding, _json, _run
+from test_live_doctor import ANIMATION, DATA, STATE_PUBLISHER, URDF, _codes, _finding, _json, _run
 
 pytestmark = pytest.mark.slow
 
 JSON = ["--format", "json"]
+WRIST_URDF = str(DATA / "bras_poignet.urdf")
 SCENARIOS = {
     "stamp-once": [STATE_PUBLISHER, ANIMATION + ["--stamp", "once"]],
     "whole-seconds": [STATE_PUBLISHER, ANIMATION + ["--stamp", "seconds"]],
@@ -27,6 +28,12 @@ SCENARIOS = {
     "float-array": [STATE_PUBLISHER, ANIMATION + ["--float-array"]],
     "namespace": [["state_publisher.py", URDF, "--namespace", "/arm"], ANIMATION],
     "old-stamps": [STATE_PUBLISHER, ANIMATION + ["--stamp-offset", "-30"]],
+    "shared-name": [STATE_PUBLISHER, ANIMATION, ANIMATION],
+    "two-robots": [STATE_PUBLISHER, ["state_publisher.py", WRIST_URDF, "--name", "robot_state_publisher_neuf"],
+                   ANIMATION],
+    "wrist-node": [["state_publisher.py", WRIST_URDF], ANIMATION,
+                   ANIMATION + ["--name", "animation_poignet", "--names", "poignet", "--positions", "1"]],
+    "degrees": [STATE_PUBLISHER, ANIMATION + ["--degrees"]],
 }
 
 # the node that dies raises 4 s after it starts: a 7 s watch sees it publish, then fall silent
@@ -96,3 +103,30 @@ def test_old_stamps_that_advance_are_drawn(looks):
     document = _json(out)
     assert code == 0 and _codes(document, "error") == []
     assert "RViz still draws" in _finding(document, "BK815")["message"]
+
+
+def test_two_nodes_of_one_name_are_counted_as_two_and_named(looks):
+    (code, out), _ = looks["shared-name"]
+    document = _json(out)
+    assert "BK844" in _codes(document, "warning")
+    assert "2 nodes are named /animation_bras" in _finding(document, "BK844")["message"]
+
+
+def test_two_description_publishers_with_different_robots_are_named(looks):
+    (code, out), (_, fr) = looks["two-robots"]
+    document = _json(out)
+    assert code == 1 and "BK845" in _codes(document, "error")
+    assert "main, poignet" in _finding(document, "BK845")["message"] and "BK845" in fr
+
+
+def test_a_second_node_animating_the_wrist_is_no_jumping_arm(looks):
+    (code, out), _ = looks["wrist-node"]
+    document = _json(out)
+    assert [c for c in _codes(document) if c.startswith("BK8")] == [] and code == 0
+
+
+def test_degrees_are_named_as_degrees(looks):
+    (code, out), _ = looks["degrees"]
+    document = _json(out)
+    assert "BK818" in _codes(document, "warning")
+    assert "a number of degrees" in _finding(document, "BK818")["message"]
