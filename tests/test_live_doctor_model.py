@@ -81,7 +81,7 @@ def test_a_typo_topic_is_named_with_its_publisher(looks):
     document = _json(out)
     assert code == 1 and _codes(document, "error") == ["BK810"]
     message = _finding(document, "BK810")["message"]
-    assert "/joint_state:" in message and "/animation_bras" in message
+    assert "but /joint_state is published by '/animation_bras'" in message
 
 
 def test_the_wrong_type_on_joint_states_is_named(looks):

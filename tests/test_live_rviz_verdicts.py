@@ -129,7 +129,7 @@ def test_a_typo_topic_is_named_not_a_missing_node():
                               "subscribers": [{**RSP, "reliability": "best_effort", "durability": "volatile"}]}}
     snapshot = look([], topics=typo)
     assert codes(snapshot, "error") == ["BK810"]
-    assert "publish on /joint_state:" in message(snapshot, "BK810")
+    assert "but /joint_state is published by '/animation_bras'" in message(snapshot, "BK810")
 
 
 def test_a_robot_under_another_namespace_is_named_with_its_topic():
@@ -214,3 +214,12 @@ def test_two_description_publishers_with_different_robots_are_named_with_what_di
     # the same order or the other: the same verdict
     swapped = look([tutorial(at) for at in at_20_hz()], topics=topics, descriptions=descriptions[::-1])
     assert message(swapped, "BK845") == message(snapshot, "BK845")
+
+
+def test_french_words_for_one_silent_node_do_not_speak_of_several():
+    from bras_kit.core.i18n import say
+
+    snapshot = look([])  # /animation_bras publishes, nothing came
+    found = next(f for r in diagnose(snapshot) for f in r.findings if f.code == "BK812")
+    text = say(found.message, "fr")
+    assert "'/animation_bras'" in text and "publient" not in text and "n'ont" not in text

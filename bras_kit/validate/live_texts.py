@@ -32,8 +32,8 @@ describe(
     "BK801",
     title="nothing publishes /robot_description",
     message={
-        "near": "nothing publishes /robot_description, but {nodes} publish {topic}: RViz's RobotModel reads "
-                "/robot_description unless its Description Topic says otherwise",
+        "near": "nothing publishes /robot_description, but {topic} is published by {nodes}: RViz's RobotModel "
+                "reads /robot_description unless its Description Topic says otherwise",
         "readers": "nothing publishes /robot_description, yet {readers} wait for it: RViz stays empty "
                    "(\"Waiting for robot_description...\" is not a hang: nothing will come)",
         "": "nothing publishes /robot_description (nodes seen: {nodes}): RViz's RobotModel has no robot to show",
@@ -98,7 +98,7 @@ describe(
     "BK810",
     title="nothing publishes /joint_states",
     message={
-        "near": "nothing publishes /joint_states, but {nodes} publish on {topic}: robot_state_publisher "
+        "near": "nothing publishes /joint_states, but {topic} is published by {nodes}: robot_state_publisher "
                 "reads /joint_states only, the arm does not move",
         "links": "nothing publishes /joint_states: robot_state_publisher publishes no transform for the moving "
                  "links, RViz says \"No transform from [{link}] to [{root}]\" and the arm does not move",
@@ -139,8 +139,8 @@ describe(
     "BK812",
     title="/joint_states has publishers but no message came",
     message={
-        "type": "{nodes} publish {types} on /joint_states, not sensor_msgs/msg/JointState: "
-                "robot_state_publisher cannot read them, the arm does not move",
+        "type": "/joint_states carries {types} from {nodes}, not sensor_msgs/msg/JointState: "
+                "robot_state_publisher cannot read it, the arm does not move",
         "sim": "{nodes} publish /joint_states but sent nothing in {seconds} s: {sim} use simulated time and "
                "nothing publishes /clock, so their timers never fire",
         "": "{nodes} publish /joint_states but sent nothing in {seconds} s: the arm does not move",
@@ -390,9 +390,9 @@ describe(
     "BK845",
     title="/robot_description carries two different robots",
     message={
-        "names": "{nodes} publish {n} different robots on /robot_description (they differ in {names}): RViz "
+        "names": "/robot_description carries {n} different robots, from {nodes} (they differ in {names}): RViz "
                  "shows whichever came last, and each robot_state_publisher publishes its own transforms",
-        "": "{nodes} publish {n} different robots on /robot_description: RViz shows whichever came last, and "
+        "": "/robot_description carries {n} different robots, from {nodes}: RViz shows whichever came last, and "
             "each robot_state_publisher publishes its own transforms",
     },
     hint="stop the old launch (Ctrl-C in its terminal), rebuild the package (colcon build) and start the launch "
