@@ -400,10 +400,18 @@ def rviz_arm_still(graph: LiveGraph) -> Iterator[Hit]:
     from ..ros.rviz.replay import NAN, SIZES, STAMP, UNKNOWN, ZERO
 
     seen = rviz_replay(graph)
-    if seen is None or seen.received < 2 or seen.moves > 1 or not seen.reasons:
+    if seen is None or seen.received < 2 or not seen.reasons:
         return
     kind, words, _ = seen.reasons[0]
     if kind in (SIZES, ZERO, UNKNOWN, NAN):  # BK819, BK814, BK816 and BK841 name these causes
+        return
+    if seen.moves > 1:
+        # it moved, then the stamps stopped clearing the bar while messages kept coming
+        # (stamps gone back: a bag replayed in a loop, a counter restarted)
+        still = (seen.last_received or 0.0) - (seen.last_move or 0.0)
+        if kind == STAMP and seen.last_move is not None and still > STOP_GAP:
+            yield _at(JOINT_STATES, "stops", after=round(seen.last_move - graph.snapshot.started, 1),
+                      seconds=round(still, 1), dropped=seen.reason_of(STAMP), reason=words)
         return
     yield _at(JOINT_STATES, "stamp" if kind == STAMP else "", received=seen.received, published=seen.published,
               reason=words, nodes=_nodes(graph.snapshot.publishers(JOINT_STATES)))

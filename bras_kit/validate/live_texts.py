@@ -306,12 +306,16 @@ describe(
     "BK840",
     title="robot_state_publisher turns almost none of /joint_states into transforms",
     message={
+        "stops": "robot_state_publisher stops turning /joint_states into transforms {after} s into the watch, "
+                 "though messages keep coming for {seconds} s ({dropped} dropped: {reason}): RViz's arm stops there",
         "stamp": "robot_state_publisher turns {published} of the {received} /joint_states messages into "
                  "transforms, their stamps do not advance ({reason}): RViz's arm stays still",
         "": "robot_state_publisher turns {published} of the {received} /joint_states messages into "
             "transforms ({reason}): RViz's arm stays still",
     },
     hint={
+        "stops": "stamp with the current time; after stamps go back (a bag played in a loop, a counter "
+                 "restarted), restart robot_state_publisher, which keeps the newest stamp it used",
         "stamp": "stamp each message when it is sent: msg.header.stamp = self.get_clock().now().to_msg()",
         "": "send messages robot_state_publisher takes: the URDF's joint names, one position each, "
             "stamped with self.get_clock().now().to_msg()",
