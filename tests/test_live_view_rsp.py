@@ -49,3 +49,29 @@ def test_three_names_with_two_positions_do_not_move_the_page():
 def test_a_nan_leaves_that_joint_where_it_was():
     shown = feed_with([(100.0, ("epaule", "coude"), (0.1, 0.2)), (100.1, ("epaule", "coude"), (0.3, math.nan))])
     assert shown == [{"epaule": 0.1, "coude": 0.2}, {"epaule": 0.3}]
+
+
+def test_an_empty_domain_names_where_the_nodes_are_as_doctor_ros_does(monkeypatch):
+    import time
+
+    from bras_kit.core.i18n import say
+    from bras_kit.ros.graph import Elsewhere
+    from bras_kit.view import live_ros
+
+    searched = []
+
+    def look_elsewhere(python, snapshot):
+        searched.append(snapshot.domain)
+        yield Elsewhere(42, "LOCALHOST", ("/robot_state_publisher", "/animation_bras"))
+
+    monkeypatch.setattr(live_ros, "look_elsewhere", look_elsewhere)
+    feed = RosFeed("python")
+    feed._take({"kind": "hello", "domain": 0, "range": "LOCALHOST", "rmw": "rmw_fastrtps_cpp"})
+    feed._take({"kind": "graph", "nodes": [], "topics": {}, "incompatible": [], "time": time.time()})
+    for _ in range(100):
+        if feed.elsewhere:
+            break
+        time.sleep(0.02)
+    found = [f for r in feed.results() for f in r.findings if f.code == "BK800"]
+    assert searched == [0] and len(found) == 1
+    assert "export ROS_DOMAIN_ID=42" in say(found[0].hint, "en")

@@ -27,7 +27,7 @@ import threading
 import time
 from typing import Any
 
-from ..live.watch import open_stream, read_records
+from ..live.watch import look_elsewhere, open_stream, read_records
 from ..model.robot import Robot
 from ..ros.graph import merge_stream
 
@@ -50,6 +50,10 @@ class RosFeed:
         self.robot: Robot | None = None
         self.viewer: Any = None
         self.latencies: collections.deque[float] = collections.deque(maxlen=1000)  # s, publish -> page
+        # nodes seen on other domains or with the other discovery range while this one is empty:
+        # the same search as doctor --ros's (live.watch.look), so both commands give one verdict
+        self.elsewhere: list[dict[str, Any]] = []
+        self._searching = False
         self._rsp: Any = None  # robot_state_publisher as modelled, for self._rsp_robot
         self._rsp_robot: Robot | None = None
         self._robot_ready = threading.Event()
@@ -95,6 +99,11 @@ class RosFeed:
         elif kind == "graph":
             with self._lock:
                 self.graph = record
+                empty = not record.get("nodes")
+                if not empty:
+                    self.elsewhere = []
+            if empty:
+                self._search_elsewhere()
             self._show_findings()
         elif kind == "hello":
             self.hello = record
@@ -156,6 +165,29 @@ class RosFeed:
                 viewer.reload()
         self._show_findings()
 
+    def _search_elsewhere(self) -> None:
+        """Look for the nodes on the other domains in use here, once at a time, on a thread (a census
+        takes seconds): the findings say where they are when it ends."""
+        with self._lock:
+            if self._searching:
+                return
+            self._searching = True
+
+        def search() -> None:
+            try:
+                found = [{"domain": e.domain, "range": e.discovery_range, "nodes": list(e.nodes)}
+                         for e in look_elsewhere(self.python, self.snapshot())]
+                with self._lock:
+                    self.elsewhere = found
+            except Exception:  # noqa: BLE001 - a census that fails leaves the findings as they are
+                pass
+            finally:
+                with self._lock:
+                    self._searching = False
+            self._show_findings()
+
+        threading.Thread(target=search, daemon=True, name="bras-kit-ros-elsewhere").start()
+
     # -- what the doctor says of it ------------------------------------------------------------
     def snapshot(self) -> Any:
         """The graph as :func:`bras_kit.live.doctor.diagnose` reads it: the last graph, the last
@@ -166,8 +198,9 @@ class RosFeed:
                       and s["received"] >= now - WINDOW]
             graph = self.graph
             descriptions = [self.description] if self.description else []
+            hello = {**self.hello, "elsewhere": list(self.elsewhere)}
         started = max(self.started, now - WINDOW)
-        return merge_stream(self.hello, graph, descriptions, recent, started, now)
+        return merge_stream(hello, graph, descriptions, recent, started, now)
 
     def results(self) -> list[Any]:
         from ..live.doctor import diagnose
