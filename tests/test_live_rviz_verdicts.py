@@ -223,3 +223,11 @@ def test_french_words_for_one_silent_node_do_not_speak_of_several():
     found = next(f for r in diagnose(snapshot) for f in r.findings if f.code == "BK812")
     text = say(found.message, "fr")
     assert "'/animation_bras'" in text and "publient" not in text and "n'ont" not in text
+
+
+def test_a_joint_the_running_description_lacks_points_to_rebuild_and_relaunch():
+    from bras_kit.core.i18n import say
+
+    messages = [(at, T0 + at, ("epaule", "coude", "poignet"), (0.1, 0.2, 0.3)) for at in at_20_hz()]
+    found = next(f for r in diagnose(look(messages)) for f in r.findings if f.code == "BK816")
+    assert "colcon build" in say(found.hint, "en") and "recompilez" in say(found.hint, "fr")

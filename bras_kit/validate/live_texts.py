@@ -218,7 +218,9 @@ describe(
     hint={
         "near": "write '{near}' in msg.name, exactly as in the URDF",
         "fixed": "leave '{joint}' out of msg.name",
-        "": "use the URDF's joint names in msg.name: {movable}",
+        "": "use the URDF's joint names in msg.name: {movable}; if you have just added '{joint}' to the URDF, "
+            "rebuild (colcon build) and start the launch again: the robot_state_publisher running still has "
+            "the old file",
     },
     explanation="""\
 robot_state_publisher looks each name of a JointState up in the URDF and silently skips the
