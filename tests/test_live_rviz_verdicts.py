@@ -231,3 +231,8 @@ def test_a_joint_the_running_description_lacks_points_to_rebuild_and_relaunch():
     messages = [(at, T0 + at, ("epaule", "coude", "poignet"), (0.1, 0.2, 0.3)) for at in at_20_hz()]
     found = next(f for r in diagnose(look(messages)) for f in r.findings if f.code == "BK816")
     assert "colcon build" in say(found.hint, "en") and "recompilez" in say(found.hint, "fr")
+
+
+def test_a_node_that_dies_after_its_first_message_is_named_too():
+    snapshot = look([tutorial(0.5)], publishers=())
+    assert codes(snapshot, "error") == ["BK842"]

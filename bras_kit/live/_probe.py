@@ -138,6 +138,14 @@ class Probe:
         if self.emit:
             self.emit({"kind": "joint_state", **record})  # type: ignore[operator]
 
+    def descriptions_missing(self) -> bool:
+        """Fewer different texts received than transient-local publishers of the description."""
+        latched = [i for i in self.node.get_publishers_info_by_topic(DESCRIPTION)
+                   if i.qos_profile.durability == DurabilityPolicy.TRANSIENT_LOCAL]
+        with self.lock:
+            texts = {str(d["text"]) for d in self.descriptions}
+        return len(texts) < len(latched)
+
     def spin_for(self, seconds: float, until: object = None) -> None:
         end = time.monotonic() + seconds
         while time.monotonic() < end:
@@ -286,6 +294,11 @@ def snapshot(seconds: float, wait: float = DISCOVERY_FLOOR) -> int:
             last = time.monotonic() + STABLE_GRACE
             while time.monotonic() - changed[0] < 1.0 and time.monotonic() < last:
                 probe.spin_for(0.1, until=track)
+            # each latched description publisher delivers once matched: wait for as many texts as
+            # there are of them (two robot_state_publishers with two robots), a grace at most
+            last = time.monotonic() + STABLE_GRACE
+            while probe.descriptions_missing() and time.monotonic() < last:
+                probe.spin_for(0.1)
         graph = probe.graph()
         sim = probe.use_sim_time(list(graph["nodes"]))
         with probe.lock:

@@ -434,10 +434,10 @@ def joint_states_not_finite(graph: LiveGraph) -> Iterator[Hit]:
 def joint_states_stopped(graph: LiveGraph) -> Iterator[Hit]:
     snap = graph.snapshot
     samples = snap.joint_states
-    if len(samples) < 2:
+    if not samples:
         return
-    gaps = sorted(b.received - a.received for a, b in zip(samples, samples[1:]))
-    period = gaps[len(gaps) // 2]
+    gaps = sorted(b.received - a.received for a, b in zip(samples, samples[1:])) or [0.0]
+    period = gaps[len(gaps) // 2]  # one message alone: no period, the gap alone decides
     silent = snap.ended - samples[-1].received
     if silent > max(STOP_GAP, 5 * period):
         yield _at(JOINT_STATES, "" if snap.publishers(JOINT_STATES) else "left", seconds=round(silent, 1),
