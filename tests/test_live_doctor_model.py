@@ -23,7 +23,7 @@ SCENARIOS = {
     "stamp-once": [STATE_PUBLISHER, ANIMATION + ["--stamp", "once"]],
     "whole-seconds": [STATE_PUBLISHER, ANIMATION + ["--stamp", "seconds"]],
     "coude-nan": [STATE_PUBLISHER, ANIMATION + ["--nan", "coude"]],
-    "dies": [STATE_PUBLISHER, ANIMATION + ["--stop-after", "5"]],
+    "dies": [STATE_PUBLISHER, ANIMATION + ["--stop-after", "1.5"]],
     "typo-topic": [STATE_PUBLISHER, ANIMATION + ["--topic", "joint_state"]],
     "float-array": [STATE_PUBLISHER, ANIMATION + ["--float-array"]],
     "namespace": [["state_publisher.py", URDF, "--namespace", "/arm"], ANIMATION],
@@ -36,9 +36,10 @@ SCENARIOS = {
     "degrees": [STATE_PUBLISHER, ANIMATION + ["--degrees"]],
 }
 
-# the node that dies raises 5 s after it starts: an 8 s watch sees it publish, then fall silent;
+# the node that dies raises 1.5 s after the doctor's probe joins: a 7 s watch sees it publish, then
+# fall silent;
 # whole seconds step once a second: 6 s show several steps even when discovery is slow
-WATCH = {"dies": ["--duration", "8"], "whole-seconds": ["--duration", "6"]}
+WATCH = {"dies": ["--duration", "7"], "whole-seconds": ["--duration", "6"]}
 
 
 @pytest.fixture(scope="module")

@@ -98,7 +98,9 @@ class Probe:
         self._clients: dict[str, Any] = {}
         # robot_state_publisher 3.3 latches it: reliable, transient_local, depth 1
         # (src/robot_state_publisher.cpp:133-135); this subscription gets what it holds...
-        latched = QoSProfile(depth=1, reliability=ReliabilityPolicy.RELIABLE,
+        # (a depth of 10 here, not 1: two publishers' latched texts arrive together, and a reader
+        # keeping one would drop the first before it is taken: one robot seen where two run)
+        latched = QoSProfile(depth=10, reliability=ReliabilityPolicy.RELIABLE,
                              durability=DurabilityPolicy.TRANSIENT_LOCAL)
         # ...and this one matches any publisher at all (volatile, best effort), as ros2 topic echo may
         anything = QoSProfile(depth=10, reliability=ReliabilityPolicy.BEST_EFFORT,

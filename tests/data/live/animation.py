@@ -35,7 +35,8 @@ parser.add_argument("--late", type=float, default=None, help="make the node SECO
 parser.add_argument("--stamp", choices=["now", "once", "seconds"], default="now",
                     help="once: the stamp taken at start and reused; seconds: the clock's seconds only")
 parser.add_argument("--nan", default=None, help="this joint's position is NaN")
-parser.add_argument("--stop-after", type=float, default=None, help="the callback raises after SECONDS")
+parser.add_argument("--stop-after", type=float, default=None,
+                    help="the callback raises SECONDS after a second reader (the doctor) joined robot_state_publisher")
 parser.add_argument("--topic", default="joint_states")
 parser.add_argument("--float-array", action="store_true", help="publish Float64MultiArray, not JointState")
 parser.add_argument("--degrees", action="store_true", help="positions in degrees")
@@ -54,11 +55,15 @@ class Animation(Node):
         self.timer = self.create_timer(options.period, self.tick)
         self.t = 0.0
         self.start = self.get_clock().now()
+        self.matched = None  # when the doctor's probe became a second reader
 
     def tick(self):
         self.t += 0.05
-        if options.stop_after is not None and (self.get_clock().now() - self.start).nanoseconds > options.stop_after * 1e9:
-            raise RuntimeError("the learner's bug: the node ends here")
+        if options.stop_after is not None:
+            if self.matched is None and self.pub.get_subscription_count() >= 2:
+                self.matched = self.get_clock().now()
+            if self.matched is not None and (self.get_clock().now() - self.matched).nanoseconds > options.stop_after * 1e9:
+                raise RuntimeError("the learner's bug: the node ends here")
         if options.float_array:
             from std_msgs.msg import Float64MultiArray
             self.pub.publish(Float64MultiArray(data=[0.8 * math.sin(self.t), 1.2 * math.sin(self.t * 0.7)]))
