@@ -93,7 +93,8 @@ def _facts(snapshot: Any) -> list[Any]:
                domain=snapshot.domain, rmw=snapshot.rmw or "?", range=snapshot.discovery_range or "SUBNET",
                seconds=snapshot.duration)]
     if snapshot.nodes:
-        facts.append(Mn("{n} node: {nodes}", "{n} nodes: {nodes}", len(snapshot.nodes), nodes=list(snapshot.nodes)))
+        count = len(snapshot.nodes) + sum(n - 1 for n in snapshot.shared_names.values())  # two of one name: two
+        facts.append(Mn("{n} node: {nodes}", "{n} nodes: {nodes}", count, nodes=list(snapshot.nodes)))
     for topic in (DESCRIPTION, JOINT_STATES):
         publishers = snapshot.publishers(topic)
         if publishers:
@@ -102,6 +103,13 @@ def _facts(snapshot: Any) -> list[Any]:
     rate = measured_rate(LiveGraph(snapshot))
     if rate is not None:
         facts.append(M("{count} joint states received, {rate:.1f} Hz", count=len(snapshot.joint_states), rate=rate))
+    from ..live.doctor import robot_of
+    from ..validate.live import rviz_replay
+
+    seen = rviz_replay(LiveGraph(snapshot, robot_of(snapshot)[0]))
+    if seen is not None:  # /tf is not read (tf2_msgs has no wheel): what rsp publishes is inferred
+        facts.append(M("robot_state_publisher, as its source runs, turns {published} of them into transforms "
+                       "(inferred: /tf is not read)", published=seen.published))
     return facts
 
 

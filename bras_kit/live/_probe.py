@@ -98,7 +98,9 @@ class Probe:
         self._clients: dict[str, Any] = {}
         # robot_state_publisher 3.3 latches it: reliable, transient_local, depth 1
         # (src/robot_state_publisher.cpp:133-135); this subscription gets what it holds...
-        latched = QoSProfile(depth=1, reliability=ReliabilityPolicy.RELIABLE,
+        # (a depth of 10 here, not 1: two publishers' latched texts arrive together, and a reader
+        # keeping one would drop the first before it is taken: one robot seen where two run)
+        latched = QoSProfile(depth=10, reliability=ReliabilityPolicy.RELIABLE,
                              durability=DurabilityPolicy.TRANSIENT_LOCAL)
         # ...and this one matches any publisher at all (volatile, best effort), as ros2 topic echo may
         anything = QoSProfile(depth=10, reliability=ReliabilityPolicy.BEST_EFFORT,
@@ -138,6 +140,14 @@ class Probe:
         if self.emit:
             self.emit({"kind": "joint_state", **record})  # type: ignore[operator]
 
+    def descriptions_missing(self) -> bool:
+        """Fewer different texts received than transient-local publishers of the description."""
+        latched = [i for i in self.node.get_publishers_info_by_topic(DESCRIPTION)
+                   if i.qos_profile.durability == DurabilityPolicy.TRANSIENT_LOCAL]
+        with self.lock:
+            texts = {str(d["text"]) for d in self.descriptions}
+        return len(texts) < len(latched)
+
     def spin_for(self, seconds: float, until: object = None) -> None:
         end = time.monotonic() + seconds
         while time.monotonic() < end:
@@ -146,12 +156,16 @@ class Probe:
                 return
 
     def nodes(self) -> list[str]:
+        return sorted(set(self.node_instances()))
+
+    def node_instances(self) -> list[str]:
+        """Every node the graph lists, a name twice when two nodes share it (rcl lets them)."""
         names = []
         for name, namespace in self.node.get_node_names_and_namespaces():
             if name.startswith("_"):  # hidden nodes: ours, the ros2 daemon's
                 continue
             names.append(namespace.rstrip("/") + "/" + name)
-        return sorted(set(names))
+        return names
 
     def unnamed_endpoints(self) -> bool:
         """An endpoint whose node is not known yet: its participant is discovered, the node names
@@ -186,7 +200,9 @@ class Probe:
                         "level": "error" if compatibility == QoSCompatibility.ERROR else "warning",
                         "reason": reason,
                     })
-        return {"nodes": self.nodes(), "topics": topics, "incompatible": incompatible}
+        instances = self.node_instances()
+        shared = {name: instances.count(name) for name in sorted(set(instances)) if instances.count(name) > 1}
+        return {"nodes": self.nodes(), "shared_names": shared, "topics": topics, "incompatible": incompatible}
 
     def parameter_clients(self, nodes: list[str]) -> list[tuple[str, Any]]:
         """A client of each node's ``get_parameters`` service, made once: made while the graph is
@@ -280,6 +296,11 @@ def snapshot(seconds: float, wait: float = DISCOVERY_FLOOR) -> int:
             last = time.monotonic() + STABLE_GRACE
             while time.monotonic() - changed[0] < 1.0 and time.monotonic() < last:
                 probe.spin_for(0.1, until=track)
+            # each latched description publisher delivers once matched: wait for as many texts as
+            # there are of them (two robot_state_publishers with two robots), a grace at most
+            last = time.monotonic() + STABLE_GRACE
+            while probe.descriptions_missing() and time.monotonic() < last:
+                probe.spin_for(0.1)
         graph = probe.graph()
         sim = probe.use_sim_time(list(graph["nodes"]))
         with probe.lock:

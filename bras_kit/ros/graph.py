@@ -81,6 +81,7 @@ class Snapshot:
     descriptions: tuple[Description, ...] = ()
     joint_states: tuple[JointStateSample, ...] = ()
     use_sim_time: Mapping[str, bool | None] = field(default_factory=dict)
+    shared_names: Mapping[str, int] = field(default_factory=dict)  # a node name -> how many nodes bear it
     # filled in by the caller when this domain was empty: other places the nodes were seen
     elsewhere: tuple[Elsewhere, ...] = ()
 
@@ -163,6 +164,9 @@ def snapshot_from_json(data: Any) -> Snapshot:
     raw_sim = data.get("use_sim_time")
     sim = {k: (v if isinstance(v, bool) else None) for k, v in raw_sim.items()
            if isinstance(k, str)} if isinstance(raw_sim, dict) else {}
+    raw_shared = data.get("shared_names")
+    shared = {k: int(v) for k, v in raw_shared.items() if isinstance(k, str) and isinstance(v, int)
+              and not isinstance(v, bool) and 1 < v < MAX_NAMES} if isinstance(raw_shared, dict) else {}
     domain = data.get("domain")
     elsewhere = tuple(
         Elsewhere(e["domain"], _text(e.get("range"), 40), tuple(_text(n, 300) for n in _list(e.get("nodes"))))
@@ -181,6 +185,7 @@ def snapshot_from_json(data: Any) -> Snapshot:
         descriptions=descriptions,
         joint_states=samples,
         use_sim_time=sim,
+        shared_names=shared,
         elsewhere=elsewhere,
     )
 

@@ -91,8 +91,32 @@ def graph_empty(graph: LiveGraph) -> Iterator[Hit]:
 def description_not_published(graph: LiveGraph) -> Iterator[Hit]:
     snap = graph.snapshot
     if snap.nodes and not snap.publishers(DESCRIPTION) and not snap.descriptions:
+        near = near_topics(snap, DESCRIPTION, STRING)
+        if near:  # another namespace, a remap, a typo: the graph shows where it went
+            topic, nodes = near[0]
+            yield _at(DESCRIPTION, "near", topic=topic, nodes=nodes)
+            return
         readers = _nodes(snap.subscribers(DESCRIPTION))
         yield _at(DESCRIPTION, "readers" if readers else "", readers=readers, nodes=list(snap.nodes))
+
+
+STRING = "std_msgs/msg/String"
+JOINT_STATE = "sensor_msgs/msg/JointState"
+
+
+def near_topics(snap: Snapshot, expected: str, kind: str) -> list[tuple[str, list[str]]]:
+    """Published topics that look meant for ``expected``: the same last name under another namespace,
+    a name a typo away, or (for JointState, a type no other topic of the tutorial carries) any name."""
+    want = expected.rsplit("/", 1)[-1]
+    found = []
+    for name, topic in sorted(snap.topics.items()):
+        if name == expected or not topic.publishers:
+            continue
+        last = name.rsplit("/", 1)[-1]
+        close = last == want or difflib.SequenceMatcher(None, last, want).ratio() >= 0.8
+        if (kind in topic.types and (close or kind == JOINT_STATE)) or (close and not topic.types):
+            found.append((name, _nodes(topic.publishers)))
+    return found
 
 
 @live_rule("BK802", "robot-description-volatile", ERROR)
@@ -142,6 +166,11 @@ def joint_states_not_published(graph: LiveGraph) -> Iterator[Hit]:
     snap = graph.snapshot
     if not snap.nodes or snap.publishers(JOINT_STATES) or snap.joint_states:
         return
+    near = near_topics(snap, JOINT_STATES, JOINT_STATE)
+    if near:  # "start your node" would be wrong: it runs, and publishes elsewhere
+        topic, nodes = near[0]
+        yield _at(JOINT_STATES, "near", topic=topic, nodes=nodes)
+        return
     robot = graph.robot
     moving = [j.child for j in robot.movable_joints() if j.child] if robot else []
     root = _root_link(robot)
@@ -160,6 +189,11 @@ def _root_link(robot: Robot | None) -> str | None:
 @live_rule("BK811", "joint-states-several-publishers", WARNING)
 def joint_states_several_publishers(graph: LiveGraph) -> Iterator[Hit]:
     nodes = _nodes(graph.snapshot.publishers(JOINT_STATES))
+    sets = {frozenset(s.name) for s in graph.snapshot.joint_states}
+    if len(sets) >= 2 and all(not (a & b) for a in sets for b in sets if a != b):
+        # each source drives joints of its own (a second node for the wrist): robot_state_publisher
+        # keeps a stamp per joint (src/robot_state_publisher.cpp:326-329, 359-361), nothing jumps
+        return
     if len(nodes) >= 2:
         slider = [n for n in nodes if n.rsplit("/", 1)[-1].startswith(SLIDER_NODE)]
         yield _at(JOINT_STATES, "slider" if slider else "", nodes=nodes, n=len(nodes),
@@ -170,6 +204,10 @@ def joint_states_several_publishers(graph: LiveGraph) -> Iterator[Hit]:
 def joint_states_not_received(graph: LiveGraph) -> Iterator[Hit]:
     snap = graph.snapshot
     publishers = snap.publishers(JOINT_STATES)
+    types = [t for t in snap.topics[JOINT_STATES].types if t != JOINT_STATE] if publishers else []
+    if publishers and types and not snap.joint_states:  # the probe reads JointState only, as rsp does
+        yield _at(JOINT_STATES, "type", nodes=_nodes(publishers), types=types)
+        return
     if publishers and not snap.joint_states:
         sim = sorted(n for n in _nodes(publishers) if snap.use_sim_time.get(n))
         no_clock = not snap.publishers(CLOCK)
@@ -269,10 +307,32 @@ def joint_states_past_limits(graph: LiveGraph) -> Iterator[Hit]:
             excess = max(lower - value, value - upper)
             if excess > 1e-9 and excess > worst.get(name, (0.0, 0.0, 0.0))[0]:
                 worst[name] = (excess, value, lower if value < lower else upper)
+    degrees = _in_degrees(graph.robot, graph.snapshot.joint_states)
     for name, (excess, value, bound) in sorted(worst.items()):
         lower, upper = graph.robot.joint(name).bounds()  # type: ignore[union-attr]
+        if degrees:  # the limit is not the mistake: the unit is
+            yield _at(JOINT_STATES, "degrees", joint=name, value=round(value, 3),
+                      radians=round(math.radians(value), 3), lower=lower, upper=upper, bound=bound,
+                      excess=round(excess, 3))
+            continue
         yield _at(JOINT_STATES, "lower" if value < bound else "upper", joint=name, value=round(value, 3),
                   bound=bound, excess=round(excess, 3), lower=lower, upper=upper)
+
+
+def _in_degrees(robot: Robot, samples: Iterable[Any]) -> bool:
+    """Angles that read as degrees: some past a full turn (2 pi rad), and every value of every
+    revolute joint within its limits once converted to radians (URDF's unit)."""
+    past_a_turn = False
+    for sample in samples:
+        for name, value in zip(sample.name, sample.position):
+            joint = robot.joint(name)
+            if joint is None or joint.type != "revolute" or not joint.movable or not math.isfinite(value):
+                continue
+            lower, upper = joint.bounds()
+            if not lower - 1e-6 <= math.radians(value) <= upper + 1e-6:
+                return False
+            past_a_turn = past_a_turn or abs(value) > 2 * math.pi
+    return past_a_turn
 
 
 @live_rule("BK819", "joint-states-names-and-positions-differ", ERROR)
@@ -311,3 +371,130 @@ def use_sim_time_without_clock(graph: LiveGraph) -> Iterator[Hit]:
     for node, value in sorted(snap.use_sim_time.items()):
         if value:
             yield _at(node, node=node)
+
+
+# ---------------------------------------------------------------- RViz's arm, from the model of rsp and tf2
+
+STEP_RATE = 5.0  # moves a second under which the arm RViz draws visibly jumps
+STOP_GAP = 1.0  # seconds without a message, at the end of the watch, before the source "stopped"
+
+
+def rviz_replay(graph: LiveGraph) -> Any:
+    """The recorded joint states through robot_state_publisher and RViz (:mod:`bras_kit.ros.rviz.replay`),
+    with the root link as Fixed Frame (the tutorial's step 6 sets it to base). None without a robot."""
+    if graph.robot is None or not graph.snapshot.joint_states:
+        return None
+    from ..core.errors import BrasKitError
+    from ..ros.rviz.replay import Sample, replay
+
+    samples = [Sample(s.received, s.stamp[0] * 1_000_000_000 + s.stamp[1], s.name, s.position)
+               for s in graph.snapshot.joint_states]
+    try:
+        return replay(graph.robot, samples, _root_link(graph.robot) or "", start=graph.snapshot.started)
+    except BrasKitError:
+        return None
+
+
+@live_rule("BK840", "rviz-arm-still", ERROR)
+def rviz_arm_still(graph: LiveGraph) -> Iterator[Hit]:
+    from ..ros.rviz.replay import NAN, SIZES, STAMP, UNKNOWN, ZERO
+
+    seen = rviz_replay(graph)
+    if seen is None or seen.received < 2 or not seen.reasons:
+        return
+    kind, words, _ = seen.reasons[0]
+    if kind in (SIZES, ZERO, UNKNOWN, NAN):  # BK819, BK814, BK816 and BK841 name these causes
+        return
+    if seen.moves > 1:
+        # it moved, then the stamps stopped clearing the bar while messages kept coming
+        # (stamps gone back: a bag replayed in a loop, a counter restarted)
+        still = (seen.last_received or 0.0) - (seen.last_move or 0.0)
+        if kind == STAMP and seen.last_move is not None and still > STOP_GAP:
+            yield _at(JOINT_STATES, "stops", after=round(seen.last_move - graph.snapshot.started, 1),
+                      seconds=round(still, 1), dropped=seen.reason_of(STAMP), reason=words)
+        return
+    yield _at(JOINT_STATES, "stamp" if kind == STAMP else "", received=seen.received, published=seen.published,
+              reason=words, nodes=_nodes(graph.snapshot.publishers(JOINT_STATES)))
+
+
+@live_rule("BK841", "joint-states-not-finite", ERROR)
+def joint_states_not_finite(graph: LiveGraph) -> Iterator[Hit]:
+    seen = rviz_replay(graph)
+    if seen is None or graph.robot is None:
+        return
+    for joint, (count, value) in sorted(seen.refused.items()):
+        found = graph.robot.joint(joint)
+        link = (found.child if found else "") or ""
+        placed = seen.placed.get(link)
+        yield _at(JOINT_STATES, "never" if placed is not None else "", joint=joint, value=repr(value), count=count,
+                  total=seen.received, link=link, rviz=placed or "")
+
+
+@live_rule("BK842", "joint-states-stopped", ERROR)
+def joint_states_stopped(graph: LiveGraph) -> Iterator[Hit]:
+    snap = graph.snapshot
+    samples = snap.joint_states
+    if not samples:
+        return
+    gaps = sorted(b.received - a.received for a, b in zip(samples, samples[1:])) or [0.0]
+    period = gaps[len(gaps) // 2]  # one message alone: no period, the gap alone decides
+    silent = snap.ended - samples[-1].received
+    if silent > max(STOP_GAP, 5 * period):
+        yield _at(JOINT_STATES, "" if snap.publishers(JOINT_STATES) else "left", seconds=round(silent, 1),
+                  after=round(samples[-1].received - snap.started, 1), count=len(samples))
+
+
+@live_rule("BK843", "rviz-arm-steps", WARNING)
+def rviz_arm_steps(graph: LiveGraph) -> Iterator[Hit]:
+    from ..ros.rviz.replay import STAMP
+
+    seen = rviz_replay(graph)
+    if seen is None or seen.moves < 2 or not seen.reason_of(STAMP) or seen.first_move is None:
+        return
+    span = (seen.last_move or 0.0) - seen.first_move
+    rate = (seen.moves - 1) / span if span > 0 else 0.0
+    # a 20 Hz timer's jitter alone drops about one message in three (a gap of 49.9 ms): only a
+    # rate far under that, with most messages dropped, is the stepping the learner sees
+    if rate >= STEP_RATE or seen.moves > 0.5 * seen.received:
+        return
+    stamps = sorted({s.stamp for s in graph.snapshot.joint_states})
+    steps = sorted((b[0] - a[0]) + (b[1] - a[1]) * 1e-9 for a, b in zip(stamps, stamps[1:]))
+    yield _at(JOINT_STATES, moves=seen.moves, received=seen.received, rate=round(rate, 1),
+              step=round(steps[len(steps) // 2], 3) if steps else 0)
+
+
+# ---------------------------------------------------------------- the graph as a whole
+
+@live_rule("BK844", "node-name-shared", WARNING)
+def node_name_shared(graph: LiveGraph) -> Iterator[Hit]:
+    for node, count in sorted(graph.snapshot.shared_names.items()):
+        yield _at(node, node=node, count=count)
+
+
+def _robot_names(text: str) -> tuple[set[str], set[str]] | None:
+    """The link and joint names of a URDF text (None when it does not read)."""
+    from ..core.errors import BrasKitError
+    from ..model.robot import robot_from_xml
+    from ..model.xmlio import parse_xml
+
+    try:
+        robot = robot_from_xml(parse_xml(text, DESCRIPTION), path=DESCRIPTION, source_text=text)
+    except BrasKitError:
+        return None
+    return set(robot.link_names), set(robot.joint_names)
+
+
+@live_rule("BK845", "robot-description-two-robots", ERROR)
+def description_two_robots(graph: LiveGraph) -> Iterator[Hit]:
+    snap = graph.snapshot
+    texts = list(dict.fromkeys(d.text for d in snap.descriptions))
+    publishers = _nodes(snap.publishers(DESCRIPTION))
+    if len(texts) < 2 or len(publishers) < 2:
+        return  # one publisher that replaced its robot is a new description, not two robots
+    first, last = _robot_names(texts[0]), _robot_names(texts[-1])
+    if first is None or last is None:
+        differ = []
+    else:
+        differ = sorted((first[0] ^ last[0]) | (first[1] ^ last[1]))
+    yield _at(DESCRIPTION, "names" if differ else "", nodes=publishers, n=len(texts),
+              names=", ".join(differ[:MAX_SAMPLES_NAMED]))

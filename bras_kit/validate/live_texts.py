@@ -32,12 +32,18 @@ describe(
     "BK801",
     title="nothing publishes /robot_description",
     message={
+        "near": "nothing publishes /robot_description, but {topic} is published by {nodes}: RViz's RobotModel "
+                "reads /robot_description unless its Description Topic says otherwise",
         "readers": "nothing publishes /robot_description, yet {readers} wait for it: RViz stays empty "
                    "(\"Waiting for robot_description...\" is not a hang: nothing will come)",
         "": "nothing publishes /robot_description (nodes seen: {nodes}): RViz's RobotModel has no robot to show",
     },
-    hint="start robot_state_publisher with the URDF as its robot_description parameter: the tutorial's "
-         "launch file does it (ros2 launch bras_description affichage.launch.py)",
+    hint={
+        "near": "set the RobotModel's Description Topic to {topic} in RViz, or start robot_state_publisher "
+                "without the namespace or remapping that moved it",
+        "": "start robot_state_publisher with the URDF as its robot_description parameter: the tutorial's "
+            "launch file does it (ros2 launch bras_description affichage.launch.py)",
+    },
     explanation="""\
 RViz's RobotModel display reads the robot from the topic `/robot_description`, which
 robot_state_publisher publishes from its `robot_description` parameter. When it is not running
@@ -92,12 +98,18 @@ describe(
     "BK810",
     title="nothing publishes /joint_states",
     message={
+        "near": "nothing publishes /joint_states, but {topic} is published by {nodes}: robot_state_publisher "
+                "reads /joint_states only, the arm does not move",
         "links": "nothing publishes /joint_states: robot_state_publisher publishes no transform for the moving "
                  "links, RViz says \"No transform from [{link}] to [{root}]\" and the arm does not move",
         "": "nothing publishes /joint_states: the arm does not move",
     },
-    hint="start the slider window (ros2 run joint_state_publisher_gui joint_state_publisher_gui) or your "
-         "node (ros2 run bras_description animation), in a terminal with the same ROS_DOMAIN_ID",
+    hint={
+        "near": "publish on 'joint_states' (self.create_publisher(JointState, 'joint_states', 10)), in the "
+                "namespace of robot_state_publisher",
+        "": "start the slider window (ros2 run joint_state_publisher_gui joint_state_publisher_gui) or your "
+            "node (ros2 run bras_description animation), in a terminal with the same ROS_DOMAIN_ID",
+    },
     explanation="""\
 robot_state_publisher turns the angles it receives on `/joint_states` into the transforms of the
 moving links. With nobody publishing them, only the fixed links have a transform: RViz draws
@@ -127,11 +139,15 @@ describe(
     "BK812",
     title="/joint_states has publishers but no message came",
     message={
+        "type": "/joint_states carries {types} from {nodes}, not sensor_msgs/msg/JointState: "
+                "robot_state_publisher cannot read it, the arm does not move",
         "sim": "{nodes} publish /joint_states but sent nothing in {seconds} s: {sim} use simulated time and "
                "nothing publishes /clock, so their timers never fire",
         "": "{nodes} publish /joint_states but sent nothing in {seconds} s: the arm does not move",
     },
     hint={
+        "type": "publish sensor_msgs.msg.JointState on /joint_states (from sensor_msgs.msg import JointState), "
+                "with the URDF's joint names in msg.name",
         "sim": "set use_sim_time to false (or start what publishes /clock)",
         "": "make sure the node's timer runs: rclpy.spin(node) after creating it, and a timer callback that "
             "calls publish",
@@ -173,18 +189,21 @@ describe(
     "BK815",
     title="/joint_states stamps are far from this computer's clock",
     message={
-        "behind": "/joint_states messages are stamped {seconds} s before this computer's clock: RViz may "
-                  "drop the transforms as too old",
+        "behind": "/joint_states messages are stamped {seconds} s before this computer's clock: RViz still "
+                  "draws the latest transforms, but what looks them up at the current time fails",
         "ahead": "/joint_states messages are stamped {seconds} s after this computer's clock: RViz may "
                  "wait for them or drop them",
     },
     hint="stamp with the node's clock, self.get_clock().now().to_msg(), and keep every node on the same time "
          "(use_sim_time on all of them or on none)",
     explanation="""\
-The transforms robot_state_publisher publishes carry the stamp of the joint states. RViz looks
-transforms up near its own clock; stamps far in the past or the future give "extrapolation"
-warnings and a still or missing arm. A stamp made by hand (a counter, a clock of another
-machine) or simulated time on only some of the nodes cause it.""",
+The transforms robot_state_publisher publishes carry the stamp of the joint states. tf2 keeps
+the latest of each frame however old (tf2/src/cache.cpp:255-290 prunes by the newest it holds,
+not by the clock), and RViz's RobotModel asks for the latest (rviz_common frame_manager.cpp,
+SyncOff): old stamps that advance still move the arm. What asks for the current time (a tf2
+lookup in a node, RViz's displays in synchronised modes) gets an "extrapolation" error. A stamp
+made by hand (a counter, a clock of another machine) or simulated time on only some of the nodes
+cause it.""",
 )
 describe(
     "BK816",
@@ -199,7 +218,9 @@ describe(
     hint={
         "near": "write '{near}' in msg.name, exactly as in the URDF",
         "fixed": "leave '{joint}' out of msg.name",
-        "": "use the URDF's joint names in msg.name: {movable}",
+        "": "use the URDF's joint names in msg.name: {movable}; if you have just added '{joint}' to the URDF, "
+            "rebuild (colcon build) and start the launch again: the robot_state_publisher running still has "
+            "the old file",
     },
     explanation="""\
 robot_state_publisher looks each name of a JointState up in the URDF and silently skips the
@@ -221,11 +242,16 @@ describe(
     "BK818",
     title="/joint_states positions are past the joint limits",
     message={
+        "degrees": "joint '{joint}' reaches {value}, a number of degrees: read as radians it is past its "
+                   "limit {bound}, as degrees ({radians} rad) it is within {lower}..{upper} rad",
         "upper": "joint '{joint}' reaches {value} rad, {excess} rad above its upper limit {bound}",
         "lower": "joint '{joint}' reaches {value} rad, {excess} rad below its lower limit {bound}",
     },
-    hint="stay within {lower}..{upper} rad (the <limit> of the URDF), or widen the limit if the mechanism "
-         "allows it",
+    hint={
+        "degrees": "send radians, as JointState and the URDF mean them: math.radians(angle)",
+        "": "stay within {lower}..{upper} rad (the <limit> of the URDF), or widen the limit if the mechanism "
+            "allows it",
+    },
     explanation="""\
 robot_state_publisher draws any angle it receives, even past the `<limit>` of the URDF: RViz
 shows the arm through itself. A real arm or a controller would stop at the limit. The tutorial's
@@ -277,4 +303,109 @@ describe(
 With `use_sim_time` true a node reads its time from `/clock` (a simulator, `ros2 bag play
 --clock`). Without anything on `/clock` its time stays at zero: its timers never fire and what it
 stamps is stamped zero, so robot_state_publisher publishes no transform and the arm stays still.""",
+)
+describe(
+    "BK840",
+    title="robot_state_publisher turns almost none of /joint_states into transforms",
+    message={
+        "stops": "robot_state_publisher stops turning /joint_states into transforms {after} s into the watch, "
+                 "though messages keep coming for {seconds} s ({dropped} dropped: {reason}): RViz's arm stops there",
+        "stamp": "robot_state_publisher turns {published} of the {received} /joint_states messages into "
+                 "transforms, their stamps do not advance ({reason}): RViz's arm stays still",
+        "": "robot_state_publisher turns {published} of the {received} /joint_states messages into "
+            "transforms ({reason}): RViz's arm stays still",
+    },
+    hint={
+        "stops": "stamp with the current time; after stamps go back (a bag played in a loop, a counter "
+                 "restarted), restart robot_state_publisher, which keeps the newest stamp it used",
+        "stamp": "stamp each message when it is sent: msg.header.stamp = self.get_clock().now().to_msg()",
+        "": "send messages robot_state_publisher takes: the URDF's joint names, one position each, "
+            "stamped with self.get_clock().now().to_msg()",
+    },
+    explanation="""\
+`doctor --ros` hands every JointState it received to a model of robot_state_publisher 3.3.3
+(`callbackJointState`, src/robot_state_publisher.cpp:300-363). A message goes out as transforms
+only when its stamp is at least one publish interval (50 ms at the default 20 Hz) after the
+stamp last used for its joints. A stamp made once and reused, or one that is set only at the
+start, passes the first time and never again: the arm RViz draws stays where the first message
+put it, however the angles change.""",
+)
+describe(
+    "BK841",
+    title="/joint_states carries NaN or infinite positions",
+    message={
+        "never": "{count} of {total} /joint_states messages give '{joint}' = {value}: tf2 refuses the transform "
+                 "of '{link}' (TF_NAN_INPUT) and RViz cannot place it ({rviz})",
+        "": "{count} of {total} /joint_states messages give '{joint}' = {value}: tf2 refuses the transform of "
+            "'{link}' (TF_NAN_INPUT) and RViz keeps it at its last valid angle",
+    },
+    hint="give '{joint}' a finite angle in radians (check the computation: a division by zero, math.acos "
+         "of a value past 1, an unset variable)",
+    explanation="""\
+robot_state_publisher does not check the values it receives: it computes the transform and
+publishes it. tf2 refuses every transform holding a NaN (tf2/src/buffer_core.cpp:235-243, error
+TF_NAN_INPUT); an infinite angle gives NaN once turned into a rotation. RViz keeps the link at the
+last transform it accepted, or cannot place it at all when none came.""",
+)
+describe(
+    "BK842",
+    title="/joint_states stopped during the watch",
+    message={
+        "left": "the last /joint_states message came {seconds} s before the end of the watch ({after} s into "
+                "it, {count} messages) and nothing publishes /joint_states any more: its node stopped or "
+                "crashed, RViz's arm is still",
+        "": "the last /joint_states message came {seconds} s before the end of the watch ({after} s into it, "
+            "{count} messages): its node stopped publishing, RViz's arm is still",
+    },
+    hint={
+        "left": "look at the node's terminal for its error (a traceback ends the node), fix it and start it again",
+        "": "look at the node's timer and its terminal: it publishes no more",
+    },
+    explanation="""\
+The messages came at first, then stopped before `doctor --ros` finished watching. When the
+publisher is also gone from the graph, its process ended (an exception in a callback ends
+`rclpy.spin`). RViz keeps the arm at the last transforms it received.""",
+)
+describe(
+    "BK843",
+    title="robot_state_publisher moves RViz's arm in steps",
+    message="robot_state_publisher turns only {moves} of the {received} /joint_states messages into transforms "
+            "({rate} a second): the stamps advance in steps of {step} s, and it waits one publish interval "
+            "between two stamps",
+    hint="stamp with the full time, seconds and nanoseconds: msg.header.stamp = self.get_clock().now().to_msg()",
+    explanation="""\
+robot_state_publisher publishes a joint's transform only when the stamp is at least one publish
+interval newer than the last it published for that joint (src/robot_state_publisher.cpp:334-340).
+Stamps that advance in steps (whole seconds, a counter) let through one message per step: the
+arm RViz draws jumps from pose to pose.""",
+)
+describe(
+    "BK844",
+    title="several nodes share one name",
+    message="{count} nodes are named {node}: the graph cannot tell them apart, their parameters, services "
+            "and logs mix",
+    hint="stop the copy left running (a launch still open in another terminal), or give each node a name of "
+         "its own (name='...' in the launch file)",
+    explanation="""\
+ROS 2 lets two nodes bear the same name and only warns in their logs. Tools that address a node
+by its name (`ros2 param`, `ros2 node info`, the parameter services) reach one of them at random.
+A second launch started before the first was stopped gives two robot_state_publishers, each
+publishing its own transforms.""",
+)
+describe(
+    "BK845",
+    title="/robot_description carries two different robots",
+    message={
+        "names": "/robot_description carries {n} different robots, from {nodes} (they differ in {names}): RViz "
+                 "shows whichever came last, and each robot_state_publisher publishes its own transforms",
+        "": "/robot_description carries {n} different robots, from {nodes}: RViz shows whichever came last, and "
+            "each robot_state_publisher publishes its own transforms",
+    },
+    hint="stop the old launch (Ctrl-C in its terminal), rebuild the package (colcon build) and start the launch "
+         "once",
+    explanation="""\
+Each robot_state_publisher publishes its URDF on `/robot_description`, kept for late readers
+(transient local). With two of them running, from an old launch and a new one, a reader gets
+both and keeps the one that reached it last: RViz may show the old arm, and the joint names of
+the new one look unknown. Which one wins changes from run to run.""",
 )

@@ -3,7 +3,9 @@
 The probe (:mod:`bras_kit.live._probe`, stream mode) runs beside the viewer and prints JSON lines:
 the text of /robot_description when it arrives (the page shows that robot, and shows the new one
 when it is replaced), every JointState as it arrives (every page moves at once, as
-robot_state_publisher turns it into TF for RViz), and the graph every two seconds (the doctor's
+robot_state_publisher turns it into TF for RViz, and only as it does: each message goes through
+the model of robot_state_publisher 3.3.3, :mod:`bras_kit.ros.rviz.frames`, so a message it ignores
+or a stamp that does not advance leaves the arm where RViz leaves it), and the graph every two seconds (the doctor's
 findings, the same rules as ``bras-kit doctor --ros``, on the page's "Checks"). A record that
 does not fit, a node leaving, a description that is not a URDF: each shows as a finding, the
 page keeps the last robot it could draw, never a traceback.
@@ -19,12 +21,13 @@ from __future__ import annotations
 
 import collections
 import contextlib
+import math
 import subprocess
 import threading
 import time
 from typing import Any
 
-from ..live.watch import open_stream, read_records
+from ..live.watch import look_elsewhere, open_stream, read_records
 from ..model.robot import Robot
 from ..ros.graph import merge_stream
 
@@ -47,6 +50,12 @@ class RosFeed:
         self.robot: Robot | None = None
         self.viewer: Any = None
         self.latencies: collections.deque[float] = collections.deque(maxlen=1000)  # s, publish -> page
+        # nodes seen on other domains or with the other discovery range while this one is empty:
+        # the same search as doctor --ros's (live.watch.look), so both commands give one verdict
+        self.elsewhere: list[dict[str, Any]] = []
+        self._searching = False
+        self._rsp: Any = None  # robot_state_publisher as modelled, for self._rsp_robot
+        self._rsp_robot: Robot | None = None
         self._robot_ready = threading.Event()
         self._lock = threading.Lock()
         self._thread: threading.Thread | None = None
@@ -90,6 +99,11 @@ class RosFeed:
         elif kind == "graph":
             with self._lock:
                 self.graph = record
+                empty = not record.get("nodes")
+                if not empty:
+                    self.elsewhere = []
+            if empty:
+                self._search_elsewhere()
             self._show_findings()
         elif kind == "hello":
             self.hello = record
@@ -104,10 +118,34 @@ class RosFeed:
         if viewer is not None:
             pairs = [(n, float(p)) for n, p in zip(names, positions)
                      if isinstance(n, str) and isinstance(p, (int, float)) and not isinstance(p, bool)]
-            viewer.show_joint_state([n for n, _ in pairs], [p for _, p in pairs])
+            moved = self._as_rsp_publishes(record, pairs)
+            if moved:
+                viewer.show_joint_state(list(moved), list(moved.values()))
             sent = record.get("sent")
             if isinstance(sent, int) and sent > 0:
                 self.latencies.append(time.time() - sent * 1e-9)
+
+    def _as_rsp_publishes(self, record: dict[str, Any], pairs: list[tuple[str, float]]) -> dict[str, float]:
+        """The joint values robot_state_publisher would turn into transforms for this message, and
+        tf2 keep (none when it ignores the message): what RViz's arm does with it."""
+        from ..ros.rviz.frames import JointStateIn, RobotStatePublisher
+
+        robot = self.robot
+        if robot is None:
+            return dict(pairs)
+        if self._rsp is None or self._rsp_robot is not robot:  # a new description: a new node
+            self._rsp, self._rsp_robot = RobotStatePublisher(robot), robot
+        stamp, received = record.get("stamp"), record.get("received")
+        if not (isinstance(stamp, list) and len(stamp) == 2 and all(isinstance(v, int) for v in stamp)):
+            return {}
+        names = tuple(n if isinstance(n, str) else "" for n in record["name"])
+        positions = tuple(float(p) if isinstance(p, (int, float)) and not isinstance(p, bool) else math.nan
+                          for p in record["position"])
+        got = self._rsp.on_joint_state(JointStateIn(
+            stamp[0] * 1_000_000_000 + stamp[1], names, positions,
+            received_ns=int(received * 1e9) if isinstance(received, (int, float)) else None))
+        movable = {j.name for j in robot.movable_joints()}
+        return {tf.joint: tf.position for tf in got.published if not tf.nan and tf.joint in movable}
 
     def _description(self, record: dict[str, Any]) -> None:
         from ..live.doctor import robot_of
@@ -127,6 +165,29 @@ class RosFeed:
                 viewer.reload()
         self._show_findings()
 
+    def _search_elsewhere(self) -> None:
+        """Look for the nodes on the other domains in use here, once at a time, on a thread (a census
+        takes seconds): the findings say where they are when it ends."""
+        with self._lock:
+            if self._searching:
+                return
+            self._searching = True
+
+        def search() -> None:
+            try:
+                found = [{"domain": e.domain, "range": e.discovery_range, "nodes": list(e.nodes)}
+                         for e in look_elsewhere(self.python, self.snapshot())]
+                with self._lock:
+                    self.elsewhere = found
+            except Exception:  # noqa: BLE001 - a census that fails leaves the findings as they are
+                pass
+            finally:
+                with self._lock:
+                    self._searching = False
+            self._show_findings()
+
+        threading.Thread(target=search, daemon=True, name="bras-kit-ros-elsewhere").start()
+
     # -- what the doctor says of it ------------------------------------------------------------
     def snapshot(self) -> Any:
         """The graph as :func:`bras_kit.live.doctor.diagnose` reads it: the last graph, the last
@@ -137,8 +198,9 @@ class RosFeed:
                       and s["received"] >= now - WINDOW]
             graph = self.graph
             descriptions = [self.description] if self.description else []
+            hello = {**self.hello, "elsewhere": list(self.elsewhere)}
         started = max(self.started, now - WINDOW)
-        return merge_stream(self.hello, graph, descriptions, recent, started, now)
+        return merge_stream(hello, graph, descriptions, recent, started, now)
 
     def results(self) -> list[Any]:
         from ..live.doctor import diagnose

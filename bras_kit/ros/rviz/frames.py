@@ -241,12 +241,16 @@ class _Buffer:
         items = self.history.setdefault(tf.child, [])
         if items:  # cache.cpp:255-290: prune by the newest held, then refuse what is older still
             latest = items[0][0]
-            items[:] = [item for item in items if item[0] + CACHE_NS >= latest]
+            while items[-1][0] + CACHE_NS < latest:  # the oldest are at the end (pruneList, :340-346)
+                items.pop()
             if tf.stamp_ns < latest - CACHE_NS:
                 return  # TF_OLD_DATA
-        if (tf.stamp_ns, tf.parent) in items:
-            return
         at = next((i for i, item in enumerate(items) if item[0] <= tf.stamp_ns), len(items))
+        same = at
+        while same < len(items) and items[same][0] == tf.stamp_ns:  # the same transform twice: kept once
+            if items[same][1] == tf.parent:
+                return
+            same += 1
         items.insert(at, (tf.stamp_ns, tf.parent))
 
     def _up(self, frame: str) -> tuple[str, int] | None:

@@ -25,6 +25,7 @@ parser.add_argument("--text")
 parser.add_argument("--use-sim-time", action="store_true")
 parser.add_argument("--name", default="robot_state_publisher")
 parser.add_argument("--silent", action="store_true")
+parser.add_argument("--namespace", default="", help="the node's namespace (the launch's namespace='/arm')")
 args = parser.parse_args()
 with open(args.urdf, encoding="utf-8") as file:
     description = file.read() if args.text is None else args.text
@@ -33,7 +34,7 @@ rclpy.init()
 # SIGTERM (the test stopping the graph) ends the process at once, as the kernel does by
 # default: rclpy's own handler now and then hangs in its shutdown (seen under load)
 signal.signal(signal.SIGTERM, signal.SIG_DFL)
-node = rclpy.create_node(args.name, parameter_overrides=[
+node = rclpy.create_node(args.name, namespace=args.namespace or None, parameter_overrides=[
     Parameter("use_sim_time", Parameter.Type.BOOL, args.use_sim_time)])
 node.declare_parameter("robot_description", description)
 durability = DurabilityPolicy.VOLATILE if args.volatile else DurabilityPolicy.TRANSIENT_LOCAL
