@@ -8,8 +8,14 @@ describe(
     "BK800",
     title="no ROS 2 node is seen on this domain",
     message={
-        "domain": Plural("no node on ROS_DOMAIN_ID {domain}, but {nodes} runs on domain {other}: this terminal and theirs are on different domains", "no node on ROS_DOMAIN_ID {domain}, but {nodes} run on domain {other}: this terminal and theirs are on different domains", "nodes"),
-        "range": Plural("no node on ROS_DOMAIN_ID {domain} with discovery range {ours}, but {nodes} is seen with range {other}: the terminals do not search the same way", "no node on ROS_DOMAIN_ID {domain} with discovery range {ours}, but {nodes} are seen with range {other}: the terminals do not search the same way", "nodes"),
+        "domain": Plural(
+            "no node on ROS_DOMAIN_ID {domain}, but {nodes} runs on domain {other}: this terminal and theirs are on different domains",
+            "no node on ROS_DOMAIN_ID {domain}, but {nodes} run on domain {other}: this terminal and theirs are on different domains",
+            "nodes"),
+        "range": Plural(
+            "no node on ROS_DOMAIN_ID {domain} with discovery range {ours}, but {nodes} is seen with range {other}: the terminals do not search the same way",
+            "no node on ROS_DOMAIN_ID {domain} with discovery range {ours}, but {nodes} are seen with range {other}: the terminals do not search the same way",
+            "nodes"),
         "": "no ROS 2 node on ROS_DOMAIN_ID {domain} (watched {seconds} s), nor on another domain of this computer",
     },
     hint={
@@ -30,7 +36,10 @@ describe(
     "BK801",
     title="nothing publishes /robot_description",
     message={
-        "readers": Plural("nothing publishes /robot_description, yet {readers} waits for it: RViz stays empty (\"Waiting for robot_description...\" is not a hang: nothing will come)", "nothing publishes /robot_description, yet {readers} wait for it: RViz stays empty (\"Waiting for robot_description...\" is not a hang: nothing will come)", "readers"),
+        "readers": Plural(
+            "nothing publishes /robot_description, yet {readers} waits for it: RViz stays empty (\"Waiting for robot_description...\" is not a hang: nothing will come)",
+            "nothing publishes /robot_description, yet {readers} wait for it: RViz stays empty (\"Waiting for robot_description...\" is not a hang: nothing will come)",
+            "readers"),
         "": "nothing publishes /robot_description (nodes seen: {nodes}): RViz's RobotModel has no robot to show",
     },
     hint="start robot_state_publisher with the URDF as its robot_description parameter: the tutorial's "
@@ -56,7 +65,10 @@ RobotModel) does not even match it. The model stays empty, with no error.""",
 describe(
     "BK803",
     title="/robot_description is published but nothing was received",
-    message=Plural("{nodes} publishes /robot_description, but no text came in {seconds} s", "{nodes} publish /robot_description, but no text came in {seconds} s", "nodes"),
+    message=Plural(
+        "{nodes} publishes /robot_description, but no text came in {seconds} s",
+        "{nodes} publish /robot_description, but no text came in {seconds} s",
+        "nodes"),
     hint="restart the node that publishes it; if it publishes by hand, publish with transient_local "
          "durability so that late readers get it",
     explanation="""\
@@ -105,8 +117,14 @@ describe(
     "BK811",
     title="several nodes publish /joint_states",
     message={
-        "slider": Plural("{n} node publishes /joint_states ({nodes}): the slider window ({slider}) and your node take turns, the arm jumps between their angles", "{n} nodes publish /joint_states ({nodes}): the slider window ({slider}) and your node take turns, the arm jumps between their angles", "n"),
-        "": Plural("{n} node publishes /joint_states ({nodes}): robot_state_publisher takes each message in turn and the arm jumps between them", "{n} nodes publish /joint_states ({nodes}): robot_state_publisher takes each message in turn and the arm jumps between them", "n"),
+        "slider": Plural(
+            "{n} node publishes /joint_states ({nodes}): the slider window ({slider}) and your node take turns, the arm jumps between their angles",
+            "{n} nodes publish /joint_states ({nodes}): the slider window ({slider}) and your node take turns, the arm jumps between their angles",
+            "n"),
+        "": Plural(
+            "{n} node publishes /joint_states ({nodes}): robot_state_publisher takes each message in turn and the arm jumps between them",
+            "{n} nodes publish /joint_states ({nodes}): robot_state_publisher takes each message in turn and the arm jumps between them",
+            "n"),
     },
     hint={
         "slider": "close the slider window, as the tutorial says before running the animation node",
@@ -122,8 +140,14 @@ describe(
     "BK812",
     title="/joint_states has publishers but no message came",
     message={
-        "sim": Plural("{nodes} publishes /joint_states but sent nothing in {seconds} s: {sim_use}", "{nodes} publish /joint_states but sent nothing in {seconds} s: {sim_use}", "nodes"),
-        "": Plural("{nodes} publishes /joint_states but sent nothing in {seconds} s: the arm does not move", "{nodes} publish /joint_states but sent nothing in {seconds} s: the arm does not move", "nodes"),
+        "sim": Plural(
+            "{nodes} publishes /joint_states but sent nothing in {seconds} s: {sim_use}",
+            "{nodes} publish /joint_states but sent nothing in {seconds} s: {sim_use}",
+            "nodes"),
+        "": Plural(
+            "{nodes} publishes /joint_states but sent nothing in {seconds} s: the arm does not move",
+            "{nodes} publish /joint_states but sent nothing in {seconds} s: the arm does not move",
+            "nodes"),
     },
     hint={
         "sim": "set use_sim_time to false (or start what publishes /clock)",
@@ -131,7 +155,10 @@ describe(
             "calls publish",
     },
     parts={
-        "sim_use": Plural("{sim} uses simulated time and nothing publishes /clock, so its timer never fires", "{sim} use simulated time and nothing publishes /clock, so their timers never fire", "sim"),
+        "sim_use": Plural(
+            "{sim} uses simulated time and nothing publishes /clock, so its timer never fires",
+            "{sim} use simulated time and nothing publishes /clock, so their timers never fire",
+            "sim"),
     },
     explanation="""\
 A node created a publisher on `/joint_states` but no message reached `doctor --ros` while it
@@ -156,7 +183,10 @@ describe(
     message={
         "all": "every /joint_states message ({total}) has header.stamp = 0: robot_state_publisher 3.3 publishes "
                "no transform for them, the arm does not move",
-        "some": Plural("{count} of {total} /joint_states messages has header.stamp = 0: robot_state_publisher skips it", "{count} of {total} /joint_states messages have header.stamp = 0: robot_state_publisher skips them", "count"),
+        "some": Plural(
+            "{count} of {total} /joint_states messages has header.stamp = 0: robot_state_publisher skips it",
+            "{count} of {total} /joint_states messages have header.stamp = 0: robot_state_publisher skips them",
+            "count"),
     },
     hint="stamp each message: msg.header.stamp = self.get_clock().now().to_msg()",
     explanation="""\
@@ -232,8 +262,14 @@ describe(
     "BK819",
     title="/joint_states messages have more names than positions, or fewer",
     message={
-        "empty": Plural("{count} of {total} /joint_states messages has {name_count} and no position: robot_state_publisher ignores it", "{count} of {total} /joint_states messages have {name_count} and no position: robot_state_publisher ignores them", "count"),
-        "": Plural("{count} of {total} /joint_states messages has {name_count} but {position_count}: robot_state_publisher ignores it", "{count} of {total} /joint_states messages have {name_count} but {position_count}: robot_state_publisher ignores them", "count"),
+        "empty": Plural(
+            "{count} of {total} /joint_states messages has {name_count} and no position: robot_state_publisher ignores it",
+            "{count} of {total} /joint_states messages have {name_count} and no position: robot_state_publisher ignores them",
+            "count"),
+        "": Plural(
+            "{count} of {total} /joint_states messages has {name_count} but {position_count}: robot_state_publisher ignores it",
+            "{count} of {total} /joint_states messages have {name_count} but {position_count}: robot_state_publisher ignores them",
+            "count"),
     },
     hint="give msg.position one value per name, in the same order",
     parts={
