@@ -234,3 +234,50 @@ def test_no_plain_text_puts_a_count_beside_a_fixed_plural_noun():
             for lang in ("en", "fr"):
                 spots += [f"{code} ({lang}): {spot}" for spot in counted_nouns(code, raw_text(code, text, lang))]
     assert not spots, "give these a Plural(singular, plural, n):\n" + "\n".join(spots)
+
+
+def test_the_catalogs_tool_extracts_a_plural_with_its_rule_code(tmp_path):
+    """``Plural(...)`` in ``describe`` (a variant's value or a part) becomes msgid + msgid_plural
+    with msgctxt = the code, as Babel writes it into validate.po."""
+    from babel.messages.pofile import read_po
+
+    from bras_kit.cli import catalogs
+
+    package = tmp_path / "bras_kit" / "validate"
+    package.mkdir(parents=True)
+    (package / "texts.py").write_text(
+        'describe("BK999", title="t", message={"": Plural("{n} joint", "{n} joints", "n"), "x": "plain"},\n'
+        '         parts={"such": Plural("{k} message", "{k} messages", "k")}, explanation="e")\n',
+        encoding="utf-8")
+    found = {(e.context, e.id, e.plural) for e in catalogs.extract_file(package / "texts.py", tmp_path / "bras_kit")}
+    assert found == {("BK999", "t", None), ("BK999", "plain", None), ("BK999", "e", None),
+                     ("BK999", "{n} joint", "{n} joints"), ("BK999", "{k} message", "{k} messages")}
+    with (LOCALE_DIR / "fr" / "LC_MESSAGES" / "validate.po").open("rb") as handle:
+        po = read_po(handle)
+    entry = po.get("{names} joint", context="BK645")
+    assert entry.pluralizable and entry.id == ("{names} joint", "{names} joints")
+    assert entry.string == ("{names} articulation", "{names} articulations")
+
+
+def test_an_entry_that_gains_a_plural_form_is_asked_anew(tmp_path, monkeypatch):
+    """A text that was plain and becomes a Plural loses its one-form French (gettext would never
+    look it up again) and comes back as msgid_plural with two empty forms to translate."""
+    from babel.messages.pofile import read_po
+
+    from bras_kit.cli import catalogs
+
+    folder = tmp_path / "fr" / "LC_MESSAGES"
+    folder.mkdir(parents=True)
+    (folder / "validate.po").write_text(
+        'msgid ""\nmsgstr ""\n"Plural-Forms: nplurals=2; plural=(n > 1);\\n"\n\n'
+        'msgctxt "BK999"\nmsgid "{n} joint"\nmsgstr "{n} articulations"\n', encoding="utf-8")
+    item = catalogs.Extracted("validate", "{n} joint", "{n} joints", "BK999", "texts.py", 1)
+    monkeypatch.setattr(catalogs, "LOCALE_DIR", tmp_path)
+    monkeypatch.setattr(catalogs, "extract_all", lambda: [item])
+    monkeypatch.setattr(catalogs, "_cli_words", lambda: [])
+    untranslated = catalogs.update_catalogs()
+    with (folder / "validate.po").open("rb") as handle:
+        entry = read_po(handle).get("{n} joint", context="BK999")
+    assert entry.id == ("{n} joint", "{n} joints") and entry.string == ("", "")
+    assert untranslated["validate"] == [str(entry.id)]
+    assert (folder / "validate.mo").exists()
