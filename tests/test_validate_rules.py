@@ -308,7 +308,7 @@ def test_xacro_left_in_urdf(check):
     findings = check(text)
     f = only(findings, "BK119")
     assert (f.element, f.line) == ("xacro:property", 5)
-    assert f.text("en") == "xacro markup in a plain URDF: <xacro:property> (and 1 more lines)"
+    assert f.text("en") == "xacro markup in a plain URDF: <xacro:property> (and 1 more line)"  # one line: singular (issue 52)
     assert "BK123" in codes(findings)  # the unexpanded number is unreadable too
     assert "BK119" not in codes(check(text, "bras.urdf.xacro"))  # a .xacro is expanded first
 

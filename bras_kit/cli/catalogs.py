@@ -29,7 +29,8 @@ MARKERS = {"M": "message", "Mn": "plural", "Mc": "context"}
 # A keyword's value may be a string or a dict of strings (variants).
 TEXT_CALLS: dict[str, tuple[int | None, tuple[str, ...]]] = {
     # bras_kit.findings.registry.describe("BK301", title=..., message=..., hint=..., explanation=...)
-    "describe": (0, ("title", "message", "hint", "explanation")),
+    # (message, hint and parts may hold Plural("one", "several", "n") calls: msgid_plural)
+    "describe": (0, ("title", "message", "hint", "explanation", "parts")),
 }
 
 
@@ -71,16 +72,26 @@ def _name(func: ast.AST) -> str | None:
     return None
 
 
-def _texts(node: ast.AST) -> Iterator[tuple[str, int]]:
-    """A string, or every string value of a dict literal."""
+def _plural(node: ast.AST) -> tuple[str, str] | None:
+    """The two forms of a ``Plural("one", "several", "n")`` call (bras_kit.findings.registry)."""
+    if isinstance(node, ast.Call) and _name(node.func) == "Plural" and len(node.args) >= 2:
+        singular, plural = _string(node.args[0]), _string(node.args[1])
+        if singular is not None and plural is not None:
+            return singular, plural
+    return None
+
+
+def _texts(node: ast.AST) -> Iterator[tuple[str, str | None, int]]:
+    """``(text, plural, line)``: a string, a ``Plural(...)``, or every such value of a dict literal."""
     text = _string(node)
+    forms = _plural(node)
     if text is not None:
-        yield text, node.lineno  # type: ignore[attr-defined]
+        yield text, None, node.lineno  # type: ignore[attr-defined]
+    elif forms is not None:
+        yield forms[0], forms[1], node.lineno  # type: ignore[attr-defined]
     elif isinstance(node, ast.Dict):
         for value in node.values:
-            text = _string(value)
-            if text is not None:
-                yield text, value.lineno
+            yield from _texts(value)
 
 
 def calls_in(tree: ast.AST) -> Iterator[tuple[str | None, str, str | None, int, ast.Call]]:
@@ -102,8 +113,8 @@ def calls_in(tree: ast.AST) -> Iterator[tuple[str | None, str, str | None, int, 
                 len(node.args) > context_index else None
             for keyword in node.keywords:
                 if keyword.arg in keywords:
-                    for text, line in _texts(keyword.value):
-                        yield context, text, None, line, node
+                    for text, plural, line in _texts(keyword.value):
+                        yield context, text, plural, line, node
 
 
 def extract_file(path: Path, root: Path = PACKAGE_ROOT) -> list[Extracted]:
@@ -189,7 +200,11 @@ def update_catalogs(prune: bool = False) -> dict[str, list[str]]:
                 wanted.setdefault((word, None), Extracted("cli", word, None, None, "", 0))
         for (msgid, context), item in wanted.items():
             key: Any = (msgid, item.plural) if item.plural else msgid
-            if catalog.get(msgid, context=context) is None:
+            known = catalog.get(msgid, context=context)
+            if known is not None and known.pluralizable != bool(item.plural):
+                catalog.delete(msgid, context=context)  # it gained or lost its plural form: asked anew
+                known = None
+            if known is None:
                 catalog.add(key, ("", "") if item.plural else "", context=context)
         if prune:
             for message in list(catalog):

@@ -45,40 +45,90 @@ FAMILY_TITLES: dict[str, Message] = {
 }
 SEVERITY_WORDS: dict[str, Message] = {ERROR: M("error"), WARNING: M("warning"), INFO: M("info")}
 
-Template = str | Mapping[str, str]  # one text, or one per variant ("" = otherwise)
+@dataclass(frozen=True)
+class Plural:
+    """A text whose words follow a count: ``Plural("{count} message", "{count} messages", "count")``.
+
+    ``n`` names the hit parameter that counts (an int, or a list whose length counts). It is
+    worded with ``npgettext(code, singular, plural, n)``, so each language applies its own rule
+    (French: 0 and 1 take the singular, read from the ``Plural-Forms`` of ``validate.po``).
+
+    Why this shape: gettext gives one count per entry, so the count goes beside the two English
+    forms, in the same ``describe(...)`` call as the rest of the rule's words, where a reader (and
+    the extractor, :mod:`bras_kit.cli.catalogs`) sees the whole sentence at once. A sentence with
+    several counts (``{names} names but {positions} positions``) names its counted phrases as
+    fields and declares each in ``describe(parts=...)``, one ``Plural`` each; the sentence itself
+    can be a ``Plural`` too, for the count its verb agrees with.
+    """
+
+    singular: str
+    plural: str
+    n: str
+
+
+Text = str | Plural
+Template = Text | Mapping[str, Text]  # one text, or one per variant ("" = otherwise)
 
 
 @dataclass(frozen=True)
 class RuleTexts:
     """A rule's English words: ``message`` and ``hint`` are ``str.format`` templates over the
-    hit's parameters, possibly one per variant; ``explanation`` is what ``bras-kit explain`` shows."""
+    hit's parameters, possibly one per variant; ``parts`` are counted phrases those templates
+    name as fields; ``explanation`` is what ``bras-kit explain`` shows."""
 
     title: str
     message: Template
     hint: Template
     explanation: str
+    parts: Mapping[str, Plural] = field(default_factory=dict)
 
 
 TEXTS: dict[str, RuleTexts] = {}
 
 
-def describe(code: str, *, title: str, message: Template, hint: Template = "", explanation: str) -> None:
+def describe(code: str, *, title: str, message: Template, hint: Template = "", explanation: str,
+             parts: Mapping[str, Plural] | None = None) -> None:
     """Register the English texts of rule ``code`` (extracted into ``validate.po``, msgctxt = code)."""
     if code in TEXTS:
         raise ValueError(f"rule code {code} described twice")
-    TEXTS[code] = RuleTexts(title, message, hint, explanation)
+    TEXTS[code] = RuleTexts(title, message, hint, explanation, dict(parts or {}))
 
 
-def pick(template: Template, variant: str) -> str:
+def pick(template: Template, variant: str) -> Text:
     """The template for ``variant`` (the ``""`` one when the variant has none)."""
-    if isinstance(template, str):
+    if isinstance(template, (str, Plural)):
         return template
     return template.get(variant) or template.get("", "")
 
 
-def text_message(code: str, template: str, params: Mapping[str, object] | None = None) -> Message:
-    """One of rule ``code``'s texts as a message of the ``validate`` domain (msgctxt = code)."""
-    return Message(template, dict(params or {}), "validate", code)
+def count_of(value: object) -> int:
+    """The number a plural form follows: an int as it is, a list or tuple by its length."""
+    if isinstance(value, (list, tuple, set, frozenset, dict)):
+        return len(value)
+    if isinstance(value, bool):
+        return int(value)
+    if isinstance(value, int):
+        return value
+    if isinstance(value, float) and value.is_integer():
+        return int(value)
+    raise TypeError(f"a plural form counts an int or a list, not {value!r}")
+
+
+def _worded(code: str, text: Text, params: Mapping[str, object]) -> Message:
+    if isinstance(text, Plural):
+        n = count_of(params[text.n]) if text.n in params else 2  # a missing count: the "other" form
+        return Message(text.singular, params, "validate", code, text.plural, n)
+    return Message(text, params, "validate", code)
+
+
+def text_message(code: str, template: Text, params: Mapping[str, object] | None = None) -> Message:
+    """One of rule ``code``'s texts as a message of the ``validate`` domain (msgctxt = code); the
+    rule's counted ``parts`` become parameters, each worded with its own count."""
+    given = dict(params or {})
+    texts = TEXTS.get(code)
+    parts = {name: _worded(code, part, given) for name, part in (texts.parts.items() if texts else ())
+             if part.n in given}
+    return _worded(code, template, {**given, **parts})
 
 
 @dataclass(frozen=True)

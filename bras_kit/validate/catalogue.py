@@ -10,6 +10,7 @@ Regenerate the documentation with::
 from __future__ import annotations
 
 import difflib
+from collections.abc import Mapping
 
 from ..core.errors import ParameterError
 from ..core.i18n import catalog, current_language, say
@@ -18,8 +19,10 @@ from ..findings.registry import (
     FAMILIES,
     FAMILY_TITLES,
     SEVERITY_WORDS,
+    Plural,
     Rule,
     Template,
+    Text,
     sorted_rules,
 )
 from . import RULES
@@ -42,9 +45,14 @@ def find_rule(code_or_name: str) -> Rule:
     )
 
 
-def raw_text(code: str, english: str, lang: str | None = None) -> str:
-    """One of rule ``code``'s texts in ``lang`` as written in the catalog (fields not filled in)."""
+def raw_text(code: str, english: Text, lang: str | None = None, n: int = 2) -> str:
+    """One of rule ``code``'s texts in ``lang`` as written in the catalog (fields not filled in);
+    a :class:`Plural` in its form for ``n`` things."""
     lang = lang or current_language()
+    if isinstance(english, Plural):
+        if lang == "en":
+            return english.singular if n == 1 else english.plural
+        return catalog(lang, "validate").npgettext(code, english.singular, english.plural, n)
     return english if lang == "en" else catalog(lang, "validate").pgettext(code, english)
 
 
@@ -83,12 +91,19 @@ def _md(text: str) -> str:
 
 
 def _templates(label: str, code: str, template: Template, lang: str) -> list[str]:
-    def word(english: str) -> str:
-        return raw_text(code, english, lang)
+    def lines(name: str, text: Text) -> list[str]:
+        if isinstance(text, Plural):  # both forms, as the catalog words them for one and for several
+            one, several = raw_text(code, text, lang, 1), raw_text(code, text, lang, 2)
+            return [f"- {name}, singular (counting {{{text.n}}}): `{one}`", f"- {name}, plural: `{several}`"]
+        return [f"- {name}: `{raw_text(code, text, lang)}`"] if text else []
 
-    if isinstance(template, str):
-        return [f"- {label}: `{word(template)}`"] if template else []
-    return [f"- {label} ({variant or 'otherwise'}): `{word(value)}`" for variant, value in template.items()]
+    if isinstance(template, (str, Plural)):
+        return lines(label, template)
+    return [line for variant, value in template.items() for line in lines(f"{label} ({variant or 'otherwise'})", value)]
+
+
+def _parts(code: str, parts: Mapping[str, Plural], lang: str) -> list[str]:
+    return [line for name, part in parts.items() for line in _templates(f"part {{{name}}}", code, part, lang)]
 
 
 def _section(rule: Rule, lang: str) -> list[str]:
@@ -99,6 +114,7 @@ def _section(rule: Rule, lang: str) -> list[str]:
         "",
         *_templates("message", rule.code, texts.message, lang),
         *_templates("hint", rule.code, texts.hint, lang),
+        *_parts(rule.code, texts.parts, lang),
         "",
         _md(raw_text(rule.code, texts.explanation, lang)),
         "",

@@ -3,7 +3,7 @@
 
 from __future__ import annotations
 
-from ..findings.registry import describe
+from ..findings.registry import Plural, describe
 
 describe(
     "BK700",
@@ -24,8 +24,10 @@ moves `main` (the hand), as `epaule` moves `bras`.""",
 describe(
     "BK701",
     title="no link has an <inertial>: Gazebo would load nothing",
-    message="no link has an <inertial>: Gazebo would load none of the {count} links "
-    "(\"A model must have at least one link\")",
+    message=Plural(
+        "no link has an <inertial>: Gazebo would not load this {count} link (\"A model must have at least one link\")",
+        "no link has an <inertial>: Gazebo would load none of the {count} links (\"A model must have at least one link\")",
+        "count"),
     hint="fine for RViz; before Gazebo, give every link an <inertial> (bras-kit urdf --inertials shows one)",
     explanation="""\
 Gazebo's URDF reader (libsdformat) does not model a link without `<inertial>`, nor anything
@@ -83,8 +85,10 @@ describe(
     message={
         "one": "Gazebo merges link '{link}' into '{into}' (fixed joint '{joint}'): the frame '{link}' does not "
         "exist in the simulation",
-        "": "Gazebo merges {count} links on fixed joints into their parents ({frames}): those frames do not exist "
-        "in the simulation",
+        "": Plural(
+            "Gazebo merges {count} link on a fixed joint into its parent ({frames}): that frame does not exist in the simulation",
+            "Gazebo merges {count} links on fixed joints into their parents ({frames}): those frames do not exist in the simulation",
+            "count"),
     },
     hint='to keep a frame (a TCP, a camera mount), add <gazebo reference="{joint}"><preserveFixedJoint>true'
     "</preserveFixedJoint></gazebo>, and give the link an <inertial> of its own (kept, it is a link like any other)",
@@ -115,8 +119,10 @@ describe(
     message={
         "one": "link '{link}' moves but has no <collision>: in Gazebo it passes through the floor and the other "
         "links",
-        "": "{count} moving links have no <collision> ({links}): in Gazebo they pass through the floor and the "
-        "other links",
+        "": Plural(
+            "{count} moving link has no <collision> ({links}): in Gazebo it passes through the floor and the other links",
+            "{count} moving links have no <collision> ({links}): in Gazebo they pass through the floor and the other links",
+            "count"),
     },
     hint="give '{link}' a <collision> (the same <geometry> and <origin> as its <visual> is a good start)",
     explanation="""\

@@ -2,16 +2,20 @@
 
 from __future__ import annotations
 
-from ..findings.registry import describe
+from ..findings.registry import Plural, describe
 
 describe(
     "BK800",
     title="no ROS 2 node is seen on this domain",
     message={
-        "domain": "no node on ROS_DOMAIN_ID {domain}, but {nodes} run on domain {other}: this terminal and "
-                  "theirs are on different domains",
-        "range": "no node on ROS_DOMAIN_ID {domain} with discovery range {ours}, but {nodes} are seen with "
-                 "range {other}: the terminals do not search the same way",
+        "domain": Plural(
+            "no node on ROS_DOMAIN_ID {domain}, but {nodes} runs on domain {other}: this terminal and theirs are on different domains",
+            "no node on ROS_DOMAIN_ID {domain}, but {nodes} run on domain {other}: this terminal and theirs are on different domains",
+            "nodes"),
+        "range": Plural(
+            "no node on ROS_DOMAIN_ID {domain} with discovery range {ours}, but {nodes} is seen with range {other}: the terminals do not search the same way",
+            "no node on ROS_DOMAIN_ID {domain} with discovery range {ours}, but {nodes} are seen with range {other}: the terminals do not search the same way",
+            "nodes"),
         "": "no ROS 2 node on ROS_DOMAIN_ID {domain} (watched {seconds} s), nor on another domain of this computer",
     },
     hint={
@@ -34,8 +38,10 @@ describe(
     message={
         "near": "nothing publishes /robot_description, but {topic} is published by {nodes}: RViz's RobotModel "
                 "reads /robot_description unless its Description Topic says otherwise",
-        "readers": "nothing publishes /robot_description, yet {readers} wait for it: RViz stays empty "
-                   "(\"Waiting for robot_description...\" is not a hang: nothing will come)",
+        "readers": Plural(
+            "nothing publishes /robot_description, yet {readers} waits for it: RViz stays empty (\"Waiting for robot_description...\" is not a hang: nothing will come)",
+            "nothing publishes /robot_description, yet {readers} wait for it: RViz stays empty (\"Waiting for robot_description...\" is not a hang: nothing will come)",
+            "readers"),
         "": "nothing publishes /robot_description (nodes seen: {nodes}): RViz's RobotModel has no robot to show",
     },
     hint={
@@ -65,7 +71,10 @@ RobotModel) does not even match it. The model stays empty, with no error.""",
 describe(
     "BK803",
     title="/robot_description is published but nothing was received",
-    message="{nodes} publish /robot_description, but no text came in {seconds} s",
+    message=Plural(
+        "{nodes} publishes /robot_description, but no text came in {seconds} s",
+        "{nodes} publish /robot_description, but no text came in {seconds} s",
+        "nodes"),
     hint="restart the node that publishes it; if it publishes by hand, publish with transient_local "
          "durability so that late readers get it",
     explanation="""\
@@ -120,10 +129,14 @@ describe(
     "BK811",
     title="several nodes publish /joint_states",
     message={
-        "slider": "{n} nodes publish /joint_states ({nodes}): the slider window ({slider}) and your node take "
-                  "turns, the arm jumps between their angles",
-        "": "{n} nodes publish /joint_states ({nodes}): robot_state_publisher takes each message in turn and the "
-            "arm jumps between them",
+        "slider": Plural(
+            "{n} node publishes /joint_states ({nodes}): the slider window ({slider}) and your node take turns, the arm jumps between their angles",
+            "{n} nodes publish /joint_states ({nodes}): the slider window ({slider}) and your node take turns, the arm jumps between their angles",
+            "n"),
+        "": Plural(
+            "{n} node publishes /joint_states ({nodes}): robot_state_publisher takes each message in turn and the arm jumps between them",
+            "{n} nodes publish /joint_states ({nodes}): robot_state_publisher takes each message in turn and the arm jumps between them",
+            "n"),
     },
     hint={
         "slider": "close the slider window, as the tutorial says before running the animation node",
@@ -141,9 +154,14 @@ describe(
     message={
         "type": "/joint_states carries {types} from {nodes}, not sensor_msgs/msg/JointState: "
                 "robot_state_publisher cannot read it, the arm does not move",
-        "sim": "{nodes} publish /joint_states but sent nothing in {seconds} s: {sim} use simulated time and "
-               "nothing publishes /clock, so their timers never fire",
-        "": "{nodes} publish /joint_states but sent nothing in {seconds} s: the arm does not move",
+        "sim": Plural(
+            "{nodes} publishes /joint_states but sent nothing in {seconds} s: {sim_use}",
+            "{nodes} publish /joint_states but sent nothing in {seconds} s: {sim_use}",
+            "nodes"),
+        "": Plural(
+            "{nodes} publishes /joint_states but sent nothing in {seconds} s: the arm does not move",
+            "{nodes} publish /joint_states but sent nothing in {seconds} s: the arm does not move",
+            "nodes"),
     },
     hint={
         "type": "publish sensor_msgs.msg.JointState on /joint_states (from sensor_msgs.msg import JointState), "
@@ -151,6 +169,12 @@ describe(
         "sim": "set use_sim_time to false (or start what publishes /clock)",
         "": "make sure the node's timer runs: rclpy.spin(node) after creating it, and a timer callback that "
             "calls publish",
+    },
+    parts={
+        "sim_use": Plural(
+            "{sim} uses simulated time and nothing publishes /clock, so its timer never fires",
+            "{sim} use simulated time and nothing publishes /clock, so their timers never fire",
+            "sim"),
     },
     explanation="""\
 A node created a publisher on `/joint_states` but no message reached `doctor --ros` while it
@@ -175,7 +199,10 @@ describe(
     message={
         "all": "every /joint_states message ({total}) has header.stamp = 0: robot_state_publisher 3.3 publishes "
                "no transform for them, the arm does not move",
-        "some": "{count} of {total} /joint_states messages have header.stamp = 0: robot_state_publisher skips them",
+        "some": Plural(
+            "{count} of {total} /joint_states messages has header.stamp = 0: robot_state_publisher skips it",
+            "{count} of {total} /joint_states messages have header.stamp = 0: robot_state_publisher skips them",
+            "count"),
     },
     hint="stamp each message: msg.header.stamp = self.get_clock().now().to_msg()",
     explanation="""\
@@ -261,12 +288,20 @@ describe(
     "BK819",
     title="/joint_states messages have more names than positions, or fewer",
     message={
-        "empty": "{count} of {total} /joint_states messages have {names} names and no position: "
-                 "robot_state_publisher ignores them",
-        "": "{count} of {total} /joint_states messages have {names} names but {positions} positions: "
-            "robot_state_publisher ignores them",
+        "empty": Plural(
+            "{count} of {total} /joint_states messages has {name_count} and no position: robot_state_publisher ignores it",
+            "{count} of {total} /joint_states messages have {name_count} and no position: robot_state_publisher ignores them",
+            "count"),
+        "": Plural(
+            "{count} of {total} /joint_states messages has {name_count} but {position_count}: robot_state_publisher ignores it",
+            "{count} of {total} /joint_states messages have {name_count} but {position_count}: robot_state_publisher ignores them",
+            "count"),
     },
     hint="give msg.position one value per name, in the same order",
+    parts={
+        "name_count": Plural("{names} name", "{names} names", "names"),
+        "position_count": Plural("{positions} position", "{positions} positions", "positions"),
+    },
     explanation="""\
 robot_state_publisher ignores a JointState whose `name` and `position` lists differ in length
 (src/robot_state_publisher.cpp:303-312 in Jazzy's 3.3), with one line in its log.""",

@@ -4,7 +4,7 @@ explanation ``bras-kit explain CODE`` shows. French: ``locale/fr/LC_MESSAGES/val
 
 from __future__ import annotations
 
-from ..findings.registry import describe
+from ..findings.registry import Plural, describe
 
 # ------------------------------------------------------------------ BK1xx structure
 
@@ -269,7 +269,10 @@ describe(
     "BK115",
     title="the joints form a loop",
     message="the joints form a loop: {loop}",
-    hint="break the loop: one of the joints {joints} points back up the tree; make its child a new link",
+    hint=Plural(
+        "break the loop: the joint {joints} points back up the tree; make its child a new link",
+        "break the loop: one of the joints {joints} points back up the tree; make its child a new link",
+        "joints"),
     explanation="""\
 Following parent links from child to parent must end at the root. Here it comes back to where
 it started, so none of these links can be placed and no root can be found for them. Usually one
@@ -312,7 +315,10 @@ describe(
     "BK119",
     title="xacro markup left in a URDF file",
     message={
-        "more": "xacro markup in a plain URDF: <{tag}> (and {more} more lines)",
+        "more": Plural(
+            "xacro markup in a plain URDF: <{tag}> (and {more} more line)",
+            "xacro markup in a plain URDF: <{tag}> (and {more} more lines)",
+            "more"),
         "": "xacro markup in a plain URDF: <{tag}>",
     },
     hint="expand it first (bras-kit xacro {path} -o robot.urdf), or name the file .xacro so bras-kit expands it",
@@ -364,13 +370,19 @@ describe(
         "comma": '<{tag}> {attribute}="{value}" writes {comma} with a decimal comma: URDF numbers take a point',
         "commas": '<{tag}> {attribute}="{value}" separates its numbers with commas: URDF separates them with spaces',
         "one": '<{tag}> {attribute}="{value}" is not a number',
-        "": '<{tag}> {attribute}="{value}" is not {count} numbers',
+        "": Plural(
+            "<{tag}> {attribute}=\"{value}\" is not {count} number",
+            "<{tag}> {attribute}=\"{value}\" is not {count} numbers",
+            "count"),
     },
     hint={
         "comma": 'write {attribute}="{fixed}"',
         "commas": 'write {attribute}="{fixed}"',
         "one": "write one number with a decimal point, e.g. 0.6 (not 0,6 and no unit)",
-        "": "write {count} numbers separated by spaces, e.g. {example}",
+        "": Plural(
+            "write {count} number, e.g. {example}",
+            "write {count} numbers separated by spaces, e.g. {example}",
+            "count"),
     },
     explanation="""\
 URDF numbers are written with a decimal point and no unit (metres, radians, kilograms), and
@@ -663,7 +675,10 @@ describe(
     "BK306",
     title="nothing in the robot can move",
     message={
-        "fixed": "all {joints} joints are fixed: the robot has nothing to move",
+        "fixed": Plural(
+            "{joints} joint, and it is fixed: the robot has nothing to move",
+            "all {joints} joints are fixed: the robot has nothing to move",
+            "joints"),
         "": "the robot has no joint: nothing can move",
     },
     hint='give a joint a moving type, e.g. type="revolute" with an <axis> and a <limit>',
@@ -878,7 +893,10 @@ describe(
     title="a moving link has no <inertial>",
     message={
         "one": "link '{link}' moves but has no <inertial>: fine for RViz, needed for physics simulation",
-        "": "{count} moving links have no <inertial> ({links}): fine for RViz, needed for physics simulation",
+        "": Plural(
+            "{count} moving link has no <inertial> ({links}): fine for RViz, needed for physics simulation",
+            "{count} moving links have no <inertial> ({links}): fine for RViz, needed for physics simulation",
+            "count"),
     },
     hint="add <inertial> with <mass> and <inertia> (try bras-kit urdf --inertials for the tutorial arm)",
     explanation="""\

@@ -2,7 +2,7 @@
 
 from __future__ import annotations
 
-from ...findings.registry import describe
+from ...findings.registry import Plural, describe
 
 # ------------------------------------------------------------------ BK6xx the ROS 2 package
 
@@ -234,10 +234,18 @@ describe(
     "BK620",
     title="nothing publishes /joint_states",
     message={
-        "nodes": "the launch file starts robot_state_publisher but nothing that publishes /joint_states ({node} does, but is not started): the joints {joints} have no angle",
-        "topic": "robot_state_publisher listens on {listens}, but JointState is published elsewhere ({sources}): the "
-                 "joints {joints} have no angle",
-        "": "the launch file starts robot_state_publisher but nothing that publishes /joint_states: the joints {joints} have no angle",
+        "nodes": Plural(
+            "the launch file starts robot_state_publisher but nothing that publishes /joint_states ({node} does, but is not started): the joint {joints} has no angle",
+            "the launch file starts robot_state_publisher but nothing that publishes /joint_states ({node} does, but is not started): the joints {joints} have no angle",
+            "joints"),
+        "topic": Plural(
+            "robot_state_publisher listens on {listens}, but JointState is published elsewhere ({sources}): the joint {joints} has no angle",
+            "robot_state_publisher listens on {listens}, but JointState is published elsewhere ({sources}): the joints {joints} have no angle",
+            "joints"),
+        "": Plural(
+            "the launch file starts robot_state_publisher but nothing that publishes /joint_states: the joint {joints} has no angle",
+            "the launch file starts robot_state_publisher but nothing that publishes /joint_states: the joints {joints} have no angle",
+            "joints"),
     },
     hint={
         "topic": "put them in the same namespace (one GroupAction with PushRosNamespace), or remap: "
@@ -362,7 +370,10 @@ such a loop, so the run stops it after ten thousand messages at the same instant
 describe(
     "BK643",
     title="rate.sleep() with no executor spinning: a real node would block",
-    message="the node called rate.sleep() {count} times with no executor spinning in another thread",
+    message=Plural(
+        "the node called rate.sleep() {count} time with no executor spinning in another thread",
+        "the node called rate.sleep() {count} times with no executor spinning in another thread",
+        "count"),
     hint="use create_timer and rclpy.spin, or spin the node in a thread before the loop",
     explanation="""\
 In rclpy, `Rate.sleep()` waits for a timer that an executor must be spinning, in another
@@ -374,7 +385,10 @@ describe(
     "BK644",
     title="nothing was published on /joint_states",
     message={
-        "other": "nothing was published on /joint_states; the JointState messages went to {topics} ({count} messages): robot_state_publisher does not listen there",
+        "other": Plural(
+            "nothing was published on /joint_states; the JointState messages went to {topics} ({count} message): robot_state_publisher does not listen there",
+            "nothing was published on /joint_states; the JointState messages went to {topics} ({count} messages): robot_state_publisher does not listen there",
+            "count"),
         "type": "/joint_states carried {types}, not sensor_msgs/msg/JointState",
         "silent": "the node made a JointState publisher on {topic} but never published on it in {time} s",
         "": "nothing was published on /joint_states in {time} s (topics published: {topics})",
@@ -394,8 +408,15 @@ pitfall. Publishing nothing at all (no timer, no spin, `publish` forgotten) look
 describe(
     "BK645",
     title="JointState name and position lists of different lengths",
-    message="a JointState names {names} joints but gives {positions} positions (t = {time} s; {count} such messages)",
+    message=Plural(
+        "a JointState names {named} but gives {given} (t = {time} s; {count} such message)",
+        "a JointState names {named} but gives {given} (t = {time} s; {count} such messages)",
+        "count"),
     hint="give one position per name, in the same order",
+    parts={
+        "named": Plural("{names} joint", "{names} joints", "names"),
+        "given": Plural("{positions} position", "{positions} positions", "positions"),
+    },
     explanation="""\
 robot_state_publisher pairs `name[i]` with `position[i]`. When the two lists differ in length it
 drops the whole message with an error ("has 2 joint names but 3 positions"), so the arm does not
@@ -407,12 +428,21 @@ describe(
     message={
         "": "the node's JointState names {names}, which are not movable joints of the robot ({joints})",
         "one": "the node's JointState names {names}, which is not a movable joint of the robot ({joints})",
-        "split": "msg.name was given one string, '{value}', not a list: ROS sends its {letters} letters as {letters} joint names ({count} messages)",
+        "split": Plural(
+            "msg.name was given one string, '{value}', not a list: ROS sends {letters_as} ({count} message)",
+            "msg.name was given one string, '{value}', not a list: ROS sends {letters_as} ({count} messages)",
+            "count"),
     },
     hint={
         "": "use the joint names of the URDF: {joints}",
         "one": "use the joint names of the URDF: {joints}",
         "split": "give a list of names: msg.name = {names}",
+    },
+    parts={
+        "letters_as": Plural(
+            "its {letters} letter as {letters} joint name",
+            "its {letters} letters as {letters} joint names",
+            "letters"),
     },
     explanation="""\
 robot_state_publisher matches JointState entries to the URDF by name and ignores the others. A
@@ -449,9 +479,18 @@ describe(
     "BK649",
     title="positions published past the joint limits",
     message={
-        "upper": "joint '{joint}' was sent {value} {unit} at t = {time} s, above its upper limit {bound} ({count} messages past it, first at t = {first} s)",
-        "lower": "joint '{joint}' was sent {value} {unit} at t = {time} s, below its lower limit {bound} ({count} messages past it, first at t = {first} s)",
-        "degrees": "joint '{joint}' was sent {value} at t = {time} s, past its limit {bound}: it looks like degrees ({count} messages, first at t = {first} s)",
+        "upper": Plural(
+            "joint '{joint}' was sent {value} {unit} at t = {time} s, above its upper limit {bound} ({count} message past it, first at t = {first} s)",
+            "joint '{joint}' was sent {value} {unit} at t = {time} s, above its upper limit {bound} ({count} messages past it, first at t = {first} s)",
+            "count"),
+        "lower": Plural(
+            "joint '{joint}' was sent {value} {unit} at t = {time} s, below its lower limit {bound} ({count} message past it, first at t = {first} s)",
+            "joint '{joint}' was sent {value} {unit} at t = {time} s, below its lower limit {bound} ({count} messages past it, first at t = {first} s)",
+            "count"),
+        "degrees": Plural(
+            "joint '{joint}' was sent {value} at t = {time} s, past its limit {bound}: it looks like degrees ({count} message, first at t = {first} s)",
+            "joint '{joint}' was sent {value} at t = {time} s, past its limit {bound}: it looks like degrees ({count} messages, first at t = {first} s)",
+            "count"),
     },
     hint={
         "upper": "keep the positions between the URDF's lower and upper limits (in radians)",
@@ -467,7 +506,10 @@ common cause).""",
 describe(
     "BK650",
     title="header.stamp left at zero",
-    message="{count} of {total} JointState messages have header.stamp at zero",
+    message=Plural(
+        "{count} of {total} JointState messages has header.stamp at zero",
+        "{count} of {total} JointState messages have header.stamp at zero",
+        "count"),
     hint="set msg.header.stamp = self.get_clock().now().to_msg() before publishing",
     explanation="""\
 robot_state_publisher stamps the frames it publishes with the JointState's time. A stamp of zero
@@ -579,7 +621,10 @@ describe(
         "callback_called": "create_timer was given the result of {callback}() (None) instead of the method: the first tick raised",
         "no_self": "{callback} is defined without 'self': the timer calls it on the node and it raised {detail}",
         "no_main": "the module has no function {function}(): ros2 run stops with \"module has no attribute '{function}'\"",
-        "stamp_seconds": "header.stamp only counts whole seconds (nanosec left at 0): {distinct} distinct stamps for {count} messages",
+        "stamp_seconds": Plural(
+            "header.stamp only counts whole seconds (nanosec left at 0): {distinct_stamps} for {count} message",
+            "header.stamp only counts whole seconds (nanosec left at 0): {distinct_stamps} for {count} messages",
+            "count"),
     },
     hint={
         "wrong_import": "import it from its package: from {home} import {type} (and add the package to package.xml's <depend>)",
@@ -599,6 +644,12 @@ describe(
         "no_self": "define it as def {short}(self):",
         "no_main": "add def {function}(): ... to the module, or make setup.py's console_scripts point at the function that starts the node",
         "stamp_seconds": "write msg.header.stamp = self.get_clock().now().to_msg(): it fills sec and nanosec",
+    },
+    parts={
+        "distinct_stamps": Plural(
+            "{distinct} distinct stamp",
+            "{distinct} distinct stamps",
+            "distinct"),
     },
     explanation="""\
 These are the mistakes that stop a beginner's node on ROS 2 Jazzy (rclpy 7.1) with a message
