@@ -193,13 +193,20 @@ def test_a_real_finding_of_one_fixed_joint_is_singular(tmp_path):
 # words after a field that end in s/x but are no plural noun: verbs, French prepositions
 NOT_NOUNS = {"adds", "as", "does", "points", "au-dessus", "aux", "comes", "dans", "dies", "dès", "ends", "exists", "gives", "has",
              "is", "lies", "looks", "mais", "names", "publishes", "reads", "receives", "runs", "sans", "vers",
-             "was", "fusionnés"}
+             "was", "fusionnés", "sous", "des", "/joint_states"}
 # fields that hold a measure (a float) or a fixed bound, never a count of things: their unit stays
 MEASURES = {
     ("BK214", "angle"): "an angle in radians", ("BK214", "effective"): "an angle in degrees",
     ("BK503", "factor"): "a ratio", ("BK507", "ratio"): "a ratio", ("BK627", "period"): "a period in seconds",
     ("BK627", "ratio"): "a ratio", ("BK652", "period"): "a period in seconds",
     ("BK632", "detail"): "bras-kit's bound MAX_DESCRIPTION_ELEMENTS, never 1",
+    # counts a rule only finds at 2 or more: it fires on a rate or on a repeat
+    ("BK840", "received"): "the messages of a watch that kept coming, always several",
+    ("BK840", "dropped"): "dropped of those kept coming, always several",
+    ("BK843", "received"): "a watch's messages, in steps: always several",
+    ("BK841", "total"): "the watch's messages (at 20 Hz, several)",
+    ("BK844", "count"): "nodes sharing a name: 2 or more by definition",
+    ("BK845", "n"): "different robots: 2 or more by definition",
 }
 # a field, then (an optional adjective and) the next word
 CUE = re.compile(r"\{(\w+)(?:[!:][^{}]*)?\}\s+(?:(?:more|moving|such|distinct|other|autres|mobiles|JointState)\s+)?"

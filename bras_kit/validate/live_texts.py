@@ -387,11 +387,12 @@ describe(
     title="/joint_states stopped during the watch",
     message={
         "left": "the last /joint_states message came {seconds} s before the end of the watch ({after} s into "
-                "it, {count} messages) and nothing publishes /joint_states any more: its node stopped or "
+                "it, {sent}) and nothing publishes /joint_states any more: its node stopped or "
                 "crashed, RViz's arm is still",
         "": "the last /joint_states message came {seconds} s before the end of the watch ({after} s into it, "
-            "{count} messages): its node stopped publishing, RViz's arm is still",
+            "{sent}): its node stopped publishing, RViz's arm is still",
     },
+    parts={"sent": Plural("{count} message", "{count} messages", "count")},
     hint={
         "left": "look at the node's terminal for its error (a traceback ends the node), fix it and start it again",
         "": "look at the node's timer and its terminal: it publishes no more",
