@@ -102,11 +102,14 @@ def run(args: argparse.Namespace) -> int:
         results = [FileResult(os.path.join(folder, str(hit.params.get("file", ""))), [finding(RULES["BK630"], hit)])
                    for hit in build_hits(record, folder)]
         if results:
-            sys.stdout.write(format_text(results, lang))
+            shown = format_text(results, lang)
+            sys.stdout.write(shown)
+            _print_colcon_words(record.package, record.failure.colcon, shown)
         else:  # no setup.py, or no setup() in it: what colcon-ros needs to build an ament_python package
             print(say(M("{package} was not built: {file} is missing or calls no setup()", package=record.package,
                         file=os.path.join(folder, record.failure.file or "setup.py")), lang))
-            print(f"Failed   <<< {for_terminal(record.package)}")
+        # colcon's line for a failed package, whatever the cause (colcon-core's console_start_end handler)
+        print(f"Failed   <<< {for_terminal(record.package)}")
     if finished:
         _write_setup_files(base)
     # colcon's closing lines (colcon-output's summary event handler); the install tree only when whole
@@ -116,6 +119,20 @@ def run(args: argparse.Namespace) -> int:
         return 1
     print(say(M("install tree: {folder}", folder=base), lang))
     return 0
+
+
+def _print_colcon_words(package: str, colcon: tuple[str, ...], shown: str) -> None:
+    """The lines colcon would print on stderr for this failure (CMake's, setuptools'), those the
+    finding above did not already quote, in colcon-output's block (``--- stderr: PKG`` ... ``---``)."""
+    from ..trust.inert import for_terminal
+
+    words = [line for line in colcon if not line.startswith(("--- stderr:", "Failed   <<<")) and line != "---"
+             and line not in shown]
+    if words:
+        print(f"--- stderr: {for_terminal(package)}")
+        for line in words:
+            print(for_terminal(line))
+        print("---")
 
 
 SETUP_MARK = "# written by bras-kit build"

@@ -68,6 +68,9 @@ class BuildRecord:
     data_files_line: int = 0
     failure: BuildFailure | None = None
     blocked: list[Attempt] = field(default_factory=list)  # what setup.py tried that its walls stopped
+    script_dir: str = ""  # where the scripts land, relative to the prefix (lib/PKG with the tutorial's setup.cfg)
+    run_depends: tuple[str, ...] = ()  # colcon-core's share/colcon-core/packages/PKG
+    data_folders: list[str] = field(default_factory=list)  # data_files' target folders
 
     def source_of(self, path: str) -> str | None:
         """The package file installed at ``path`` (absolute, in the install tree), if any."""
@@ -112,6 +115,10 @@ def build_package(root: str, install_base: str, *, meanwhile: Callable[[], objec
     root = os.path.abspath(root)
     install_base = os.path.abspath(install_base)
     name, build_type = _manifest(root)
+    if name and not build_type:
+        # catkin_pkg's default build type (catkin_pkg/package.py, get_build_type): colcon-ros builds it
+        # with CMake, which finds no CMakeLists.txt in an ament_python package
+        build_type = "catkin"
     package = _shown_name(name, root)
     record = BuildRecord(package, root, os.path.join(install_base, package))
     if build_type and build_type != "ament_python":
@@ -119,6 +126,9 @@ def build_package(root: str, install_base: str, *, meanwhile: Callable[[], objec
             if not os.path.isfile(os.path.join(root, "CMakeLists.txt")) else []
         record.failure = BuildFailure("ament_cmake", _failed(package, lines) if lines else (), "package.xml",
                                       _line_of(root, "package.xml", "<build_type>"), detail=build_type)
+        if name_problem(package) is None:
+            record.run_depends = run_dependencies(root)
+            _cmake_prefix(record, build_type)
         return record
     if not os.path.isfile(os.path.join(root, "setup.py")):
         record.failure = BuildFailure("no_setup", (), "setup.py")
@@ -141,12 +151,122 @@ def build_package(root: str, install_base: str, *, meanwhile: Callable[[], objec
     if isinstance(checked, Refusal):
         record.failure = _refused(record, checked)
         return record
-    record.package = checked.name
-    record.prefix = os.path.join(install_base, checked.name)  # one checked name: directly under the base
+    # colcon names the package by package.xml (colcon_ros/package_identification/ros.py, identify:
+    # desc.name = pkg.name); setup.py's name= only names the Python distribution
+    ros_package = bool(name) and name_problem(name) is None
+    record.package = name if ros_package else checked.name
+    record.prefix = os.path.join(install_base, record.package)  # one checked name: directly under the base
+    record.script_dir = script_folder(root, record.package)
     record.installed = list(checked.installed)
+    if ros_package:
+        record.installed += _implicit_installs(record.package, checked.installed, root)
     record.scripts = list(checked.console_scripts)
+    record.run_depends = run_dependencies(root) if ros_package else ()
+    record.data_folders = _data_folders(setup.get("data_files"))
     record.failure = _lay_out(record, checked)
     return record
+
+
+def _cmake_prefix(record: BuildRecord, build_type: str) -> None:
+    """What colcon-ros leaves after CMake failed: the package's environment scripts and colcon-core's
+    list of run dependencies, written whatever CMake's exit code (colcon_ros/task/ament_cmake/build.py,
+    build, lines 59-86 of colcon-ros 0.5.0), and for catkin the install base's ``.catkin`` marker
+    (colcon_ros/task/catkin/build.py, lines 128-131). bras-kit writes no shell script: share/PKG
+    is made empty (the setup.bash it writes for a workspace is its own)."""
+    from ..trust.learner_files import make_folder, write_file
+
+    if _clear_prefix(record) is not None:
+        return  # not a prefix bras-kit or colcon made: left alone
+    try:
+        os.makedirs(record.prefix)
+        write_file(record.prefix, os.path.join(COLCON_MARKER, record.package), ":".join(record.run_depends).encode())
+        make_folder(record.prefix, f"share/{record.package}")
+        if build_type == "catkin":
+            write_file(record.prefix, ".catkin", b"")
+    except OSError:
+        pass  # a full disk: the failure already says the package was not built
+
+
+def _implicit_installs(package: str, installed: tuple[Installed, ...], root: str) -> list[Installed]:
+    """What colcon-ros installs when data_files does not: the index marker (an empty file) and
+    package.xml (colcon_ros/task/ament_python/build.py, AmentPythonBuildTask.build, lines 53-95 of
+    colcon-ros 0.5.0: "doesn't explicitly install a marker in the package index")."""
+    out = []
+    if not any(item.target == f"{INDEX}/{package}" for item in installed):
+        out.append(Installed(f"{INDEX}/{package}", ""))  # no source: an empty file
+    if not any(item.source == "package.xml" and item.target == f"share/{package}/package.xml" for item in installed) \
+            and os.path.isfile(os.path.join(root, "package.xml")):
+        out.append(Installed(f"share/{package}/package.xml", "package.xml"))
+    return out
+
+
+def _data_folders(entries: Any) -> list[str]:
+    """Every (folder, files) target of data_files: setuptools' install_data makes each one, files or
+    none (setuptools/_distutils/command/install_data.py, run: ``self.mkpath(dir)`` before the copies)."""
+    from .setup_check import _relative_target
+
+    folders = []
+    for entry in entries if isinstance(entries, list) else []:
+        if isinstance(entry, list) and len(entry) == 2 and isinstance(entry[0], str):
+            folder = _relative_target(entry[0])
+            if folder:
+                folders.append(folder)
+    return folders
+
+
+def script_folder(root: str, package: str) -> str:
+    """Where setuptools puts the package's scripts, relative to its prefix, as colcon passes it.
+
+    colcon-core reads setup.cfg's ``[install]`` ``install-scripts``, else ``install_scripts``, and
+    hands it to ``setup.py install --install-scripts`` (colcon_core/task/python/build.py,
+    _get_install_scripts, lines 38-50, and build, lines 142-148 of colcon-core 0.21.3): the
+    tutorial's ``$base/lib/PKG``. With no such key, setuptools' prefix scheme applies: ``$base/bin``,
+    where ``ros2 run`` does not look. A folder named otherwise than ``$base/...`` below the prefix is
+    kept as the tutorial's lib/PKG (bras-kit writes nowhere outside the prefix)."""
+    from configparser import ConfigParser
+    from configparser import Error as ConfigError
+
+    from ..trust.learner_files import read_text
+    from .setup_check import _relative_target
+
+    try:
+        text = read_text(os.path.join(root, "setup.cfg"), (root,), errors="replace")
+    except OSError:
+        return "bin"
+    parser = ConfigParser(interpolation=None)
+    parser.optionxform = str  # type: ignore[assignment,method-assign]  # as colcon-core: keys as written
+    try:
+        parser.read_string(text)
+    except ConfigError:
+        return "bin"
+    value = parser.get("install", "install-scripts", fallback=None)
+    if value is None:
+        value = parser.get("install", "install_scripts", fallback=None)
+    if value is None:
+        return "bin"
+    value = value.strip()
+    if value.startswith("$base/"):
+        folder = _relative_target(value[len("$base/"):])
+        if folder:
+            return folder
+    return f"lib/{package}"
+
+
+def run_dependencies(root: str) -> tuple[str, ...]:
+    """The run dependencies colcon writes to share/colcon-core/packages/PKG, sorted: build_export,
+    buildtool_export and exec dependencies (colcon_ros/package_identification/ros.py, augment_package,
+    lines 117-122); ``<depend>`` counts as both (catkin_pkg/package_xml parsing), format 1's
+    ``<run_depend>`` too. A dependency under a ``condition`` is left out (no ROS_VERSION here)."""
+    from ..core.errors import BrasKitError
+    from ..model.xmlio import read_xml
+
+    try:
+        xml = read_xml(os.path.join(root, "package.xml"))
+    except (BrasKitError, OSError):
+        return ()
+    tags = ("build_export_depend", "buildtool_export_depend", "exec_depend", "depend", "run_depend")
+    return tuple(sorted({(e.text or "").strip() for tag in tags for e in xml.findall(tag)
+                         if (e.text or "").strip() and e.get("condition") is None}))
 
 
 def _setup_source(root: str) -> str:
@@ -215,7 +335,7 @@ def _clear_prefix(record: BuildRecord) -> BuildFailure | None:
 def _lay_out(record: BuildRecord, checked: CheckedSetup) -> BuildFailure | None:
     """The install tree from the checked record: every source read through the one reader
     (:mod:`bras_kit.trust.learner_files`), every target a new file under the fresh prefix."""
-    from ..trust.learner_files import Unreadable, copy_file, write_file
+    from ..trust.learner_files import Unreadable, copy_file, make_folder, write_file
 
     refused = _clear_prefix(record)
     if refused is not None:
@@ -225,16 +345,26 @@ def _lay_out(record: BuildRecord, checked: CheckedSetup) -> BuildFailure | None:
         os.makedirs(record.prefix)
         # colcon's marker first: a build stopped half-way leaves a prefix the next build may replace.
         # Every file below the prefix is made through its descriptor, no link followed (learner_files)
-        write_file(record.prefix, os.path.join(COLCON_MARKER, record.package), b"")
-        for item in (*checked.installed, *checked.modules, *checked.executables):
+        # colcon-core's list of run dependencies (colcon_core/environment/__init__.py,
+        # create_file_with_runtime_dependencies: os.pathsep.join(sorted(...)))
+        write_file(record.prefix, os.path.join(COLCON_MARKER, record.package), ":".join(record.run_depends).encode())
+        scripts = record.script_dir or f"lib/{record.package}"
+        executables = [Installed(f"{scripts}/{os.path.basename(item.target)}", item.source)
+                       for item in checked.executables]
+        for folder in record.data_folders:
+            make_folder(record.prefix, folder)
+        for item in (*record.installed, *checked.modules, *executables):
+            if not item.source:  # colcon-ros's implicit index marker
+                write_file(record.prefix, item.target, b"")
+                continue
             # two entries install the same file: the last wins, as in setuptools (replace)
             copy_file(os.path.join(record.root, item.source), roots, os.path.join(record.prefix, item.target),
                       target_root=record.prefix, replace=True,
-                      mode=0o755 if item in checked.executables else None)
+                      mode=0o755 if item in executables else None)
         for name, module, function in checked.console_scripts:
-            script = SCRIPT.format(dist=record.package, name=name, module=module,
+            script = SCRIPT.format(dist=checked.name, name=name, module=module,
                                    head=function.partition(".")[0], function=function)
-            write_file(record.prefix, os.path.join("lib", record.package, name), script.encode("utf-8"), mode=0o755)
+            write_file(record.prefix, os.path.join(scripts, name), script.encode("utf-8"), mode=0o755)
     except Unreadable as exc:  # changed between the check and the copy, or too large
         return BuildFailure(f"source_{exc.kind}", (), "setup.py", record.data_files_line,
                             source=os.path.relpath(exc.path, record.root), detail=exc.path)
