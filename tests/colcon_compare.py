@@ -132,11 +132,12 @@ def differences(colcon: Outcome, ours: Outcome) -> list[str]:
 if __name__ == "__main__":  # python tests/colcon_compare.py [VARIANT...]: the table of agreements
     import tempfile
 
-    names = sys.argv[1:] or list(colcon_corpus.VARIANTS)
+    flags = [a for a in sys.argv[1:] if a.startswith("--")]  # --symlink-install, given to both
+    names = [a for a in sys.argv[1:] if not a.startswith("--")] or list(colcon_corpus.VARIANTS)
     agree = 0
     for name in names:
         with tempfile.TemporaryDirectory() as a, tempfile.TemporaryDirectory() as b:
-            found = differences(by_colcon(name, Path(a)), by_bras_kit(name, Path(b)))
+            found = differences(by_colcon(name, Path(a), *flags), by_bras_kit(name, Path(b), *flags))
         agree += not found
         print(f"{'agree ' if not found else 'DIFFER'} {name}")
         for line in found:

@@ -33,6 +33,9 @@ def configure(parser: argparse.ArgumentParser) -> None:
                              "current folder, else the packages below it)")
     parser.add_argument("--install-base", metavar="DIR",
                         help="where to lay out the install tree (default: WS/install, or ./install)")
+    parser.add_argument("--symlink-install", action="store_true",
+                        help="as colcon build --symlink-install: the install tree links to build/PKG, which links "
+                             "to the package's files, so an edited URDF or launch file needs no new build")
 
 
 def install_base(where: str) -> str:
@@ -89,7 +92,7 @@ def run(args: argparse.Namespace) -> int:
     finished = 0
     for folder in packages:
         print(f"Starting >>> {for_terminal(package_name(folder))}", flush=True)  # the learner's text, inert
-        record = build_package(folder, base)
+        record = build_package(folder, base, symlink_install=args.symlink_install)
         blocked = [FileResult(os.path.join(folder, str(hit.params["file"])), [finding(RULES["BK639"], hit)])
                    for hit in setup_blocked_hits(record.blocked)]
         if blocked:  # what setup.py tried that its walls stopped, at its lines (docs/security.md)
