@@ -104,15 +104,15 @@ def run(args: argparse.Namespace) -> int:
         failed.append(record.package)
         results = [FileResult(os.path.join(folder, str(hit.params.get("file", ""))), [finding(RULES["BK630"], hit)])
                    for hit in build_hits(record, folder)]
+        shown = format_text(results, lang) if results else ""
         if results:
-            shown = format_text(results, lang)
             sys.stdout.write(shown)
             _print_colcon_words(record.package, record.failure.colcon, shown)
         else:  # no setup.py, or no setup() in it: what colcon-ros needs to build an ament_python package
             print(say(M("{package} was not built: {file} is missing or calls no setup()", package=record.package,
                         file=os.path.join(folder, record.failure.file or "setup.py")), lang))
-        # colcon's line for a failed package, whatever the cause (colcon-core's console_start_end handler)
-        print(f"Failed   <<< {for_terminal(record.package)}")
+        if f"Failed   <<< {record.package}" not in shown:  # colcon's line for a failed package, once
+            print(f"Failed   <<< {for_terminal(record.package)}")
     if finished:
         _write_setup_files(base)
     # colcon's closing lines (colcon-output's summary event handler); the install tree only when whole

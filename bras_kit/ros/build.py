@@ -458,6 +458,10 @@ def _lay_out(record: BuildRecord, checked: CheckedSetup, setup: dict[str, Any]) 
     (:mod:`bras_kit.trust.learner_files`), every target a new file under the fresh prefix."""
     from ..trust.learner_files import Unreadable, copy_file, make_folder, write_file
 
+    for path in (os.path.dirname(record.build), record.build) if record.build else ():
+        if os.path.islink(path) or (os.path.lexists(path) and not os.path.isdir(path)):
+            # --symlink-install writes links in build/PKG: never where a link or a file stands
+            return BuildFailure("prefix", (), "setup.py", record.setup_line, source=path, detail=path)
     refused = _clear_prefix(record)
     if refused is not None:
         return refused
