@@ -33,6 +33,9 @@ def configure(parser: argparse.ArgumentParser) -> None:
                              "current folder, else the packages below it)")
     parser.add_argument("--install-base", metavar="DIR",
                         help="where to lay out the install tree (default: WS/install, or ./install)")
+    parser.add_argument("--symlink-install", action="store_true",
+                        help="as colcon build --symlink-install: the install tree links to build/PKG, which links "
+                             "to the package's files, so an edited URDF or launch file needs no new build")
 
 
 def install_base(where: str) -> str:
@@ -89,7 +92,7 @@ def run(args: argparse.Namespace) -> int:
     finished = 0
     for folder in packages:
         print(f"Starting >>> {for_terminal(package_name(folder))}", flush=True)  # the learner's text, inert
-        record = build_package(folder, base)
+        record = build_package(folder, base, symlink_install=args.symlink_install)
         blocked = [FileResult(os.path.join(folder, str(hit.params["file"])), [finding(RULES["BK639"], hit)])
                    for hit in setup_blocked_hits(record.blocked)]
         if blocked:  # what setup.py tried that its walls stopped, at its lines (docs/security.md)
@@ -101,11 +104,14 @@ def run(args: argparse.Namespace) -> int:
         failed.append(record.package)
         results = [FileResult(os.path.join(folder, str(hit.params.get("file", ""))), [finding(RULES["BK630"], hit)])
                    for hit in build_hits(record, folder)]
+        shown = format_text(results, lang) if results else ""
         if results:
-            sys.stdout.write(format_text(results, lang))
+            sys.stdout.write(shown)
+            _print_colcon_words(record.package, record.failure.colcon, shown)
         else:  # no setup.py, or no setup() in it: what colcon-ros needs to build an ament_python package
             print(say(M("{package} was not built: {file} is missing or calls no setup()", package=record.package,
                         file=os.path.join(folder, record.failure.file or "setup.py")), lang))
+        if f"Failed   <<< {record.package}" not in shown:  # colcon's line for a failed package, once
             print(f"Failed   <<< {for_terminal(record.package)}")
     if finished:
         _write_setup_files(base)
@@ -116,6 +122,20 @@ def run(args: argparse.Namespace) -> int:
         return 1
     print(say(M("install tree: {folder}", folder=base), lang))
     return 0
+
+
+def _print_colcon_words(package: str, colcon: tuple[str, ...], shown: str) -> None:
+    """The lines colcon would print on stderr for this failure (CMake's, setuptools'), those the
+    finding above did not already quote, in colcon-output's block (``--- stderr: PKG`` ... ``---``)."""
+    from ..trust.inert import for_terminal
+
+    words = [line for line in colcon if not line.startswith(("--- stderr:", "Failed   <<<")) and line != "---"
+             and line not in shown]
+    if words:
+        print(f"--- stderr: {for_terminal(package)}")
+        for line in words:
+            print(for_terminal(line))
+        print("---")
 
 
 SETUP_MARK = "# written by bras-kit build"

@@ -19,6 +19,7 @@ the words colcon prints first, the cause and fix chosen by the feature above.
 
 from __future__ import annotations
 
+import errno
 import os
 import sys
 from collections.abc import Callable
@@ -68,6 +69,10 @@ class BuildRecord:
     data_files_line: int = 0
     failure: BuildFailure | None = None
     blocked: list[Attempt] = field(default_factory=list)  # what setup.py tried that its walls stopped
+    script_dir: str = ""  # where the scripts land, relative to the prefix (lib/PKG with the tutorial's setup.cfg)
+    run_depends: tuple[str, ...] = ()  # colcon-core's share/colcon-core/packages/PKG
+    data_folders: list[str] = field(default_factory=list)  # data_files' target folders
+    build: str = ""  # build/PKG, with --symlink-install only: what the install tree's links point to
 
     def source_of(self, path: str) -> str | None:
         """The package file installed at ``path`` (absolute, in the install tree), if any."""
@@ -103,15 +108,21 @@ def _shown_name(name: str, root: str) -> str:
     return name if name and name_problem(name) is None else os.path.basename(root)
 
 
-def build_package(root: str, install_base: str, *, meanwhile: Callable[[], object] | None = None) -> BuildRecord:
+def build_package(root: str, install_base: str, *, meanwhile: Callable[[], object] | None = None,
+                  symlink_install: bool = False, build_base: str | None = None) -> BuildRecord:
     """Build the package at ``root`` into ``install_base/PKG`` (replacing what was there).
     Learner mistakes come back as ``record.failure``; only the sandbox's own limits raise.
     Nothing ``setup.py`` returns is acted on before :func:`.setup_check.check_setup` passed it.
     ``meanwhile`` is called while setup.py's child runs (the launch evaluation imports what its
-    own child needs then: :func:`.launching.preload_planning`)."""
+    own child needs then: :func:`.launching.preload_planning`). ``symlink_install``: as ``colcon build
+    --symlink-install``, with links in ``build_base/PKG`` (default: build/ beside the install base)."""
     root = os.path.abspath(root)
     install_base = os.path.abspath(install_base)
     name, build_type = _manifest(root)
+    if name and not build_type:
+        # catkin_pkg's default build type (catkin_pkg/package.py, get_build_type): colcon-ros builds it
+        # with CMake, which finds no CMakeLists.txt in an ament_python package
+        build_type = "catkin"
     package = _shown_name(name, root)
     record = BuildRecord(package, root, os.path.join(install_base, package))
     if build_type and build_type != "ament_python":
@@ -119,6 +130,9 @@ def build_package(root: str, install_base: str, *, meanwhile: Callable[[], objec
             if not os.path.isfile(os.path.join(root, "CMakeLists.txt")) else []
         record.failure = BuildFailure("ament_cmake", _failed(package, lines) if lines else (), "package.xml",
                                       _line_of(root, "package.xml", "<build_type>"), detail=build_type)
+        if name_problem(package) is None:
+            record.run_depends = run_dependencies(root)
+            _cmake_prefix(record, build_type)
         return record
     if not os.path.isfile(os.path.join(root, "setup.py")):
         record.failure = BuildFailure("no_setup", (), "setup.py")
@@ -136,17 +150,232 @@ def build_package(root: str, install_base: str, *, meanwhile: Callable[[], objec
     setup = called["setup"]
     record.setup_line = int(setup.get("_line") or 0)
     record.data_files_line = _line_of(root, "setup.py", "data_files") or record.setup_line
+    if symlink_install:  # named by the shown name until the checked one is known
+        record.build = os.path.join(build_base or os.path.join(os.path.dirname(install_base), "build"), package)
     checked = check_setup(setup, root, manifest_name=name or os.path.basename(root),
                           setup_source=_setup_source(root), python_lib=PYTHON_LIB)
     if isinstance(checked, Refusal):
         record.failure = _refused(record, checked)
         return record
-    record.package = checked.name
-    record.prefix = os.path.join(install_base, checked.name)  # one checked name: directly under the base
+    # colcon names the package by package.xml (colcon_ros/package_identification/ros.py, identify:
+    # desc.name = pkg.name); setup.py's name= only names the Python distribution
+    ros_package = bool(name) and name_problem(name) is None
+    record.package = name if ros_package else checked.name
+    record.prefix = os.path.join(install_base, record.package)  # one checked name: directly under the base
+    record.script_dir = (develop_script_folder if symlink_install else script_folder)(root, record.package)
+    if symlink_install:
+        record.build = os.path.join(build_base or os.path.join(os.path.dirname(install_base), "build"),
+                                    record.package)
     record.installed = list(checked.installed)
+    if ros_package:
+        record.installed += _implicit_installs(record.package, checked.installed, root)
     record.scripts = list(checked.console_scripts)
-    record.failure = _lay_out(record, checked)
+    record.run_depends = run_dependencies(root) if ros_package else ()
+    record.data_folders = _data_folders(setup.get("data_files"))
+    record.failure = _lay_out(record, checked, setup)
     return record
+
+
+def _cmake_prefix(record: BuildRecord, build_type: str) -> None:
+    """What colcon-ros leaves after CMake failed: the package's environment scripts and colcon-core's
+    list of run dependencies, written whatever CMake's exit code (colcon_ros/task/ament_cmake/build.py,
+    build, lines 59-86 of colcon-ros 0.5.0), and for catkin the install base's ``.catkin`` marker
+    (colcon_ros/task/catkin/build.py, lines 128-131). bras-kit writes no shell script: share/PKG
+    is made empty (the setup.bash it writes for a workspace is its own)."""
+    from ..trust.learner_files import make_folder, write_file
+
+    if _clear_prefix(record) is not None:
+        return  # not a prefix bras-kit or colcon made: left alone
+    try:
+        os.makedirs(record.prefix)
+        write_file(record.prefix, os.path.join(COLCON_MARKER, record.package), ":".join(record.run_depends).encode())
+        make_folder(record.prefix, f"share/{record.package}")
+        if build_type == "catkin":
+            write_file(record.prefix, ".catkin", b"")
+    except OSError:
+        pass  # a full disk: the failure already says the package was not built
+
+
+def _implicit_installs(package: str, installed: tuple[Installed, ...], root: str) -> list[Installed]:
+    """What colcon-ros installs when data_files does not: the index marker (an empty file) and
+    package.xml (colcon_ros/task/ament_python/build.py, AmentPythonBuildTask.build, lines 53-95 of
+    colcon-ros 0.5.0: "doesn't explicitly install a marker in the package index")."""
+    out = []
+    if not any(item.target == f"{INDEX}/{package}" for item in installed):
+        out.append(Installed(f"{INDEX}/{package}", ""))  # no source: an empty file
+    if not any(item.source == "package.xml" and item.target == f"share/{package}/package.xml" for item in installed) \
+            and os.path.isfile(os.path.join(root, "package.xml")):
+        out.append(Installed(f"share/{package}/package.xml", "package.xml"))
+    return out
+
+
+def _data_folders(entries: Any) -> list[str]:
+    """Every (folder, files) target of data_files: setuptools' install_data makes each one, files or
+    none (setuptools/_distutils/command/install_data.py, run: ``self.mkpath(dir)`` before the copies)."""
+    from .setup_check import _relative_target
+
+    folders = []
+    for entry in entries if isinstance(entries, list) else []:
+        if isinstance(entry, list) and len(entry) == 2 and isinstance(entry[0], str):
+            folder = _relative_target(entry[0])
+            if folder:
+                folders.append(folder)
+    return folders
+
+
+def script_folder(root: str, package: str) -> str:
+    """Where setuptools puts the package's scripts, relative to its prefix, as colcon passes it.
+
+    colcon-core reads setup.cfg's ``[install]`` ``install-scripts``, else ``install_scripts``, and
+    hands it to ``setup.py install --install-scripts`` (colcon_core/task/python/build.py,
+    _get_install_scripts, lines 38-50, and build, lines 142-148 of colcon-core 0.21.3): the
+    tutorial's ``$base/lib/PKG``. With no such key, setuptools' prefix scheme applies: ``$base/bin``,
+    where ``ros2 run`` does not look. A folder named otherwise than ``$base/...`` below the prefix is
+    kept as the tutorial's lib/PKG (bras-kit writes nowhere outside the prefix)."""
+    from configparser import ConfigParser
+    from configparser import Error as ConfigError
+
+    from ..trust.learner_files import read_text
+    from .setup_check import _relative_target
+
+    try:
+        text = read_text(os.path.join(root, "setup.cfg"), (root,), errors="replace")
+    except OSError:
+        return "bin"
+    parser = ConfigParser(interpolation=None)
+    parser.optionxform = str  # type: ignore[assignment,method-assign]  # as colcon-core: keys as written
+    try:
+        parser.read_string(text)
+    except ConfigError:
+        return "bin"
+    value = parser.get("install", "install-scripts", fallback=None)
+    if value is None:
+        value = parser.get("install", "install_scripts", fallback=None)
+    if value is None:
+        return "bin"
+    value = value.strip()
+    if value.startswith("$base/"):
+        folder = _relative_target(value[len("$base/"):])
+        if folder:
+            return folder
+    return f"lib/{package}"
+
+
+def develop_script_folder(root: str, package: str) -> str:
+    """Where ``setup.py develop`` (colcon's --symlink-install) puts the scripts, relative to the prefix:
+    setuptools reads setup.cfg's ``[develop]`` ``script_dir`` itself (``script-dir`` too, with its
+    deprecation warning: setuptools/dist.py, _enforce_underscore), colcon passes nothing
+    (colcon_core/task/python/build.py, build, lines 174-183); without it, the prefix's bin/."""
+    from configparser import ConfigParser
+    from configparser import Error as ConfigError
+
+    from ..trust.learner_files import read_text
+    from .setup_check import _relative_target
+
+    try:
+        text = read_text(os.path.join(root, "setup.cfg"), (root,), errors="replace")
+    except OSError:
+        return "bin"
+    parser = ConfigParser(interpolation=None)
+    try:
+        parser.read_string(text)
+    except ConfigError:
+        return "bin"
+    value = parser.get("develop", "script_dir", fallback=None) or parser.get("develop", "script-dir", fallback=None)
+    if value is None:
+        return "bin"
+    value = value.strip()
+    if value.startswith("$base/"):
+        folder = _relative_target(value[len("$base/"):])
+        if folder:
+            return folder
+    return f"lib/{package}"
+
+
+def _egg_link_name(dist: str) -> str:
+    """setuptools' develop names its link file after the distribution's safe name
+    (pkg_resources.safe_name: every run of other characters than letters, digits and '.' becomes '-')."""
+    import re
+
+    return re.sub(r"[^A-Za-z0-9.]+", "-", dist) + ".egg-link"
+
+
+def _links_in_build(record: BuildRecord, checked: CheckedSetup, setup: dict[str, Any]) -> None:
+    """build/PKG as colcon-core makes it for ``setup.py develop``: a link to each of setup.py, setup.cfg,
+    the first-level Python packages, the data_files sources and the scripts of the package folder
+    (colcon_core/task/python/build.py, _symlinks_in_build, lines 330-400 of colcon-core 0.21.3)."""
+    from ..trust.learner_files import make_link
+
+    items = ["setup.py"]
+    if os.path.isfile(os.path.join(record.root, "setup.cfg")):
+        items.append("setup.cfg")
+    given = setup.get("package_dir")
+    package_dir: dict[str, Any] = given if isinstance(given, dict) else {}
+    for package in setup.get("packages") or []:
+        if not isinstance(package, str) or "." in package:
+            continue
+        folder = package_dir.get(package) or os.path.join(package_dir.get("", ""), package)
+        items.append(folder)
+    items += [item.source for item in checked.installed if item.source]
+    items += [item.source for item in checked.executables]
+    if os.path.islink(record.build) or os.path.islink(os.path.dirname(record.build)):  # never built through
+        raise OSError(errno.ELOOP, "a link stands where build/ should be", record.build)
+    os.makedirs(record.build, exist_ok=True)
+    for item in dict.fromkeys(items):
+        source = os.path.join(record.root, item)
+        if os.path.lexists(source):
+            make_link(record.build, item, source)
+
+
+def _lay_out_links(record: BuildRecord, checked: CheckedSetup, setup: dict[str, Any]) -> None:
+    """The install tree of ``colcon build --symlink-install``: each data file a link to its link in
+    build/PKG (colcon_core/distutils/commands/symlink_data.py, lines 12-27: ``os.path.abspath(src)``
+    from build/PKG), package.xml installed implicitly a link to the package's own (colcon_core/task/
+    __init__.py, install, lines 306-333), the index marker made implicitly an empty file, no module
+    copied (``<dist>.egg-link`` names build/PKG, where the hook puts PYTHONPATH), the scripts where
+    ``[develop]`` says."""
+    from ..trust.learner_files import make_folder, make_link, write_file
+
+    _links_in_build(record, checked, setup)
+    for folder in record.data_folders:
+        make_folder(record.prefix, folder)
+    for item in record.installed:
+        if not item.source:
+            write_file(record.prefix, item.target, b"")
+        elif item.source == "package.xml" and item not in checked.installed:
+            make_link(record.prefix, item.target, os.path.join(record.root, item.source))
+        else:
+            make_link(record.prefix, item.target, os.path.join(record.build, item.source))
+    write_file(record.prefix, os.path.join(PYTHON_LIB, _egg_link_name(checked.name)),
+               f"{record.build}\n.".encode())
+    version = setup.get("version")
+    spec = f"{_egg_link_name(checked.name)[:-len('.egg-link')]}=={version if isinstance(version, str) else ''}"
+    for item in checked.executables:
+        # setuptools' develop wraps each scripts= file (setuptools/script (dev).tmpl): values as Python literals
+        name = os.path.basename(item.target)
+        wrapper = DEV_SCRIPT.format(spec=repr(spec), name=repr(name), path=repr(os.path.join(record.build, item.source)))
+        write_file(record.prefix, f"{record.script_dir}/{name}", wrapper.encode("utf-8"), mode=0o755)
+    for name, module, function in checked.console_scripts:
+        script = SCRIPT.format(dist=checked.name, name=name, module=module,
+                               head=function.partition(".")[0], function=function)
+        write_file(record.prefix, os.path.join(record.script_dir, name), script.encode("utf-8"), mode=0o755)
+
+
+def run_dependencies(root: str) -> tuple[str, ...]:
+    """The run dependencies colcon writes to share/colcon-core/packages/PKG, sorted: build_export,
+    buildtool_export and exec dependencies (colcon_ros/package_identification/ros.py, augment_package,
+    lines 117-122); ``<depend>`` counts as both (catkin_pkg/package_xml parsing), format 1's
+    ``<run_depend>`` too. A dependency under a ``condition`` is left out (no ROS_VERSION here)."""
+    from ..core.errors import BrasKitError
+    from ..model.xmlio import read_xml
+
+    try:
+        xml = read_xml(os.path.join(root, "package.xml"))
+    except (BrasKitError, OSError):
+        return ()
+    tags = ("build_export_depend", "buildtool_export_depend", "exec_depend", "depend", "run_depend")
+    return tuple(sorted({(e.text or "").strip() for tag in tags for e in xml.findall(tag)
+                         if (e.text or "").strip() and e.get("condition") is None}))
 
 
 def _setup_source(root: str) -> str:
@@ -161,7 +390,9 @@ def _setup_source(root: str) -> str:
 def _refused(record: BuildRecord, refusal: Refusal) -> BuildFailure:
     """A refusal of the checked record, as the build's failure at the learner's line."""
     if refusal.kind == "missing_source":  # setuptools' install_data (file_util.copy_file), in its words
-        message = f"error: can't copy '{refusal.value}': doesn't exist or not a regular file"
+        # with --symlink-install colcon's symlink_data names the source by its absolute path in build/PKG
+        shown = os.path.join(record.build, refusal.value) if record.build else refusal.value
+        message = f"error: can't copy '{shown}': doesn't exist or not a regular file"
         return BuildFailure("missing_source", _failed(record.package, [message]), refusal.file, refusal.line or
                             record.data_files_line, source=refusal.value, detail=refusal.target)
     if refusal.kind == "name":  # catkin_pkg's InvalidPackage, as colcon-ros shows it
@@ -195,6 +426,16 @@ sys.exit({function}())
 """
 
 
+DEV_SCRIPT = """#!/usr/bin/python3
+# EASY-INSTALL-DEV-SCRIPT: {spec},{name}
+__requires__ = {spec}
+__import__('pkg_resources').require({spec})
+__file__ = {path}
+with open(__file__) as f:
+    exec(compile(f.read(), __file__, 'exec'))
+"""
+
+
 def _clear_prefix(record: BuildRecord) -> BuildFailure | None:
     """Remove the previous build of this package, and nothing else: a folder directly under the
     install base, named by a checked name, holding colcon's marker for that name (or empty)."""
@@ -212,11 +453,15 @@ def _clear_prefix(record: BuildRecord) -> BuildFailure | None:
     return None
 
 
-def _lay_out(record: BuildRecord, checked: CheckedSetup) -> BuildFailure | None:
+def _lay_out(record: BuildRecord, checked: CheckedSetup, setup: dict[str, Any]) -> BuildFailure | None:
     """The install tree from the checked record: every source read through the one reader
     (:mod:`bras_kit.trust.learner_files`), every target a new file under the fresh prefix."""
-    from ..trust.learner_files import Unreadable, copy_file, write_file
+    from ..trust.learner_files import Unreadable, copy_file, make_folder, write_file
 
+    for path in (os.path.dirname(record.build), record.build) if record.build else ():
+        if os.path.islink(path) or (os.path.lexists(path) and not os.path.isdir(path)):
+            # --symlink-install writes links in build/PKG: never where a link or a file stands
+            return BuildFailure("prefix", (), "setup.py", record.setup_line, source=path, detail=path)
     refused = _clear_prefix(record)
     if refused is not None:
         return refused
@@ -225,16 +470,29 @@ def _lay_out(record: BuildRecord, checked: CheckedSetup) -> BuildFailure | None:
         os.makedirs(record.prefix)
         # colcon's marker first: a build stopped half-way leaves a prefix the next build may replace.
         # Every file below the prefix is made through its descriptor, no link followed (learner_files)
-        write_file(record.prefix, os.path.join(COLCON_MARKER, record.package), b"")
-        for item in (*checked.installed, *checked.modules, *checked.executables):
+        # colcon-core's list of run dependencies (colcon_core/environment/__init__.py,
+        # create_file_with_runtime_dependencies: os.pathsep.join(sorted(...)))
+        write_file(record.prefix, os.path.join(COLCON_MARKER, record.package), ":".join(record.run_depends).encode())
+        if record.build:
+            _lay_out_links(record, checked, setup)
+            return None
+        scripts = record.script_dir or f"lib/{record.package}"
+        executables = [Installed(f"{scripts}/{os.path.basename(item.target)}", item.source)
+                       for item in checked.executables]
+        for folder in record.data_folders:
+            make_folder(record.prefix, folder)
+        for item in (*record.installed, *checked.modules, *executables):
+            if not item.source:  # colcon-ros's implicit index marker
+                write_file(record.prefix, item.target, b"")
+                continue
             # two entries install the same file: the last wins, as in setuptools (replace)
             copy_file(os.path.join(record.root, item.source), roots, os.path.join(record.prefix, item.target),
                       target_root=record.prefix, replace=True,
-                      mode=0o755 if item in checked.executables else None)
+                      mode=0o755 if item in executables else None)
         for name, module, function in checked.console_scripts:
-            script = SCRIPT.format(dist=record.package, name=name, module=module,
+            script = SCRIPT.format(dist=checked.name, name=name, module=module,
                                    head=function.partition(".")[0], function=function)
-            write_file(record.prefix, os.path.join("lib", record.package, name), script.encode("utf-8"), mode=0o755)
+            write_file(record.prefix, os.path.join(scripts, name), script.encode("utf-8"), mode=0o755)
     except Unreadable as exc:  # changed between the check and the copy, or too large
         return BuildFailure(f"source_{exc.kind}", (), "setup.py", record.data_files_line,
                             source=os.path.relpath(exc.path, record.root), detail=exc.path)

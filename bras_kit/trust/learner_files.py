@@ -192,6 +192,36 @@ def _parent_fd(root: str, relative: str, *, make: bool) -> tuple[int, str]:
         os.close(top)
 
 
+def make_folder(root: str, relative: str) -> None:
+    """The folder ``relative`` under ``root``, made folder by folder as :func:`write_file` makes a
+    file's parents (setuptools' install_data makes a data_files folder that receives no file)."""
+    fd, name = _parent_fd(root, relative, make=True)
+    try:
+        with contextlib.suppress(FileExistsError):
+            os.mkdir(name, 0o777, dir_fd=fd)
+    finally:
+        os.close(fd)
+
+
+def make_link(root: str, relative: str, points_to: str) -> None:
+    """A symbolic link ``relative`` under ``root`` whose text is ``points_to`` (``colcon build
+    --symlink-install``), its folders made as :func:`write_file` makes them; an entry already
+    there is replaced only when it is a link or a file, never followed."""
+    fd, name = _parent_fd(root, relative, make=True)
+    try:
+        try:
+            info = os.lstat(name, dir_fd=fd)
+        except FileNotFoundError:
+            info = None
+        if info is not None:
+            if stat.S_ISDIR(info.st_mode):
+                raise IsADirectoryError(errno.EISDIR, "a folder is in the way", os.path.join(root, relative))
+            os.unlink(name, dir_fd=fd)
+        os.symlink(points_to, name, dir_fd=fd)
+    finally:
+        os.close(fd)
+
+
 def _write_new(fd: int, name: str, chunks: Iterator[bytes], mode: int | None) -> None:
     """A new file (never an existing one, never through a link); ``mode`` exactly, or 0o666 less the umask."""
     out = os.open(name, os.O_WRONLY | os.O_CREAT | os.O_EXCL | os.O_NOFOLLOW | os.O_CLOEXEC, 0o666 if mode is None
@@ -273,5 +303,5 @@ def _chunks(source, path: str, limit: int) -> Iterator[bytes]:
         yield chunk
 
 
-__all__ = ["ANY", "FILE", "FOLDER", "MAX_BYTES", "MAX_COPY_BYTES", "Unreadable", "copy_file", "is_file",
+__all__ = ["ANY", "FILE", "FOLDER", "MAX_BYTES", "MAX_COPY_BYTES", "Unreadable", "copy_file", "is_file", "make_folder", "make_link",
            "is_folder", "list_folder", "read_bytes", "read_text", "walk", "write_file"]

@@ -1,0 +1,145 @@
+"""Build one corpus variant with the real colcon and with ``bras-kit build``; what each made, comparable.
+
+What is normalised, and why (the rest is compared as it is):
+
+* the workspace's absolute path in a file's text becomes ``<WS>`` (each tool builds in a folder of its own);
+* a ``console_scripts`` script's text becomes ``<entry script NAME>``: setuptools writes it from a template
+  whose shebang is the building interpreter's path, bras-kit from one of its own; where it lands and its
+  mode are compared;
+* a Python shebang in a ``scripts=`` file becomes ``#!python`` (setuptools' build_scripts puts the building
+  interpreter there);
+* left out: the egg-info folder (setuptools' metadata, SOURCES.txt and PKG-INFO), ``__pycache__``,
+  colcon's environment hooks and per-package shell scripts (``share/PKG/hook/``,
+  ``share/PKG/package.{bash,dsv,ps1,sh,zsh}``) and the workspace-level scripts (install/setup.*,
+  local_setup.*, _local_setup_util_*.py, COLCON_IGNORE, .colcon_install_layout): bras-kit writes one
+  setup.bash of its own instead, compared by its own tests.
+
+The verdict: the exit code, the packages colcon says Finished and Failed, and colcon's error lines
+(setuptools' ``error: ...``, ``CMake Error...``, catkin_pkg's) that bras-kit must print in colcon's words.
+"""
+
+from __future__ import annotations
+
+import os
+import re
+import stat
+import subprocess
+import sys
+from dataclasses import dataclass
+from pathlib import Path
+
+import colcon_corpus
+import realcolcon
+
+_SKIPPED_TOP = re.compile(r"^(setup|local_setup)\.\w+$|^_local_setup_util_\w+\.py$|^COLCON_IGNORE$|"
+                          r"^\.colcon_install_layout$")
+_SKIPPED_PART = re.compile(r"\.egg-info(/|$)|(^|/)__pycache__(/|$)|^[^/]+/share/[^/]+/hook(/|$)|"
+                           r"^[^/]+/share/[^/]+/package\.(bash|dsv|ps1|sh|zsh)$")
+_ENTRY = re.compile(r"EASY-INSTALL-ENTRY-SCRIPT: '[^']*','console_scripts','([^']*)'")
+_SHEBANG = re.compile(r"\A#![^\n]*python[0-9.]*[^\n]*")
+_ERROR = re.compile(r"^(error: .*|CMake Error.*|Error\(s\) in package .*|ERROR:colcon.*)$")
+_VERDICT = re.compile(r"^(Finished|Failed)\s+<<< (\S+)")
+
+
+@dataclass
+class Outcome:
+    tree: dict[str, tuple[str, int, str]]  # path under install/ -> (kind, mode, text)
+    code: int
+    finished: frozenset[str]
+    failed: frozenset[str]
+    output: str  # stdout and stderr, the workspace's path as <WS>
+
+    def errors(self) -> list[str]:
+        return [line.strip() for line in self.output.splitlines() if _ERROR.match(line.strip())]
+
+
+def make_workspace(root: Path, variant: str) -> Path:
+    for relative, text in colcon_corpus.VARIANTS[variant].items():
+        path = root / "src" / relative
+        path.parent.mkdir(parents=True, exist_ok=True)
+        path.write_text(text, encoding="utf-8")
+    return root
+
+
+def install_tree(workspace: Path) -> dict[str, tuple[str, int, str]]:
+    install = workspace / "install"
+    tree: dict[str, tuple[str, int, str]] = {}
+    if not install.is_dir():
+        return tree
+    for folder, dirs, files in os.walk(install):
+        for name in (*dirs, *files):
+            path = Path(folder) / name
+            relative = path.relative_to(install).as_posix()
+            if ("/" not in relative and _SKIPPED_TOP.match(relative)) or _SKIPPED_PART.search(relative):
+                continue
+            info = path.lstat()
+            if stat.S_ISLNK(info.st_mode):
+                tree[relative] = ("link", 0, os.readlink(path).replace(str(workspace), "<WS>"))
+            elif stat.S_ISDIR(info.st_mode):
+                tree[relative] = ("dir", stat.S_IMODE(info.st_mode), "")
+            else:
+                text = path.read_bytes().decode("utf-8", "replace").replace(str(workspace), "<WS>")
+                entry = _ENTRY.search(text)
+                text = f"<entry script {entry.group(1)}>" if entry else _SHEBANG.sub("#!python", text)
+                tree[relative] = ("file", stat.S_IMODE(info.st_mode), text)
+    return tree
+
+
+def _outcome(workspace: Path, done: subprocess.CompletedProcess[str]) -> Outcome:
+    output = (done.stdout + "\n" + done.stderr).replace(str(workspace), "<WS>")
+    verdicts = [m.groups() for m in map(_VERDICT.match, output.splitlines()) if m]
+    return Outcome(install_tree(workspace), done.returncode,
+                   frozenset(p for v, p in verdicts if v == "Finished"),
+                   frozenset(p for v, p in verdicts if v == "Failed"), output)
+
+
+def by_colcon(variant: str, root: Path, *extra: str) -> Outcome:
+    workspace = make_workspace(root, variant)
+    return _outcome(workspace, realcolcon.colcon_build(workspace, *extra))
+
+
+def by_bras_kit(variant: str, root: Path, *extra: str) -> Outcome:
+    workspace = make_workspace(root, variant)
+    env = {**os.environ, "LANG": "C.UTF-8", "LC_ALL": "C.UTF-8"}
+    env.pop("BRAS_KIT_LANG", None)
+    done = subprocess.run([sys.executable, "-m", "bras_kit", "build", str(workspace), *extra], cwd=workspace,
+                          env=env, capture_output=True, text=True, timeout=120)
+    return _outcome(workspace, done)
+
+
+def differences(colcon: Outcome, ours: Outcome) -> list[str]:
+    """What ``bras-kit build`` did otherwise than colcon, one line each (empty: they agree)."""
+    out = []
+    for path in sorted(set(colcon.tree) | set(ours.tree)):
+        theirs, mine = colcon.tree.get(path), ours.tree.get(path)
+        if theirs is None:
+            out.append(f"only bras-kit made {path}")
+        elif mine is None:
+            out.append(f"only colcon made {path}")
+        elif theirs != mine:
+            out.append(f"{path}: colcon {theirs!r}, bras-kit {mine!r}")
+    if colcon.code != ours.code:
+        out.append(f"exit code: colcon {colcon.code}, bras-kit {ours.code}")
+    if (colcon.finished, colcon.failed) != (ours.finished, ours.failed):
+        out.append(f"verdicts: colcon finished {sorted(colcon.finished)} failed {sorted(colcon.failed)}, "
+                   f"bras-kit finished {sorted(ours.finished)} failed {sorted(ours.failed)}")
+    for line in colcon.errors():
+        if line not in ours.output:
+            out.append(f"colcon's words missing: {line}")
+    return out
+
+
+if __name__ == "__main__":  # python tests/colcon_compare.py [VARIANT...]: the table of agreements
+    import tempfile
+
+    flags = [a for a in sys.argv[1:] if a.startswith("--")]  # --symlink-install, given to both
+    names = [a for a in sys.argv[1:] if not a.startswith("--")] or list(colcon_corpus.VARIANTS)
+    agree = 0
+    for name in names:
+        with tempfile.TemporaryDirectory() as a, tempfile.TemporaryDirectory() as b:
+            found = differences(by_colcon(name, Path(a), *flags), by_bras_kit(name, Path(b), *flags))
+        agree += not found
+        print(f"{'agree ' if not found else 'DIFFER'} {name}")
+        for line in found:
+            print("    " + line[:300])
+    print(f"{agree} of {len(names)} variants agree")
