@@ -173,7 +173,7 @@ def test_an_endless_line_to_the_relay_is_drained_not_held():
     """The live relay (run beside launch) reads a line up to 1 MiB: a 256 MiB line without end is
     skipped as it streams, and the joint state after it is delivered."""
     got = peak("import os, threading, json\n"
-               "from bras_kit.run import _relay\n"
+               "from bras_kit.run.node import _relay\n"
                "read, write = os.pipe()\n"
                "states = []\n"
                "thread = _relay(read, states.append)\n"

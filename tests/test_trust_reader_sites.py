@@ -22,7 +22,8 @@ PACKAGE = Path(bras_kit.__file__).parent
 # the modules that read, list or write files on a learner's behalf (the exercise track, the
 # package model of validate, build's install tree, the submissions' progress for grade)
 MODULES = ["exercises/__init__.py", "exercises/progress.py", "exercises/manifest.py", "exercises/checks.py",
-           "exercises/watch.py", "grade/exercises.py", "validate/package/sources.py", "ros/build.py"]
+           "exercises/watch.py", "grade/exercises.py", "ros/package.py", "ros/build.py",
+           "validate/__init__.py", "grade/worker.py"]
 
 BY_PATH = {"open", "io.open", "os.listdir", "os.scandir", "os.walk", "os.fwalk", "glob.glob", "glob.iglob",
            "shutil.copy", "shutil.copy2", "shutil.copyfile", "shutil.copytree", "shutil.move"}

@@ -253,11 +253,13 @@ def _too_many_elements(path: str) -> int:
 
     if not path.lower().endswith(".urdf"):
         return 0
+    from ..trust.learner_files import read_bytes
+
     try:
-        with open(path, encoding="utf-8", errors="replace") as handle:
-            text = handle.read(MAX_ROBOT_FILE_BYTES + 1)
-    except OSError:
-        return 0  # the validator says why
+        data = read_bytes(path, (os.path.dirname(os.path.abspath(path)),), limit=MAX_ROBOT_FILE_BYTES + 1)
+    except OSError:  # Unreadable too: the validator says why (a file past the bytes' bound included)
+        return 0
+    text = data.decode("utf-8", errors="replace")
     problem = description_too_large(text, most_chars=MAX_ROBOT_FILE_BYTES)
     return MAX_DESCRIPTION_ELEMENTS if problem is not None and problem.kind == "too_many" else 0
 

@@ -285,8 +285,10 @@ def _missing_file(path: str) -> Hit:
     import difflib
 
     folder = os.path.dirname(path) or "."
+    from ..trust.learner_files import list_folder
+
     try:
-        names = [n for n in os.listdir(folder) if n.endswith(SOURCE_SUFFIXES)]
+        names = [n for n, _kind in list_folder(folder, (folder,)) if n.endswith(SOURCE_SUFFIXES)]
     except OSError:
         names = []
     close = difflib.get_close_matches(os.path.basename(path), names, n=1, cutoff=0.6)
@@ -337,14 +339,29 @@ def _unreadable(path: str, exc: BrasKitError) -> Finding:
     return _loader_finding("BK103", Hit("file", None, line, {"path": path, "detail": exc.message}))
 
 
+def _read_own_bytes(path: str, limit: int | None = None) -> bytes | None:
+    """The file's bytes through the one reader (beneath its own folder: never a link out of it,
+    a pipe or a device), or None when it cannot be read (the validator says why elsewhere)."""
+    from ..trust.learner_files import MAX_BYTES, read_bytes
+
+    folder = os.path.dirname(os.path.abspath(path))
+    try:
+        return read_bytes(path, (folder,), limit=limit or MAX_BYTES)
+    except OSError:  # Unreadable is an OSError too
+        return None
+
+
+def _read_own(path: str, limit: int | None = None) -> str | None:
+    data = _read_own_bytes(path, limit)
+    return None if data is None else data.decode("utf-8", errors="replace")
+
+
 def _swallowing_comment(path: str, error_line: int | None) -> dict[str, Any] | None:
     """A comment closed with '->' that runs on past the line where the XML reader gave up."""
     from .slips import swallowing_comment
 
-    try:
-        with open(path, encoding="utf-8", errors="replace") as handle:
-            text = handle.read(64 << 20)
-    except OSError:
+    text = _read_own(path, 64 << 20)
+    if text is None:
         return None
     found = swallowing_comment(text)
     if found is None or error_line is None:
@@ -356,10 +373,8 @@ def _swallowing_comment(path: str, error_line: int | None) -> dict[str, Any] | N
 def _encoding_problem(path: str) -> tuple[int, str, str] | None:
     """(line, byte, the byte read as Latin-1) when ``path`` is not UTF-8 and declares no other encoding: the usual cause of an
     XML error on a line with accents (a file saved as Latin-1 or Windows-1252)."""
-    try:
-        with open(path, "rb") as handle:
-            data = handle.read(64 << 20)
-    except OSError:
+    data = _read_own_bytes(path, 64 << 20)
+    if data is None:
         return None
     head = data[:200].lower()
     if b"encoding=" in head and b"utf-8" not in head:
@@ -395,11 +410,8 @@ def _loader_finding(code: str, found: Hit) -> Finding:
 
 
 def _defines_macros(path: str) -> bool:
-    try:
-        with open(path, encoding="utf-8", errors="replace") as handle:
-            return "<xacro:macro" in handle.read()
-    except OSError:
-        return False
+    text = _read_own(path)
+    return text is not None and "<xacro:macro" in text
 
 
 _NAME = re.compile(r"""<(link|joint|material|robot)\b[^>]*?\bname\s*=\s*["']([^"']*)["']""")
@@ -408,10 +420,8 @@ _NAME = re.compile(r"""<(link|joint|material|robot)\b[^>]*?\bname\s*=\s*["']([^"
 def _lines_in_xacro_source(path: str, findings: list[Finding]) -> list[Finding]:
     """Point findings at the xacro source rather than the expanded text: the line of the
     element with that name when the name is written literally once; otherwise no line."""
-    try:
-        with open(path, encoding="utf-8", errors="replace") as handle:
-            text = handle.read()
-    except OSError:
+    text = _read_own(path)
+    if text is None:
         return [dataclasses.replace(f, line=None) for f in findings]
     lines: dict[tuple[str, str], int | None] = {}
     for match in _NAME.finditer(text):
