@@ -72,3 +72,92 @@ def run_cli(capsys):
         return code, out, err
 
     return runner
+
+
+# ---------------------------------------------------------------- what several test files share
+
+@pytest.fixture(scope="session")
+def chromium() -> str:
+    """Debian's chromium, which the page tests drive (skipped without it, failed in CI: tests/system.py)."""
+    import system
+    from pages import CHROMIUM
+
+    return system.file(CHROMIUM, "chromium")
+
+
+@pytest.fixture(scope="module")
+def browser(chromium):
+    """One headless chromium per test module, WebGL on the CPU (SwiftShader), driven by Playwright."""
+    from pages import ARGS
+    from playwright.sync_api import sync_playwright
+
+    with sync_playwright() as playwright:
+        launched = playwright.chromium.launch(executable_path=chromium, headless=True, args=ARGS)
+        yield launched
+        launched.close()
+
+
+@pytest.fixture()
+def arm_file(tmp_path):
+    """The tutorial arm's URDF as `bras-kit urdf -o` writes it, in a child process."""
+    import subprocess
+    import sys
+
+    path = tmp_path / "bras.urdf"
+    done = subprocess.run([sys.executable, "-m", "bras_kit", "urdf", "-o", str(path)], capture_output=True)
+    assert done.returncode == 0, done.stderr
+    return path
+
+
+@pytest.fixture()
+def viewer(arm_file):
+    """`bras-kit view` of arm_file, serving on a free port of 127.0.0.1, with the tutorial motion."""
+    from pages import free_port
+
+    from bras_kit.view import Source, Viewer
+
+    with Viewer(Source(path=str(arm_file)), port=free_port(), motion_specs=["tutorial"]) as running:
+        yield running
+
+
+@pytest.fixture()
+def private_runtime(monkeypatch):
+    """A runtime folder of this test's own, short (a Unix socket's path holds at most 107 bytes)."""
+    from pathlib import Path
+
+    runtime = Path(tempfile.mkdtemp(prefix="bk-", dir="/tmp"))
+    runtime.chmod(0o700)
+    monkeypatch.setenv("XDG_RUNTIME_DIR", str(runtime))
+    monkeypatch.delenv("ROS_DOMAIN_ID", raising=False)
+    yield runtime
+    shutil.rmtree(runtime, ignore_errors=True)
+
+
+@pytest.fixture(scope="session")
+def real_rclpy() -> str:
+    """An interpreter with the real rclpy of Jazzy (tests/realros.py): made once, then reused. Its
+    processes run in a loopback-only network namespace (realros.in_loopback_namespace)."""
+    import realros
+
+    return realros.oracle_python()
+
+
+# ---------------------------------------------------------------- markers by cost
+
+def pytest_collection_modifyitems(config, items):  # noqa: ARG001 - pytest's hook signature
+    """Each test gets the markers of its cost from the fixtures it uses and the code it runs (tests/costs.py)."""
+    from costs import COST_OF_FIXTURES, COST_OF_NAMES, names_reached
+
+    for item in items:
+        fixtures = set(getattr(item, "fixturenames", ()))
+        marks = {COST_OF_FIXTURES[name] for name in fixtures if name in COST_OF_FIXTURES}
+        functions = [getattr(item, "function", None)]
+        info = getattr(item, "_fixtureinfo", None)
+        if info is not None:
+            functions += [definition.func for definitions in info.name2fixturedefs.values()
+                          for definition in definitions]
+        seen: set = set()
+        reached = set().union(*(names_reached(function, seen=seen) for function in functions if function))
+        marks |= {cost for cost, names in COST_OF_NAMES.items() if names & reached}
+        for mark in sorted(marks - {mark.name for mark in item.iter_markers()}):
+            item.add_marker(mark)

@@ -24,7 +24,10 @@ HERE = Path(__file__).resolve().parent
 DATA = HERE / "data" / "live"
 sys.path.insert(0, str(HERE))
 
-from test_view import ARGS, CHROMIUM, _free_port, _orange, _wait  # noqa: E402
+from pages import ARGS, CHROMIUM  # noqa: E402
+from pages import free_port as _free_port  # noqa: E402
+from pages import orange as _orange  # noqa: E402
+from pages import wait as _wait  # noqa: E402
 
 
 def _node(python: str, *argv: str) -> subprocess.Popen[str]:

@@ -12,7 +12,6 @@ containment, to show that these oracles do see an attack that succeeds.
 from __future__ import annotations
 
 import ast
-import hashlib
 import json
 import os
 import select
@@ -23,6 +22,7 @@ import uuid
 from pathlib import Path
 
 import pytest
+from snapshots import snapshot
 
 from bras_kit.ros.script import run_script
 from bras_kit.run import run_findings, run_node
@@ -31,25 +31,6 @@ from bras_kit.trust.contain import available
 CORPUS = Path(__file__).parent / "data" / "hostile_code"
 SECRET = "-----BEGIN OPENSSH PRIVATE KEY----- bras-kit-test-secret"
 TMP_TARGETS = ("/tmp/bk-hostile-pwned.txt", "/tmp/bk-hostile-ctypes.txt", "/tmp/bk_pwned.txt")
-
-
-def snapshot(*roots: Path) -> dict[str, tuple[str, int, str]]:
-    """Every file, folder and link under ``roots``: kind, mode and content digest."""
-    out: dict[str, tuple[str, int, str]] = {}
-    for root in roots:
-        for folder, dirs, files in os.walk(root):
-            for name in dirs + files:
-                path = os.path.join(folder, name)
-                info = os.lstat(path)
-                if os.path.islink(path):
-                    out[path] = ("link", info.st_mode, os.readlink(path))
-                elif os.path.isdir(path):
-                    out[path] = ("dir", info.st_mode, "")
-                elif not os.path.isfile(path):  # the Unix socket
-                    out[path] = ("other", info.st_mode, "")
-                else:
-                    out[path] = ("file", info.st_mode, hashlib.sha256(Path(path).read_bytes()).hexdigest())
-    return out
 
 
 @pytest.fixture

@@ -111,6 +111,7 @@ def _page_id(page: Path) -> str:
     return page.relative_to(DOCS).as_posix()
 
 
+@pytest.mark.notebook  # the site's build runs every lesson notebook (docs/hooks/lessons.py)
 def test_site_builds_strictly(tmp_path: Path) -> None:
     result = subprocess.run([sys.executable, "-m", "mkdocs", "build", "--strict", "-q",
                              "-f", str(ROOT / "mkdocs.yml"), "-d", str(tmp_path / "site")],

@@ -13,7 +13,6 @@ import os
 import re
 import shlex
 import signal
-import socket
 import subprocess
 import sys
 import time
@@ -22,6 +21,7 @@ from dataclasses import dataclass
 from pathlib import Path
 
 import pytest
+from pages import free_port as _free_port
 
 ROOT = Path(__file__).resolve().parent.parent
 PAGES = {"en": ROOT / "docs" / "getting-started.md", "fr": ROOT / "docs" / "getting-started.fr.md"}
@@ -101,12 +101,6 @@ def test_the_getting_started_says_jupyterlab_comes_with_dev() -> None:
     text = PAGES["en"].read_text(encoding="utf-8")
     assert "not part of `[dev]`" not in text
     assert "JupyterLab comes with `[dev]`" in text
-
-
-def _free_port() -> int:
-    with socket.socket() as s:
-        s.bind(("127.0.0.1", 0))
-        return int(s.getsockname()[1])
 
 
 def _serve_then_interrupt(argv: list[str], folder: Path, where: str) -> None:

@@ -17,7 +17,12 @@ from pathlib import Path
 
 import numpy as np
 import pytest
-from test_view import _free_port, _open, _orange, _robot_box, _screenshot, _wait, browser  # noqa: F401
+from pages import free_port as _free_port
+from pages import open_page as _open
+from pages import orange as _orange
+from pages import robot_box as _robot_box
+from pages import screenshot as _screenshot
+from pages import wait as _wait
 
 pytestmark = pytest.mark.slow
 
@@ -58,7 +63,7 @@ def _shot(page, name: str) -> None:
         page.screenshot(path=str(Path(SHOTS) / name), timeout=120_000)
 
 
-def test_the_french_page_shows_no_english(browser, arm_file) -> None:  # noqa: F811
+def test_the_french_page_shows_no_english(browser, arm_file) -> None:
     from bras_kit.view import Source, Viewer
 
     with Viewer(Source(path=str(arm_file)), port=_free_port(), lang="fr", motion_specs=["tutorial"]) as viewer:
@@ -78,7 +83,7 @@ def test_the_french_page_shows_no_english(browser, arm_file) -> None:  # noqa: F
 
 @pytest.mark.parametrize("pose", [{"epaule": 1.57, "coude": 0.0}, {"epaule": -1.57, "coude": 0.0},
                                   {"epaule": 1.57, "coude": 2.0}])
-def test_the_arm_stays_in_view_and_clear_of_the_panel_at_an_extreme_pose(browser, arm_file, pose) -> None:  # noqa: F811
+def test_the_arm_stays_in_view_and_clear_of_the_panel_at_an_extreme_pose(browser, arm_file, pose) -> None:
     """Swung flat toward +x, the arm reaches 1.1 m from the shoulder (0.6 + 0.5, by hand): the
     camera placed for the zero pose alone put the forearm under the control panel."""
     from bras_kit.view import Source, Viewer
@@ -142,7 +147,7 @@ def test_the_framed_box_holds_every_pose_within_the_limits() -> None:
         assert (points >= centre - half - 1e-9).all() and (points <= centre + half + 1e-9).all(), values
 
 
-def test_closing_the_tab_during_playback_leaves_the_terminal_quiet(browser, arm_file, recwarn) -> None:  # noqa: F811
+def test_closing_the_tab_during_playback_leaves_the_terminal_quiet(browser, arm_file, recwarn) -> None:
     """viser warns (UserWarning, infra/_async_message_buffer.py) when a frame is queued for a
     connection that closed: the play loop does so for a tab closed mid-playback, before viser
     calls on_client_disconnect."""

@@ -11,8 +11,8 @@ from __future__ import annotations
 
 import pytest
 import sdformat_oracle as oracle
-from test_gazebo import REFUSAL_RULES
-from test_real_robots import ROOTS, TREES
+from robot_corpus import ROOTS, TREES
+from sdformat_oracle import REFUSAL_RULES
 
 from bras_kit.core.errors import BrasKitError
 from bras_kit.model.authoring import load
@@ -24,8 +24,7 @@ pytestmark = pytest.mark.slow
 
 @pytest.fixture(scope="module")
 def corpus(tmp_path_factory):
-    if oracle.library() is None:
-        pytest.fail("libsdformat 12 is the oracle of these tests: apt install libsdformat12-12")
+    oracle.require()
     folder = tmp_path_factory.mktemp("expanded")
     robots = {}
     for package, tree in TREES.items():

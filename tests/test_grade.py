@@ -413,13 +413,13 @@ def test_learners_whose_names_clash_once_made_safe_keep_their_own_pages():
 
 
 @pytest.mark.slow
-def test_report_opens_from_disk_in_a_browser(klass, report):
+def test_report_opens_from_disk_in_a_browser(klass, report, chromium):
     """Chromium, from file://, with no server: the index links every page, each page shows its picture."""
     from playwright.sync_api import sync_playwright
 
     _, expected = klass
     with sync_playwright() as playwright:
-        browser = playwright.chromium.launch(executable_path="/usr/bin/chromium", headless=True,
+        browser = playwright.chromium.launch(executable_path=chromium, headless=True,
                                              args=["--no-sandbox", "--disable-background-networking"])
         page = browser.new_page()
         page.goto((report / "index.html").as_uri())

@@ -18,8 +18,12 @@ import time
 from pathlib import Path
 
 import pytest
-from test_launch_view import _launch, _url
-from test_view import ARGS, CHROMIUM, _ended, _free_port, _screenshot, _wait
+from pages import ended as _ended
+from pages import free_port as _free_port
+from pages import launch as _launch
+from pages import launch_url as _url
+from pages import screenshot as _screenshot
+from pages import wait as _wait
 
 pytestmark = pytest.mark.slow
 
@@ -27,16 +31,6 @@ TUTORIAL = Path(__file__).parent / "data" / "launch" / "tutorial" / "bras_descri
 SCENE = (slice(0, 640), slice(0, 590))  # the 3D view left of the panel, above the orientation triad
 NOTICE = (slice(0, 200), slice(0, 330))  # viser's "Software WebGL" notice (an orange bar) over the scene
 FINDING = re.compile(r"(?m)^\S+?:(?:\d+:)? (BK\d{3}) ")  # a finding as the terminal prints it
-
-
-@pytest.fixture(scope="module")
-def browser():
-    from playwright.sync_api import sync_playwright
-
-    with sync_playwright() as playwright:
-        launched = playwright.chromium.launch(executable_path=CHROMIUM, headless=True, args=ARGS)
-        yield launched
-        launched.close()
 
 
 def _arm_pixels(page) -> int:

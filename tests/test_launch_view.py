@@ -13,41 +13,13 @@ from pathlib import Path
 
 import numpy as np
 import pytest
-from test_view import ARGS, CHROMIUM, _free_port, _orange, _wait
+from pages import free_port as _free_port
+from pages import launch as _launch
+from pages import launch_url as _url
+from pages import orange as _orange
+from pages import wait as _wait
 
 pytestmark = pytest.mark.slow
-
-
-@pytest.fixture(scope="module")
-def browser():
-    from playwright.sync_api import sync_playwright
-
-    with sync_playwright() as playwright:
-        launched = playwright.chromium.launch(executable_path=CHROMIUM, headless=True, args=ARGS)
-        yield launched
-        launched.close()
-
-
-def _launch(arguments: list[str], env: dict[str, str], errors: Path) -> subprocess.Popen:
-    """bras-kit launch started as a learner starts it; what it says on stderr goes to ``errors``."""
-    with open(errors, "w") as stderr:
-        return subprocess.Popen([sys.executable, "-m", "bras_kit", "launch", *arguments],
-                                stdout=subprocess.PIPE, stderr=stderr, text=True, env=env)
-
-
-def _url(process: subprocess.Popen, errors: Path) -> str:
-    """The address bras-kit launch prints; if it ends or stays silent, what it said is in the failure."""
-    end = time.monotonic() + 180
-    said = []
-    while time.monotonic() < end:
-        line = process.stdout.readline()  # type: ignore[union-attr]
-        if "http://" in line:
-            return "http://" + line.split("http://", 1)[1].split()[0]
-        if not line and process.poll() is not None:
-            break
-        said.append(line)
-    raise AssertionError(f"bras-kit launch printed no address (exit code {process.poll()}); "
-                         f"stdout: {''.join(said)!r}; stderr: {errors.read_text()!r}")
 
 
 def _page_where_the_arm_moves_by_itself(browser, process: subprocess.Popen, errors: Path):

@@ -100,6 +100,7 @@ def _executed(path: Path) -> nbformat.NotebookNode:
 
 
 @pytest.mark.slow
+@pytest.mark.notebook
 @pytest.mark.parametrize("path", ALL, ids=_id)
 def test_notebook_runs_top_to_bottom(path: Path) -> None:
     nb = _executed(path)
@@ -195,6 +196,7 @@ def test_french_lessons_text_has_no_english(path: Path) -> None:
 
 
 @pytest.mark.slow
+@pytest.mark.notebook
 @pytest.mark.parametrize("path", _notebooks("fr"), ids=_id)
 def test_french_lessons_print_french(path: Path) -> None:
     """What a French lesson prints (its own words and the library's) is French."""
@@ -236,6 +238,7 @@ assert screen.value == expected.getvalue(), "the panel does not show the last va
 
 
 @pytest.mark.slow
+@pytest.mark.notebook
 @pytest.mark.parametrize("lang", LANGS)
 def test_lesson_3_sliders_redraw_one_picture_at_the_render_rate(lang: str) -> None:
     """A drag of 201 values redraws the panel's one picture at most twice, ending on the last values,

@@ -96,11 +96,11 @@ def _run(nodes: list[list[str]], doctors: list[list[str]], doctor_env: str = "")
 
 
 @pytest.fixture(scope="module")
-def graphs(request):
+def graphs(request, real_rclpy):
     """name -> future (exit code, output) of each doctor, for the scenarios of the selected tests."""
     wanted = {getattr(item.function, "scenario", None) for item in request.session.items
               if item.module is request.module} - {None}
-    oracle_python()  # made once, before the threads want it
+    # real_rclpy, the fixture: the venv is made once, before the threads want it
     with concurrent.futures.ThreadPoolExecutor(PARALLEL) as pool:
         yield {name: pool.submit(_run, **SCENARIOS[name]) for name in sorted(wanted)}
 

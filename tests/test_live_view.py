@@ -13,15 +13,15 @@ import sys
 from pathlib import Path
 
 import pytest
-from realros import graph_env, in_loopback_namespace, new_domain, oracle_python
+from realros import graph_env, in_loopback_namespace, new_domain
 
 pytestmark = pytest.mark.slow
 HERE = Path(__file__).parent
 
 
 @pytest.fixture(scope="module")
-def story():
-    python = oracle_python()
+def story(real_rclpy, chromium):  # the driver starts chromium in the namespace
+    python = real_rclpy
     done = subprocess.run(in_loopback_namespace([sys.executable, str(HERE / "live_view_driver.py"), python]),
                           env=graph_env(new_domain(), BRAS_KIT_ROS_PYTHON=python), capture_output=True, text=True,
                           timeout=240, start_new_session=True)

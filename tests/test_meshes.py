@@ -13,6 +13,7 @@ from pathlib import Path
 
 import numpy as np
 import pytest
+from robot_corpus import ROBOTS
 
 from bras_kit import meshes
 from bras_kit.meshes import cache
@@ -21,15 +22,6 @@ COLLADA = {"c": "http://www.collada.org/2005/11/COLLADASchema"}
 DATA = Path(__file__).parent / "data" / "meshes"
 
 
-def _share() -> Path:
-    for base in map(Path, site.getsitepackages()):
-        if (base / "cmeel.prefix" / "share" / "example-robot-data").is_dir():
-            return base / "cmeel.prefix" / "share"
-    raise AssertionError("example-robot-data (the dev extra) is needed for these tests")
-
-
-SHARE = _share()
-ROBOTS = SHARE / "example-robot-data" / "robots"
 FOOT = ROBOTS / "anymal_b_simple_description" / "meshes" / "foot" / "anymal_foot.dae"
 PANDA_LINK0 = ROBOTS / "panda_description" / "meshes" / "visual" / "link0.dae"
 

@@ -195,7 +195,7 @@ def run_real(paths: list[Path], folder: Path) -> dict[Path, Outcome]:
 
 
 @pytest.fixture(scope="module")
-def outcomes() -> dict[Path, tuple[Outcome, Outcome]]:
+def outcomes(real_rclpy) -> dict[Path, tuple[Outcome, Outcome]]:
     import threading
 
     paths = corpus()

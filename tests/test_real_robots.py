@@ -10,12 +10,12 @@ table does not record as a real defect.
 
 from __future__ import annotations
 
-import shutil
-import site
 import subprocess
 from pathlib import Path
 
 import pytest
+import system
+from robot_corpus import ROOTS, TREES
 
 from bras_kit.validate import validate_path
 
@@ -23,24 +23,6 @@ pytestmark = pytest.mark.slow
 
 TABLE = Path(__file__).parent / "data" / "real_robots.tsv"
 UNREADABLE = {"BK100", "BK101", "BK102", "BK103"}
-
-
-def _packages() -> tuple[dict[str, Path], list[str]]:
-    trees, roots = {}, []
-    for base in map(Path, site.getsitepackages()):
-        if (base / "cmeel.prefix" / "share" / "example-robot-data").is_dir():
-            trees["example-robot-data"] = base / "cmeel.prefix" / "share" / "example-robot-data"
-            roots.append(str(base / "cmeel.prefix" / "share"))
-        if (base / "rtbdata").is_dir():
-            rtb = base / "rtbdata"
-            trees["rtb-data"] = rtb
-            roots += [str(rtb / "xacro"), str(rtb / "xacro" / "kuka_description"),
-                      str(rtb / "armer_xarm" / "data" / "xacro"), str(rtb / "meshes"), str(rtb)]
-    trees["pybullet_data"] = Path(__file__).parent / "data" / "real_robots" / "pybullet_data"
-    return trees, roots
-
-
-TREES, ROOTS = _packages()
 
 
 def _expected() -> dict[tuple[str, str], tuple[int, str, str]]:
@@ -89,8 +71,7 @@ def test_every_real_robot_gets_the_reviewed_verdict(verdicts):
 
 
 def test_no_unreviewed_error_on_a_robot_check_urdf_accepts(verdicts):
-    check_urdf = shutil.which("check_urdf")
-    assert check_urdf, "check_urdf (liburdfdom-tools) is needed for this test"
+    check_urdf = system.program("check_urdf", "liburdfdom-tools")
     expected = _expected()
     accepted_with_errors = []
     for (package, name), (code, _) in verdicts.items():

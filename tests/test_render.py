@@ -11,6 +11,7 @@ import os
 
 import numpy as np
 import pytest
+from pixels import hsv
 
 from bras_kit.core.errors import BackendError, ModelError, ParameterError
 from bras_kit.render import Renderer, render_motion, render_pose
@@ -18,16 +19,6 @@ from bras_kit.render import Renderer, render_motion, render_pose
 BLUE_HUE = 222.9  # hue of rgb (0.2, 0.4, 0.9)
 ORANGE_HUE = 28.2  # hue of rgb (0.95, 0.5, 0.1)
 FRONT = dict(view="front", grid=False, background="white", size=(320, 400))
-
-
-def hsv(image: np.ndarray) -> tuple[np.ndarray, np.ndarray, np.ndarray]:
-    rgb = image.astype(float) / 255.0
-    high, low = rgb.max(axis=2), rgb.min(axis=2)
-    span = np.where(high > low, high - low, 1.0)
-    r, g, b = rgb[..., 0], rgb[..., 1], rgb[..., 2]
-    hue = np.where(high == r, ((g - b) / span) % 6, np.where(high == g, (b - r) / span + 2, (r - g) / span + 4)) * 60
-    saturation = np.where(high > 0, (high - low) / np.where(high > 0, high, 1), 0)
-    return hue, saturation, high
 
 
 def hue_mask(image: np.ndarray, hue: float, tolerance: float = 10.0) -> np.ndarray:

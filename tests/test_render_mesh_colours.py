@@ -14,8 +14,8 @@ from pathlib import Path
 
 import numpy as np
 import pytest
-from test_meshes import ROBOTS, SHARE
-from test_render import hsv
+from pixels import hsv
+from robot_corpus import ROBOTS, SHARE
 
 from bras_kit.model.authoring import load
 from bras_kit.render import render_pose

@@ -6,9 +6,7 @@ from __future__ import annotations
 
 import math
 import os
-import shutil
 import stat
-import tempfile
 import threading
 import time
 from pathlib import Path
@@ -16,17 +14,6 @@ from pathlib import Path
 import pytest
 
 TUTORIAL = Path(__file__).parent / "data" / "launch" / "tutorial" / "bras_description"
-
-
-@pytest.fixture()
-def private_runtime(monkeypatch):
-    """A runtime folder of this test's own, short (a Unix socket's path holds at most 107 bytes)."""
-    runtime = Path(tempfile.mkdtemp(prefix="bk-", dir="/tmp"))
-    runtime.chmod(0o700)
-    monkeypatch.setenv("XDG_RUNTIME_DIR", str(runtime))
-    monkeypatch.delenv("ROS_DOMAIN_ID", raising=False)
-    yield runtime
-    shutil.rmtree(runtime, ignore_errors=True)
 
 
 def test_no_launch_no_bus(private_runtime):

@@ -22,8 +22,9 @@ import time
 from pathlib import Path
 
 import pytest
-from test_ros_bus import private_runtime  # noqa: F401 - the fixture
-from test_view import _ended
+from pages import ended as _ended
+from pages import free_port as _free_port
+from pages import wait as _wait
 
 DATA = Path(__file__).parent / "data"
 TUTORIAL = DATA / "launch" / "tutorial" / "bras_description"
@@ -34,15 +35,6 @@ def _state(k: int):  # type: ignore[no-untyped-def]
     from bras_kit.ros.bus import BusJointState
 
     return BusJointState(["epaule", "coude"], [0.1 * k, -0.1 * k], 0.05 * k)
-
-
-def _wait(condition, seconds: float) -> bool:  # type: ignore[no-untyped-def]
-    end = time.monotonic() + seconds
-    while time.monotonic() < end:
-        if condition():
-            return True
-        time.sleep(0.05)
-    return condition()
 
 
 # ------------------------------------------------------------------ ROS_DOMAIN_ID, as rcl reads it
@@ -71,7 +63,7 @@ def test_a_domain_rcl_refuses_is_refused_with_its_words(text, said):
 # ------------------------------------------------------------------ participants
 
 
-def test_two_launches_listen_side_by_side_and_a_run_reaches_both(private_runtime):  # noqa: F811
+def test_two_launches_listen_side_by_side_and_a_run_reaches_both(private_runtime):
     from bras_kit.ros.bus import Bus, launches
 
     got: list[list[object]] = [[], []]
@@ -92,7 +84,7 @@ def test_two_launches_listen_side_by_side_and_a_run_reaches_both(private_runtime
     assert launches() == []
 
 
-def test_a_run_joins_only_the_launches_of_its_domain(private_runtime, monkeypatch):  # noqa: F811
+def test_a_run_joins_only_the_launches_of_its_domain(private_runtime, monkeypatch):
     from bras_kit.ros.bus import Bus, listening
 
     monkeypatch.setenv("ROS_DOMAIN_ID", "3")
@@ -107,7 +99,7 @@ def test_a_run_joins_only_the_launches_of_its_domain(private_runtime, monkeypatc
         run.close()
 
 
-def test_a_launch_left_by_a_process_that_died_is_not_joined_and_its_socket_goes(private_runtime):  # noqa: F811
+def test_a_launch_left_by_a_process_that_died_is_not_joined_and_its_socket_goes(private_runtime):
     from bras_kit.ros.bus import Bus, bus_folder, launches
 
     os.makedirs(bus_folder(), mode=0o700)
@@ -121,7 +113,7 @@ def test_a_launch_left_by_a_process_that_died_is_not_joined_and_its_socket_goes(
         assert not os.path.exists(dead) and launches() == [bus.path]
 
 
-def test_the_robot_a_launch_shows_is_told_to_a_run_with_the_joints_it_lacks(private_runtime):  # noqa: F811
+def test_the_robot_a_launch_shows_is_told_to_a_run_with_the_joints_it_lacks(private_runtime):
     from bras_kit.ros.bus import Bus, LaunchRobot, unknown_joints
 
     with Bus.listen() as launch:
@@ -139,7 +131,7 @@ def test_the_robot_a_launch_shows_is_told_to_a_run_with_the_joints_it_lacks(priv
 # ------------------------------------------------------------------ the user
 
 
-def test_a_bus_folder_others_can_open_is_neither_joined_nor_listened_on(private_runtime):  # noqa: F811
+def test_a_bus_folder_others_can_open_is_neither_joined_nor_listened_on(private_runtime):
     from bras_kit.core.errors import BrasKitError
     from bras_kit.ros.bus import Bus, bus_folder, launches
 
@@ -156,7 +148,7 @@ def test_a_bus_folder_others_can_open_is_neither_joined_nor_listened_on(private_
 
 @pytest.mark.skipif(os.getuid() != 0, reason="only root can start a process of another user; "
                     "test_a_bus_folder_others_can_open_is_neither_joined_nor_listened_on covers the folder")
-def test_a_process_of_another_user_never_sees_the_launch(private_runtime):  # noqa: F811
+def test_a_process_of_another_user_never_sees_the_launch(private_runtime):
     """A process of uid 65534 (nobody), given this user's runtime folder or its own: no launch."""
     from bras_kit.ros.bus import Bus, launches
 
@@ -206,12 +198,6 @@ def _url(process: subprocess.Popen) -> str:
     raise AssertionError(f"no address (exit {process.poll()}): {''.join(said)} {process.stderr.read()}")  # type: ignore[union-attr]
 
 
-def _free_port() -> int:
-    with socket.socket() as probe:
-        probe.bind(("127.0.0.1", 0))
-        return int(probe.getsockname()[1])
-
-
 def _lines_until(stream, pattern: str, seconds: float) -> str:  # type: ignore[no-untyped-def]
     """What ``stream`` says until a line matches ``pattern`` (or ``seconds`` pass). Read from its
     descriptor, never through the text stream: a ``readline`` reads ahead into the stream's buffer,
@@ -233,7 +219,7 @@ def _lines_until(stream, pattern: str, seconds: float) -> str:  # type: ignore[n
 
 
 @pytest.mark.slow
-def test_two_launches_beside_a_batch_run_and_a_live_run(private_runtime, tmp_path):  # noqa: F811
+def test_two_launches_beside_a_batch_run_and_a_live_run(private_runtime, tmp_path):
     """In the tutorial's workspace: two bras-kit launch open at once (French and English); a batch
     run of another package (three joints) keeps its simulated speed and reaches no page; a live
     run of it joins both, is told the joint the pages lack, outlives its 10 s default and ends on

@@ -11,44 +11,21 @@ from pathlib import Path
 
 import numpy as np
 import pytest
+from pages import ARGS, orange
+from pages import free_port as _free_port
+from pages import wait as _wait
 
 pytestmark = pytest.mark.slow
 
 TUTORIAL = Path(__file__).parent / "data" / "tutorial_package"
-CHROMIUM = "/usr/bin/chromium"
-ARGS = ["--no-sandbox", "--disable-background-networking", "--disable-component-update", "--disable-sync",
-        "--no-first-run", "--use-angle=swiftshader", "--enable-unsafe-swiftshader"]
 SCENE = (slice(0, 700), slice(0, 590))  # the 3D view left of the panel
 
 
-def _free_port() -> int:
-    import socket
-
-    with socket.socket() as probe:
-        probe.bind(("127.0.0.1", 0))
-        return int(probe.getsockname()[1])
-
-
 def _orange(page) -> np.ndarray:
-    from io import BytesIO
-
-    from PIL import Image
-
-    image = np.asarray(Image.open(BytesIO(page.screenshot(timeout=120_000))).convert("RGB"))[SCENE].astype(int)
-    r, g, b = image[..., 0], image[..., 1], image[..., 2]
-    return np.argwhere((r > 120) & (r - b > 100) & (g > 0.35 * r) & (g < 0.7 * r))
+    return orange(page, SCENE, notice=None)  # no notice masked: as this test always read the scene
 
 
-def _wait(condition, seconds=20.0):
-    end = time.monotonic() + seconds
-    while time.monotonic() < end:
-        if condition():
-            return True
-        time.sleep(0.05)
-    return condition()
-
-
-def test_view_node_shows_the_forearm_moving_as_the_node_moves_it():
+def test_view_node_shows_the_forearm_moving_as_the_node_moves_it(chromium):
     from playwright.sync_api import sync_playwright
 
     port = _free_port()
@@ -58,7 +35,7 @@ def test_view_node_shows_the_forearm_moving_as_the_node_moves_it():
     try:
         assert f"http://127.0.0.1:{port}" in process.stdout.readline()
         with sync_playwright() as playwright:
-            browser = playwright.chromium.launch(executable_path=CHROMIUM, headless=True, args=ARGS)
+            browser = playwright.chromium.launch(executable_path=chromium, headless=True, args=ARGS)
             page = browser.new_page(viewport={"width": 1000, "height": 700})
             page.goto(f"http://127.0.0.1:{port}")
             page.wait_for_selector("text=coude", timeout=60_000)

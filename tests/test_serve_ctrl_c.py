@@ -14,6 +14,7 @@ import sys
 from pathlib import Path
 
 import pytest
+from pages import free_port as _free_port
 
 pytestmark = pytest.mark.slow
 
@@ -32,12 +33,6 @@ setattr(owner, name, ctrl_c)
 from bras_kit.cli import main
 sys.exit(main(sys.argv[3:]))
 """
-
-
-def _free_port() -> int:
-    with socket.socket() as probe:
-        probe.bind(("127.0.0.1", 0))
-        return int(probe.getsockname()[1])
 
 
 def _interrupted_at(module: str, name: str, argv: list[str], cwd: Path) -> subprocess.CompletedProcess:

@@ -81,8 +81,8 @@ def test_ci_names_no_system_package_outside_the_list():
 NEEDED_BY_TESTS = {
     "libsdformat12-12": ("tests/sdformat_oracle.py", "libsdformat12.so.12"),
     "tmux": ("tests/test_exercises_watch.py", '"tmux"'),
-    "chromium": ("tests/test_view.py", '"/usr/bin/chromium"'),
-    "liburdfdom-tools": ("tests/test_check_urdf.py", "check_urdf"),
+    "chromium": ("tests/pages.py", '"/usr/bin/chromium"'),
+    "liburdfdom-tools": ("tests/urdfdom_oracle.py", '"check_urdf", "liburdfdom-tools"'),
     "util-linux": ("tests/realros.py", '"unshare", "-rnm"'),
     "iproute2": ("tests/realros.py", "ip link set lo up"),
 }

@@ -24,8 +24,7 @@ import time
 from pathlib import Path
 
 import pytest
-from test_containment_hostile import snapshot
-from test_ros_bus import private_runtime  # noqa: F401 - the fixture
+from snapshots import snapshot
 
 from bras_kit.cli import main
 from bras_kit.trust.contain import available
@@ -217,7 +216,7 @@ def test_bras_kit_run_names_what_setup_py_tried_at_its_lines(world, capsys, lang
 
 
 @pytest.mark.slow
-def test_a_live_run_names_what_setup_py_tried_before_its_node_runs(world, private_runtime):  # noqa: F811
+def test_a_live_run_names_what_setup_py_tried_before_its_node_runs(world, private_runtime):
     """Beside an open launch (here a page of the bus, which bras-kit launch opens), `bras-kit run`
     is live until Ctrl-C: what setup.py tried that its walls stopped is BK639 at its lines as soon
     as the package is built, while the node publishes, not when the run ends; Ctrl-C then ends it

@@ -71,7 +71,7 @@ def test_comment_closed_with_an_arrow_and_never_closed_runs_to_the_end_of_the_fi
 
 def test_check_urdf_reports_the_link_the_comment_swallowed():
     """urdfdom (TinyXML2) reads the comment to the next '-->': the forearm is missing for it too."""
-    from test_check_urdf import check_urdf
+    from urdfdom_oracle import check_urdf
 
     done = check_urdf(SLIPS / "comment_arrow.urdf")
     assert "child link [avant_bras] of joint [coude] not found" in done.stdout + done.stderr

@@ -4,117 +4,24 @@ panel's text) and what the Python side holds, never the viewer's own idea of its
 
 from __future__ import annotations
 
-import socket
 import subprocess
 import sys
 import time
-from pathlib import Path
 
 import numpy as np
 import pytest
 from page_words import page_words
+from pages import close_notices as _close_notices
+from pages import ended as _ended
+from pages import free_port as _free_port
+from pages import open_page as _open
+from pages import orange as _orange
+from pages import robot_box as _robot_box
+from pages import screenshot as _screenshot
+from pages import viser_client_words as _viser_client_words
+from pages import wait as _wait
 
 pytestmark = pytest.mark.slow
-
-CHROMIUM = "/usr/bin/chromium"
-ARGS = ["--no-sandbox", "--disable-background-networking", "--disable-component-update", "--disable-sync",
-        "--no-first-run", "--use-angle=swiftshader", "--enable-unsafe-swiftshader"]
-SCENE = (slice(0, 700), slice(0, 590))  # the 3D view left of the panel (rows, columns)
-NOTICE = (slice(0, 200), slice(0, 330))  # where viser shows its notice on SwiftShader (an orange bar: 660 pixels)
-
-
-def _free_port() -> int:
-    with socket.socket() as probe:
-        probe.bind(("127.0.0.1", 0))
-        return int(probe.getsockname()[1])
-
-
-@pytest.fixture(scope="module")
-def browser():
-    from playwright.sync_api import sync_playwright
-
-    assert Path(CHROMIUM).exists(), "Debian's chromium is needed (apt-get install chromium)"
-    with sync_playwright() as playwright:
-        launched = playwright.chromium.launch(executable_path=CHROMIUM, headless=True, args=ARGS)
-        yield launched
-        launched.close()
-
-
-@pytest.fixture()
-def arm_file(tmp_path):
-    path = tmp_path / "bras.urdf"
-    done = subprocess.run([sys.executable, "-m", "bras_kit", "urdf", "-o", str(path)], capture_output=True)
-    assert done.returncode == 0, done.stderr
-    return path
-
-
-@pytest.fixture()
-def viewer(arm_file):
-    from bras_kit.view import Source, Viewer
-
-    with Viewer(Source(path=str(arm_file)), port=_free_port(), motion_specs=["tutorial"]) as running:
-        yield running
-
-
-def _open(browser, url, requests=None):
-    page = browser.new_page(viewport={"width": 1000, "height": 700})
-    if requests is not None:
-        page.on("request", lambda request: requests.append(request.url))
-    page.goto(url)
-    page.wait_for_selector("text=coude", timeout=60_000)
-    return page
-
-
-def _orange(page) -> np.ndarray:
-    """Pixels of the forearm's orange (0.95 0.5 0.1), shaded: (row, column) of each."""
-    from io import BytesIO
-
-    from PIL import Image
-
-    image = np.asarray(Image.open(BytesIO(page.screenshot(timeout=120_000))).convert("RGB"))[SCENE].astype(int)
-    r, g, b = image[..., 0], image[..., 1], image[..., 2]
-    mask = (r > 120) & (r - b > 100) & (g > 0.35 * r) & (g < 0.7 * r)
-    mask[NOTICE] = False  # the orange bar of viser's "Software WebGL" notice is not the forearm
-    return np.argwhere(mask)
-
-
-def _ended(process: subprocess.Popen, timeout: float = 60.0) -> tuple[str, str]:
-    """``process.communicate(timeout=...)`` for a process some of whose output was already read
-    line by line (the page's address). With a timeout, communicate reads the pipes' descriptors
-    itself (CPython's ``Popen._communicate``) and drops what ``readline`` had read ahead into the
-    text streams: a report printed with the address line was lost. Here each pipe is read to its
-    end through its stream, in a thread of its own; past ``timeout`` the process is killed."""
-    import threading
-
-    texts: list[list[str]] = [[], []]
-
-    def read(stream, into: list[str]) -> None:
-        for line in stream:
-            into.append(line)
-
-    readers = [threading.Thread(target=read, args=(stream, into), daemon=True)
-               for stream, into in zip((process.stdout, process.stderr), texts) if stream is not None]
-    for reader in readers:
-        reader.start()
-    try:
-        process.wait(timeout)
-    except subprocess.TimeoutExpired:
-        process.kill()
-        process.wait()
-        raise
-    finally:
-        for reader in readers:
-            reader.join(10)
-    return "".join(texts[0]), "".join(texts[1])
-
-
-def _wait(condition, seconds=30.0):
-    end = time.monotonic() + seconds
-    while time.monotonic() < end:
-        if condition():
-            return True
-        time.sleep(0.05)
-    return condition()
 
 
 def test_page_loads_from_this_computer_only_and_draws_the_arm(browser, viewer):
@@ -235,28 +142,6 @@ def test_the_page_speaks_french(browser, arm_file):
         page.close()
 
 
-def _viser_client_words() -> set[str]:
-    """viser's own English words, read from its client's source (the oracle: not bras-kit's list):
-    the literal labels, tooltips, titles and placeholders of its components, and its notices."""
-    import re
-
-    import viser
-
-    source = Path(viser.__file__).parent / "client" / "src"
-    attribute = re.compile(r"""(?:label|tooltip|title|aria-label|placeholder|toggleLabel|toggleTooltip)=\{?\s*"""
-                           r"""(?:[^"'{}]*\?\s*)?["']([^"'{}]+)["'](?:\s*:\s*["']([^"'{}]+)["'])?""")
-    notice = re.compile(r"""title:\s*"([^"]+)",\s*message:\s*((?:"[^"]*"\s*\+?\s*)+)""")
-    words: set[str] = set()
-    for path in source.rglob("*.tsx"):
-        text = path.read_text(encoding="utf-8")
-        for match in attribute.finditer(text):
-            words.update(word for word in match.groups() if word)
-        for match in notice.finditer(text):
-            words.add(match.group(1))
-            words.add("".join(re.findall(r'"([^"]*)"', match.group(2))))
-    return words
-
-
 def test_viser_s_own_words_are_french_in_a_french_page(browser, arm_file):
     """No word of viser's client is left in English under --lang fr: text, tooltips, titles,
     aria-labels, placeholders; a node viser adds later (a tooltip, a notice) is worded too."""
@@ -325,36 +210,6 @@ def test_play_moves_the_arm_and_the_panel_shows_the_joint_past_its_limit(browser
 
 
 # -- what learners see: framing, typed joint values, the error banner, reading a link's pose ----
-
-def _screenshot(page) -> np.ndarray:
-    from io import BytesIO
-
-    from PIL import Image
-
-    return np.asarray(Image.open(BytesIO(page.screenshot(timeout=120_000))).convert("RGB")).astype(int)
-
-
-def _close_notices(page) -> None:
-    """Chromium on SwiftShader makes viser show a "Software WebGL" notice over the scene: closed."""
-    _wait(lambda: page.get_by_text("Software WebGL").count() > 0, 3)
-    for button in page.locator(".mantine-Notification-root button").all():
-        button.click()
-    assert _wait(lambda: page.get_by_text("Software WebGL").count() == 0, 30)
-
-
-def _robot_box(image: np.ndarray) -> tuple[int, int, int, int]:
-    """Rows and columns (top, bottom, left, right) of the arm's coloured pixels: the blue upper
-    arm and the orange forearm (the white background, grey grid and dark names are not coloured);
-    the view's orientation triad in the lower left corner is left out."""
-    r, g, b = image[..., 0], image[..., 1], image[..., 2]
-    blue = (b > 120) & (b - r > 70) & (b - g > 40)
-    orange = (r > 120) & (r - b > 100) & (g > 0.35 * r) & (g < 0.7 * r)
-    mask = blue | orange
-    mask[-70:, :70] = False
-    rows, columns = np.nonzero(mask)
-    assert len(rows) > 300, "no arm drawn"
-    return int(rows.min()), int(rows.max()), int(columns.min()), int(columns.max())
-
 
 def _panel_left(page) -> float:
     box = page.get_by_text("Display", exact=True).first.bounding_box()

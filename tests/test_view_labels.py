@@ -20,15 +20,11 @@ from pathlib import Path
 import numpy as np
 import pytest
 from page_words import page_words
-from test_view import (
-    ARGS,
-    CHROMIUM,
-    _close_notices,
-    _free_port,
-    _screenshot,
-    _viser_client_words,
-    _wait,
-)
+from pages import close_notices as _close_notices
+from pages import free_port as _free_port
+from pages import screenshot as _screenshot
+from pages import viser_client_words as _viser_client_words
+from pages import wait as _wait
 
 pytestmark = pytest.mark.slow
 
@@ -41,16 +37,6 @@ PLAYER_TOP = 650  # the exported page's play bar, and the live page's bottom: no
 # within TYPICAL.
 NEAR = 30
 TYPICAL = 12
-
-
-@pytest.fixture(scope="module")
-def browser():
-    from playwright.sync_api import sync_playwright
-
-    with sync_playwright() as playwright:
-        launched = playwright.chromium.launch(executable_path=CHROMIUM, headless=True, args=ARGS)
-        yield launched
-        launched.close()
 
 
 def _elbow_and_its_name(image: np.ndarray, columns: slice = slice(None)) -> tuple[np.ndarray | None, np.ndarray | None]:

@@ -5,13 +5,14 @@ share tunnel refused, and the command's errors. The browser itself is tested in 
 from __future__ import annotations
 
 import math
-import socket
 import subprocess
 import sys
 import time
 
 import numpy as np
 import pytest
+from pages import free_port as _free_port
+from pages import wait as _wait
 
 MIMIC_URDF = """<?xml version="1.0"?>
 <robot name="pince">
@@ -30,12 +31,6 @@ MIMIC_URDF = """<?xml version="1.0"?>
   </joint>
 </robot>
 """
-
-
-def _free_port() -> int:
-    with socket.socket() as probe:
-        probe.bind(("127.0.0.1", 0))
-        return int(probe.getsockname()[1])
 
 
 class _ServerAsClient:
@@ -60,15 +55,6 @@ def _session(viewer):
     session = Session(_ServerAsClient(viewer.server), viewer, viewer.lang)
     viewer.sessions[0] = session
     return session
-
-
-def _wait(condition, seconds=30.0):
-    end = time.monotonic() + seconds
-    while time.monotonic() < end:
-        if condition():
-            return True
-        time.sleep(0.02)
-    return condition()
 
 
 @pytest.fixture()

@@ -21,7 +21,7 @@ from collections.abc import Iterator
 from pathlib import Path
 
 import pytest
-from test_view import _free_port, arm_file, browser, viewer  # noqa: F401 - the suite's Chromium and viewer
+from pages import free_port as _free_port
 
 pytestmark = pytest.mark.slow
 
@@ -41,12 +41,13 @@ def _listening(port: int) -> list[str]:
     return found
 
 
-def test_the_viewer_listens_on_loopback_only(viewer):  # noqa: F811 - the fixture of test_view
+def test_the_viewer_listens_on_loopback_only(viewer):
     assert _listening(viewer.server.get_port()) == ["0100007F"]  # 127.0.0.1, little-endian
 
 
-def test_the_launch_page_listens_on_loopback_only_and_refuses_another_origin(browser, tmp_path):  # noqa: F811
-    from test_launch_view import _launch, _url
+def test_the_launch_page_listens_on_loopback_only_and_refuses_another_origin(browser, tmp_path):
+    from pages import launch as _launch
+    from pages import launch_url as _url
 
     from bras_kit.scaffold.package import scaffold_package
 
@@ -82,7 +83,7 @@ def _get(port: int, path: str) -> tuple[int, bytes]:
     "/%2E%2E%2F%2E%2E%2F__init__.py", "/..\\..\\__init__.py", "//etc/passwd", "/../../../../../../etc/passwd",
     "/%2fetc%2fpasswd", "/static/../../../__init__.py",
 ])
-def test_no_url_reaches_a_file_outside_the_pages_folder(viewer, path):  # noqa: F811
+def test_no_url_reaches_a_file_outside_the_pages_folder(viewer, path):
     import viser
 
     port = viewer.server.get_port()
@@ -133,7 +134,7 @@ def _web_site() -> Iterator[str]:
         site.server_close()
 
 
-def _from_other_origin(browser, port: int) -> dict:  # noqa: F811
+def _from_other_origin(browser, port: int) -> dict:
     import viser
 
     page = browser.new_page()
@@ -146,12 +147,12 @@ def _from_other_origin(browser, port: int) -> dict:  # noqa: F811
         page.close()
 
 
-def test_a_page_of_another_origin_cannot_use_the_viewers_websocket(browser, viewer):  # noqa: F811
+def test_a_page_of_another_origin_cannot_use_the_viewers_websocket(browser, viewer):
     seen = _from_other_origin(browser, viewer.server.get_port())
     assert seen == {"messages": 0, "closed": True, "code": 1008}
 
 
-def test_a_plain_viser_server_lets_the_same_page_in_so_the_oracle_sees_a_connection(browser):  # noqa: F811
+def test_a_plain_viser_server_lets_the_same_page_in_so_the_oracle_sees_a_connection(browser):
     import viser
 
     server = viser.ViserServer(host="127.0.0.1", port=_free_port(), verbose=False)
@@ -164,7 +165,7 @@ def test_a_plain_viser_server_lets_the_same_page_in_so_the_oracle_sees_a_connect
     assert seen["messages"] > 0 and seen["closed"] is False
 
 
-def test_the_viewers_own_page_still_gets_its_scene(browser, viewer):  # noqa: F811
+def test_the_viewers_own_page_still_gets_its_scene(browser, viewer):
     import viser
 
     page = browser.new_page()
@@ -186,7 +187,7 @@ def test_a_dns_rebinding_name_is_refused_even_when_origin_and_host_agree():
     assert not same_origin("http://evil.example", "127.0.0.1:8080", "127.0.0.1")
 
 
-def test_no_socket_outside_loopback_reaches_the_viewer(viewer):  # noqa: F811
+def test_no_socket_outside_loopback_reaches_the_viewer(viewer):
     """Every address of this machine but loopback: the connection is refused by the kernel."""
     port = viewer.server.get_port()
     addresses = {info[4][0] for info in socket.getaddrinfo(socket.gethostname(), None, socket.AF_INET)}

@@ -1,7 +1,7 @@
 """Contributor tools for the catalogs (Babel): extract every message, merge, compile.
 
-``python -m bras_kit.cli.catalogs update`` reads every module of bras_kit with :mod:`ast` (through a
-Babel extraction method, :func:`extract_python`), finds each ``M(...)``, ``Mn(...)`` and
+``python -m bras_kit.cli.catalogs update`` reads every module of bras_kit with :mod:`ast`
+(:func:`extract_file`), finds each ``M(...)``, ``Mn(...)`` and
 ``Mc(...)`` call and each text given to a registration call listed in :data:`TEXT_CALLS`
 (the validator's rules), groups them by domain (:func:`bras_kit.core.message.domain_of` of the
 module), merges them into ``locale/fr/LC_MESSAGES/<domain>.po`` (translations already there
@@ -162,14 +162,6 @@ def extract_all(root: Path = PACKAGE_ROOT) -> list[Extracted]:
     if root == PACKAGE_ROOT:
         found.extend(extract_templates())
     return found
-
-
-def extract_python(fileobj: Any, keywords: Any, comment_tags: Any, options: dict[str, Any]) -> Iterable[Any]:
-    """A Babel extraction method: ``(lineno, funcname, messages, comments, context)`` rows."""
-    source = fileobj.read().decode("utf-8")
-    for context, text, plural, line, _call in calls_in(ast.parse(source)):
-        if text:
-            yield line, "Mn" if plural else "M", (text, plural) if plural else text, [], context
 
 
 def by_domain(found: Iterable[Extracted]) -> dict[str, dict[tuple[str, str | None], Extracted]]:

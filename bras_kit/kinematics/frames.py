@@ -84,24 +84,6 @@ def origin_matrix(xyz: Sequence[float], rpy: Sequence[float]) -> np.ndarray:
     return out
 
 
-def axis_angle_matrices(axis: np.ndarray, angles: np.ndarray) -> np.ndarray:
-    """Rotation matrices about a unit ``axis`` for each angle: shape (N, 3, 3) (Rodrigues)."""
-    c, s = np.cos(angles), np.sin(angles)
-    t = 1.0 - c
-    x, y, z = axis
-    out = np.empty(angles.shape + (3, 3))
-    out[..., 0, 0] = t * x * x + c
-    out[..., 0, 1] = t * x * y - s * z
-    out[..., 0, 2] = t * x * z + s * y
-    out[..., 1, 0] = t * x * y + s * z
-    out[..., 1, 1] = t * y * y + c
-    out[..., 1, 2] = t * y * z - s * x
-    out[..., 2, 0] = t * x * z - s * y
-    out[..., 2, 1] = t * y * z + s * x
-    out[..., 2, 2] = t * z * z + c
-    return out
-
-
 # ---------------------------------------------------------------- the tree
 
 _FIXED, _REVOLUTE, _PRISMATIC, _UNSUPPORTED = 0, 1, 2, 3

@@ -143,11 +143,6 @@ def look(seconds: float, python: str | None = None) -> dict[str, Any]:
     return data
 
 
-def take_snapshot(seconds: float, python: str | None = None) -> Snapshot:
-    """:func:`look`, read as a :class:`Snapshot`."""
-    return snapshot_from_json(look(seconds, python))
-
-
 def domains_in_use(own: int | None = None) -> list[int]:
     """The ROS domains some process of this computer takes part in, read from the UDP ports bound
     (``/proc/net/udp``, ``udp6``): a domain's block of RTPS ports, as Fast DDS and Cyclone DDS

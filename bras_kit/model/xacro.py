@@ -86,7 +86,7 @@ def find_package(name: str, roots: Iterable[str]) -> str:
 
     A folder ``name`` with a ``package.xml`` (or in an install ``share/`` tree) wins; failing
     that, a plain folder named ``name`` is taken, as ``xacro`` does with a package path whose
-    packages were copied without their manifest. :func:`package_origin` says which was used.
+    packages were copied without their manifest. :func:`packages_used` says which was used.
     """
     searched: list[str] = []
     fallback = None
@@ -119,11 +119,6 @@ _FOUND: dict[str, str] = {}
 def _remember(name: str, folder: str) -> str:
     _FOUND[name] = folder
     return folder
-
-
-def package_origin(name: str) -> str | None:
-    """The folder last used for package ``name`` in this process (for ``--verbose``)."""
-    return _FOUND.get(name)
 
 
 def packages_used() -> dict[str, str]:

@@ -199,10 +199,6 @@ def _check_repeat(seq: Any, count: Any) -> None:
             raise UnsafeXacroExpression(M("repeating this text or list makes it too large"), hint=_SIZE_LIMIT)
 
 
-def _int_bits(value: Any) -> int:
-    return abs(value).bit_length() if isinstance(value, int) else 0
-
-
 def _check_power(base: Any, exponent: Any) -> None:
     if isinstance(base, int) and isinstance(exponent, int) and exponent > 0 and abs(base) > 1:
         if (abs(base).bit_length() - 1) * exponent > MAX_INT_BITS:

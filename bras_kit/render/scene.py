@@ -186,12 +186,6 @@ def mesh_file_data(path: str, robot: Robot, line: int | None = None, scale: Sequ
                          line=line, element="mesh", hint=M("give an STL, OBJ or DAE file")) from None
 
 
-def load_mesh_file(path: str, robot: Robot, line: int | None = None) -> TriangleMesh:
-    """The triangles of an STL, OBJ or DAE file, every material together."""
-    data = mesh_file_data(path, robot, line)
-    return TriangleMesh(np.asarray(data.vertices, dtype=float), np.asarray(data.faces, dtype=np.int64))
-
-
 def _primitive_mesh(g) -> TriangleMesh | None:
     if g.kind == "box" and g.size is not None:
         return box_mesh(g.size)
@@ -200,13 +194,6 @@ def _primitive_mesh(g) -> TriangleMesh | None:
     if g.kind == "sphere" and g.radius:
         return sphere_mesh(abs(g.radius))
     return None
-
-
-def visual_pieces(robot: Robot, visual: Visual, package_paths: Sequence[str] = ()):
-    """The visual's shape in the link frame as (mesh, own colour or None) pieces, and the mesh
-    file's issues (what it names but could not be used); ``([], ())`` when it has no usable shape."""
-    pieces, issues = _placed_visual(robot, visual, package_paths)
-    return [(piece.mesh, piece.color) for piece in pieces], issues
 
 
 class PlacedPiece(NamedTuple):
@@ -223,8 +210,9 @@ _placed = BoundedMemo(PLACED_MEMORY_BYTES)  # (id of MeshData, xyz, rpy) -> (tha
 
 
 def _placed_visual(robot: Robot, visual: Visual, package_paths: Sequence[str] = ()):
-    """:func:`visual_pieces` as :class:`PlacedPiece` s. A mesh file's pieces placed at one origin
-    are computed once per process: :func:`bras_kit.meshes.load_mesh` gives the same decoded
+    """The visual's shape in the link frame as :class:`PlacedPiece` s, and the mesh file's issues
+    (what it names but could not be used); ``([], ())`` when it has no usable shape. A mesh file's
+    pieces placed at one origin are computed once per process: :func:`bras_kit.meshes.load_mesh` gives the same decoded
     object for the same bytes and scale (whatever the path), so a class of learners handing in
     the same meshes at the same origins share them. Primitives are built each time (cheap)."""
     g = visual.geometry

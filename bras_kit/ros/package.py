@@ -19,7 +19,6 @@ from ..model.robot import Robot
 from .staticpy import (
     UNKNOWN,
     Evaluator,
-    Share,
     ShareFile,
     call_name,
     calls,
@@ -770,5 +769,3 @@ def share_targets(package: Package) -> list[tuple[LaunchFile, ShareFile, int]]:
             for share, line in launch.share_files if share.package == package.name]
 
 
-def is_share(value: Any) -> bool:
-    return isinstance(value, (Share, ShareFile))
