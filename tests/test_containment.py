@@ -16,8 +16,16 @@ import sys
 import pytest
 
 from bras_kit.core.errors import BrasKitError
+from bras_kit.core.message import M
 from bras_kit.trust import contain as contain_module
-from bras_kit.trust.contain import Containment, ContainmentUnavailable, Status, available
+from bras_kit.trust.contain import (
+    Containment,
+    ContainmentUnavailable,
+    Status,
+    available,
+    modes,
+    namespaces,
+)
 from bras_kit.trust.sandbox import ForkServer, _rebuild_error, run_limited
 
 TUTORIAL = os.path.join(os.path.dirname(__file__), "data", "tutorial_package")
@@ -158,9 +166,9 @@ def test_the_fork_server_forwards_the_containment(walls):
 def test_require_refuses_where_containment_is_missing(monkeypatch, tmp_path):
     from bras_kit.run import run_node
 
-    missing = Status(False, contain_module.M("test"), contain_module.M("unprivileged user namespaces"),
-                     contain_module.M("enable them"))
-    monkeypatch.setattr(contain_module, "available", lambda: missing)
+    missing = Status(False, M("test"), M("unprivileged user namespaces"),
+                     M("enable them"))
+    monkeypatch.setattr(modes, "available", lambda: missing)
     with pytest.raises(ContainmentUnavailable) as caught:
         run_node(TUTORIAL, "animation", duration=0.5, contain="require")
     assert caught.value.hint is not None
@@ -184,11 +192,11 @@ def test_the_probe_names_the_step_the_kernel_refused(monkeypatch, tmp_path):
     monkeypatch.setenv("XDG_RUNTIME_DIR", str(runtime))  # no record of an earlier trial: this one runs
 
     def refused(flags: int) -> None:
-        error = contain_module.ContainmentError(contain_module.M("test"))
+        error = contain_module.ContainmentError(M("test"))
         error.errno, error.step = errno.EPERM, "unshare"
         raise error
 
-    monkeypatch.setattr(contain_module, "_unshare", refused)  # inherited by the probe's child
+    monkeypatch.setattr(namespaces, "_unshare", refused)  # inherited by the probe's child
     status = available.__wrapped__()
     assert not status.ok and status.missing.id == "unprivileged user namespaces"
     assert status.found.params["reason"] == os.strerror(errno.EPERM)
@@ -226,7 +234,7 @@ IMPORT_PYSECCOMP = """
 import ctypes.util, json, sys
 spawned = []
 sys.addaudithook(lambda event, args: spawned.append(str(args[1])) if event == "subprocess.Popen" else None)
-from bras_kit.trust import contain
+from bras_kit.trust.contain import seccomp as contain
 contain.SONAMES.update(json.loads(sys.argv[1]))
 looked_up = ctypes.util.find_library
 contain._import_pyseccomp()

@@ -16,6 +16,7 @@ from pathlib import Path
 
 import pytest
 
+from bras_kit.core.message import M
 from bras_kit.doctor import install as doctor
 from bras_kit.trust import contain
 
@@ -26,7 +27,8 @@ WITHOUT = """
 import sys
 from bras_kit.core.message import M
 from bras_kit.trust import contain
-contain.available = lambda: contain.Status(False, M("the kernel refuses new namespaces to this user (test)"),
+from bras_kit.trust.contain import modes
+contain.available = modes.available = lambda: contain.Status(False, M("the kernel refuses new namespaces to this user (test)"),
                                            M("unprivileged user namespaces"),
                                            M("enable them: sudo sysctl -w kernel.unprivileged_userns_clone=1"))
 from bras_kit.cli import main
@@ -134,8 +136,8 @@ def test_run_says_in_one_line_that_it_runs_without_walls(tmp_path):
 def test_doctor_reports_the_containment(monkeypatch):
     check = doctor.check_containment()
     assert (check.status, check.fix) == (doctor.OK, None)
-    missing = contain.Status(False, contain.M("test"), contain.M("unprivileged user namespaces"),
-                             contain.M("enable them"))
+    missing = contain.Status(False, M("test"), M("unprivileged user namespaces"),
+                             M("enable them"))
     monkeypatch.setattr(contain, "available", lambda: missing)
     check = doctor.check_containment()
     assert check.status == doctor.NOTE and "grade --run-nodes" in str(check.fix.params) + check.fix.id

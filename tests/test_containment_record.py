@@ -13,7 +13,9 @@ import os
 import pytest
 
 from bras_kit.core.errors import BrasKitError
+from bras_kit.core.message import M
 from bras_kit.trust import contain
+from bras_kit.trust.contain import namespaces, probe, record
 from bras_kit.trust.sandbox import run_limited
 
 
@@ -27,7 +29,7 @@ def runtime(tmp_path, monkeypatch):
     shared.mkdir()
     shared.chmod(0o1777)
     monkeypatch.setenv("XDG_RUNTIME_DIR", str(folder))
-    monkeypatch.setattr(contain, "SHARED_MEMORY", str(shared))
+    monkeypatch.setattr(record, "SHARED_MEMORY", str(shared))
     contain.available.cache_clear()
     yield folder
     contain.available.cache_clear()
@@ -42,7 +44,7 @@ def _no_trial(monkeypatch) -> None:
     def trial() -> tuple[str, int]:
         raise AssertionError("a trial child was forked")
 
-    monkeypatch.setattr(contain, "_trial", trial)
+    monkeypatch.setattr(probe, "_trial", trial)
 
 
 def _pid() -> int:
@@ -52,35 +54,35 @@ def _pid() -> int:
 def test_a_passed_trial_is_recorded_and_the_next_command_forks_none(runtime, monkeypatch):
     assert _record(runtime) is None
     assert contain.available().ok
-    assert _record(runtime) == contain._trial_key()  # the boot, the user, the namespaces, the switches
+    assert _record(runtime) == record._trial_key()  # the boot, the user, the namespaces, the switches
     contain.available.cache_clear()  # a new command
     _no_trial(monkeypatch)
     assert contain.available().ok
     assert contain.begin_trial() is False  # the worker of validate PKG_DIR: nothing to begin either
-    assert contain._begun is None
+    assert probe._begun is None
     assert run_limited(_pid, contain=contain.Containment(str(runtime))) == 1  # walled in all the same
 
 
 def test_a_record_of_another_boot_or_namespace_is_not_read(runtime, monkeypatch):
     folder = runtime / "bras-kit"
     folder.mkdir(mode=0o700)
-    stale = contain._trial_key().replace(contain._read("/proc/sys/kernel/random/boot_id"), "another-boot")
-    assert stale != contain._trial_key()
+    stale = record._trial_key().replace(record._read("/proc/sys/kernel/random/boot_id"), "another-boot")
+    assert stale != record._trial_key()
     (folder / "containment-trial-passed").write_text(stale)
     tried = []
-    real = contain._trial
-    monkeypatch.setattr(contain, "_trial", lambda: tried.append(1) or real())
+    real = probe._trial
+    monkeypatch.setattr(probe, "_trial", lambda: tried.append(1) or real())
     assert contain.available().ok and tried == [1]
-    assert _record(runtime) == contain._trial_key()
+    assert _record(runtime) == record._trial_key()
 
 
 def test_a_failed_trial_is_never_recorded(runtime, monkeypatch):
     def refused(flags: int) -> None:
-        error = contain.ContainmentError(contain.M("test"))
+        error = contain.ContainmentError(M("test"))
         error.errno, error.step = errno.EPERM, "unshare"
         raise error
 
-    monkeypatch.setattr(contain, "_unshare", refused)  # inherited by the trial's child
+    monkeypatch.setattr(namespaces, "_unshare", refused)  # inherited by the trial's child
     assert not contain.available().ok
     assert _record(runtime) is None
 
@@ -91,12 +93,12 @@ def test_a_record_whose_walls_fail_runs_nothing_and_is_dropped(runtime, monkeypa
     assert contain.available().ok and _record(runtime) is not None
 
     def refused(flags: int) -> None:
-        error = contain.ContainmentError(contain.M("the containment could not be set up: {step} failed ({reason})",
+        error = contain.ContainmentError(M("the containment could not be set up: {step} failed ({reason})",
                                                    step="unshare", reason="test"))
         error.errno, error.step = errno.EPERM, "unshare"
         raise error
 
-    monkeypatch.setattr(contain, "_unshare", refused)
+    monkeypatch.setattr(namespaces, "_unshare", refused)
     ran = tmp_path / "ran"
     with pytest.raises(BrasKitError):
         run_limited(ran.touch, contain=contain.Containment(str(runtime)))
@@ -111,16 +113,16 @@ def test_without_a_runtime_folder_of_its_own_the_record_goes_to_a_folder_of_its_
     assert contain.available().ok
     assert not (runtime / "bras-kit").exists()
     own = runtime.parent / "shm" / f"bras-kit-{os.getuid()}"
-    assert (own / "containment-trial-passed").read_text() == contain._trial_key()
+    assert (own / "containment-trial-passed").read_text() == record._trial_key()
     assert own.stat().st_mode & 0o777 == 0o700
     monkeypatch.delenv("XDG_RUNTIME_DIR")
-    assert contain._record_path() == str(own / "containment-trial-passed")
+    assert record._record_path() == str(own / "containment-trial-passed")
     own.chmod(0o755)  # opened to others (or made by another user who guessed the name)
-    assert contain._record_path() is None and contain._record_path(make=True) is None
+    assert record._record_path() is None and record._record_path(make=True) is None
     contain.available.cache_clear()
     tried = []
-    real = contain._trial
-    monkeypatch.setattr(contain, "_trial", lambda: tried.append(1) or real())
+    real = probe._trial
+    monkeypatch.setattr(probe, "_trial", lambda: tried.append(1) or real())
     assert contain.available().ok and tried == [1]
 
 
@@ -129,7 +131,7 @@ def test_doctor_tries_the_walls_for_real(runtime, monkeypatch):
 
     assert contain.available().ok and _record(runtime) is not None
     tried = []
-    real = contain._trial
-    monkeypatch.setattr(contain, "_trial", lambda: tried.append(1) or real())
+    real = probe._trial
+    monkeypatch.setattr(probe, "_trial", lambda: tried.append(1) or real())
     check = check_containment()
     assert tried == [1], check

@@ -295,7 +295,10 @@ ALLOWED = {
     "bras_kit/trust/outputs.py": {"buffer"},  # write_bytes: a binary document to stdout (PNG, GIF)
     "bras_kit/cli/render.py": {"buffer"},  # a PNG to stdout
     "bras_kit/trust/sandbox.py": {"os.write"},  # the child's answer to its own pipe
-    "bras_kit/trust/contain.py": {"os.write"},  # pipes between the contained processes
+    # pipes between the contained processes, and the maps written in /proc
+    "bras_kit/trust/contain/kernel.py": {"os.write"},
+    "bras_kit/trust/contain/namespaces.py": {"os.write"},
+    "bras_kit/trust/contain/probe.py": {"os.write"},
     "bras_kit/run/node.py": {"os.write"},  # the child's joint states to their pipe
 }
 

@@ -146,7 +146,7 @@ def test_an_rviz_configuration_the_package_holds_but_does_not_install_is_advice(
 def test_a_file_in_the_in_memory_scratch_folder_is_readable_by_xacro(tmp_path):
     """bras-kit builds a package to evaluate it in /dev/shm where it can: the installed URDF there is a
     regular file, which xacro.process_file in the launch file must read (it was refused as a system file)."""
-    from bras_kit.model.xacro import check_readable_file
+    from bras_kit.model.xacro_files import check_readable_file
 
     shm = Path("/dev/shm")
     assert shm.is_dir()
@@ -161,7 +161,7 @@ def test_a_file_in_the_in_memory_scratch_folder_is_readable_by_xacro(tmp_path):
 
 def test_a_device_is_still_refused(tmp_path):
     from bras_kit.core.errors import BrasKitError
-    from bras_kit.model.xacro import check_readable_file
+    from bras_kit.model.xacro_files import check_readable_file
 
     for path in ("/dev/null", "/proc/self/status"):
         with pytest.raises(BrasKitError):

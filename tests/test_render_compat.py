@@ -1,4 +1,4 @@
-"""One test per patch of bras_kit/render/_compat.py: each fails, naming its patch, as soon as the
+"""One test per patch listed in bras_kit/render/_compat.py: each fails, naming its patch, as soon as the
 installed pyrender or PyOpenGL no longer has what the patch relies on (an attribute, a
 signature, a line of source or of a shader). Read with inspect and ast, not through bras-kit."""
 
@@ -98,7 +98,7 @@ def test_patch_framebuffers_and_reader_rely_on_pyrenders_main_framebuffer_attrib
 def test_patch_flat_shading_shader_follows_pyrenders_mesh_frag_and_its_uniform_names():
     import hashlib
 
-    from bras_kit.render._compat import FLAT_SHADER, PYRENDER_MESH_FRAG_SHA256
+    from bras_kit.render._shading import FLAT_SHADER, PYRENDER_MESH_FRAG_SHA256
 
     pyrender = _pyrender()
     theirs = (Path(inspect.getfile(pyrender)).parent / "shaders" / "mesh.frag").read_bytes()
@@ -161,7 +161,7 @@ def test_patch_finalizers_are_those_pyrender_runs_and_that_end_the_shared_displa
 def test_patch_loaded_platform_knows_pyopengls_platform_classes(module, name):
     import importlib.util
 
-    from bras_kit.render._compat import _PLATFORM_CLASSES
+    from bras_kit.render._gl import _PLATFORM_CLASSES
 
     spec = importlib.util.find_spec(module)
     assert spec is not None and f"class {name}(" in Path(spec.origin).read_text()
@@ -169,7 +169,7 @@ def test_patch_loaded_platform_knows_pyopengls_platform_classes(module, name):
     import os
 
     if os.environ.get("PYOPENGL_PLATFORM") == name[:-len("Platform")].lower():
-        from bras_kit.render._compat import loaded_platform
+        from bras_kit.render._gl import loaded_platform
 
         _pyrender()  # loads OpenGL.platform for this platform
         assert type(sys.modules["OpenGL.platform"].PLATFORM).__name__ == name
@@ -177,7 +177,7 @@ def test_patch_loaded_platform_knows_pyopengls_platform_classes(module, name):
 
 
 def test_patch_lean_forward_pass_repeats_the_steps_of_pyrenders_own_pass():
-    """The lean pass (``_compat.lean_forward_pass``) makes pyrender's per-primitive calls once a
+    """The lean pass (``_forward_pass.lean_forward_pass``) makes pyrender's per-primitive calls once a
     frame: it relies on these steps, helpers and values being pyrender's."""
     def squeezed(text: str) -> str:
         return re.sub(r"\s+", "", text)
@@ -271,7 +271,8 @@ def test_patch_lean_forward_pass_draws_what_pyrenders_own_pass_draws():
     in depth, drawn twice so the second frame starts from the state the first one left."""
     import numpy as np
 
-    from bras_kit.render._compat import delete_renderer, disown_renderer, lean_forward_pass
+    from bras_kit.render._forward_pass import lean_forward_pass
+    from bras_kit.render._lifetime import delete_renderer, disown_renderer
 
     pyrender = _pyrender()
     flags = pyrender.constants.RenderFlags
@@ -302,7 +303,7 @@ def test_nodes_at_the_same_distance_are_drawn_in_the_order_of_their_names_not_of
     are drawn in decides which pixels win, so it must not hang on memory addresses."""
     import numpy as np
 
-    from bras_kit.render._compat import _nodes_in_order
+    from bras_kit.render._forward_pass import _nodes_in_order
 
     pyrender = _pyrender()
     scene = pyrender.Scene()
@@ -335,7 +336,7 @@ def test_a_textured_primitive_draws_its_texture_on_this_python():
     whatever the Python."""
     import numpy as np
 
-    from bras_kit.render._compat import delete_renderer, disown_renderer
+    from bras_kit.render._lifetime import delete_renderer, disown_renderer
 
     pyrender = _pyrender()
     image = np.zeros((8, 8, 3), dtype=np.uint8)

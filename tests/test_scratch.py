@@ -116,7 +116,7 @@ def test_validate_pkg_dir_makes_its_folders_in_the_scratch_folder_and_leaves_non
         {"bras-kit-contain", "bras-kit-build", "bras-kit-setup", "bras-kit-launch"}
     assert {os.path.dirname(p) for p in made} == {where}
     assert not [p for p in made if os.path.exists(p)]
-    # what stays is this boot's record of the containment's trial, in a folder of its own (contain.py)
+    # what stays is this boot's record of the containment's trial, in a folder of its own (contain/record.py)
     assert os.listdir(runtime) == ["bras-kit"]
     assert os.listdir(os.path.join(runtime, "bras-kit")) == ["containment-trial-passed"]
 

@@ -11,8 +11,9 @@ from pathlib import Path
 import pytest
 
 from bras_kit.core.errors import XacroError, XMLSafetyError, XMLSyntaxError
+from bras_kit.model.package_paths import PACKAGE_PATH_ENV
 from bras_kit.model.robot import robot_from_xml
-from bras_kit.model.xacro import PACKAGE_PATH_ENV, expand_xacro
+from bras_kit.model.xacro import expand_xacro
 from bras_kit.model.xmlio import parse_xml
 
 DATA = Path(__file__).parent / "data" / "xacro"
@@ -250,7 +251,7 @@ def test_huge_power_is_refused_without_being_computed():
     ("f'{width.__class__}'", False),
 ])
 def test_expression_guard(expression, allowed):
-    from bras_kit.model.xacro import check_expression
+    from bras_kit.model.xacro_walls import check_expression
 
     if allowed:
         check_expression(expression)

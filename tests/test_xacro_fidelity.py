@@ -20,7 +20,8 @@ from hypothesis import HealthCheck, given, seed, settings
 from hypothesis import strategies as st
 
 from bras_kit.core.errors import BrasKitError
-from bras_kit.model.xacro import PACKAGE_PATH_ENV, expand_xacro
+from bras_kit.model.package_paths import PACKAGE_PATH_ENV
+from bras_kit.model.xacro import expand_xacro
 
 xacro = pytest.importorskip("xacro")
 

@@ -63,7 +63,7 @@ def configure(parser: argparse.ArgumentParser) -> None:
 
 def _print_packages() -> None:
     from ..core.i18n import say
-    from ..model.xacro import describe_package_folder, packages_used
+    from ..model.package_paths import describe_package_folder, packages_used
 
     for name, folder in packages_used().items():
         print(say(describe_package_folder(name, folder)), file=sys.stderr)

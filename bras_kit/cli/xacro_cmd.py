@@ -27,7 +27,7 @@ def run(args: argparse.Namespace) -> int:
         import sys
 
         from ..core.i18n import say
-        from ..model.xacro import describe_package_folder, packages_used
+        from ..model.package_paths import describe_package_folder, packages_used
 
         for name, folder in packages_used().items():
             print(say(describe_package_folder(name, folder), args.lang), file=sys.stderr)

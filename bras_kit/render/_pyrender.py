@@ -1,4 +1,4 @@
-"""Drawing through pyrender (every patch it needs is in :mod:`._compat`), off-screen on EGL (Mesa's software rasteriser needs no GPU and no
+"""Drawing through pyrender (every patch it needs is listed in :mod:`._compat`), off-screen on EGL (Mesa's software rasteriser needs no GPU and no
 display) or OSMesa.
 
 PyOpenGL reads ``PYOPENGL_PLATFORM`` once, when it is first imported, so the platform is
@@ -24,19 +24,13 @@ import numpy as np
 from ..core.errors import BackendError
 from ..core.message import M
 from ..core.wording import quoted
-from ._compat import (
-    ColorReader,
-    delete_renderer,
-    disown_renderer,
-    import_pyrender,
-    lean_forward_pass,
-    loaded_platform,
-    make_framebuffers,
-    pyopengl_version,
-    release_renderer,
-    use_flat_shading,
-)
+from ._compat import import_pyrender
+from ._forward_pass import lean_forward_pass
+from ._framebuffers import ColorReader, make_framebuffers
+from ._gl import loaded_platform, pyopengl_version
+from ._lifetime import delete_renderer, disown_renderer, release_renderer
 from ._memo import BoundedMemo
+from ._shading import use_flat_shading
 from .camera import AMBIENT, Camera
 from .scene import Scene
 
@@ -228,7 +222,7 @@ class PyrenderBackend:
                         + [a for pair in merged.values() for a in pair]
                     memo.put(key, (mesh, arrays), sum(a.nbytes for a in arrays))
             mesh.is_visible = True
-            # named in order: nodes at the same distance are drawn in this order (see _compat._nodes_in_order)
+            # named in order: nodes at the same distance are drawn in this order (see _forward_pass._nodes_in_order)
             self._nodes.append((self._scene.add(mesh, name=f"{len(self._nodes):06d}"), link))
             (self._overlays if unlit else self._solids).append(mesh)
         if scene.grid is not None:
@@ -249,7 +243,7 @@ class PyrenderBackend:
     @staticmethod
     def _open(pyrender, camera: Camera, platform: str, antialias: bool,
               supersample: bool):
-        """An OffscreenRenderer drawing ``camera``'s picture, read back by :class:`_compat.ColorReader`.
+        """An OffscreenRenderer drawing ``camera``'s picture, read back by :class:`._framebuffers.ColorReader`.
 
         Smooth edges for pictures come from supersampling: the picture is drawn twice as wide
         and high and each 2x2 block averaged. Mesa's llvmpipe resolves a multisampled picture
@@ -289,7 +283,7 @@ class PyrenderBackend:
     def _primitive(pyrender, vertices: np.ndarray, faces: np.ndarray,
                    color: tuple[float, ...], unlit: bool):
         """Indexed triangles of one colour, with no normals: the fragment shader lights each
-        facet flat from the derivatives of its position (see :func:`_compat.use_flat_shading`),
+        facet flat from the derivatives of its position (see :func:`._shading.use_flat_shading`),
         so a vertex shared by several facets is sent once."""
         rgb, alpha = color[:3], float(color[3])
         if unlit:
@@ -333,7 +327,7 @@ class PyrenderBackend:
 
     def frames(self, transforms: Iterable[np.ndarray]) -> Iterator[np.ndarray]:
         """The pictures for each of ``transforms``; without TF axes, each picture is drawn while
-        the one before is read back (see :class:`_compat.ColorReader`)."""
+        the one before is read back (see :class:`._framebuffers.ColorReader`)."""
         reader = getattr(self._renderer, "_bras_kit_reader", None)
         if self._overlays or reader is None or not reader.start():
             for each in transforms:

@@ -59,7 +59,7 @@ class Scene:
 def resolve_mesh_path(filename: str, robot: Robot, package_paths: Sequence[str] = (),
                       line: int | None = None) -> str:
     """The file a mesh ``filename`` names: ``package://pkg/...``, ``file://...``, or relative to the URDF."""
-    from ..model.xacro import find_package, package_roots
+    from ..model.package_paths import find_package, package_roots
 
     if filename.startswith("package://"):
         package, _, rest = filename[len("package://"):].partition("/")

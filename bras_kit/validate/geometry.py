@@ -13,8 +13,8 @@ from collections.abc import Iterator
 
 from ..core.errors import BrasKitError
 from ..findings.registry import ERROR, WARNING, Hit, hit, rule
+from ..model.package_paths import find_package, package_roots
 from ..model.robot import Collision, Geometry, Link, Visual
-from ..model.xacro import find_package, package_roots
 from .context import Context
 from .solids import number
 

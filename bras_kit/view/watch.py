@@ -22,7 +22,7 @@ _FIND = re.compile(r"\$\(\s*find\s+([A-Za-z0-9_\-]+)\s*\)")
 
 def watched_files(path: str, package_paths: Iterable[str] = ()) -> list[str]:
     """Absolute paths of ``path``, its sibling robot files and the files it includes (transitively)."""
-    from ..model.xacro import package_roots
+    from ..model.package_paths import package_roots
 
     roots = package_roots(package_paths)
     start = os.path.abspath(path)
@@ -60,7 +60,7 @@ def _resolve(name: str, folder: str, roots: Sequence[str]) -> str | None:
     """The absolute path ``name`` stands for, or None when it depends on xacro arguments or
     properties (``$(arg ...)``, ``${...}``): those are unknown until xacro runs."""
     from ..core.errors import BrasKitError
-    from ..model.xacro import find_package
+    from ..model.package_paths import find_package
 
     def package(match: re.Match[str]) -> str:
         return find_package(match.group(1), roots)
