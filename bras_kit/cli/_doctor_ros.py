@@ -32,7 +32,7 @@ def run_ros(args: argparse.Namespace) -> int:
             check_writable(args.save, args.force, option="--save")
         python = ros_python()  # no rclpy: said before anything is announced
         if args.format == "text":  # what the workspace, the shell and the machine got wrong, first
-            from .doctor import print_surroundings
+            from ._surroundings import print_surroundings
 
             print_surroundings(lang, graphics=False, shown=("note", "fail"))
         if args.format == "text":
