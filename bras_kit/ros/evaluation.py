@@ -29,7 +29,6 @@ if TYPE_CHECKING:
 JOINT_STATE_PUBLISHERS = ("joint_state_publisher", "joint_state_publisher_gui")
 RVIZ_FILE_LIMIT = 1 << 20
 # a configuration without Global Options > Fixed Frame: RViz uses "map" (BK610 says so)
-RVIZ_DEFAULT_FRAME = "map"  # a .rviz past 1 MiB (or a device, a FIFO) is not read for the Fixed Frame
 
 
 @dataclass
@@ -141,9 +140,9 @@ def rviz_fixed_frame(plan: Any) -> str | None:
         installed = plan.launch_file.rsplit(os.sep + "share" + os.sep, 1)[0]
         try:
             data = yaml_gate.load(read_text(path, (installed,), limit=RVIZ_FILE_LIMIT))
-            options = data["Visualization Manager"].get("Global Options") or {}
-            frame = options.get("Fixed Frame", RVIZ_DEFAULT_FRAME)
-        except (OSError, UnicodeDecodeError, yaml.YAMLError, KeyError, TypeError, AttributeError):
+        except (OSError, UnicodeDecodeError, yaml.YAMLError):
             return None
-        return str(frame) if frame else RVIZ_DEFAULT_FRAME
+        from .rviz.config import fixed_frame_of
+
+        return fixed_frame_of(data)[0]  # as the page and BK610 read it
     return None

@@ -129,11 +129,20 @@ def read_config(text: str | bytes) -> RvizConfig:
     if not isinstance(manager, Mapping):
         # visualization_frame.cpp:815 loads the "Visualization Manager" child; none, nothing loaded
         return constructed()
-    options = manager.get("Global Options")
-    frame = _value(options.get("Fixed Frame")) if isinstance(options, Mapping) else None
-    fixed = _strip_slash(frame) if isinstance(frame, str) else CONSTRUCTED_FRAME
+    fixed, _set = fixed_frame_of(data)
     displays = manager.get("Displays")
     return RvizConfig(fixed, tuple(_display(d) for d in displays) if isinstance(displays, list) else ())
+
+
+def fixed_frame_of(data: Any) -> tuple[str, bool]:
+    """(the Fixed Frame RViz uses with this parsed .rviz, whether the file sets one): a file that
+    sets none leaves the constructor's ``base_link`` (visualization_manager.cpp:185)."""
+    manager = data.get("Visualization Manager") if isinstance(data, Mapping) else None
+    options = manager.get("Global Options") if isinstance(manager, Mapping) else None
+    frame = _value(options.get("Fixed Frame")) if isinstance(options, Mapping) else None
+    if isinstance(frame, str):
+        return _strip_slash(frame), True
+    return CONSTRUCTED_FRAME, False
 
 
 def _strip_slash(frame: str) -> str:

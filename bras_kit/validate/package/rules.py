@@ -340,6 +340,8 @@ def _displays(data: dict[str, Any]) -> list[dict[str, Any]]:
 
 @package_rule("BK610", "rviz-fixed-frame-not-a-link", ERROR)
 def rviz_fixed_frame_not_a_link(pkg: Package) -> Iterator[Hit]:
+    from ...ros.rviz.config import fixed_frame_of
+
     robot = pkg.robot
     if robot is None:
         return
@@ -351,12 +353,14 @@ def rviz_fixed_frame_not_a_link(pkg: Package) -> Iterator[Hit]:
         if parsed is None:
             continue
         data, lines = parsed
-        manager = data.get("Visualization Manager")
-        options = manager.get("Global Options") if isinstance(manager, dict) else None
-        frame = options.get("Fixed Frame") if isinstance(options, dict) else None
-        if frame is None:
-            yield _at(source, _rviz_lines(lines, "Global Options:"), "missing", root=links[0] if links else "base")
-        elif str(frame) not in links:
+        # the Fixed Frame as RViz takes it from the file (the page reads it the same way)
+        frame, set_in_file = fixed_frame_of(data)
+        if frame in links:
+            continue
+        if not set_in_file:
+            yield _at(source, _rviz_lines(lines, "Global Options:"), "missing", frame=frame,
+                      root=_root(robot) or (links[0] if links else "base"))
+        else:
             yield _at(source, _rviz_lines(lines, "Fixed Frame:"), frame=str(frame), links=links,
                       root=_root(robot) or (links[0] if links else "base"))
 

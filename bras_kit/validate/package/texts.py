@@ -160,7 +160,7 @@ describe(
     "BK610",
     title="the RViz Fixed Frame is not a link of the robot",
     message={
-        "missing": "the RViz configuration sets no Fixed Frame: RViz uses 'map', which this robot does not publish",
+        "missing": "the RViz configuration sets no Fixed Frame: RViz keeps its own, '{frame}', which is no link of this robot",
         "": "Fixed Frame '{frame}' is not a link of the robot ({links}): RViz shows nothing",
     },
     hint="set Fixed Frame to '{root}' (Global Options > Fixed Frame)",
