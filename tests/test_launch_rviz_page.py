@@ -14,18 +14,14 @@ from pathlib import Path
 
 import pytest
 import yaml
-from test_launch_page import (
-    FINDING,
-    Launched,
-    _add,
-    _arm_pixels,
-    _copy_tutorial,
-    _field,
-    _seen,
-    _type,
-)
-from test_launch_page import browser as browser  # noqa: F401 - the module's Chromium, shared
-from test_view import _wait
+from launch_pages import FINDING, Launched
+from launch_pages import add as _add
+from launch_pages import arm_pixels as _arm_pixels
+from launch_pages import copy_tutorial as _copy_tutorial
+from launch_pages import field as _field
+from launch_pages import seen as _seen
+from launch_pages import type_in as _type
+from pages import wait as _wait
 
 from bras_kit.ros.rviz.config import GRID, ROBOT_MODEL, TF, read_config
 
@@ -44,8 +40,8 @@ def _display_texts(page) -> list[str]:
 
 def _forearm_pixels(page) -> int:
     """The orange forearm's pixels alone: the TF display's axes are blue, red and green, never orange."""
-    from test_launch_page import NOTICE, SCENE
-    from test_view import _screenshot
+    from launch_pages import NOTICE, SCENE
+    from pages import screenshot as _screenshot
 
     image = _screenshot(page)[SCENE]
     r, g, b = image[..., 0], image[..., 1], image[..., 2]

@@ -13,7 +13,7 @@ from __future__ import annotations
 import concurrent.futures
 
 import pytest
-from test_live_doctor import ANIMATION, DATA, STATE_PUBLISHER, URDF, _codes, _finding, _json, _run
+from live_graphs import ANIMATION, DATA, STATE_PUBLISHER, URDF, _codes, _finding, _json, _run
 
 pytestmark = pytest.mark.slow
 

@@ -5,7 +5,7 @@ from __future__ import annotations
 
 import math
 
-from test_live_rviz_verdicts import T0, at_20_hz, codes, look, message, tutorial
+from recorded_looks import T0, at_20_hz, codes, look, message, tutorial
 
 
 def test_stamps_30_s_ahead_but_advancing_still_move_the_arm():
