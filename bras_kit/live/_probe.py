@@ -25,7 +25,7 @@ import os
 import sys
 import threading
 import time
-from typing import Any
+from typing import Any, cast
 
 # this folder is sys.path[0] when run as a script: keep its modules from shadowing rclpy's imports
 if sys.path and os.path.abspath(sys.path[0] or ".") == os.path.dirname(os.path.abspath(__file__)):
@@ -106,10 +106,12 @@ class Probe:
         anything = QoSProfile(depth=10, reliability=ReliabilityPolicy.BEST_EFFORT,
                               durability=DurabilityPolicy.VOLATILE)
         for qos in (latched, anything):
-            self.node.create_subscription(String, DESCRIPTION, self._on_description, qos)
+            # the callback takes the message and its MessageInfo (rclpy 7.1.6 passes both to a
+            # two-argument callback); rclpy's own annotation names only the one-argument form
+            self.node.create_subscription(String, DESCRIPTION, cast(Any, self._on_description), qos)
         # robot_state_publisher reads /joint_states with SensorDataQoS (best effort), which
         # matches every publisher (src/robot_state_publisher.cpp:144-147)
-        self.node.create_subscription(JointState, JOINT_STATES, self._on_joint_state,
+        self.node.create_subscription(JointState, JOINT_STATES, cast(Any, self._on_joint_state),
                                       QoSProfile(depth=200, reliability=ReliabilityPolicy.BEST_EFFORT))
 
     def _on_description(self, msg: object, info: object) -> None:

@@ -319,7 +319,7 @@ def discovery_concerns(environ: Mapping[str, str] | None = None) -> list[Concern
         concerns.append(Concern("machine", NOTE, M("ROS_LOCALHOST_ONLY"), M(
             "ROS_LOCALHOST_ONLY={value} is deprecated since Iron; every node started here prints rcl's warning: "
             "{words}", value=env.get("ROS_LOCALHOST_ONLY", ""), words=words),
-            M("type: unset ROS_LOCALHOST_ONLY; export ROS_AUTOMATIC_DISCOVERY_RANGE=LOCALHOST (and remove it "
+            M("type: unset ROS_LOCALHOST_ONLY && export ROS_AUTOMATIC_DISCOVERY_RANGE=LOCALHOST (and remove it "
               "from ~/.bashrc)") if only == "enabled" else M("type: unset ROS_LOCALHOST_ONLY")))
     used, invalid = discovery_range(env)
     given = env.get("ROS_AUTOMATIC_DISCOVERY_RANGE", "")
