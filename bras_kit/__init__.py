@@ -6,8 +6,7 @@ The library API used by notebooks and the CLI. Every name is imported on first u
 
 from __future__ import annotations
 
-import importlib
-from typing import Any
+from .core.lazy import lazy_exports
 
 __version__ = "0.1.0"
 
@@ -73,11 +72,7 @@ _LAZY = {
 }
 
 
-def __getattr__(name: str) -> Any:
-    module = _LAZY.get(name)
-    if module is None:
-        raise AttributeError(f"module 'bras_kit' has no attribute '{name}'")
-    return getattr(importlib.import_module(module), name)
+__getattr__ = lazy_exports(__name__, _LAZY)
 
 
 __all__ = ["__version__", *_LAZY]

@@ -152,9 +152,10 @@ def launch(arguments: list[str], env: dict[str, str], errors: Path) -> subproces
                                 stdout=subprocess.PIPE, stderr=stderr, text=True, env=env)
 
 
-def launch_url(process: subprocess.Popen, errors: Path) -> str:
-    """The address bras-kit launch prints; if it ends or stays silent, what it said is in the failure."""
-    end = time.monotonic() + 180
+def launch_url(process: subprocess.Popen, errors: Path | None = None, seconds: float = 180) -> str:
+    """The address bras-kit launch prints; if it ends or stays silent, what it said is in the failure
+    (its stderr from ``errors``, or from its pipe when ``errors`` is None)."""
+    end = time.monotonic() + seconds
     said = []
     while time.monotonic() < end:
         line = process.stdout.readline()  # type: ignore[union-attr]
@@ -164,4 +165,5 @@ def launch_url(process: subprocess.Popen, errors: Path) -> str:
             break
         said.append(line)
     raise AssertionError(f"bras-kit launch printed no address (exit code {process.poll()}); "
-                         f"stdout: {''.join(said)!r}; stderr: {errors.read_text()!r}")
+                         f"stdout: {''.join(said)!r}; "
+                         f"stderr: {errors.read_text() if errors else process.stderr.read()!r}")  # type: ignore[union-attr]

@@ -201,8 +201,8 @@ def test_stamps_a_minute_behind_and_fewer_positions_than_names_are_both_named(gr
     assert far["severity"] == "warning" and "before this computer's clock" in far["message"]
     assert 58 <= float(far["message"].split(" s before")[0].rsplit(" ", 1)[1]) <= 62
     lengths = _finding(document, "BK819")
-    assert "2 names but 1 positions" in lengths["message"]
-    assert "BK815" in out_fr and "BK819" in out_fr and "1 positions" in out_fr
+    assert "2 names but 1 position:" in lengths["message"]
+    assert "BK815" in out_fr and "BK819" in out_fr and "1 position :" in out_fr
 
 
 @scenario("description-never-published", [STATE_PUBLISHER + ["--silent"], ANIMATION], JSON_ONLY)

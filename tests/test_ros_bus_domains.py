@@ -24,6 +24,7 @@ from pathlib import Path
 import pytest
 from pages import ended as _ended
 from pages import free_port as _free_port
+from pages import launch_url
 from pages import wait as _wait
 
 DATA = Path(__file__).parent / "data"
@@ -186,16 +187,7 @@ def _start(cwd: Path, *argv: str) -> subprocess.Popen:
 
 
 def _url(process: subprocess.Popen) -> str:
-    end = time.monotonic() + 240
-    said = []
-    while time.monotonic() < end:
-        line = process.stdout.readline()  # type: ignore[union-attr]
-        if "http://" in line:
-            return "http://" + line.split("http://", 1)[1].split()[0]
-        if not line and process.poll() is not None:
-            break
-        said.append(line)
-    raise AssertionError(f"no address (exit {process.poll()}): {''.join(said)} {process.stderr.read()}")  # type: ignore[union-attr]
+    return launch_url(process, None, seconds=240)
 
 
 def _lines_until(stream, pattern: str, seconds: float) -> str:  # type: ignore[no-untyped-def]

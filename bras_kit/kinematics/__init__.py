@@ -4,17 +4,12 @@ imported on first use, so numpy loads only then."""
 
 from __future__ import annotations
 
-import importlib
-from typing import Any
+from ..core.lazy import lazy_exports
 
 _LAZY = {'fk': '.frames', 'fk_batch': '.frames', 'relative_transform': '.frames', 'describe_transform': '.frames', 'tf_tree': '.frames', 'TFTree': '.frames', 'rpy_to_matrix': '.frames', 'matrix_to_rpy': '.frames', 'matrix_to_quat_xyzw': '.frames', 'origin_matrix': '.frames', 'movable_names': '.frames', 'tool_tip': '.tip', 'link_tip': '.tip', 'end_link': '.tip'}
 
 
-def __getattr__(name: str) -> Any:
-    module = _LAZY.get(name)
-    if module is None:
-        raise AttributeError(f"module {__name__!r} has no attribute {name!r}")
-    return getattr(importlib.import_module(module, __name__), name)
+__getattr__ = lazy_exports(__name__, _LAZY)
 
 
 __all__ = list(_LAZY)
