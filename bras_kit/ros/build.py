@@ -232,33 +232,11 @@ def script_folder(root: str, package: str) -> str:
     tutorial's ``$base/lib/PKG``. With no such key, setuptools' prefix scheme applies: ``$base/bin``,
     where ``ros2 run`` does not look. A folder named otherwise than ``$base/...`` below the prefix is
     kept as the tutorial's lib/PKG (bras-kit writes nowhere outside the prefix)."""
-    from configparser import ConfigParser
-    from configparser import Error as ConfigError
+    def pick(parser: Any) -> str | None:
+        value = parser.get("install", "install-scripts", fallback=None)
+        return parser.get("install", "install_scripts", fallback=None) if value is None else value
 
-    from ..trust.learner_files import read_text
-    from .setup_check import _relative_target
-
-    try:
-        text = read_text(os.path.join(root, "setup.cfg"), (root,), errors="replace")
-    except OSError:
-        return "bin"
-    parser = ConfigParser(interpolation=None)
-    parser.optionxform = str  # type: ignore[assignment,method-assign]  # as colcon-core: keys as written
-    try:
-        parser.read_string(text)
-    except ConfigError:
-        return "bin"
-    value = parser.get("install", "install-scripts", fallback=None)
-    if value is None:
-        value = parser.get("install", "install_scripts", fallback=None)
-    if value is None:
-        return "bin"
-    value = value.strip()
-    if value.startswith("$base/"):
-        folder = _relative_target(value[len("$base/"):])
-        if folder:
-            return folder
-    return f"lib/{package}"
+    return _setup_cfg_folder(root, package, pick, keep_case=True)  # as colcon-core: keys as written
 
 
 def develop_script_folder(root: str, package: str) -> str:
@@ -266,6 +244,16 @@ def develop_script_folder(root: str, package: str) -> str:
     setuptools reads setup.cfg's ``[develop]`` ``script_dir`` itself (``script-dir`` too, with its
     deprecation warning: setuptools/dist.py, _enforce_underscore), colcon passes nothing
     (colcon_core/task/python/build.py, build, lines 174-183); without it, the prefix's bin/."""
+    def pick(parser: Any) -> str | None:
+        return parser.get("develop", "script_dir", fallback=None) or parser.get("develop", "script-dir", fallback=None)
+
+    return _setup_cfg_folder(root, package, pick, keep_case=False)
+
+
+def _setup_cfg_folder(root: str, package: str, pick: Callable[[Any], str | None], *, keep_case: bool) -> str:
+    """The scripts' folder ``pick`` reads from setup.cfg, relative to the prefix: ``bin`` when the
+    file or the key is missing (or the file unreadable), a ``$base/...`` folder below the prefix,
+    else the tutorial's lib/PKG."""
     from configparser import ConfigParser
     from configparser import Error as ConfigError
 
@@ -277,11 +265,13 @@ def develop_script_folder(root: str, package: str) -> str:
     except OSError:
         return "bin"
     parser = ConfigParser(interpolation=None)
+    if keep_case:
+        parser.optionxform = str  # type: ignore[assignment,method-assign]
     try:
         parser.read_string(text)
     except ConfigError:
         return "bin"
-    value = parser.get("develop", "script_dir", fallback=None) or parser.get("develop", "script-dir", fallback=None)
+    value = pick(parser)
     if value is None:
         return "bin"
     value = value.strip()
