@@ -165,3 +165,33 @@ def test_every_error_and_warning_carries_a_message_never_a_finished_sentence():
                         isinstance(value, ast.Constant) and isinstance(value.value, str)):
                     bad.append(f"{path.relative_to(i18n_tools.PACKAGE_ROOT.parent)}:{node.lineno} {name}")
     assert not bad, "finished sentences where a Message belongs:\n" + "\n".join(bad)
+
+
+def test_a_prune_of_the_catalogs_drops_no_french_a_user_can_be_shown(tmp_path, monkeypatch):
+    """``catalogs update --prune`` keeps every id bras-kit asks for at run time, including those
+    that are not M(...) calls (the arm template's comments, the URDF's first line): the French the
+    committed catalogs hold comes out of a prune unchanged, and nothing stale is left in them."""
+    import shutil
+
+    from babel.messages.pofile import read_po
+
+    from bras_kit.core import i18n
+
+    copy = tmp_path / "locale"
+    shutil.copytree(LOCALE_DIR, copy)
+    monkeypatch.setattr(i18n_tools, "LOCALE_DIR", copy)
+    try:
+        i18n_tools.update_catalogs(prune=True)
+    finally:
+        i18n.catalog.cache_clear()
+
+    def entries(folder: Path) -> dict[str, set[tuple[str, str]]]:
+        out = {}
+        for po in sorted(folder.glob("fr/LC_MESSAGES/*.po")):
+            with po.open("rb") as handle:
+                out[po.stem] = {(str(m.id), str(m.string)) for m in read_po(handle) if m.id}
+        return out
+
+    before, after = entries(LOCALE_DIR), entries(copy)
+    assert {d: sorted(before[d] - after.get(d, set()))[:5] for d in before if before[d] - after.get(d, set())} == {}
+    assert {d: sorted(after[d] - before.get(d, set()))[:5] for d in after if after[d] - before.get(d, set())} == {}

@@ -155,12 +155,28 @@ def extract_templates() -> list[Extracted]:
     return found
 
 
+def extract_arm_comments() -> list[Extracted]:
+    """The ``package`` ids the arm's URDF and xacro are worded with: each comment of the built-in
+    xacro template (as :func:`bras_kit.model.authoring.localise_comments` asks for it) and the two
+    wordings of the first comment, which names the options (``HEADER_TEXTS``)."""
+    from ..core.resources import robot_template
+    from ..model.authoring import _COMMENT, HEADER_TEXTS, comment_id
+
+    template = robot_template()
+    text = template.read_text(encoding="utf-8")
+    found = [Extracted("package", comment_id(match.group(1)), None, None, str(template),
+                       text.count("\n", 0, match.start()) + 1) for match in _COMMENT.finditer(text)]
+    return found + [Extracted("package", words, None, None, str(PACKAGE_ROOT / "model" / "authoring.py"), 0)
+                    for words in HEADER_TEXTS]
+
+
 def extract_all(root: Path = PACKAGE_ROOT) -> list[Extracted]:
     found: list[Extracted] = []
     for path in sorted(root.rglob("*.py")):
         found.extend(extract_file(path, root))
     if root == PACKAGE_ROOT:
         found.extend(extract_templates())
+        found.extend(extract_arm_comments())
     return found
 
 
