@@ -70,7 +70,7 @@ def _scene(png: bytes) -> np.ndarray:
 
 
 def _orange_pixels(page) -> int:  # type: ignore[no-untyped-def]
-    """How many pixels of the forearm's orange the 3D view shows (as tests/test_view.py counts)."""
+    """How many pixels of the forearm's orange the 3D view shows (as tests/view/test_view.py counts)."""
 
 
     image = _scene(page.screenshot())

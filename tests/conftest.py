@@ -16,8 +16,8 @@ os.environ["LANG"] = "C.UTF-8"  # English, and UTF-8 text in the commands the te
 # own, so two sessions on one machine (CI runs two Pythons at once) never meet on it
 _RUNTIME = tempfile.mkdtemp(prefix="bras-kit-tests-runtime-")
 os.environ["XDG_RUNTIME_DIR"] = _RUNTIME
-# each lesson notebook runs once per session: the site's build (tests/test_docs.py, through
-# docs/hooks/lessons.py) and tests/test_lessons.py share the runs, kept here by the notebook's digest
+# each lesson notebook runs once per session: the site's build (tests/project/test_docs.py, through
+# docs/hooks/lessons.py) and tests/lessons/test_lessons.py share the runs, kept here by the notebook's digest
 _LESSONS_RUN = tempfile.mkdtemp(prefix="bras-kit-tests-lessons-")
 os.environ["BRAS_KIT_LESSONS_EXECUTED"] = _LESSONS_RUN
 

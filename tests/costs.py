@@ -8,7 +8,7 @@ import types
 from pathlib import Path
 
 # a test that uses one of these fixtures (directly or through another fixture) gets the marker; the
-# tests that run a lesson notebook carry `notebook` by hand (tests/test_lessons.py, tests/test_docs.py)
+# tests that run a lesson notebook carry `notebook` by hand (tests/lessons/test_lessons.py, tests/project/test_docs.py)
 COST_OF_FIXTURES = {
     "chromium": "browser",  # the browser fixture asks for it; so do the tests that start chromium themselves
     "real_rclpy": "real_ros",
@@ -42,6 +42,6 @@ def names_reached(function, depth: int = 4, seen: set | None = None) -> set[str]
         scope = getattr(function, "__globals__", {})
         for name in list(names):
             helper = scope.get(name)
-            if isinstance(helper, types.FunctionType) and Path(helper.__code__.co_filename).resolve().parent == here:
+            if isinstance(helper, types.FunctionType) and Path(helper.__code__.co_filename).resolve().is_relative_to(here):
                 names |= names_reached(helper, depth - 1, seen)
     return names

@@ -1,6 +1,6 @@
 """One learner node under the REAL rclpy of Jazzy, recorded from inside its own process.
 
-Run by ``tests/test_rclpy_oracle.py`` with the oracle's interpreter (``realros.oracle_python()``)
+Run by ``tests/ros/test_rclpy_oracle.py`` with the oracle's interpreter (``realros.oracle_python()``)
 inside a loopback-only network namespace (``realros.run_isolated``); never imported by bras-kit.
 
     python oracle_harness.py NODE.py FUNCTION SECONDS OUT.jsonl

@@ -4,7 +4,7 @@
     python tools/system_packages.py --write    rewrite that block in README.md
     python tools/system_packages.py --column debian-12    the packages of one platform (.ci/run's form)
 
-tests/test_system_packages.py fails when README.md does not hold the block as rendered here.
+tests/project/test_system_packages.py fails when README.md does not hold the block as rendered here.
 """
 
 from __future__ import annotations

@@ -6,7 +6,7 @@ that one thing, and the parsers are built from it: once a command's ``configure`
 options, :func:`apply` gives every option found here its meaning as the first words of its help,
 and what the command said of it becomes the detail after them (dropped when it only repeated the
 meaning). A command that adds an option another command already has, and that is not here, fails
-``tests/test_cli_options.py``: its meaning is then written here, for every command at once.
+``tests/cli/test_cli_options.py``: its meaning is then written here, for every command at once.
 
 A deprecated spelling hidden from the help (``argparse.SUPPRESS``) that warns and names its
 replacement when used (``urdf --set``, see :func:`bras_kit.cli._common.template_values`) offers

@@ -75,7 +75,7 @@ class _Floats:
     where numpy (under ``errstate(all="ignore")``) gives inf or nan and Python's math raises.
     ``**`` is C's ``pow`` (as numpy's, except that numpy 2.x takes a square root for a constant
     exponent 0.5: (-0.0)**0.5 is -0.0 there, (-inf)**0.5 NaN, where C gives 0.0 and inf).
-    Checked against numpy on the whole whitelist and its edge cases (tests/test_expr_floats.py)."""
+    Checked against numpy on the whole whitelist and its edge cases (tests/model/test_expr_floats.py)."""
 
     sin = _guarded(math.sin, lambda u: math.nan)  # sin(inf)
     cos = _guarded(math.cos, lambda u: math.nan)

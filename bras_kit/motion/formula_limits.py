@@ -8,7 +8,7 @@ robot that is not a tree, a joint that cannot be driven, a formula the evaluator
 value that is not a number), the same times ``k / rate``, the same first and worst samples. The
 values come from :meth:`bras_kit.model.expr.Expression.at`, which follows numpy's IEEE results; a
 transcendental function may differ from numpy's in the last bit, far below what BK623 shows.
-Checked against the numpy path on the formulas of tests/test_formula_limits.py.
+Checked against the numpy path on the formulas of tests/motion/test_formula_limits.py.
 """
 
 from __future__ import annotations

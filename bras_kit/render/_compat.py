@@ -3,7 +3,7 @@ in pyproject.toml, and where each one lives; this module imports pyrender with t
 The drawing itself is in :mod:`._pyrender`.
 
 Each patch leans on a detail of those versions (a private attribute, a method's behaviour, a
-shader's text). ``tests/test_render_compat.py`` holds one test per patch that fails, naming
+shader's text). ``tests/render/test_render_compat.py`` holds one test per patch that fails, naming
 the patch, when the installed pyrender or PyOpenGL no longer has what the patch relies on:
 
 * :func:`import_pyrender` (here) - stand-in modules for trimesh, networkx, freetype and

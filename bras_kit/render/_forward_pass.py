@@ -89,7 +89,7 @@ def lean_forward_pass(pyrender, inner) -> None:
     pass spent about 30 ms of Python on them, three quarters of a frame's time on llvmpipe.
 
     The calls that draw are pyrender's and PyOpenGL's, in pyrender's order, with pyrender's
-    values, so the pixels are the same (``tests/test_render_compat.py`` compares both passes).
+    values, so the pixels are the same (``tests/render/test_render_compat.py`` compares both passes).
     A primitive with textures, instances, points, wireframe or another material than
     metallic-roughness (the only one bras-kit makes) is drawn by pyrender's own
     ``_bind_and_draw_primitive``; shadows, segmentation, depth-only, flat or wireframe flags,

@@ -30,7 +30,7 @@ from collections.abc import Iterable, Iterator, Sequence
 from typing import Any, TextIO
 
 # What a terminal must not receive raw: every control (Unicode categories Cc, Cf, Cs, Zl, Zp)
-# but the line feed and the tab, generated from Unicode 15.0 (tests/test_walls_inert.py checks
+# but the line feed and the tab, generated from Unicode 15.0 (tests/trust/test_walls_inert.py checks
 # it against the running Python's unicodedata, code point by code point):
 # - C0 and C1 (ESC starts CSI, OSC, DCS, APC, PM and SOS; 0x9b, 0x9d... are their 8-bit forms), DEL;
 # - the bidirectional marks, embeddings, overrides and isolates ("Trojan Source", CVE-2021-42574),

@@ -24,7 +24,7 @@ A value the constructor cannot make (an integer of more than 4,300 digits, a 13t
     data = yaml_gate.load(text)                  # as yaml.safe_load(text), bounded
     data = yaml_gate.load(text, loader=MyLoader)  # a SafeLoader subclass of the caller's
 
-``tests/test_yaml_gate.py`` fails when any other module of bras_kit calls PyYAML's loaders.
+``tests/trust/test_yaml_gate.py`` fails when any other module of bras_kit calls PyYAML's loaders.
 """
 
 from __future__ import annotations

@@ -60,7 +60,7 @@ def kernel_environment() -> dict[str, str]:
 def executed_copy(path: str) -> Path | None:
     """Where a run of this notebook is kept for the rest of a test session (the folder named by
     BRAS_KIT_LESSONS_EXECUTED, which tests/conftest.py sets; None outside the tests), by the
-    digest of its bytes: the site's build and tests/test_lessons.py run each lesson once."""
+    digest of its bytes: the site's build and tests/lessons/test_lessons.py run each lesson once."""
     import hashlib
 
     folder = os.environ.get("BRAS_KIT_LESSONS_EXECUTED")

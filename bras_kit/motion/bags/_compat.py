@@ -7,7 +7,7 @@ bomb) fills the memory first. The replacements stop one byte past the declared s
 :mod:`.reader` has already capped), and rosbags' own size check then refuses the chunk; bytes
 left over after the compressed frame (a compressed length that lies) are refused too.
 
-Checked against rosbags 0.11.9 (the range pinned in pyproject.toml); ``tests/test_bags.py``
+Checked against rosbags 0.11.9 (the range pinned in pyproject.toml); ``tests/motion/test_bags.py``
 fails if the table disappears or changes its keys.
 """
 

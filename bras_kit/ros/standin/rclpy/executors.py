@@ -159,7 +159,7 @@ class Executor:
             if node._destroyed:
                 # rclpy 7.1.6 executors.py:600-606: a destroyed node has no entities left to wait
                 # on (destroy_node emptied them), so spin waits for nothing until Ctrl-C (the real
-                # rclpy, tests/test_rclpy_oracle.py: run/nodes/spin_destroyed.py)
+                # rclpy, tests/ros/test_rclpy_oracle.py: run/nodes/spin_destroyed.py)
                 continue
             for timer in node._timers_list:
                 if (not getattr(timer, '_rate', False) and not timer._canceled and not timer._destroyed

@@ -1,0 +1,174 @@
+"""The launch page is RViz as the launch file starts it (issue 55), in a real browser (Debian's
+chromium, headless, SwiftShader WebGL, Playwright): the tutorial's launch (rviz2 without -d) opens
+an empty RViz, the learner does step 6 by clicks, Save Config writes a .rviz RViz reads.
+
+Oracles: RViz's own words (Global Status "Frame [map] does not exist", "Error subscribing: Empty
+topic name"), the pixels of the arm (its blue upper arm and orange forearm), RViz's default
+configuration (tests/data/rviz/rviz_common_default.rviz) for the saved file's shape, and the
+terminal's findings, code for code against the page's."""
+
+from __future__ import annotations
+
+import time
+
+import pytest
+import yaml
+from launch_pages import FINDING, Launched
+from launch_pages import add as _add
+from launch_pages import arm_pixels as _arm_pixels
+from launch_pages import copy_tutorial as _copy_tutorial
+from launch_pages import field as _field
+from launch_pages import seen as _seen
+from launch_pages import type_in as _type
+from pages import wait as _wait
+from paths import TESTS
+
+from bras_kit.ros.rviz.config import GRID, ROBOT_MODEL, TF, read_config
+
+pytestmark = pytest.mark.slow
+
+DEFAULT = TESTS / "data" / "rviz" / "rviz_common_default.rviz"
+
+
+def _global_status(page) -> str:
+    return page.locator("[data-rviz='global-status']").inner_text()
+
+
+def _display_texts(page) -> list[str]:
+    return page.locator("[data-rviz-display]").evaluate_all("(all) => all.map(e => e.innerText)")
+
+
+def _forearm_pixels(page) -> int:
+    """The orange forearm's pixels alone: the TF display's axes are blue, red and green, never orange."""
+    from launch_pages import NOTICE, SCENE
+    from pages import screenshot as _screenshot
+
+    image = _screenshot(page)[SCENE]
+    r, g, b = image[..., 0], image[..., 1], image[..., 2]
+    # the forearm's orange has little blue; the red x axes' smoothed edges (236, 128, 132) have much
+    orange = (r > 120) & (r - b > 100) & (g > 0.35 * r) & (g < 0.7 * r) & (b < 0.4 * r)
+    orange[NOTICE] = False
+    return int(orange.sum())
+
+
+def _blank(page) -> str:
+    blank = page.locator("[data-banner='blank']")
+    return blank.inner_text() if blank.count() else ""
+
+
+@pytest.mark.parametrize(("lang", "title", "reason"), [
+    ("en", "RViz shows nothing", "Fixed Frame [map] does not exist"),
+    ("fr", "RViz n'affiche rien", "Fixed Frame [map] n'existe pas"),
+])
+def test_the_tutorials_launch_opens_an_empty_rviz(browser, tmp_path, lang, title, reason):
+    """rviz2 without -d: Fixed Frame map, one Grid, Global Status "Frame [map] does not exist", no
+    arm; the terminal's BK613 says the same, and the page lists the terminal's findings."""
+    launched = Launched(browser, tmp_path, _copy_tutorial(tmp_path), [], lang)
+    try:
+        page = launched.page
+        assert _wait(lambda: "Frame [map] does not exist" in _global_status(page), 60), page.inner_text("body")
+        assert _field(page, "Fixed Frame").input_value() == "map"
+        assert page.locator("[data-rviz-display]").evaluate_all("(a) => a.map(e => e.dataset.rvizDisplay)") == ["Grid"]
+        assert _wait(lambda: title in _blank(page) and reason in _blank(page), 30), _blank(page)
+        for label in ("Fixed Frame", "Add"):  # the tutorial's words, in every language
+            assert page.get_by_text(label, exact=True).count() >= 1
+        codes = launched.page_codes()
+        order = page.locator("[data-finding]").evaluate_all("(all) => all.map(e => e.dataset.finding)")
+        hints = page.locator("[data-hint]").evaluate_all("(all) => all.map(e => e.innerText)")
+        time.sleep(3.0)  # the grid is drawn by now: no arm in it
+        assert _arm_pixels(page) == 0, _seen(page, tmp_path, "an arm is drawn in an empty RViz")
+    finally:
+        out, err = launched.stop()
+    assert "Traceback" not in err
+    assert "BK613" in codes
+    assert sorted(FINDING.findall(out)) == codes, out
+    assert order[0] == "BK613"  # all infos here: the one about what RViz shows comes first
+    if lang == "en":  # each finding's fix, as the terminal gives it
+        said = [line.split("hint: ", 1)[1].strip() for line in out.splitlines() if line.startswith("  hint: ")]
+        assert sorted(h.lstrip("\u2192 ").strip() for h in hints) == sorted(said), (hints, said)
+
+
+def test_step_six_by_clicks_then_save_config_reads_back(browser, tmp_path):
+    """Fixed Frame base, Add RobotModel, its Description Topic, Add TF: the arm appears only at the
+    step RViz would draw it. Save Config writes rviz/bras_description.rviz in RViz's shape, which
+    reads back as the page's configuration; a second save asks before replacing it."""
+    package = _copy_tutorial(tmp_path)
+    launched = Launched(browser, tmp_path, package, [], "en")
+    saved = package / "rviz" / "bras_description.rviz"
+    try:
+        page = launched.page
+        assert _wait(lambda: "does not exist" in _global_status(page), 60)
+        _type(page, "Fixed Frame", "base")
+        assert _wait(lambda: "Fixed Frame: OK" in _global_status(page), 20), _global_status(page)
+        assert _wait(lambda: "No RobotModel display" in _blank(page), 20), _blank(page)
+        _add(page, "RobotModel")
+        assert _wait(lambda: "Error subscribing: Empty topic name" in " ".join(_display_texts(page)), 20)
+        time.sleep(2.0)
+        assert _arm_pixels(page) == 0, _seen(page, tmp_path, "the arm is drawn with an empty Description Topic")
+        _type(page, "Description Topic", "/robot_description")
+        assert _wait(lambda: _arm_pixels(page) > 500, 60), _seen(page, tmp_path, "step 6 does not draw the arm")
+        assert _wait(lambda: _blank(page) == "", 10), _blank(page)
+        assert "URDF parsed OK" in " ".join(_display_texts(page))
+        _add(page, "TF")
+        assert _wait(lambda: "avant_bras: Transform OK" in _display_texts(page)[-1], 20), _display_texts(page)
+        page.get_by_role("button", name="Save Config", exact=True).click()
+        assert _wait(lambda: saved.exists(), 20)
+        assert _wait(lambda: page.locator("[data-rviz='saved'][data-state='saved']").count() == 1, 20)
+        first = saved.read_bytes()
+        page.get_by_role("button", name="Save Config", exact=True).click()  # again: it asks
+        assert _wait(lambda: page.locator("[data-rviz='saved'][data-state='exists']").count() == 1, 20)
+        assert saved.read_bytes() == first
+        page.get_by_role("button", name="Remove").nth(1).click()  # the RobotModel: no arm any more
+        # the forearm drawn is thousands of pixels (2,385 at step 6); a few are where axes cross
+        assert _wait(lambda: _forearm_pixels(page) < 30, 30), \
+            _seen(page, tmp_path, "the arm stays without its RobotModel")
+        assert _wait(lambda: "No RobotModel display" in _blank(page), 20)
+        page.get_by_role("button", name="Overwrite", exact=True).click()  # replaced, as asked
+        assert _wait(lambda: saved.read_bytes() != first, 20)
+        codes = launched.page_codes()
+    finally:
+        out, err = launched.stop()
+    assert "Traceback" not in err
+    assert sorted(FINDING.findall(out)) == codes, out
+    assert "built and launched again" not in err  # Save Config's own file is no learner's save
+    assert "(os.path.join('share', package_name, 'rviz'), glob('rviz/*.rviz'))," in err
+    assert "arguments=['-d', os.path.join(get_package_share_directory('bras_description'), 'rviz', " \
+           "'bras_description.rviz')]," in err
+    back = read_config(first.decode("utf-8"))
+    assert back.fixed_frame == "base"
+    assert [(d.kind, d.enabled) for d in back.displays] == [(GRID, True), (ROBOT_MODEL, True), (TF, True)]
+    assert back.displays[1].description_topic == "/robot_description"
+    ours, theirs = (yaml.load(t, Loader=yaml.BaseLoader) for t in (first.decode(), DEFAULT.read_text()))
+    assert set(ours) == set(theirs)
+    assert set(theirs["Visualization Manager"]) <= set(ours["Visualization Manager"])
+    assert [d.kind for d in read_config(saved.read_text()).displays] == [GRID, TF]  # Overwrite: after Remove
+
+
+def test_a_wrong_fixed_frame_then_set_right_in_the_page(browser, tmp_path):
+    """A configuration whose Fixed Frame is no frame (monde): RViz's Global Status, the terminal's
+    BK610, no arm; the learner types base in Fixed Frame and the arm is drawn."""
+    from bras_kit.scaffold.package import scaffold_package
+
+    package = tmp_path / "bras_description"
+    scaffold_package(package)
+    rviz = package / "rviz" / "bras_description.rviz"
+    rviz.write_text(rviz.read_text(encoding="utf-8").replace("Fixed Frame: base", "Fixed Frame: monde"),
+                    encoding="utf-8")
+    launched = Launched(browser, tmp_path, package, ["affichage.launch.py"], "en")
+    try:
+        page = launched.page
+        assert _wait(lambda: "Frame [monde] does not exist" in _global_status(page), 60), page.inner_text("body")
+        assert _field(page, "Fixed Frame").input_value() == "monde"
+        assert "No transform from [avant_bras] to [monde]" in " ".join(_display_texts(page))
+        codes = launched.page_codes()
+        time.sleep(3.0)
+        assert _arm_pixels(page) == 0
+        _type(page, "Fixed Frame", "base")
+        assert _wait(lambda: _arm_pixels(page) > 500, 60), _seen(page, tmp_path, "Fixed Frame base draws no arm")
+        assert "Fixed Frame: OK" in _global_status(page)
+        assert _wait(lambda: _blank(page) == "", 10)
+    finally:
+        out, err = launched.stop()
+    assert "Traceback" not in err
+    assert "BK610" in codes
+    assert sorted(FINDING.findall(out)) == codes, out
