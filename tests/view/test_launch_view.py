@@ -67,7 +67,7 @@ def test_run_in_a_second_terminal_moves_the_launched_arm(browser, tmp_path):
         page = browser.new_page(viewport={"width": 1000, "height": 700})
         page.goto(url)
         page.wait_for_selector("text=coude", timeout=60_000)
-        from test_launch_page import _step_six  # here: that module imports this one
+        from launch_pages import step_six as _step_six
 
         _step_six(page)  # the tutorial's launch opens an empty RViz: the learner sets it up (step 6)
         assert _wait(lambda: len(_orange(page)) > 200, 60), "the arm is not drawn"
