@@ -18,14 +18,14 @@ from collections.abc import Callable, Iterable, Iterator
 from typing import Any
 
 from ...findings.registry import ERROR, INFO, Hit, hit, rule
+from ...ros.joint_publishers import Publisher
+from ...ros.launch_source import NodeCall
 from ...ros.package import (
     INDEX_FOLDER,
     JOINT_STATE_PUBLISHERS,
     PACKAGE_XML,
     SETUP_PY,
-    NodeCall,
     Package,
-    Publisher,
     share_targets,
 )
 from ...ros.staticpy import ShareFile, known
