@@ -54,6 +54,8 @@ class RosFeed:
         # the same search as doctor --ros's (live.watch.look), so both commands give one verdict
         self.elsewhere: list[dict[str, Any]] = []
         self._searching = False
+        self.events: collections.deque[dict[str, Any]] = collections.deque(maxlen=500)  # the timeline's
+        self.rviz: list[dict[str, Any]] = []  # the rviz2 processes of this graph (its Fixed Frame)
         self._rsp: Any = None  # robot_state_publisher as modelled, for self._rsp_robot
         self._rsp_robot: Robot | None = None
         self._robot_ready = threading.Event()
@@ -97,8 +99,14 @@ class RosFeed:
         elif kind == "description":
             self._description(record)
         elif kind == "graph":
+            from ..live.rviz_process import running_rviz
+
+            rviz = list(running_rviz())  # re-read with each graph: an rviz2 started or restarted since
             with self._lock:
                 self.graph = record
+                events = record.get("events")
+                self.events.extend(e for e in (events if isinstance(events, list) else []) if isinstance(e, dict))
+                self.rviz = rviz
                 empty = not record.get("nodes")
                 if not empty:
                     self.elsewhere = []
@@ -198,7 +206,8 @@ class RosFeed:
                       and s["received"] >= now - WINDOW]
             graph = self.graph
             descriptions = [self.description] if self.description else []
-            hello = {**self.hello, "elsewhere": list(self.elsewhere)}
+            hello = {**self.hello, "elsewhere": list(self.elsewhere), "events": list(self.events),
+                     "rviz": list(self.rviz), "origin": self.started}
         started = max(self.started, now - WINDOW)
         return merge_stream(hello, graph, descriptions, recent, started, now)
 
