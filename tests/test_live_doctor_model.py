@@ -16,6 +16,7 @@ tests/test_live_doctor.py must stay without one.
 from __future__ import annotations
 
 import concurrent.futures
+import tempfile
 
 import pytest
 from live_graphs import ANIMATION, DATA, STATE_PUBLISHER, URDF, _codes, _finding, _json, _run
@@ -42,12 +43,13 @@ SCENARIOS = {
     "degrees": [STATE_PUBLISHER, ANIMATION + ["--degrees"]],
 }
 SCENARIOS = {name: nodes + [RVIZ] for name, nodes in SCENARIOS.items()}  # RViz beside each, as the launch starts it
+LOGS = f"ROS_LOG_DIR={tempfile.gettempdir()}/bras-kit-test-ros-logs"  # rcl would log under HOME/.ros
 HOME = str(DATA / "home")  # its .rviz2/default.rviz sets Fixed Frame base (what Save Config writes)
 SCENARIOS.update({
     "rviz-map": [STATE_PUBLISHER, ANIMATION, ["rviz2", "-d", "bras_map.rviz"]],
     "rviz-f": [STATE_PUBLISHER, ANIMATION, RVIZ + ["-f", "/map"]],
-    "rviz-home": [STATE_PUBLISHER, ANIMATION, [f"HOME={HOME}", "rviz2"]],
-    "rviz-default": [STATE_PUBLISHER, ANIMATION, [f"HOME={DATA / 'nobody'}", "rviz2"]],
+    "rviz-home": [STATE_PUBLISHER, ANIMATION, [LOGS, f"HOME={HOME}", "rviz2"]],
+    "rviz-default": [STATE_PUBLISHER, ANIMATION, [LOGS, f"HOME={DATA / 'nobody'}", "rviz2"]],
     "volatile-qos": [STATE_PUBLISHER + ["--volatile"], ANIMATION, RVIZ],
     "joins-late": [STATE_PUBLISHER, RVIZ, ANIMATION + ["--late", "7"]],
     "replaced": [STATE_PUBLISHER + ["--replace-after", "3.5", "--replace-with", WRIST_URDF], ANIMATION, RVIZ],

@@ -28,6 +28,7 @@ SLOW_RATE = 15.0  # below this the arm visibly steps (a fifth under the tutorial
 SLIDER_NODE = "joint_state_publisher"  # the slider window's node name (10 Hz by default: its 'rate')
 FAR_STAMP = 5.0  # seconds between a stamp and this machine's clock before it is "far"
 MAX_SAMPLES_NAMED = 8
+MOVING = ("revolute", "continuous", "prismatic")  # the joints rsp has a moving segment for (kdl_parser)
 
 
 @dataclass(frozen=True)
@@ -272,9 +273,12 @@ def joint_states_unknown_joint(graph: LiveGraph) -> Iterator[Hit]:
     if graph.robot is None:
         return
     movable = [j.name for j in graph.robot.movable_joints() if j.name]
-    others = {j.name for j in graph.robot.joints if j.name} - set(movable)
+    # a mimic joint sent by name is used as sent: rsp's std::map::insert keeps the message's value
+    # over the one the mimic would compute (robot_state_publisher.cpp:343-354)
+    mimics = {j.name for j in graph.robot.joints if j.name and j.mimic is not None and j.type in MOVING}
+    others = {j.name for j in graph.robot.joints if j.name} - set(movable) - mimics
     for name in _names_seen(graph):
-        if name in movable:
+        if name in movable or name in mimics:
             continue
         if name in others:
             yield _at(JOINT_STATES, "fixed", joint=name)

@@ -33,6 +33,7 @@ from ..ros.graph import merge_stream
 
 WINDOW = 3.0  # seconds of joint states the live findings judge (as doctor --ros watches 3 s)
 MAX_SAMPLES = 4000
+MAX_TEXTS = 4  # descriptions kept (each up to a few MB)
 
 
 class RosFeed:
@@ -45,6 +46,9 @@ class RosFeed:
         self.hello: dict[str, Any] = {}
         self.graph: dict[str, Any] | None = None
         self.description: dict[str, Any] | None = None
+        # every different text received, the last one last: two robot_state_publishers with two robots
+        # are named on the page as doctor --ros names them (BK845)
+        self.descriptions: list[dict[str, Any]] = []
         self.samples: collections.deque[dict[str, Any]] = collections.deque(maxlen=MAX_SAMPLES)
         self.started = time.time()
         self.robot: Robot | None = None
@@ -160,6 +164,8 @@ class RosFeed:
 
         with self._lock:
             self.description = record
+            text = record.get("text")
+            self.descriptions = [d for d in self.descriptions if d.get("text") != text][-(MAX_TEXTS - 1):] + [record]
         robot, _ = robot_of(self.snapshot())
         if robot is not None and robot.links:
             self.robot = robot
@@ -205,7 +211,7 @@ class RosFeed:
             recent = [s for s in self.samples if isinstance(s.get("received"), (int, float))
                       and s["received"] >= now - WINDOW]
             graph = self.graph
-            descriptions = [self.description] if self.description else []
+            descriptions = list(self.descriptions)
             hello = {**self.hello, "elsewhere": list(self.elsewhere), "events": list(self.events),
                      "rviz": list(self.rviz), "origin": self.started}
         started = max(self.started, now - WINDOW)
