@@ -24,6 +24,7 @@ def view_findings(data: dict) -> list:
     graph record, as the probe's stream mode sends them (no viewer attached: its checks are these)."""
     feed = RosFeed("python")
     feed.started = data["started"]
+    feed.find_rviz = lambda: list(data.get("rviz", []))  # the rviz2 the look saw, not this machine's now
     feed._take({"kind": "hello", **{k: data[k] for k in ("domain", "range", "rmw")}})
     for description in data.get("descriptions", []):
         feed._take({"kind": "description", **description})
@@ -53,3 +54,24 @@ def judge(state) -> list[str]:
             if not any(text in s for s in said):
                 wrong.append(f"{side}: {code} does not say {text!r}: {said}")
     return wrong
+
+
+def shifted_to_now(data: dict) -> dict:
+    """A saved look moved in time so that it ends now (view --ros judges the seconds before its
+    clock): every reception, event and non-zero stamp by the same amount."""
+    import copy
+    import time
+
+    delta = time.time() - data["ended"]
+    out = copy.deepcopy(data)
+    out["started"] += delta
+    out["ended"] += delta
+    for record in out.get("descriptions", []) + out.get("joint_states", []) + out.get("events", []):
+        for key in ("received", "time"):
+            if isinstance(record.get(key), (int, float)):
+                record[key] += delta
+        stamp = record.get("stamp")
+        if isinstance(stamp, list) and stamp != [0, 0]:
+            total = stamp[0] * 1_000_000_000 + stamp[1] + round(delta * 1e9)
+            record["stamp"] = [total // 1_000_000_000, total % 1_000_000_000]
+    return out

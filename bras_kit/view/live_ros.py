@@ -60,6 +60,9 @@ class RosFeed:
         self._searching = False
         self.events: collections.deque[dict[str, Any]] = collections.deque(maxlen=500)  # the timeline's
         self.rviz: list[dict[str, Any]] = []  # the rviz2 processes of this graph (its Fixed Frame)
+        from ..live.rviz_process import running_rviz
+
+        self.find_rviz = lambda: list(running_rviz())  # read with each graph: an rviz2 started since
         self._rsp: Any = None  # robot_state_publisher as modelled, for self._rsp_robot
         self._rsp_robot: Robot | None = None
         self._robot_ready = threading.Event()
@@ -103,9 +106,7 @@ class RosFeed:
         elif kind == "description":
             self._description(record)
         elif kind == "graph":
-            from ..live.rviz_process import running_rviz
-
-            rviz = list(running_rviz())  # re-read with each graph: an rviz2 started or restarted since
+            rviz = self.find_rviz()
             with self._lock:
                 self.graph = record
                 events = record.get("events")
