@@ -19,7 +19,16 @@ import concurrent.futures
 import tempfile
 
 import pytest
-from live_graphs import ANIMATION, DATA, STATE_PUBLISHER, URDF, _codes, _finding, _json, run_with_look
+from live_graphs import (
+    ANIMATION,
+    DATA,
+    STATE_PUBLISHER,
+    URDF,
+    _codes,
+    _finding,
+    _json,
+    run_with_look,
+)
 
 pytestmark = pytest.mark.slow
 

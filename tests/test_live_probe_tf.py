@@ -41,9 +41,10 @@ def test_transforms_are_recorded_with_frames_stamps_static_and_nan_and_placed_as
         ("world", "base", [1, 0], True, False)]
     seen = snapshot_from_json({"transforms": records}).transforms
     assert seen is not None and len(seen) == 3
+    from live_states import URDF
+
     from bras_kit.model.robot import robot_from_xml
     from bras_kit.model.xmlio import parse_xml
-    from live_states import URDF
 
     robot = robot_from_xml(parse_xml(URDF, "b.urdf"), path="b.urdf", source_text=URDF)
     placed = placed_links(robot, "base", [Tf(t.parent, t.child, t.stamp[0] * 10**9, t.static, nan=t.nan)
