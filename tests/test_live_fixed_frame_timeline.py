@@ -181,3 +181,44 @@ def test_transforms_not_read_are_said_inferred_and_read_ones_counted():
                                                "received": T0 + 1}]}).transforms
     read = replace(snapshot, transforms=seen)
     assert "1 transform seen on /tf and /tf_static" in _text(read, diagnose(read), "en")
+
+
+@pytest.fixture(scope="module")
+def workspace(tmp_path_factory):
+    """A colcon workspace whose one launch file starts rviz2 -d its installed bras.rviz, built."""
+    import shutil
+
+    from bras_kit.ros.build import build_package
+
+    root = tmp_path_factory.mktemp("ws")
+    package = root / "src" / "bras_description"
+    shutil.copytree(os.path.join(os.path.dirname(__file__), "data", "launch", "fidelity", "bras_description"),
+                    package)
+    for launch in (package / "launch").iterdir():
+        if launch.name != "ns_attribute_rviz_root.launch.py":
+            launch.unlink()
+    rviz = package / "rviz" / "bras.rviz"
+    rviz.write_text(rviz.read_text().replace("Fixed Frame: base", "Fixed Frame: map"))
+    assert build_package(str(package), str(root / "install")).failure is None
+    return root
+
+
+def test_without_a_running_rviz2_the_launch_file_s_rviz2_gives_the_frame(workspace):
+    from bras_kit.live.rviz_process import launched_rviz
+
+    record = launched_rviz(str(workspace / "src"))
+    assert record is not None and record["given"] and record["launch"].endswith("ns_attribute_rviz_root.launch.py")
+    assert record["config"].endswith("share/bras_description/rviz/bras.rviz") and "Fixed Frame: map" in record["text"]
+    processes = snapshot_from_json({"rviz": [record]}).rviz
+    frame = fixed_frame(processes)
+    assert (frame.frame, frame.source, frame.launch) == ("map", "file", record["launch"])
+    from dataclasses import replace
+
+    snapshot = replace(look([tutorial(at) for at in at_20_hz()]), rviz=processes)
+    assert codes(snapshot) == ["BK846"] and "would open with Fixed Frame map" in message(snapshot, "BK846")
+
+
+def test_outside_a_workspace_no_launch_file_is_read(tmp_path):
+    from bras_kit.live.rviz_process import launched_rviz
+
+    assert launched_rviz(str(tmp_path)) is None

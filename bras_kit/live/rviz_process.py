@@ -126,3 +126,38 @@ def _config_text(path: str) -> str | None:
         return read_text(path, (os.path.dirname(os.path.abspath(path)),), limit=RVIZ_FILE_LIMIT, errors="replace")
     except (OSError, ValueError):
         return None
+
+
+MAX_LAUNCH_FILES = 8
+
+
+def launched_rviz(start: str = ".") -> dict[str, Any] | None:
+    """When no rviz2 runs here: the rviz2 the workspace's launch files would start (the first
+    installed launch file, by name, whose plan starts one), recorded as :func:`running_rviz`
+    records a process (pid 0, ``launch`` the launch file). Evaluated as ``ros2 launch`` would,
+    contained (:func:`bras_kit.ros.launching.plan_launch`); None outside a built workspace."""
+    import glob
+
+    from ..ros.launching import plan_launch
+    from ..ros.workspace import workspace_root
+
+    root = workspace_root(start)
+    if root is None:
+        return None
+    install = os.path.join(root, "install")
+    prefixes = sorted(p for p in glob.glob(os.path.join(install, "*")) if os.path.isdir(os.path.join(p, "share")))
+    launch_files = sorted(glob.glob(os.path.join(install, "*", "share", "*", "launch", "*.launch.py")))
+    for launch_file in launch_files[:MAX_LAUNCH_FILES]:
+        plan = plan_launch(launch_file, prefixes, learner_roots=(root,))
+        node = next((n for n in plan.nodes if n.package == PROGRAM), None)
+        if node is None:
+            continue
+        config, frame = options([a for a in node.arguments if isinstance(a, str)])
+        if config is not None:
+            path = config
+        else:  # rviz2 started by this user would load their saved default
+            path = os.path.join(os.path.expanduser("~"), ".rviz2", "default.rviz")
+        return {"pid": 0, "argv": [PROGRAM, *[a for a in node.arguments if isinstance(a, str)][:60]],
+                "config": path, "given": config is not None, "text": _config_text(path), "fixed_frame": frame,
+                "launch": launch_file}
+    return None

@@ -105,6 +105,7 @@ class RvizProcess:
     given: bool
     text: str | None
     fixed_frame_argument: str = ""
+    launch: str = ""  # not running: the launch file that would start it (pid 0)
 
 
 @dataclass(frozen=True)
@@ -208,7 +209,8 @@ def _rviz(value: Any) -> RvizProcess | None:
     text = value.get("text")
     return RvizProcess(int(value["pid"]), tuple(_text(a, 4000) for a in _list(value.get("argv"))[:64]),
                        _text(value.get("config"), 4000), value.get("given") is True,
-                       text[:1 << 20] if isinstance(text, str) else None, _text(value.get("fixed_frame"), 300))
+                       text[:1 << 20] if isinstance(text, str) else None, _text(value.get("fixed_frame"), 300),
+                       _text(value.get("launch"), 4000))
 
 
 def snapshot_from_json(data: Any) -> Snapshot:

@@ -567,7 +567,12 @@ def rviz_fixed_frame_not_in_robot(graph: LiveGraph) -> Iterator[Hit]:
     seen = rviz_fixed_frame(graph)
     if graph.robot is None or seen.pid is None or seen.frame in graph.robot.link_names:
         return
-    yield _at(f"rviz2 ({seen.pid})", seen.source, frame=seen.frame, root=_root_link(graph.robot) or "",
+    root = _root_link(graph.robot) or ""
+    if seen.launch:  # not running: only what the learner wrote in the launch or its .rviz is named
+        if seen.source in ("argument", "file"):
+            yield _at(seen.launch, "launch", frame=seen.frame, root=root, path=seen.path, launch=seen.launch)
+        return
+    yield _at(f"rviz2 ({seen.pid})", seen.source, frame=seen.frame, root=root,
               path=seen.path or "~/.rviz2/default.rviz", pid=seen.pid)
 
 

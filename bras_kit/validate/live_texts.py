@@ -457,6 +457,8 @@ describe(
                 "the robot: RViz's Global Status says \"Frame [{frame}] does not exist\" and it draws no link",
         "home": "RViz's Fixed Frame is {frame} ({path}, which rviz2 loads without -d, process {pid}), which is no "
                 "link of the robot: RViz draws no link",
+        "launch": "the rviz2 of {launch} would open with Fixed Frame {frame} (from {path}), which is no link of the "
+                  "robot: RViz's Global Status would say \"Frame [{frame}] does not exist\" and it would draw no link",
         "": "rviz2 (process {pid}) opens with RViz's default Fixed Frame, {frame}, which is no link of the robot: "
             "until it is set in RViz's window, RViz draws no link",
     },
@@ -464,6 +466,8 @@ describe(
         "argument": "start rviz2 with -f {root}, or without -f",
         "file": "write Fixed Frame: {root} under Global Options in {path} (or set it in RViz and File > Save Config)",
         "home": "set Fixed Frame to {root} in RViz (Global Options), then File > Save Config",
+        "launch": "write Fixed Frame: {root} under Global Options in the .rviz of the launch (or drop its -f), then "
+                  "colcon build",
         "": "set Fixed Frame to {root} in RViz (Global Options), then File > Save Config to keep it",
     },
     explanation="""\

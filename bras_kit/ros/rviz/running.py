@@ -9,7 +9,8 @@ In the order rviz2 applies them (rviz_common/src/rviz_common/visualizer_app.cpp)
    382), the file File > Save Config writes; when it does not exist, default.rviz (Fixed Frame map,
    default.rviz:54).
 
-When no rviz2 is seen on this machine (it runs elsewhere, or not yet), the frame is RViz's default
+When no rviz2 runs on this machine, the rviz2 the workspace's launch file would start is read the
+same way (its arguments as the launch evaluates them). With neither, the frame is RViz's default
 (default.rviz's map) and :attr:`FixedFrame.source` says it was not seen. A Fixed Frame set in RViz's
 window since it started is never seen from outside: the words say so.
 """
@@ -32,6 +33,7 @@ class FixedFrame:
     source: str  # one of the six above
     path: str = ""  # the configuration file read (or asked for)
     pid: int | None = None
+    launch: str = ""  # no rviz2 running: the launch file whose rviz2 this is
 
     @property
     def from_learner(self) -> bool:
@@ -40,6 +42,18 @@ class FixedFrame:
 
     def words(self) -> Message:
         """Where the frame comes from, for the report."""
+        if self.launch:  # no rviz2 running: as the launch file would start it
+            if self.source == ARGUMENT:
+                return M("from -f {frame}, the argument of rviz2 in {launch} (no rviz2 seen running)",
+                         frame=self.frame, launch=self.launch)
+            if self.source == FILE:
+                return M("from {path}, the -d file of rviz2 in {launch} (no rviz2 seen running)", path=self.path,
+                         launch=self.launch)
+            if self.source == HOME:
+                return M("from {path}, which the rviz2 of {launch} loads without -d (no rviz2 seen running)",
+                         path=self.path, launch=self.launch)
+            return M("RViz's default: the rviz2 of {launch} has no -d file it can read (no rviz2 seen running)",
+                     launch=self.launch)
         if self.source == ARGUMENT:
             return M("from rviz2 -f {frame} (process {pid})", frame=self.frame, pid=self.pid)
         if self.source == FILE:
@@ -66,9 +80,10 @@ def fixed_frame(processes: Sequence[Any]) -> FixedFrame:
     if not processes:
         return FixedFrame(DEFAULT_FRAME, NOT_SEEN)
     process = processes[0]
+    launch = process.launch
     if process.fixed_frame_argument.strip():
-        return FixedFrame(_strip(process.fixed_frame_argument), ARGUMENT, process.config, process.pid)
+        return FixedFrame(_strip(process.fixed_frame_argument), ARGUMENT, process.config, process.pid, launch)
     if process.text is not None:
         return FixedFrame(read_config(process.text).fixed_frame, FILE if process.given else HOME, process.config,
-                          process.pid)
-    return FixedFrame(DEFAULT_FRAME, MISSING if process.given else DEFAULT, process.config, process.pid)
+                          process.pid, launch)
+    return FixedFrame(DEFAULT_FRAME, MISSING if process.given else DEFAULT, process.config, process.pid, launch)
