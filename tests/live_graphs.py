@@ -43,6 +43,7 @@ def _script(nodes: list[list[str]], doctors: list[list[str]], ros_python: str, d
         lines.append(f"{doctor} --from $T/look.json {shlex.join(other)} > $T/out{j} 2> $T/err{j}; echo $? > $T/code{j}")
     for j in range(len(doctors)):
         lines.append(f"echo '=== {j}'; cat $T/code{j} $T/out{j} $T/err{j}")
+    lines.append("echo '+++ look'; cat $T/look.json 2>/dev/null; echo")  # what the first doctor saw
     for i in range(len(nodes)):
         lines.append(f"echo '--- node{i}'; tail -5 $T/node{i}")
     lines.append("rm -rf $T")
@@ -50,6 +51,13 @@ def _script(nodes: list[list[str]], doctors: list[list[str]], ros_python: str, d
 
 
 def _run(nodes: list[list[str]], doctors: list[list[str]], doctor_env: str = "") -> tuple[list[tuple[int, str]], str]:
+    out, logs, _look = run_with_look(nodes, doctors, doctor_env)
+    return out, logs
+
+
+def run_with_look(nodes: list[list[str]], doctors: list[list[str]], doctor_env: str = ""
+                  ) -> tuple[list[tuple[int, str]], str, dict | None]:
+    """As :func:`_run`, with the look the first doctor saved (None when it saved none)."""
     python = oracle_python()
     with subprocess.Popen(shell_in_loopback_namespace(_script(nodes, doctors, python, doctor_env)), cwd=DATA,
                           env=graph_env(new_domain(), BRAS_KIT_ROS_PYTHON=python), stdout=subprocess.PIPE,
@@ -60,13 +68,21 @@ def _run(nodes: list[list[str]], doctors: list[list[str]], doctor_env: str = "")
             os.killpg(shell.pid, signal.SIGKILL)  # the nodes too: they are in the shell's session
             raise
     assert shell.returncode == 0, stderr + stdout
+    stdout, _, look = stdout.partition("+++ look\n")
+    look, _, nodes_part = look.partition("--- node")
+    stdout += ("--- node" + nodes_part) if nodes_part else ""
     out = []
     for part in stdout.split("=== ")[1:]:
         body = part.split("--- node")[0].split("\n", 1)[1]
         code, _, text = body.partition("\n")
         out.append((int(code), text))
     assert len(out) == len(doctors), stdout
-    return out, "--- node" + stdout.split("--- node", 1)[1] if "--- node" in stdout else ""
+    logs = "--- node" + stdout.split("--- node", 1)[1] if "--- node" in stdout else ""
+    try:
+        saved = json.loads(look) if look.strip() else None
+    except json.JSONDecodeError:
+        saved = None
+    return out, logs, saved
 
 
 def _json(output: str) -> dict:

@@ -104,12 +104,23 @@ def _facts(snapshot: Any) -> list[Any]:
     if rate is not None:
         facts.append(M("{count} joint states received, {rate:.1f} Hz", count=len(snapshot.joint_states), rate=rate))
     from ..live.doctor import robot_of
-    from ..validate.live import rviz_replay
+    from ..validate.live import rviz_fixed_frame, rviz_replay
 
-    seen = rviz_replay(LiveGraph(snapshot, robot_of(snapshot)[0]))
-    if seen is not None:  # /tf is not read (tf2_msgs has no wheel): what rsp publishes is inferred
-        facts.append(M("robot_state_publisher, as its source runs, turns {published} of them into transforms "
-                       "(inferred: /tf is not read)", published=seen.published))
+    graph = LiveGraph(snapshot, robot_of(snapshot)[0])
+    seen = rviz_replay(graph)
+    if seen is not None:
+        if snapshot.transforms is None:  # no tf2_msgs where the probe ran: what rsp publishes is inferred
+            facts.append(M("robot_state_publisher, as its source runs, turns {published} of them into transforms "
+                           "(inferred from its model: /tf and /tf_static were not seen, tf2_msgs does not import "
+                           "where the probe runs)", published=seen.published))
+        else:
+            facts.append(Mn("robot_state_publisher, as its source runs, turns {published} of them into transforms; "
+                            "{n} transform seen on /tf and /tf_static",
+                            "robot_state_publisher, as its source runs, turns {published} of them into transforms; "
+                            "{n} transforms seen on /tf and /tf_static", len(snapshot.transforms),
+                            published=seen.published))
+    frame = rviz_fixed_frame(graph)
+    facts.append(M("RViz's Fixed Frame: {frame}, {source}", frame=frame.frame, source=frame.words()))
     return facts
 
 
@@ -129,6 +140,9 @@ def _text(snapshot: Any, results: list[Any], lang: str | None) -> str:
     elif warnings:
         lines.append(say(Mn("nothing keeps RViz from showing the arm moving; {n} warning above",
                             "nothing keeps RViz from showing the arm moving; {n} warnings above", warnings), lang))
+    elif _frame_is_a_link(snapshot):  # the running rviz2's Fixed Frame is a link already
+        lines.append(say(M("nothing keeps RViz from showing the arm moving: add RobotModel on /robot_description "
+                           "if it is still empty"), lang))
     elif (root := _root_link(snapshot)) is not None:  # the frame to choose, by its name (the tutorial's: base)
         lines.append(say(M("nothing keeps RViz from showing the arm moving: set Fixed Frame to {root} "
                            "and add RobotModel on /robot_description if it is still empty", root=root), lang))
@@ -136,6 +150,16 @@ def _text(snapshot: Any, results: list[Any], lang: str | None) -> str:
         lines.append(say(M("nothing keeps RViz from showing the arm moving: set Fixed Frame to the root link "
                            "and add RobotModel on /robot_description if it is still empty"), lang))
     return "\n".join(lines) + "\n"
+
+
+def _frame_is_a_link(snapshot: Any) -> bool:
+    """Whether the Fixed Frame the running rviz2 set (-f, its file) names a link of the robot."""
+    from ..live.doctor import robot_of
+    from ..validate.live import LiveGraph, rviz_fixed_frame
+
+    robot = robot_of(snapshot)[0]
+    frame = rviz_fixed_frame(LiveGraph(snapshot, robot))
+    return robot is not None and frame.from_learner and frame.frame in robot.link_names
 
 
 def _root_link(snapshot: Any) -> str | None:
@@ -163,9 +187,16 @@ def _surroundings(lang: str | None) -> list[dict[str, Any]]:
 
 
 def _document(snapshot: Any, results: list[Any], code: int, lang: str | None) -> dict[str, Any]:
-    from ..validate.live import LiveGraph, measured_rate
+    from ..live.doctor import robot_of
+    from ..validate.live import LiveGraph, measured_rate, rviz_fixed_frame, timeline
 
+    graph = LiveGraph(snapshot, robot_of(snapshot)[0])
+    frame = rviz_fixed_frame(graph)
     return {
+        "fixed_frame": {"frame": frame.frame, "source": frame.source, "path": frame.path, "pid": frame.pid,
+                        "words": say(frame.words(), lang)},
+        "transforms_seen": snapshot.transforms is not None,
+        "timeline": [{"at": round(at, 2), "event": kind, **what} for at, kind, what in timeline(graph)],
         "domain": snapshot.domain,
         "rmw": snapshot.rmw,
         "discovery_range": snapshot.discovery_range,

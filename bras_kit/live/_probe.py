@@ -46,6 +46,9 @@ DESCRIPTION = "/robot_description"
 JOINT_STATES = "/joint_states"
 MAX_JOINT_STATES = 4000  # a 1 kHz publisher watched for 3 s, and some
 MAX_TEXT = 4_000_000  # a description bigger than this is cut (its length is still said)
+MAX_TRANSFORMS = 20_000  # /tf of a 2-joint arm at 1 kHz for 4 s, and some
+MAX_EVENTS = 500
+WATCH_EVERY = 0.2  # seconds between two readings of who is on the graph (the timeline's grain)
 
 
 def _policy(value: object) -> str:
@@ -96,6 +99,15 @@ class Probe:
         self.joint_states: list[dict[str, object]] = []
         self.started = time.time()
         self._clients: dict[str, Any] = {}
+        # the timeline: who joined, left, began or ceased publishing the two topics, when
+        self.events: list[dict[str, object]] = []
+        self._seen_nodes: list[str] | None = None
+        self._seen_publishers: dict[str, set[str]] = {}
+        self._next_watch = 0.0
+        # /tf and /tf_static, where tf2_msgs imports (a sourced ROS; it has no wheel on PyPI):
+        # else None, and bras-kit says the transforms were inferred from its model
+        self.transforms: list[dict[str, object]] | None = None
+        self._subscribe_tf()
         # robot_state_publisher 3.3 latches it: reliable, transient_local, depth 1
         # (src/robot_state_publisher.cpp:133-135); this subscription gets what it holds...
         # (a depth of 10 here, not 1: two publishers' latched texts arrive together, and a reader
@@ -113,6 +125,58 @@ class Probe:
         # matches every publisher (src/robot_state_publisher.cpp:144-147)
         self.node.create_subscription(JointState, JOINT_STATES, cast(Any, self._on_joint_state),
                                       QoSProfile(depth=200, reliability=ReliabilityPolicy.BEST_EFFORT))
+
+    def _subscribe_tf(self) -> None:
+        try:
+            from tf2_msgs.msg import TFMessage
+        except ImportError:
+            return
+        self.transforms = []
+        # tf2_ros's listener QoS (tf2_ros/qos.hpp): /tf reliable volatile depth 100, /tf_static
+        # reliable transient_local depth 100 (every static publisher's latched message)
+        dynamic = QoSProfile(depth=100, reliability=ReliabilityPolicy.RELIABLE, durability=DurabilityPolicy.VOLATILE)
+        static = QoSProfile(depth=100, reliability=ReliabilityPolicy.RELIABLE,
+                            durability=DurabilityPolicy.TRANSIENT_LOCAL)
+        for topic, qos, is_static in (("/tf", dynamic, False), ("/tf_static", static, True)):
+            self.node.create_subscription(TFMessage, topic, lambda msg, s=is_static: self._on_tf(msg, s), qos)
+
+    def _on_tf(self, msg: object, static: bool) -> None:
+        now = time.time()
+        records = [tf_record(t, static, now) for t in msg.transforms]  # type: ignore[attr-defined]
+        with self.lock:
+            if self.transforms is not None:
+                self.transforms.extend(records)
+                del self.transforms[:-MAX_TRANSFORMS]
+
+    def watch_graph(self) -> None:
+        """Note who joined or left the graph, and who began or ceased publishing the description or
+        the joint states, since the last call (at most every WATCH_EVERY seconds)."""
+        now = time.monotonic()
+        if now < self._next_watch:
+            return
+        self._next_watch = now + WATCH_EVERY
+        stamp = time.time()
+        nodes = self.node_instances()
+        if self._seen_nodes is not None:
+            for name in sorted(set(nodes) | set(self._seen_nodes)):
+                before, after = self._seen_nodes.count(name), nodes.count(name)
+                for _ in range(after - before):
+                    self.events.append({"time": stamp, "kind": "joined", "node": name})
+                for _ in range(before - after):
+                    self.events.append({"time": stamp, "kind": "left", "node": name})
+        self._seen_nodes = nodes
+        for topic in (DESCRIPTION, JOINT_STATES):
+            # an endpoint whose node is not known yet (its names still on their way) is no one yet
+            publishers = {str(_endpoint(i)["node"]) for i in self.node.get_publishers_info_by_topic(topic)
+                          if i.node_name not in (NODE_NAME, "", "_NODE_NAME_UNKNOWN_")}
+            before_publishers = self._seen_publishers.get(topic)
+            if before_publishers is not None:
+                for name in sorted(publishers - before_publishers):
+                    self.events.append({"time": stamp, "kind": "publishes", "node": name, "topic": topic})
+                for name in sorted(before_publishers - publishers):
+                    self.events.append({"time": stamp, "kind": "unpublishes", "node": name, "topic": topic})
+            self._seen_publishers[topic] = publishers
+        del self.events[:-MAX_EVENTS]
 
     def _on_description(self, msg: object, info: object) -> None:
         text = msg.data  # type: ignore[attr-defined]
@@ -154,6 +218,7 @@ class Probe:
         end = time.monotonic() + seconds
         while time.monotonic() < end:
             self.executor.spin_once(timeout_sec=min(0.05, max(0.0, end - time.monotonic())))
+            self.watch_graph()
             if until is not None and until():  # type: ignore[operator]
                 return
 
@@ -260,6 +325,16 @@ class Probe:
             rclpy.try_shutdown()
 
 
+def tf_record(transform: object, static: bool, received: float) -> dict[str, object]:
+    """One geometry_msgs/TransformStamped as recorded: its frames, stamp, whether it holds a NaN."""
+    t = transform.transform  # type: ignore[attr-defined]
+    values = [t.translation.x, t.translation.y, t.translation.z, t.rotation.x, t.rotation.y, t.rotation.z,
+              t.rotation.w]
+    return {"parent": str(transform.header.frame_id), "child": str(transform.child_frame_id),  # type: ignore[attr-defined]
+            "stamp": _stamp(transform.header), "static": static, "received": received,  # type: ignore[attr-defined]
+            "nan": any(v != v for v in values)}
+
+
 def _info(info: object, key: str) -> int | None:
     """One field of rclpy's message info (a dict of nanoseconds and sequence numbers)."""
     try:
@@ -308,7 +383,7 @@ def snapshot(seconds: float, wait: float = DISCOVERY_FLOOR) -> int:
         with probe.lock:
             out = {"kind": "snapshot", **probe.environment(), "started": probe.started, "ended": time.time(),
                    **graph, "use_sim_time": sim, "descriptions": probe.descriptions,
-                   "joint_states": probe.joint_states}
+                   "joint_states": probe.joint_states, "events": probe.events, "transforms": probe.transforms}
         print(json.dumps(out), flush=True)
     finally:
         probe.close()
@@ -365,10 +440,15 @@ def stream(every: float) -> int:
             if time.monotonic() >= next_graph:
                 graph = probe.graph()
                 sim = probe.use_sim_time(list(graph["nodes"]), timeout=0.5)
-                emit({"kind": "graph", **graph, "use_sim_time": sim, "time": time.time()})
+                with probe.lock:
+                    events, probe.events = probe.events, []
+                emit({"kind": "graph", **graph, "use_sim_time": sim, "time": time.time(), "events": events,
+                      "tf_read": probe.transforms is not None})
                 next_graph = time.monotonic() + every
                 with probe.lock:
                     del probe.joint_states[:]
+                    if probe.transforms is not None:
+                        del probe.transforms[:]
     finally:
         probe.close()
     return 0

@@ -137,6 +137,14 @@ def look(seconds: float, python: str | None = None) -> dict[str, Any]:
     # someone is on this domain already: the look gives discovery time to find them
     occupied = domain_id(env) in domains_in_use()
     data = _run_probe(python, "snapshot", seconds, env, OCCUPIED_WAIT if occupied else None)
+    from .rviz_process import launched_rviz, running_rviz
+
+    # where RViz's Fixed Frame comes from: the rviz2 running here, else the one the workspace's
+    # launch file would start
+    data["rviz"] = list(running_rviz(env))
+    if not data["rviz"]:
+        launched = launched_rviz()
+        data["rviz"] = [launched] if launched is not None else []
     if not snapshot_from_json(data).nodes:
         data["elsewhere"] = [{"domain": e.domain, "range": e.discovery_range, "nodes": list(e.nodes)}
                              for e in look_elsewhere(python, snapshot_from_json(data))]

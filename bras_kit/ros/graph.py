@@ -14,6 +14,7 @@ from dataclasses import dataclass, field
 from typing import Any
 
 MAX_NAMES = 10_000
+MAX_TRANSFORMS = 20_000
 
 
 @dataclass(frozen=True)
@@ -67,6 +68,47 @@ class JointStateSample:
 
 
 @dataclass(frozen=True)
+class GraphEvent:
+    """A change the probe saw during the watch: a node ``joined`` or ``left``, a node began
+    (``publishes``) or ceased (``unpublishes``) publishing ``topic``; ``time`` in seconds since the epoch."""
+
+    time: float
+    kind: str
+    node: str
+    topic: str = ""
+
+
+EVENT_KINDS = ("joined", "left", "publishes", "unpublishes")
+
+
+@dataclass(frozen=True)
+class TfSample:
+    """One transform received on /tf or /tf_static (where the probe could read them)."""
+
+    parent: str
+    child: str
+    stamp: tuple[int, int]
+    static: bool
+    received: float
+    nan: bool = False
+
+
+@dataclass(frozen=True)
+class RvizProcess:
+    """An rviz2 process of this machine on this graph: its command line, the configuration file
+    it loaded (``config``; ``given``: named with -d, else ~/.rviz2/default.rviz), that file's text
+    (None: could not be read), and the frame given with -f."""
+
+    pid: int
+    argv: tuple[str, ...]
+    config: str
+    given: bool
+    text: str | None
+    fixed_frame_argument: str = ""
+    launch: str = ""  # not running: the launch file that would start it (pid 0)
+
+
+@dataclass(frozen=True)
 class Snapshot:
     """The graph of one domain as the probe saw it between ``started`` and ``ended``."""
 
@@ -84,6 +126,10 @@ class Snapshot:
     shared_names: Mapping[str, int] = field(default_factory=dict)  # a node name -> how many nodes bear it
     # filled in by the caller when this domain was empty: other places the nodes were seen
     elsewhere: tuple[Elsewhere, ...] = ()
+    events: tuple[GraphEvent, ...] = ()
+    transforms: tuple[TfSample, ...] | None = None  # None: /tf was not read (no tf2_msgs where the probe ran)
+    rviz: tuple[RvizProcess, ...] = ()  # filled in by the caller: the rviz2 processes of this machine
+    origin: float | None = None  # when the watch began, for the timeline (None: ``started``; view --ros: its start)
 
     @property
     def duration(self) -> float:
@@ -139,6 +185,34 @@ def _joint_state(value: Any) -> JointStateSample | None:
                             sent if math.isfinite(sent) and sent > 0 else None)
 
 
+def _event(value: Any) -> GraphEvent | None:
+    if not isinstance(value, dict) or value.get("kind") not in EVENT_KINDS:
+        return None
+    node = _text(value.get("node"), 300)
+    return GraphEvent(_number(value.get("time")), str(value["kind"]), node, _text(value.get("topic"), 300)) \
+        if node else None
+
+
+def _tf(value: Any) -> TfSample | None:
+    if not isinstance(value, dict):
+        return None
+    stamp = value.get("stamp")
+    if not (isinstance(stamp, list) and len(stamp) == 2 and all(isinstance(v, int) for v in stamp)):
+        return None
+    return TfSample(_text(value.get("parent"), 300), _text(value.get("child"), 300), (int(stamp[0]), int(stamp[1])),
+                    value.get("static") is True, _number(value.get("received")), value.get("nan") is True)
+
+
+def _rviz(value: Any) -> RvizProcess | None:
+    if not isinstance(value, dict) or not isinstance(value.get("pid"), int) or isinstance(value.get("pid"), bool):
+        return None
+    text = value.get("text")
+    return RvizProcess(int(value["pid"]), tuple(_text(a, 4000) for a in _list(value.get("argv"))[:64]),
+                       _text(value.get("config"), 4000), value.get("given") is True,
+                       text[:1 << 20] if isinstance(text, str) else None, _text(value.get("fixed_frame"), 300),
+                       _text(value.get("launch"), 4000))
+
+
 def snapshot_from_json(data: Any) -> Snapshot:
     """The probe's JSON object as a :class:`Snapshot` (what does not fit is left out)."""
     data = data if isinstance(data, dict) else {}
@@ -173,7 +247,14 @@ def snapshot_from_json(data: Any) -> Snapshot:
         for e in _list(data.get("elsewhere"))
         if isinstance(e, dict) and isinstance(e.get("domain"), int) and not isinstance(e.get("domain"), bool)
     )
+    raw_tf = data.get("transforms")
+    transforms = tuple(t for t in map(_tf, raw_tf[:MAX_TRANSFORMS]) if t is not None) \
+        if isinstance(raw_tf, list) else None
     return Snapshot(
+        events=tuple(e for e in map(_event, _list(data.get("events"))) if e is not None),
+        transforms=transforms,
+        rviz=tuple(r for r in map(_rviz, _list(data.get("rviz"))[:8]) if r is not None),
+        origin=_number(data.get("origin"), math.nan) if math.isfinite(_number(data.get("origin"), math.nan)) else None,
         domain=domain if isinstance(domain, int) and not isinstance(domain, bool) else 0,
         discovery_range=_text(data.get("range"), 40),
         rmw=_text(data.get("rmw"), 100),
@@ -194,6 +275,6 @@ def merge_stream(hello: Mapping[str, Any], graph: Mapping[str, Any] | None, desc
                  joint_states: Sequence[Mapping[str, Any]], started: float, ended: float) -> Snapshot:
     """A :class:`Snapshot` made from the probe's stream (``view --ros``): its last graph, the
     descriptions and the joint states of the last few seconds."""
-    data: dict[str, Any] = {**hello, **(graph or {}), "descriptions": list(descriptions),
+    data: dict[str, Any] = {**(graph or {}), **hello, "descriptions": list(descriptions),
                             "joint_states": list(joint_states), "started": started, "ended": ended}
     return snapshot_from_json(data)

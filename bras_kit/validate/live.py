@@ -16,7 +16,7 @@ from collections.abc import Callable, Iterable, Iterator
 from dataclasses import dataclass
 from typing import TYPE_CHECKING, Any
 
-from ..findings.registry import ERROR, WARNING, Hit, hit, rule
+from ..findings.registry import ERROR, INFO, WARNING, Hit, hit, rule
 from ..model.robot import Robot
 from ..ros.topics import CLOCK, DESCRIPTION, JOINT_STATES
 
@@ -28,6 +28,7 @@ SLOW_RATE = 15.0  # below this the arm visibly steps (a fifth under the tutorial
 SLIDER_NODE = "joint_state_publisher"  # the slider window's node name (10 Hz by default: its 'rate')
 FAR_STAMP = 5.0  # seconds between a stamp and this machine's clock before it is "far"
 MAX_SAMPLES_NAMED = 8
+MOVING = ("revolute", "continuous", "prismatic")  # the joints rsp has a moving segment for (kdl_parser)
 
 
 @dataclass(frozen=True)
@@ -272,9 +273,12 @@ def joint_states_unknown_joint(graph: LiveGraph) -> Iterator[Hit]:
     if graph.robot is None:
         return
     movable = [j.name for j in graph.robot.movable_joints() if j.name]
-    others = {j.name for j in graph.robot.joints if j.name} - set(movable)
+    # a mimic joint sent by name is used as sent: rsp's std::map::insert keeps the message's value
+    # over the one the mimic would compute (robot_state_publisher.cpp:343-354)
+    mimics = {j.name for j in graph.robot.joints if j.name and j.mimic is not None and j.type in MOVING}
+    others = {j.name for j in graph.robot.joints if j.name} - set(movable) - mimics
     for name in _names_seen(graph):
-        if name in movable:
+        if name in movable or name in mimics:
             continue
         if name in others:
             yield _at(JOINT_STATES, "fixed", joint=name)
@@ -352,10 +356,36 @@ def qos_incompatible(graph: LiveGraph) -> Iterator[Hit]:
         if pair.level == "error":
             yield _at(pair.topic, _qos_variant(pair), publisher=pair.publisher.node, subscriber=pair.subscriber.node,
                       offered=f"{pair.publisher.reliability}, {pair.publisher.durability}",
-                      requested=f"{pair.subscriber.reliability}, {pair.subscriber.durability}", reason=pair.reason)
+                      requested=f"{pair.subscriber.reliability}, {pair.subscriber.durability}",
+                      reason=pair.reason or "-", policies=", ".join(rclpy_policies(pair.reason)) or "-")
+
+
+# rmw's words in rclpy.qos.qos_check_compatible's reason (rmw/src/qos_profiles.c,
+# rmw_qos_profile_check_compatible), each "ERROR: ...;" naming one policy
+RCLPY_POLICIES = (("best effort publisher and reliable subscription", "reliability"),
+                  ("volatile publisher and transient local subscription", "durability"),
+                  ("deadline", "deadline"), ("lease duration", "liveliness_lease_duration"),
+                  ("liveliness", "liveliness"))
+
+
+def rclpy_policies(reason: str) -> list[str]:
+    """The policies rclpy's reason names, in its order ("reliability", "durability", ...)."""
+    found = []
+    for clause in (c.strip() for c in reason.split(";")):
+        lowered = clause.lower()
+        if not lowered.startswith("error"):
+            continue
+        policy = next((name for words, name in RCLPY_POLICIES if words in lowered), None)
+        if policy is not None and policy not in found:
+            found.append(policy)
+    return found
 
 
 def _qos_variant(pair: Any) -> str:
+    if pair.reason:  # rclpy judged the pair: its own words name the policy
+        policies = rclpy_policies(pair.reason)
+        return policies[0] if policies in (["durability"], ["reliability"]) else ""
+    # a look recorded without rclpy's reason: the two policies the graph shows
     if pair.publisher.durability == "volatile" and pair.subscriber.durability == "transient_local":
         return "durability"
     if pair.publisher.reliability == "best_effort" and pair.subscriber.reliability == "reliable":
@@ -379,9 +409,28 @@ STEP_RATE = 5.0  # moves a second under which the arm RViz draws visibly jumps
 STOP_GAP = 1.0  # seconds without a message, at the end of the watch, before the source "stopped"
 
 
+def rviz_fixed_frame(graph: LiveGraph) -> Any:
+    """RViz's Fixed Frame as the running rviz2 sets it (:func:`bras_kit.ros.rviz.running.fixed_frame`)."""
+    from ..ros.rviz.running import fixed_frame
+
+    return fixed_frame(graph.snapshot.rviz)
+
+
+def judged_frame(graph: LiveGraph) -> str:
+    """The frame the links are placed in: RViz's Fixed Frame when it is a link of the robot, else the
+    root link (the frame step 6 sets; a Fixed Frame that is no frame of the robot is BK846's)."""
+    frame = rviz_fixed_frame(graph).frame
+    if graph.robot is not None and frame in graph.robot.link_names:
+        return str(frame)
+    return _root_link(graph.robot) or ""
+
+
 def rviz_replay(graph: LiveGraph) -> Any:
     """The recorded joint states through robot_state_publisher and RViz (:mod:`bras_kit.ros.rviz.replay`),
-    with the root link as Fixed Frame (the tutorial's step 6 sets it to base). None without a robot."""
+    links placed in :func:`judged_frame`. None without a robot.
+
+    Where the probe read /tf and /tf_static, RViz's buffer is filled from what was seen; else from
+    what the model of robot_state_publisher publishes (the report says which)."""
     if graph.robot is None or not graph.snapshot.joint_states:
         return None
     from ..core.errors import BrasKitError
@@ -390,9 +439,20 @@ def rviz_replay(graph: LiveGraph) -> Any:
     samples = [Sample(s.received, s.stamp[0] * 1_000_000_000 + s.stamp[1], s.name, s.position)
                for s in graph.snapshot.joint_states]
     try:
-        return replay(graph.robot, samples, _root_link(graph.robot) or "", start=graph.snapshot.started)
+        return replay(graph.robot, samples, judged_frame(graph), start=graph.snapshot.started,
+                      seen=_seen_transforms(graph))
     except BrasKitError:
         return None
+
+
+def _seen_transforms(graph: LiveGraph) -> Any:
+    """The transforms received on /tf and /tf_static as the model's :class:`Tf` (None: not read)."""
+    if graph.snapshot.transforms is None:
+        return None
+    from ..ros.rviz.frames import Tf
+
+    return [Tf(t.parent, t.child, t.stamp[0] * 1_000_000_000 + t.stamp[1], t.static, nan=t.nan)
+            for t in graph.snapshot.transforms]
 
 
 @live_rule("BK840", "rviz-arm-still", ERROR)
@@ -498,3 +558,55 @@ def description_two_robots(graph: LiveGraph) -> Iterator[Hit]:
         differ = sorted((first[0] ^ last[0]) | (first[1] ^ last[1]))
     yield _at(DESCRIPTION, "names" if differ else "", nodes=publishers, n=len(texts),
               names=", ".join(differ[:MAX_SAMPLES_NAMED]))
+
+
+@live_rule("BK846", "rviz-fixed-frame-not-in-robot", WARNING)
+def rviz_fixed_frame_not_in_robot(graph: LiveGraph) -> Iterator[Hit]:
+    """RViz's Fixed Frame, as the running rviz2 set it, names no link of the robot: RViz's Global
+    Status says "Frame [map] does not exist" and no link is drawn (visualization_manager.cpp:431-451)."""
+    seen = rviz_fixed_frame(graph)
+    if graph.robot is None or seen.pid is None or seen.frame in graph.robot.link_names:
+        return
+    root = _root_link(graph.robot) or ""
+    if seen.launch:  # not running: only what the learner wrote in the launch or its .rviz is named
+        if seen.source in ("argument", "file"):
+            yield _at(seen.launch, "launch", frame=seen.frame, root=root, path=seen.path, launch=seen.launch)
+        return
+    yield _at(f"rviz2 ({seen.pid})", seen.source, frame=seen.frame, root=root,
+              path=seen.path or "~/.rviz2/default.rviz", pid=seen.pid)
+
+
+JOIN_GRACE = 2.5  # seconds over which nodes started together are discovered (_probe.py's measure)
+
+
+def timeline(graph: LiveGraph) -> list[tuple[float, str, dict[str, object]]]:
+    """Who joined, left, began or ceased publishing, replaced the description, fell silent during the
+    watch: (seconds from its start, kind, what), in order. Nodes found while discovery was still
+    finding the graph's first ones were there from the start, not "joined"."""
+    snap = graph.snapshot
+    origin = snap.origin if snap.origin is not None else snap.started
+    events = sorted(snap.events, key=lambda e: e.time)
+    first = min((e.time for e in events if e.kind in ("joined", "publishes")), default=origin)
+    out: list[tuple[float, str, dict[str, object]]] = []
+    for event in events:
+        if event.kind in ("joined", "publishes") and event.time <= first + JOIN_GRACE:
+            continue
+        out.append((event.time - origin, event.kind, {"node": event.node, "topic": event.topic}))
+    texts: list[str] = []
+    for description in snap.descriptions:
+        if description.text in texts:
+            continue
+        texts.append(description.text)
+        if len(texts) > 1 and description.received > snap.descriptions[0].received + JOIN_GRACE:
+            out.append((description.received - origin, "replaced", {"n": len(texts)}))
+    samples = snap.joint_states
+    if samples and snap.ended - samples[-1].received > STOP_GAP:
+        still = _nodes(snap.publishers(JOINT_STATES))
+        out.append((samples[-1].received - origin, "silent" if still else "silent-left", {"nodes": still}))
+    return sorted(out, key=lambda item: item[0])
+
+
+@live_rule("BK847", "graph-timeline", INFO)
+def graph_timeline(graph: LiveGraph) -> Iterator[Hit]:
+    for at, kind, what in timeline(graph):
+        yield _at("timeline", kind, at=round(max(0.0, at), 1), **what)

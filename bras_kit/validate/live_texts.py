@@ -311,10 +311,11 @@ describe(
     title="a publisher and a subscription cannot match (QoS)",
     message={
         "durability": "{publisher} publishes volatile and {subscriber} reads transient_local: they never "
-                      "connect, {subscriber} receives nothing",
+                      "connect, {subscriber} receives nothing (rclpy: {reason})",
         "reliability": "{publisher} publishes best effort and {subscriber} reads reliable: they never connect, "
-                       "{subscriber} receives nothing",
-        "": "{publisher} ({offered}) and {subscriber} ({requested}) cannot connect: {reason}",
+                       "{subscriber} receives nothing (rclpy: {reason})",
+        "": "{publisher} ({offered}) and {subscriber} ({requested}) cannot connect, policies {policies} "
+            "(rclpy: {reason})",
     },
     hint={
         "durability": "publish transient_local (as robot_state_publisher does), or read volatile",
@@ -325,7 +326,8 @@ describe(
 A subscription receives only from publishers whose QoS offers at least what it asks: a reader
 asking *transient local* does not match a *volatile* publisher, a *reliable* reader does not
 match a *best effort* publisher. Nothing reports it but a warning in the reader's log; the
-check is rmw's own (`rclpy.qos.qos_check_compatible`, as `ros2 doctor` uses).""",
+check is rmw's own (`rclpy.qos.qos_check_compatible`, as `ros2 doctor` uses), run where the
+probe runs, and the finding names the policies in rclpy's own words.""",
 )
 describe(
     "BK830",
@@ -444,4 +446,54 @@ Each robot_state_publisher publishes its URDF on `/robot_description`, kept for 
 (transient local). With two of them running, from an old launch and a new one, a reader gets
 both and keeps the one that reached it last: RViz may show the old arm, and the joint names of
 the new one look unknown. Which one wins changes from run to run.""",
+)
+describe(
+    "BK846",
+    title="RViz's Fixed Frame is no frame of the robot",
+    message={
+        "argument": "rviz2 (process {pid}) was started with -f {frame}, which is no link of the robot: RViz's Global "
+                    "Status says \"Frame [{frame}] does not exist\" and it draws no link",
+        "file": "RViz's Fixed Frame is {frame} ({path}, the -d file of rviz2, process {pid}), which is no link of "
+                "the robot: RViz's Global Status says \"Frame [{frame}] does not exist\" and it draws no link",
+        "home": "RViz's Fixed Frame is {frame} ({path}, which rviz2 loads without -d, process {pid}), which is no "
+                "link of the robot: RViz draws no link",
+        "launch": "the rviz2 of {launch} would open with Fixed Frame {frame} (from {path}), which is no link of the "
+                  "robot: RViz's Global Status would say \"Frame [{frame}] does not exist\" and it would draw no link",
+        "": "rviz2 (process {pid}) opens with RViz's default Fixed Frame, {frame}, which is no link of the robot: "
+            "until it is set in RViz's window, RViz draws no link",
+    },
+    hint={
+        "argument": "start rviz2 with -f {root}, or without -f",
+        "file": "write Fixed Frame: {root} under Global Options in {path} (or set it in RViz and File > Save Config)",
+        "home": "set Fixed Frame to {root} in RViz (Global Options), then File > Save Config",
+        "launch": "write Fixed Frame: {root} under Global Options in the .rviz of the launch (or drop its -f), then "
+                  "colcon build",
+        "": "set Fixed Frame to {root} in RViz (Global Options), then File > Save Config to keep it",
+    },
+    explanation="""\
+RViz draws each link where tf2 places it in the Fixed Frame. rviz2 takes that frame from `-f`,
+else from the `-d` file (Global Options > Fixed Frame), else from `~/.rviz2/default.rviz`, else
+from its own default, `map` (ros2/rviz jazzy: visualizer_app.cpp:95-103 and 165-169,
+visualization_frame.cpp:345-349, default.rviz:54). bras-kit reads the command line of the
+rviz2 running on this machine with this ROS_DOMAIN_ID; a frame chosen in RViz's window after it
+started is not seen from outside.""",
+)
+describe(
+    "BK847",
+    title="what changed on the graph during the watch",
+    message={
+        "joined": "{at} s: {node} joined the graph",
+        "left": "{at} s: {node} left the graph",
+        "publishes": "{at} s: {node} began publishing {topic}",
+        "unpublishes": "{at} s: {node} stopped publishing {topic}",
+        "replaced": "{at} s: a new description arrived on /robot_description (text {n}): RViz shows it from then on",
+        "silent": "{at} s: the last /joint_states message; still published by {nodes}, who send nothing",
+        "silent-left": "{at} s: the last /joint_states message; nothing publishes it any more",
+    },
+    hint="",
+    explanation="""\
+The timeline of the watch, in seconds from its start: the nodes that joined or left, the
+publishers of /robot_description and /joint_states that came or went, a description replaced,
+and the last joint state when they stopped coming. Nodes found while discovery was still
+finding the first ones (2.5 s) were there from the start.""",
 )

@@ -33,6 +33,7 @@ from ..ros.graph import merge_stream
 
 WINDOW = 3.0  # seconds of joint states the live findings judge (as doctor --ros watches 3 s)
 MAX_SAMPLES = 4000
+MAX_TEXTS = 4  # descriptions kept (each up to a few MB)
 
 
 class RosFeed:
@@ -45,6 +46,9 @@ class RosFeed:
         self.hello: dict[str, Any] = {}
         self.graph: dict[str, Any] | None = None
         self.description: dict[str, Any] | None = None
+        # every different text received, the last one last: two robot_state_publishers with two robots
+        # are named on the page as doctor --ros names them (BK845)
+        self.descriptions: list[dict[str, Any]] = []
         self.samples: collections.deque[dict[str, Any]] = collections.deque(maxlen=MAX_SAMPLES)
         self.started = time.time()
         self.robot: Robot | None = None
@@ -54,6 +58,11 @@ class RosFeed:
         # the same search as doctor --ros's (live.watch.look), so both commands give one verdict
         self.elsewhere: list[dict[str, Any]] = []
         self._searching = False
+        self.events: collections.deque[dict[str, Any]] = collections.deque(maxlen=500)  # the timeline's
+        self.rviz: list[dict[str, Any]] = []  # the rviz2 processes of this graph (its Fixed Frame)
+        from ..live.rviz_process import running_rviz
+
+        self.find_rviz = lambda: list(running_rviz())  # read with each graph: an rviz2 started since
         self._rsp: Any = None  # robot_state_publisher as modelled, for self._rsp_robot
         self._rsp_robot: Robot | None = None
         self._robot_ready = threading.Event()
@@ -97,8 +106,12 @@ class RosFeed:
         elif kind == "description":
             self._description(record)
         elif kind == "graph":
+            rviz = self.find_rviz()
             with self._lock:
                 self.graph = record
+                events = record.get("events")
+                self.events.extend(e for e in (events if isinstance(events, list) else []) if isinstance(e, dict))
+                self.rviz = rviz
                 empty = not record.get("nodes")
                 if not empty:
                     self.elsewhere = []
@@ -152,6 +165,8 @@ class RosFeed:
 
         with self._lock:
             self.description = record
+            text = record.get("text")
+            self.descriptions = [d for d in self.descriptions if d.get("text") != text][-(MAX_TEXTS - 1):] + [record]
         robot, _ = robot_of(self.snapshot())
         if robot is not None and robot.links:
             self.robot = robot
@@ -197,8 +212,9 @@ class RosFeed:
             recent = [s for s in self.samples if isinstance(s.get("received"), (int, float))
                       and s["received"] >= now - WINDOW]
             graph = self.graph
-            descriptions = [self.description] if self.description else []
-            hello = {**self.hello, "elsewhere": list(self.elsewhere)}
+            descriptions = list(self.descriptions)
+            hello = {**self.hello, "elsewhere": list(self.elsewhere), "events": list(self.events),
+                     "rviz": list(self.rviz), "origin": self.started}
         started = max(self.started, now - WINDOW)
         return merge_stream(hello, graph, descriptions, recent, started, now)
 

@@ -272,7 +272,9 @@ def test_a_node_that_shows_after_the_first_seconds_is_waited_for_not_called_abse
     (code, out), = run_scenario(graphs, "late-node")
     document = _json(out)
     assert "BK800" not in _codes(document) and document["nodes"] == ["/animation_bras"]
-    assert document["seconds"] >= 6 and document["joint_states_received"] > 0
+    # it waited past the 3.5 s floor for the node, then watched it publish (20 Hz: 30 messages are 1.5 s);
+    # the node shows 6 s after its process starts, and the doctor starts 1-3 s after that process
+    assert document["seconds"] > 4.5 and document["joint_states_received"] >= 30
     assert "BK801" in _codes(document, "error")  # what is really missing: no robot_state_publisher
 
 

@@ -3,6 +3,11 @@ symptom did not (issue 56): each scenario in a loopback-only namespace of its ow
 built with the nodes of tests/data/live/, the doctor's verdict judged through the model of
 robot_state_publisher 3.3.3 and tf2 (bras_kit/ros/rviz/).
 
+The graph looks as Jazzy's does: the stand-ins of robot_state_publisher 3.3.3
+(tests/data/live/state_publisher.py) and of rviz2 (tests/data/live/rviz2, started with -d as a
+launch file starts it, its command line read by the doctor for the Fixed Frame) follow their
+sources' topics, QoS and parameters.
+
 The oracle of each scenario is the flaw put into the graph (a stamp taken once, a node that
 raises after a second...): the finding must name it, and the healthy tutorial graph of
 tests/doctor/test_live_doctor.py must stay without one.
@@ -11,14 +16,25 @@ tests/doctor/test_live_doctor.py must stay without one.
 from __future__ import annotations
 
 import concurrent.futures
+import tempfile
 
 import pytest
-from live_graphs import ANIMATION, DATA, STATE_PUBLISHER, URDF, _codes, _finding, _json, _run
+from live_graphs import (
+    ANIMATION,
+    DATA,
+    STATE_PUBLISHER,
+    URDF,
+    _codes,
+    _finding,
+    _json,
+    run_with_look,
+)
 
 pytestmark = pytest.mark.slow
 
 JSON = ["--format", "json"]
 WRIST_URDF = str(DATA / "bras_poignet.urdf")
+RVIZ = ["rviz2", "-d", "bras.rviz"]  # relative, as rviz2's working folder reads it (the nodes run in DATA)
 SCENARIOS = {
     "stamp-once": [STATE_PUBLISHER, ANIMATION + ["--stamp", "once"]],
     "whole-seconds": [STATE_PUBLISHER, ANIMATION + ["--stamp", "seconds"]],
@@ -35,19 +51,37 @@ SCENARIOS = {
                    ANIMATION + ["--name", "animation_poignet", "--names", "poignet", "--positions", "1"]],
     "degrees": [STATE_PUBLISHER, ANIMATION + ["--degrees"]],
 }
+SCENARIOS = {name: nodes + [RVIZ] for name, nodes in SCENARIOS.items()}  # RViz beside each, as the launch starts it
+LOGS = f"ROS_LOG_DIR={tempfile.gettempdir()}/bras-kit-test-ros-logs"  # rcl would log under HOME/.ros
+HOME = str(DATA / "home")  # its .rviz2/default.rviz sets Fixed Frame base (what Save Config writes)
+SCENARIOS.update({
+    "rviz-map": [STATE_PUBLISHER, ANIMATION, ["rviz2", "-d", "bras_map.rviz"]],
+    "rviz-f": [STATE_PUBLISHER, ANIMATION, RVIZ + ["-f", "/map"]],
+    "rviz-home": [STATE_PUBLISHER, ANIMATION, [LOGS, f"HOME={HOME}", "rviz2"]],
+    "rviz-default": [STATE_PUBLISHER, ANIMATION, [LOGS, f"HOME={DATA / 'nobody'}", "rviz2"]],
+    "volatile-qos": [STATE_PUBLISHER + ["--volatile"], ANIMATION, RVIZ],
+    "joins-late": [STATE_PUBLISHER, RVIZ, ANIMATION + ["--late", "7"]],
+    "replaced": [STATE_PUBLISHER + ["--replace-after", "3.5", "--replace-with", WRIST_URDF], ANIMATION, RVIZ],
+})
 
 # the node that dies raises 1.5 s after the doctor's probe joins: a 7 s watch sees it publish, then
 # fall silent;
 # whole seconds step once a second: 6 s show several steps even when discovery is slow
-WATCH = {"dies": ["--duration", "7"], "whole-seconds": ["--duration", "6"]}
+WATCH = {"dies": ["--duration", "7"], "whole-seconds": ["--duration", "6"], "joins-late": ["--duration", "11"],
+         "replaced": ["--duration", "8"]}
 
 
 @pytest.fixture(scope="module")
 def looks():
     with concurrent.futures.ThreadPoolExecutor(3) as pool:
-        futures = {name: pool.submit(_run, nodes, [JSON + WATCH.get(name, []), ["--lang", "fr"]])
+        futures = {name: pool.submit(run_with_look, nodes, [JSON + WATCH.get(name, []), ["--lang", "fr"]])
                    for name, nodes in SCENARIOS.items()}
-        yield {name: future.result()[0] for name, future in futures.items()}
+        results = {name: future.result() for name, future in futures.items()}
+        SAVED.update({name: result[2] for name, result in results.items()})
+        yield {name: result[0] for name, result in results.items()}
+
+
+SAVED: dict[str, dict | None] = {}  # each scenario's look, as the first doctor saved it
 
 
 def test_a_stamp_taken_once_keeps_the_arm_still(looks):
@@ -132,3 +166,93 @@ def test_degrees_are_named_as_degrees(looks):
     document = _json(out)
     assert "BK818" in _codes(document, "warning")
     assert "a number of degrees" in _finding(document, "BK818")["message"]
+
+
+def _timeline(document: dict) -> list[tuple[str, str]]:
+    return [(event["event"], event.get("node", "")) for event in document["timeline"]]
+
+
+def test_the_fixed_frame_is_read_from_the_d_file_of_the_running_rviz2(looks):
+    (code, out), (_, fr) = looks["stamp-once"]
+    frame = _json(out)["fixed_frame"]
+    assert frame["frame"] == "base" and frame["source"] == "file"
+    assert frame["path"] == str(DATA / "bras.rviz")
+    assert "bras.rviz" in frame["words"] and "bras.rviz" in fr
+
+
+def test_a_d_file_whose_fixed_frame_is_map_is_named(looks):
+    (code, out), (_, fr) = looks["rviz-map"]
+    document = _json(out)
+    assert document["fixed_frame"]["frame"] == "map" and _codes(document, "warning") == ["BK846"]
+    message = _finding(document, "BK846")["message"]
+    assert "Frame [map] does not exist" in message and "bras_map.rviz" in message
+    assert "Fixed Frame: base" in _finding(document, "BK846")["hint"] and "BK846" in fr
+
+
+def test_rviz2_f_wins_over_its_file(looks):
+    (code, out), _ = looks["rviz-f"]
+    document = _json(out)
+    assert document["fixed_frame"]["source"] == "argument" and document["fixed_frame"]["frame"] == "map"
+    assert "-f map" in _finding(document, "BK846")["message"]
+
+
+def test_without_d_rviz2_loads_the_users_saved_default(looks):
+    (code, out), _ = looks["rviz-home"]
+    document = _json(out)
+    assert document["fixed_frame"] == {**document["fixed_frame"], "frame": "base", "source": "home",
+                                       "path": f"{HOME}/.rviz2/default.rviz"}
+    assert "BK846" not in _codes(document) and code == 0
+
+
+def test_without_d_or_saved_default_rviz2_opens_on_map(looks):
+    (code, out), _ = looks["rviz-default"]
+    document = _json(out)
+    assert document["fixed_frame"]["source"] == "default" and document["fixed_frame"]["frame"] == "map"
+    assert _codes(document, "warning") == ["BK846"] and code == 0
+    assert "window" in _finding(document, "BK846")["message"]
+
+
+def test_a_qos_pair_is_named_in_rclpy_s_words(looks):
+    (code, out), _ = looks["volatile-qos"]
+    document = _json(out)
+    pair = _finding(document, "BK820")["message"]
+    assert "/rviz" in pair and "rclpy: ERROR: Volatile publisher and transient local subscription;" in pair
+
+
+def test_a_node_that_dies_is_on_the_timeline(looks):
+    (code, out), _ = looks["dies"]
+    document = _json(out)
+    events = _timeline(document)
+    assert ("left", "/animation_bras") in events and ("silent-left", "") in events
+    left = next(e["at"] for e in document["timeline"] if e["event"] == "left")
+    silent = next(e["at"] for e in document["timeline"] if e["event"] == "silent-left")
+    assert 1.0 <= silent <= left <= 7.5  # it fell silent, then the graph lost it
+
+
+def test_a_node_that_joins_late_is_on_the_timeline(looks):
+    (code, out), _ = looks["joins-late"]
+    document = _json(out)
+    assert ("joined", "/animation_bras") in _timeline(document)
+    assert ("publishes", "/animation_bras") in _timeline(document)
+    joined = next(e["at"] for e in document["timeline"] if e["event"] == "joined")
+    assert joined >= 3.0 and code == 0  # well after discovery found the others
+
+
+def test_a_description_replaced_during_the_watch_is_on_the_timeline_not_two_robots(looks):
+    (code, out), _ = looks["replaced"]
+    document = _json(out)
+    assert "replaced" in [event for event, _ in _timeline(document)]
+    assert "BK845" not in _codes(document)
+
+
+@pytest.mark.parametrize("name", sorted(n for n in SCENARIOS if n not in WATCH))
+def test_view_ros_gives_the_doctor_s_verdict_on_the_same_graph(looks, name):
+    # the look doctor --ros saved, streamed to view --ros's feed as the probe streams it: one verdict
+    from live_verdicts import doctor_findings, shifted_to_now, view_findings
+
+    saved = SAVED[name]
+    assert saved is not None
+    data = shifted_to_now(saved)
+    doctor = sorted(f.code for f in doctor_findings(data) if f.code != "BK847")
+    view = sorted(f.code for f in view_findings(data) if f.code != "BK847")
+    assert view == doctor and doctor == sorted(c for c in _codes(_json(looks[name][0][1])) if c != "BK847")

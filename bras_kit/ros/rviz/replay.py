@@ -49,6 +49,7 @@ class Replay:
     first_move: float | None = None  # when (received) the first and last transforms went out
     last_move: float | None = None
     last_received: float | None = None
+    inferred: bool = True  # the links were placed from the model's transforms, /tf itself not seen
 
     def reason_of(self, kind: str) -> int:
         return sum(count for k, _, count in self.reasons if k == kind)
@@ -68,9 +69,11 @@ def _kind(message: JointStateIn, reason: Message | None, published: tuple[Tf, ..
 
 
 def replay(robot: Robot, samples: Iterable[Sample], fixed_frame: str, start: float | None = None,
-           publish_frequency: float = 20.0) -> Replay:
+           publish_frequency: float = 20.0, seen: Iterable[Tf] | None = None) -> Replay:
     """The messages through robot_state_publisher, then RViz with ``fixed_frame`` (robot_state_publisher
-    started at ``start``, seconds: its /tf_static is stamped then)."""
+    started at ``start``, seconds: its /tf_static is stamped then). ``seen``: the transforms received
+    on /tf and /tf_static, in order, when they could be read: RViz's buffer is then filled from them,
+    not from the model's."""
     samples = list(samples)
     begin = start if start is not None else (samples[0].received if samples else 0.0)
     rsp = RobotStatePublisher(robot, publish_frequency, start_ns=int(begin * 1e9))
@@ -106,5 +109,7 @@ def replay(robot: Robot, samples: Iterable[Sample], fixed_frame: str, start: flo
             last_move = sample.received
     ordered = tuple((kind, first_words[(kind, text)], count)
                     for (kind, text), count in reasons.most_common())
-    return Replay(len(samples), published, moves, ordered, refused, placed_links(robot, fixed_frame, sent),
-                  rsp.positions(), first_move, last_move, samples[-1].received if samples else None)
+    seen = list(seen) if seen is not None else None
+    placed = placed_links(robot, fixed_frame, sent if seen is None else seen)
+    return Replay(len(samples), published, moves, ordered, refused, placed, rsp.positions(), first_move, last_move,
+                  samples[-1].received if samples else None, inferred=seen is None)
