@@ -189,6 +189,6 @@ def generate(t0: float | None = None) -> Iterator[State]:
         t0, at, names=("shoulder", "elbow"))), Verdict(("BK816", "BK816", "BK817", "BK817")))
 
 
-# kept aside while the rules were fixed, run last (tests/test_live_states_heldout.py)
+# kept aside while the rules were fixed, run last (tests/doctor/test_live_states_heldout.py)
 HELD_OUT = ("near-js-joint_states_gui", "type-JointTrajectory", "stamp-offset+45", "mimic-both-sent", "dies-0.8",
             "not-finite-epaule-inf")
