@@ -204,6 +204,8 @@ def _inspect(root: str, lang: str) -> dict[str, Any]:
     from ..validate.package import find_packages, validate_package
 
     paths = collect_files([root]) if os.path.isdir(root) else [root]
+    # every file of a submission is read beneath it (a folder, or the one file's own folder)
+    within = (os.path.abspath(root) if os.path.isdir(root) else os.path.dirname(os.path.abspath(root)),)
     pairs = generated_pairs(paths, [root]) if os.path.isdir(root) else {}
     packages = find_packages([root]) if os.path.isdir(root) else []
     findings: list[dict[str, Any]] = []
@@ -231,12 +233,12 @@ def _inspect(root: str, lang: str) -> dict[str, Any]:
             continue
         checked.append(path)
     for path in checked:
-        findings += [_as_dict(f, _relative(path, root), lang) for f in validate_path(path)]
+        findings += [_as_dict(f, _relative(path, root), lang) for f in validate_path(path, roots=within)]
     main = _main_file(checked, root)
     robot = None
     if main is not None and not any(f["code"] in UNREADABLE and f["file"] == _relative(main, root) for f in findings):
         try:
-            robot = load(main)
+            robot = load(main, roots=within)  # its includes and meshes too: beneath the submission
         except BrasKitError:
             robot = None
     if not paths:

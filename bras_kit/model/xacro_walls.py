@@ -49,10 +49,13 @@ def _refused(expression: str, reason: Message | str) -> Message:
 class _Hooks:
     """The replacements put into xacro for one expansion, and what they share."""
 
-    def __init__(self, xacro: Any, subst: Any, path: str, roots: list[str]) -> None:
+    def __init__(self, xacro: Any, subst: Any, path: str, roots: list[str],
+                 read_roots: tuple[str, ...] | None = None) -> None:
         from .xacro_eval import BUILTINS, MATH, Budget
 
         self.xacro, self.subst, self.roots = xacro, subst, roots
+        # the folders files are read beneath (None: any regular file); each package $(find) names joins them
+        self.read_roots = read_roots
         self.budget = Budget()
         self.elements = 0
         self.files: list[str] = []  # every file read, for finding where an expression is written
@@ -109,7 +112,7 @@ class _Hooks:
             full = os.path.normpath(os.path.join(xacro.root_dir, filename))
             if not os.path.exists(full):
                 return self.original[0](inp, filename)  # xacro's own "No such file" error
-            data = _read_limited(full)
+            data = _read_limited(full, self.read_roots)
             check_xml_safe(data, full)
             try:
                 text = data.decode("utf-8")
@@ -130,7 +133,7 @@ class _Hooks:
                              hint=M("move the file next to your xacro file, or pass its package with --package-path"))
         from ..trust import yaml_gate
 
-        text = _read_limited(full)
+        text = _read_limited(full, self.read_roots)
         try:
             yaml_gate.check(text)  # xacro's own loader then reads it: bounded first (aliases, depth, size)
         except yaml_gate.YamlRefused as exc:
@@ -144,7 +147,10 @@ class _Hooks:
         return self.xacro.load_yaml
 
     def resolve(self, name: str) -> str:
-        return find_package(name, self.roots)
+        folder = find_package(name, self.roots)
+        if self.read_roots is not None and folder not in self.read_roots:
+            self.read_roots += (folder,)  # the package the file names: its files are read beneath it
+        return folder
 
     # expressions
     def _evaluate(self, expression: str, lookup: Callable[[str], Any],

@@ -403,14 +403,16 @@ class Package:
         if source is None:
             return None
         full = os.path.join(self.root, source)
-        size = os.path.getsize(full) if os.path.isfile(full) else 0
+        size = _size_beneath(full, self.root)
         if size > MAX_DESCRIPTION_CHARS:  # as robot_state_publisher's: the rules that need the robot are skipped
             self._problem(source, None, M("it holds {size} MiB, more than the {most} MiB bras-kit reads in a robot "
                                           "description", size=round(size / (1 << 20), 1),
                                           most=MAX_DESCRIPTION_CHARS >> 20))
             return None
         try:
-            return load(full, package_paths=[os.path.dirname(self.root)])
+            # read beneath the package (and the packages $(find) names): never through a link out,
+            # and a folder swapped for a link while it loads reads nothing outside
+            return load(full, package_paths=[os.path.dirname(self.root)], roots=(self.root,))
         except BrasKitError:
             return None
 
@@ -444,6 +446,21 @@ class Package:
                 else:
                     self._problem(rel, None, "not an RViz configuration (no 'Visualization Manager')")
         return cache[rel]
+
+
+def _size_beneath(path: str, root: str) -> int:
+    """The size of the regular file ``path`` reached beneath ``root`` by the one reader (0 when it
+    is none: the loader then says why)."""
+    from ..trust.beneath import Outside, open_beneath
+
+    try:
+        fd = open_beneath(root, path)
+    except Outside:
+        return 0
+    try:
+        return os.fstat(fd).st_size
+    finally:
+        os.close(fd)
 
 
 # ---------------------------------------------------------------- setup.py details
