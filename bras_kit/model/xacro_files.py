@@ -8,7 +8,8 @@ import stat
 from collections.abc import Iterable
 
 from ..core.errors import BrasKitError, XacroError
-from ..core.message import M, Message
+from ..core.message import M
+from ..trust.learner_files import refusal
 
 MAX_FILE_BYTES = 8 << 20  # any one file xacro reads
 _FORBIDDEN_TREES = ("/proc", "/sys", "/dev")
@@ -77,21 +78,6 @@ def read_beneath(path: str, roots: tuple[str, ...], limit: int) -> bytes:
         raise XacroError(M("refused to read {path}: {reason}", path=path, reason=refusal(exc.kind)),
                          hint=M("keep the robot's files inside its package, or pass the other package with "
                                 "--package-path")) from None
-
-
-def refusal(kind: str) -> Message:
-    """Why the one reader refused a path (:data:`bras_kit.trust.beneath.KINDS`), in the message system."""
-    return {
-        "outside": M("it lies outside the robot's own folders (its package, the folders given with --package-path)"),
-        "link_out": M("a symbolic link on the way leads outside the robot's own folders"),
-        "loop": M("a loop of symbolic links"),
-        "device": M("it is a device, not a file"),
-        "fifo": M("it is a named pipe, not a file"),
-        "socket": M("it is a socket, not a file"),
-        "folder": M("it is a folder, not a file"),
-        "not_folder": M("a part of the path is not a folder"),
-        "too_deep": M("the path is too deep"),
-    }.get(kind, M("it cannot be read"))
 
 
 def _inside(path: str, folders: Iterable[str]) -> bool:

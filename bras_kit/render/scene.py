@@ -94,8 +94,8 @@ def mesh_source(filename: str, robot: Robot, package_paths: Sequence[str] = (),
         path = os.path.join(base, filename)
     path = os.path.abspath(path)
     if roots is not None:
-        from ..model.xacro_files import refusal
         from ..trust.beneath import Outside, open_any_beneath
+        from ..trust.learner_files import refusal
 
         try:
             os.close(open_any_beneath(roots, path)[0])

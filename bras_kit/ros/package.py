@@ -172,7 +172,7 @@ class Package:
     def manifest(self) -> Manifest | None:
         from ..core.errors import BrasKitError
         from ..model.xmlio import parse_xml
-        from ..trust.learner_files import Unreadable, read_bytes
+        from ..trust.learner_files import Unreadable, read_bytes, refusal
 
         full = os.path.join(self.root, PACKAGE_XML)
         if not os.path.lexists(full):
@@ -182,7 +182,7 @@ class Package:
         try:  # the one reader: a package.xml linked out of the package is not read
             root = parse_xml(read_bytes(full, (self.root,)), self.path(PACKAGE_XML))
         except Unreadable as exc:
-            self._problem(PACKAGE_XML, None, f"refused: {exc.strerror or exc}")
+            self._problem(PACKAGE_XML, None, refusal(exc.kind))
             return None
         except BrasKitError as exc:
             self._problem(PACKAGE_XML, exc.line, str(exc.message))
@@ -423,7 +423,7 @@ class Package:
         import yaml
 
         from ..trust import yaml_gate
-        from ..trust.learner_files import read_text
+        from ..trust.learner_files import Unreadable, read_text, refusal
 
         cache = self.__dict__.setdefault("_rviz", {})
         if rel not in cache:
@@ -432,6 +432,8 @@ class Package:
             try:
                 text = read_text(os.path.join(self.root, rel), (self.root,))  # the one reader: no device, no link out
                 data = yaml_gate.load(text)  # bounded: no alias bomb, no nesting past 100
+            except Unreadable as exc:  # its words, never the file's bytes nor the reader's English
+                self._problem(rel, None, refusal(exc.kind))
             except (OSError, UnicodeDecodeError) as exc:
                 self._problem(rel, None, str(exc))
             except yaml_gate.YamlRefused as exc:  # a bound of the gate: its words, in the reader's language
