@@ -282,3 +282,28 @@ def test_the_watch_list_waits_on_no_included_pipe(tmp_path):
                            capture_output=True, text=True, timeout=20)
     assert found.returncode == 0, found.stderr
     assert str(main) in found.stdout and "other.urdf" not in found.stdout
+
+
+# ---------------------------------------------------------------- the exercise track
+
+
+@pytest.mark.parametrize("way", ["linked_folder", "climb"])
+def test_an_exercise_reads_no_include_out_of_the_track(tmp_path, way):
+    """The track is learner data: exercise 13's xacro including a part through a link out of
+    the track, or by climbing out of it, is refused; the part's canary is shown nowhere."""
+    track = tmp_path / "work"
+    assert bras_kit("exercises", "init", str(track), cwd=tmp_path).returncode == 0
+    outside = tmp_path / "outside"
+    outside_part(outside)
+    folder = track / "13-xacro"
+    main = folder / "bras.urdf.xacro"
+    if way == "linked_folder":
+        (folder / "parts").symlink_to(outside, target_is_directory=True)
+        include = "parts/part.xacro"
+    else:
+        include = os.path.relpath(outside / "part.xacro", folder)
+    main.write_text(main.read_text().replace("</robot>", f'<xacro:include filename="{include}"/></robot>'))
+    done = bras_kit("exercises", "check", "13", "--dir", str(track), cwd=tmp_path)
+    assert "Traceback" not in done.stderr, done.stderr
+    assert CANARY not in done.stdout + done.stderr, done.stdout
+    assert "refused to read" in done.stdout + done.stderr, done.stdout
