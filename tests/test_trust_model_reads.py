@@ -307,3 +307,65 @@ def test_an_exercise_reads_no_include_out_of_the_track(tmp_path, way):
     assert "Traceback" not in done.stderr, done.stderr
     assert CANARY not in done.stdout + done.stderr, done.stdout
     assert "refused to read" in done.stdout + done.stderr, done.stdout
+
+
+@pytest.mark.slow
+def test_an_include_and_a_mesh_never_read_outside_while_their_folder_is_swapped(tmp_path):
+    """A process flips urdf/parts (holding the include) and meshes/ with links out as fast as it
+    can while a learner's robot loads and its mesh is read, for 4 s each: the include read is the
+    package's part or refused, the mesh the package's or refused, never the outside one."""
+    from bras_kit.core.errors import BrasKitError
+    from bras_kit.meshes import DecodeError, load_mesh, set_disk_cache
+    from bras_kit.model.authoring import load
+
+    set_disk_cache(False)
+    root = tmp_path / "pkg"
+    (root / "urdf" / "parts").mkdir(parents=True)
+    (root / "urdf" / "parts" / "part.xacro").write_text(
+        f'<robot {XACRO_NS}><link name="own"/><joint name="j" type="fixed"><parent link="base"/>'
+        '<child link="own"/></joint></robot>')
+    main = robot_including(root / "urdf", "parts/part.xacro")
+    outside = tmp_path / "outside"
+    outside_part(outside)
+    (root / "meshes").mkdir()
+    (root / "meshes" / "m.stl").write_bytes(STL)
+    (outside / "m.stl").write_bytes(STL.replace(b"vertex 1 0 0", b"vertex 7 7 7"))
+    context = multiprocessing.get_context("fork")
+    for folder, attempt in ((root / "urdf" / "parts", lambda: [j.name for j in load(str(main), roots=(str(root),)).joints]),
+                            (root / "meshes", lambda: load_mesh(str(root / "meshes" / "m.stl"), roots=(str(root),))
+                             .vertices.max())):
+        stop = context.Event()
+        racer = context.Process(target=_flip, args=(str(folder), str(outside), stop), daemon=True)
+        racer.start()
+        read = 0
+        try:
+            deadline = time.monotonic() + 4
+            while time.monotonic() < deadline:
+                try:
+                    got = attempt()
+                except (BrasKitError, DecodeError):
+                    continue
+                read += 1
+                assert got == ["j"] or got == 1.0, got
+        finally:
+            stop.set()
+            racer.join(10)
+        assert read > 5, (folder, read)
+
+
+def test_a_mesh_remembered_for_one_robot_is_not_given_to_a_learner_linking_to_it(tmp_path):
+    """grade draws a class in one process: a mesh file decoded once (another learner's, the
+    teacher's) is remembered by its path; a learner's link to that path is still read through
+    the reader, and refused, never answered from the memory."""
+    from bras_kit.meshes import DecodeError, load_mesh, set_disk_cache
+
+    set_disk_cache(False)
+    other = tmp_path / "autre" / "m.stl"
+    other.parent.mkdir()
+    other.write_bytes(STL)
+    assert len(load_mesh(str(other)).faces) == 1  # decoded, remembered
+    learner = tmp_path / "eleve"
+    (learner / "meshes").mkdir(parents=True)
+    (learner / "meshes" / "m.stl").symlink_to(other)
+    with pytest.raises(DecodeError):
+        load_mesh(str(learner / "meshes" / "m.stl"), roots=(str(learner),))

@@ -45,14 +45,16 @@ def load_mesh(path: str, scale: Sequence[float] | None = None, roots: tuple[str,
     beneath them (:mod:`bras_kit.trust.learner_files`), as are the files it names."""
     scale_key = None if scale is None or tuple(float(s) for s in scale) == (1.0, 1.0, 1.0) \
         else tuple(float(s) for s in scale)
-    try:
-        status = os.stat(path)
-    except OSError as exc:
-        raise DecodeError(exc.strerror or str(exc)) from None
-    memo = (os.path.realpath(path), status.st_mtime_ns, status.st_size, scale_key)
-    mesh = _memory.get(memo)
-    if mesh is not None:
-        return mesh
+    memo = None
+    if roots is None:  # the user's own file: remembered by path; a learner's is read each time through
+        try:           # the reader (a path met before may lead elsewhere now: another learner's file)
+            status = os.stat(path)
+            memo = (os.path.realpath(path), status.st_mtime_ns, status.st_size, scale_key)
+        except OSError as exc:
+            raise DecodeError(exc.strerror or str(exc)) from None
+        mesh = _memory.get(memo)
+        if mesh is not None:
+            return mesh
     data = read_mesh_file(path, roots)
     key = _known_key(data, scale_key)
     if key is None:
@@ -72,7 +74,8 @@ def load_mesh(path: str, scale: Sequence[float] | None = None, roots: tuple[str,
         _memory.clear()
         _by_content.clear()
         _by_bytes.clear()
-    _memory[memo] = mesh
+    if memo is not None:
+        _memory[memo] = mesh
     if key not in _by_content:
         _by_content[key] = mesh
         _by_bytes.setdefault((len(data), scale_key), []).append((data, key))

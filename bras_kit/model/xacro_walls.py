@@ -110,8 +110,10 @@ class _Hooks:
                              hint=M("a file probably includes itself"))
         if inp is None and filename is not None:
             full = os.path.normpath(os.path.join(xacro.root_dir, filename))
-            if not os.path.exists(full):
+            if self.read_roots is None and not os.path.exists(full):
                 return self.original[0](inp, filename)  # xacro's own "No such file" error
+            # beneath roots, a missing file is the reader's to say: xacro's own parse would open the
+            # path again, through a folder swapped for a link out meanwhile
             data = _read_limited(full, self.read_roots)
             check_xml_safe(data, full)
             try:
