@@ -311,9 +311,9 @@ def test_an_exercise_reads_no_include_out_of_the_track(tmp_path, way):
 
 @pytest.mark.slow
 def test_an_include_and_a_mesh_never_read_outside_while_their_folder_is_swapped(tmp_path):
-    """A process flips urdf/parts (holding the include) and meshes/ with links out as fast as it
-    can while a learner's robot loads and its mesh is read, for 4 s each: the include read is the
-    package's part or refused, the mesh the package's or refused, never the outside one."""
+    """A process flips urdf/parts (holding the include), urdf/cfg (a load_yaml file) and meshes/
+    with links out as fast as it can while a learner's robot loads and its mesh is read, for 4 s
+    each: what is read is the package's, or refused, never the outside one."""
     from bras_kit.core.errors import BrasKitError
     from bras_kit.meshes import DecodeError, load_mesh, set_disk_cache
     from bras_kit.model.authoring import load
@@ -330,8 +330,16 @@ def test_an_include_and_a_mesh_never_read_outside_while_their_folder_is_swapped(
     (root / "meshes").mkdir()
     (root / "meshes" / "m.stl").write_bytes(STL)
     (outside / "m.stl").write_bytes(STL.replace(b"vertex 1 0 0", b"vertex 7 7 7"))
+    (root / "urdf" / "cfg").mkdir()
+    (root / "urdf" / "cfg" / "v.yaml").write_text("n: own\n")
+    (outside / "v.yaml").write_text(f"n: {CANARY}\n")
+    yamled = root / "urdf" / "y.urdf.xacro"
+    yamled.write_text(f'<robot name="r" {XACRO_NS}><xacro:property name="y" value="${{xacro.load_yaml(\'cfg/v.yaml\')}}"/>'
+                      '<link name="${y.n}"/></robot>')
     context = multiprocessing.get_context("fork")
     for folder, attempt in ((root / "urdf" / "parts", lambda: [j.name for j in load(str(main), roots=(str(root),)).joints]),
+                            (root / "urdf" / "cfg", lambda: ["j"] if [lk.name for lk in load(
+                                str(yamled), roots=(str(root),)).links] == ["own"] else ["outside"]),
                             (root / "meshes", lambda: load_mesh(str(root / "meshes" / "m.stl"), roots=(str(root),))
                              .vertices.max())):
         stop = context.Event()

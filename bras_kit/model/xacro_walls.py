@@ -136,13 +136,39 @@ class _Hooks:
         from ..trust import yaml_gate
 
         text = _read_limited(full, self.read_roots)
+        if self.read_roots is None:
+            try:
+                yaml_gate.check(text)  # xacro's own loader then reads it: bounded first (aliases, depth, size)
+            except yaml_gate.YamlRefused as exc:
+                raise self._yaml_refused(filename, exc) from None
+            return self.original_load_yaml(filename)
+        return self._load_yaml_text(filename, full, text)
+
+    def _yaml_refused(self, filename: str, exc: Any) -> XacroError:
+        from ..trust import yaml_gate
+
+        return XacroError(M("{path}: {reason}", path=filename, reason=exc.message),
+                          hint=M("load_yaml reads a plain YAML file: no alias repeated thousands of times, "
+                                 "no nesting past {most} levels", most=yaml_gate.MAX_DEPTH))
+
+    def _load_yaml_text(self, filename: str, full: str, text: bytes) -> Any:
+        """xacro's load_yaml (xacro/__init__.py) on the text the one reader read: the file is never
+        opened again by its path, which a folder swapped for a link out could lead elsewhere."""
+        import yaml
+
+        from ..trust import yaml_gate
+
+        xacro = self.xacro
+        for unit in xacro.ConstructUnits:  # !radians, !degrees... as xacro registers them
+            yaml.SafeLoader.add_constructor(unit.value.tag, unit.constructor)
+        xacro.filestack.append(full)
         try:
-            yaml_gate.check(text)  # xacro's own loader then reads it: bounded first (aliases, depth, size)
+            return xacro.YamlListWrapper.wrap(yaml_gate.load(text, loader=yaml.SafeLoader))
         except yaml_gate.YamlRefused as exc:
-            raise XacroError(M("{path}: {reason}", path=filename, reason=exc.message),
-                             hint=M("load_yaml reads a plain YAML file: no alias repeated thousands of times, "
-                                    "no nesting past {most} levels", most=yaml_gate.MAX_DEPTH)) from None
-        return self.original_load_yaml(filename)
+            raise self._yaml_refused(filename, exc) from None
+        finally:
+            xacro.filestack.pop()
+            xacro.all_includes.append(full)
 
     @property
     def original_load_yaml(self) -> Callable[[str], Any]:
