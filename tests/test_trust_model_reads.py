@@ -377,3 +377,23 @@ def test_a_mesh_remembered_for_one_robot_is_not_given_to_a_learner_linking_to_it
     (learner / "meshes" / "m.stl").symlink_to(other)
     with pytest.raises(DecodeError):
         load_mesh(str(learner / "meshes" / "m.stl"), roots=(str(learner),))
+
+
+def test_a_one_file_submission_includes_nothing_of_another_learner(tmp_path):
+    """alice.urdf.xacro handed in alone sits in the class folder beside bob/: its include of
+    bob/urdf/part.xacro is refused (it is judged alone, from a copy in a folder of its own), and
+    bob's part appears nowhere in alice's row or page; bob is graded as before."""
+    klass = tmp_path / "class"
+    outside_part(klass / "bob" / "urdf")
+    (klass / "alice.urdf.xacro").write_text(
+        f'<robot name="r" {XACRO_NS}><link name="base"/><xacro:include filename="bob/urdf/part.xacro"/></robot>')
+    done = bras_kit("grade", str(klass), "-o", str(tmp_path / "report"), cwd=tmp_path)
+    assert "Traceback" not in done.stderr, done.stderr
+    import csv
+
+    with open(tmp_path / "report" / "grades.csv", encoding="utf-8", newline="") as handle:
+        rows = {row[0]: row for row in csv.reader(handle)}
+    assert set(rows) >= {"alice", "bob"}
+    assert CANARY not in ",".join(rows["alice"]), rows["alice"]
+    assert f"no such file: {klass}/bob/urdf/part.xacro" in rows["alice"][-1], rows["alice"]  # as if alone
+    assert CANARY.encode() not in (tmp_path / "report" / "learners" / "alice.html").read_bytes()
