@@ -377,6 +377,14 @@ def link_jobs(base: Path) -> Iterator[Job]:
                   folder, scan=[folder / "report"], outside=outside)
         yield Job(f"validate DIR, a link out at {key.replace('_', ' ')}", "links", ["validate", "subs"], folder,
                   outside=outside)
+    folder = base / "link_one_file_beside_another"
+    klass = folder / "subs"
+    (klass / "bob" / "urdf").mkdir(parents=True)
+    shutil.copy(outside_with_canary(folder) / "part.xacro", klass / "bob" / "urdf" / "part.xacro")
+    (klass / "alice.urdf.xacro").write_text(
+        f'<robot name="r" {XACRO_NS}><link name="base"/><xacro:include filename="bob/urdf/part.xacro"/></robot>')
+    yield Job("grade, a one-file submission including another learner's part", "links",
+              ["grade", "subs", "-o", "report"], folder, scan=[folder / "report" / "learners" / "alice.html"])
     for key in ("package_xml", "launch"):
         folder = base / f"link_pkg_{key}"
         outside = outside_with_canary(folder)
