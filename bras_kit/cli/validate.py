@@ -118,6 +118,7 @@ def run(args: argparse.Namespace) -> int:
         check_robot,
         collect_files,
         compare_generated,
+        found_in,
         generated_pairs,
         validate_path,
     )
@@ -160,7 +161,8 @@ def run(args: argparse.Namespace) -> int:
         # a file no xacro file sits beside is checked as written whatever the packages install:
         # first, while the worker evaluates the packages (their rules wait for it where they need it)
         pairs = generated_pairs(paths, [])
-        alone = {path: FileResult(path, validate_path(path, mappings=mappings, **options))
+        alone = {path: FileResult(path, validate_path(path, mappings=mappings, roots=found_in(path, args.files),
+                                                      **options))
                  for path in paths if path not in pairs}
         results = [result for package in read
                    for result in validate_package(package.root, lang=lang, select=select, ignore=ignore,
@@ -174,7 +176,8 @@ def run(args: argparse.Namespace) -> int:
                     FileResult(path, compare_generated(path, generated[path], mappings=mappings,
                                                        package_paths=args.package_path, lang=lang,
                                                        select=select, ignore=ignore)
-                               if path in generated else validate_path(path, mappings=mappings, **options))
+                               if path in generated else validate_path(path, mappings=mappings,
+                                                                       roots=found_in(path, args.files), **options))
                     for path in paths]
         results += _run_results(nodes, lang, select, ignore, args.duration, nodes=True)
     else:

@@ -96,7 +96,8 @@ class Session:
     def robot(self, name: str, args: Mapping[str, str] | None = None) -> Any:
         key = (name, tuple(sorted((args or {}).items())))
         if key not in self.robots:
-            self.robots[key] = _load_robot(self.path(name), name, args)
+            # the track is learner data: its robot, includes and meshes are read inside it, never through a link out
+            self.robots[key] = _load_robot(self.path(name), name, args, (str(self.folder.parent.absolute()),))
         return self.robots[key]
 
     def run(self, name: str, duration: float) -> Any:
@@ -106,15 +107,15 @@ class Session:
         return self.runs[key]
 
 
-def _load_robot(path: Path, name: str, args: Mapping[str, str] | None) -> Any:
+def _load_robot(path: Path, name: str, args: Mapping[str, str] | None, roots: tuple[str, ...] | None = None) -> Any:
     from ..model.authoring import load
     from ..validate import UNREADABLE_CODES, validate_path
 
-    unreadable = [f for f in validate_path(path, mappings=args) if f.code in UNREADABLE_CODES]
+    unreadable = [f for f in validate_path(path, mappings=args, roots=roots) if f.code in UNREADABLE_CODES]
     if unreadable:
         raise Broken(unreadable[0].message, name, unreadable[0].line)
     try:
-        return load(path, mappings=args)
+        return load(path, mappings=args, roots=roots)
     except BrasKitError as exc:
         raise Broken(exc.message, name, exc.line) from None
 
@@ -163,7 +164,8 @@ def check_findings(session: Session, spec: Mapping[str, Any]) -> None:
     if path.is_dir():
         results = _package_results(path)
     else:
-        results = [(name, validate_path(path, mappings=spec.get("args")))]
+        results = [(name, validate_path(path, mappings=spec.get("args"),
+                                        roots=(str(session.folder.parent.absolute()),)))]
     for file, findings in results:
         for found in findings:
             if found.code in UNREADABLE_CODES:
@@ -193,7 +195,7 @@ def _package_results(path: Path) -> list[tuple[str, list[Any]]]:
         for file in sorted(files):
             full = os.path.join(folder, file)
             if file.endswith((".urdf", ".xacro")) and is_file(full, roots):
-                out.append((os.path.relpath(full, base), validate_path(full)))
+                out.append((os.path.relpath(full, base), validate_path(full, roots=(os.path.abspath(base),))))
     return out
 
 

@@ -198,12 +198,39 @@ def _inspect_limited(root: str, lang: str) -> dict[str, Any]:
 
 
 def _inspect(root: str, lang: str) -> dict[str, Any]:
-    """In the limited child: the findings of every file (and of the package), and the main robot."""
+    """In the limited child: the findings of every file (and of the package), and the main robot.
+    A submission that is one file is judged from a copy alone in a folder of its own: its folder
+    is the class's, and what it includes beside it would be another learner's."""
+    if os.path.isdir(root):
+        return _inspect_within(root, lang)
+    from ..trust import scratch
+    from ..trust.learner_files import copy_file
+
+    with scratch.folder("bras-kit-grade-") as alone:
+        copy = os.path.join(alone, os.path.basename(root))
+        try:
+            copy_file(os.path.abspath(root), (os.path.dirname(os.path.abspath(root)),), copy,
+                      limit=MAX_ROBOT_FILE_BYTES + 1)
+        except OSError:  # a pipe, a device, a link out, too large: judged where it is, as before
+            return _inspect_within(root, lang)
+        result = _inspect_within(copy, lang)
+    # the findings name the learner's own file, not the copy
+    here, there = alone + os.sep, os.path.dirname(os.path.abspath(root)) + os.sep
+    for finding in result["findings"]:
+        for key in ("message", "hint"):
+            if isinstance(finding.get(key), str):
+                finding[key] = finding[key].replace(here, there)
+    return result
+
+
+def _inspect_within(root: str, lang: str) -> dict[str, Any]:
     from ..model.authoring import load
     from ..validate import collect_files, generated_pairs, validate_path
     from ..validate.package import find_packages, validate_package
 
     paths = collect_files([root]) if os.path.isdir(root) else [root]
+    # every file of a submission is read beneath it (a folder, or the one file's own folder)
+    within = (os.path.abspath(root) if os.path.isdir(root) else os.path.dirname(os.path.abspath(root)),)
     pairs = generated_pairs(paths, [root]) if os.path.isdir(root) else {}
     packages = find_packages([root]) if os.path.isdir(root) else []
     findings: list[dict[str, Any]] = []
@@ -231,12 +258,12 @@ def _inspect(root: str, lang: str) -> dict[str, Any]:
             continue
         checked.append(path)
     for path in checked:
-        findings += [_as_dict(f, _relative(path, root), lang) for f in validate_path(path)]
+        findings += [_as_dict(f, _relative(path, root), lang) for f in validate_path(path, roots=within)]
     main = _main_file(checked, root)
     robot = None
     if main is not None and not any(f["code"] in UNREADABLE and f["file"] == _relative(main, root) for f in findings):
         try:
-            robot = load(main)
+            robot = load(main, roots=within)  # its includes and meshes too: beneath the submission
         except BrasKitError:
             robot = None
     if not paths:

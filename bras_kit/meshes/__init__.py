@@ -37,22 +37,25 @@ def disk_cache_enabled() -> bool:
     return _disk
 
 
-def load_mesh(path: str, scale: Sequence[float] | None = None) -> MeshData:
+def load_mesh(path: str, scale: Sequence[float] | None = None, roots: tuple[str, ...] | None = None) -> MeshData:
     """The decoded triangles of the mesh file ``path`` times ``scale``. Raises :class:`DecodeError`
     for a file that holds no triangles or cannot be read; ``issues`` lists what the file names
-    but could not be used (a missing texture...), the rest being drawn."""
+    but could not be used (a missing texture...), the rest being drawn. The file is read once,
+    and decoded from those bytes; with ``roots`` (a learner's robot), through the one reader
+    beneath them (:mod:`bras_kit.trust.learner_files`), as are the files it names."""
     scale_key = None if scale is None or tuple(float(s) for s in scale) == (1.0, 1.0, 1.0) \
         else tuple(float(s) for s in scale)
-    try:
-        status = os.stat(path)
-    except OSError as exc:
-        raise DecodeError(exc.strerror or str(exc)) from None
-    memo = (os.path.realpath(path), status.st_mtime_ns, status.st_size, scale_key)
-    mesh = _memory.get(memo)
-    if mesh is not None:
-        return mesh
-    with open(path, "rb") as handle:
-        data = handle.read()
+    memo = None
+    if roots is None:  # the user's own file: remembered by path; a learner's is read each time through
+        try:           # the reader (a path met before may lead elsewhere now: another learner's file)
+            status = os.stat(path)
+            memo = (os.path.realpath(path), status.st_mtime_ns, status.st_size, scale_key)
+        except OSError as exc:
+            raise DecodeError(exc.strerror or str(exc)) from None
+        mesh = _memory.get(memo)
+        if mesh is not None:
+            return mesh
+    data = read_mesh_file(path, roots)
     key = _known_key(data, scale_key)
     if key is None:
         key = cache.content_key(data, scale_key)
@@ -62,7 +65,7 @@ def load_mesh(path: str, scale: Sequence[float] | None = None) -> MeshData:
     if mesh is None:
         from .decode import decode
 
-        mesh = decode(path, scale_key)
+        mesh = decode(path, scale_key, data, roots)
         if _disk:
             cache.write(key, mesh)
     mesh.freeze()
@@ -71,11 +74,24 @@ def load_mesh(path: str, scale: Sequence[float] | None = None) -> MeshData:
         _memory.clear()
         _by_content.clear()
         _by_bytes.clear()
-    _memory[memo] = mesh
+    if memo is not None:
+        _memory[memo] = mesh
     if key not in _by_content:
         _by_content[key] = mesh
         _by_bytes.setdefault((len(data), scale_key), []).append((data, key))
     return mesh
+
+
+def read_mesh_file(path: str, roots: tuple[str, ...] | None = None) -> bytes:
+    """The mesh file's bytes (at most 256 MiB, a regular file, never waiting on a pipe): beneath
+    ``roots`` by the one reader, else any regular file (the user's own robot)."""
+    from ..trust.beneath import Outside
+    from ..trust.learner_files import MAX_COPY_BYTES, read_bytes
+
+    try:
+        return read_bytes(os.path.abspath(path), roots if roots is not None else ("/",), limit=MAX_COPY_BYTES)
+    except Outside as exc:
+        raise DecodeError(exc.strerror or str(exc)) from None
 
 
 def _known_key(data: bytes, scale: tuple[float, ...] | None) -> str | None:

@@ -4,8 +4,10 @@ trimesh. Heavy libraries are imported here only, when a file is really decoded."
 
 from __future__ import annotations
 
-from collections.abc import Iterator, Sequence
-from typing import Any
+import io
+import os
+from collections.abc import Callable, Iterator, Sequence
+from typing import Any, cast
 
 import numpy as np
 
@@ -13,6 +15,7 @@ from .mesh import Issue, MeshData, Piece
 
 TEXTURE_SAMPLES = 4096  # texture colours looked up per piece to find its mean colour
 MAX_FACE_COLOURS = 64  # a file colouring its faces with more colours is drawn in their mean colour
+MAX_AUX_BYTES = 64 << 20  # a texture or a material file a mesh names
 
 
 class DecodeError(Exception):
@@ -23,13 +26,16 @@ class DecodeError(Exception):
         self.reason = reason
 
 
-def decode(path: str, scale: Sequence[float] | None = None) -> MeshData:
+def decode(path: str, scale: Sequence[float] | None, data: bytes,
+           roots: tuple[str, ...] | None = None) -> MeshData:
     """The triangles of the file at ``path`` (STL, OBJ, DAE, PLY, GLB...), scaled by ``scale``,
-    each piece with the colour its file gives (None: no material of its own)."""
+    each piece with the colour its file gives (None: no material of its own). ``data``: the
+    file's bytes, read once by :func:`bras_kit.meshes.read_mesh_file` (never read again by path); ``roots``: the
+    folders the files it names (an OBJ's .mtl, textures) are read beneath, by the one reader."""
     if path.lower().endswith(".dae"):
-        pieces, issues = _collada(path)
+        pieces, issues = _collada(path, data, roots)
     else:
-        pieces, issues = _trimesh(path)
+        pieces, issues = _trimesh(path, data, roots)
     pieces = [p for p in pieces if len(p.faces)]
     if not pieces:
         raise DecodeError("no triangles")
@@ -44,13 +50,27 @@ def decode(path: str, scale: Sequence[float] | None = None) -> MeshData:
 # --- COLLADA -----------------------------------------------------------------------------------
 
 
-def _collada(path: str) -> tuple[list[Piece], list[Issue]]:
+def _aux_reader(path: str, roots: tuple[str, ...] | None) -> Callable[[str], bytes]:
+    """A file the mesh names (a texture, a material file), relative to the mesh's folder: through
+    the one reader beneath ``roots``, or any regular file of the user's own robot (``roots`` None)."""
+    from ..trust.learner_files import read_bytes
+
+    folder = os.path.dirname(os.path.abspath(path))
+
+    def read(name: str) -> bytes:
+        full = os.path.normpath(os.path.join(folder, name.strip()))
+        return read_bytes(full, roots if roots is not None else ("/",), limit=MAX_AUX_BYTES)
+    return read
+
+
+def _collada(path: str, data: bytes, roots: tuple[str, ...] | None = None) -> tuple[list[Piece], list[Issue]]:
     import collada
     from collada import common
 
     try:
-        document = collada.Collada(path, ignore=[common.DaeBrokenRefError, common.DaeUnsupportedError,
-                                                 common.DaeIncompleteError])
+        document = collada.Collada(io.BytesIO(data), ignore=[common.DaeBrokenRefError, common.DaeUnsupportedError,
+                                                             common.DaeIncompleteError],
+                                   aux_file_loader=_aux_reader(path, roots))
     except Exception as exc:  # noqa: BLE001 - pycollada and lxml raise many kinds for a bad file
         raise DecodeError(f"{type(exc).__name__}: {exc}".rstrip(": ")) from None
     issues = [Issue("broken-reference", str(getattr(error, "msg", "") or error)) for error in document.errors
@@ -168,11 +188,38 @@ def _texture_mean(image: Any, uv: np.ndarray | None) -> tuple[float, float, floa
 # --- trimesh (STL, OBJ, PLY, GLB...) ------------------------------------------------------------
 
 
-def _trimesh(path: str) -> tuple[list[Piece], list[Issue]]:
+class _BeneathResolver:
+    """trimesh's resolver (``get``: the bytes of a file a mesh names) reading through the one
+    reader, relative to the mesh's folder: never a link out of ``roots``, never a pipe."""
+
+    def __init__(self, path: str, roots: tuple[str, ...] | None) -> None:
+        self.path, self.roots = path, roots
+        self._read = _aux_reader(path, roots)
+
+    def get(self, name: str) -> bytes:
+        from ..trust.beneath import Outside
+
+        try:
+            return self._read(name)
+        except Outside:
+            raise FileNotFoundError(name) from None
+
+    def __getitem__(self, name: str) -> bytes:
+        return self.get(name)
+
+    def namespaced(self, namespace: str) -> _BeneathResolver:
+        return _BeneathResolver(os.path.join(os.path.dirname(self.path), namespace, "_"), self.roots)
+
+    def keys(self) -> list[str]:
+        return []
+
+
+def _trimesh(path: str, data: bytes, roots: tuple[str, ...] | None = None) -> tuple[list[Piece], list[Issue]]:
     import trimesh
 
     try:
-        loaded = trimesh.load(path)
+        loaded = trimesh.load(io.BytesIO(data), file_type=os.path.splitext(path)[1].lstrip(".").lower(),
+                              resolver=cast(Any, _BeneathResolver(path, roots)))  # duck-typed: get, namespaced
     except Exception as exc:  # noqa: BLE001 - trimesh raises many kinds for a bad file
         raise DecodeError(f"{type(exc).__name__}: {exc}".rstrip(": ")) from None
     meshes = loaded.dump() if isinstance(loaded, trimesh.Scene) else [loaded]

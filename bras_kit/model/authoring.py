@@ -332,16 +332,23 @@ def arm(*, wrist: bool = False, inertials: bool = False, params: Mapping[str, ob
 
 
 def load(path: str | os.PathLike[str] | None = None, *, mappings: Mapping[str, str] | None = None,
-         package_paths: Iterable[str] = ()) -> Robot:
+         package_paths: Iterable[str] = (), roots: Iterable[str] | None = None) -> Robot:
     """Load a robot: a ``.urdf`` file, a ``.xacro`` file (expanded first) or, with no path, the tutorial arm.
 
-    XML is read safely; parse problems inside the file are recorded on ``robot.issues``.
+    XML is read safely; parse problems inside the file are recorded on ``robot.issues``. With
+    ``roots`` (the folders a learner's robot lives in: its package, a submission), the file, the
+    files it includes and later its meshes are read through the one reader beneath them (and
+    beneath the packages ``$(find)`` names), never through a link out of them.
     """
     if path is None:
         return arm()
     path = os.fspath(path)
+    within = tuple(os.path.abspath(r) for r in roots) if roots is not None else None
     if path.endswith(".xacro"):
-        text = expand_xacro(path, mappings, package_paths)
-        return robot_from_xml(parse_xml(text, path), path, text)
-    data = read_bytes(path)
-    return robot_from_xml(parse_xml(data, path), path, data.decode("utf-8", errors="replace"))
+        text = expand_xacro(path, mappings, package_paths, roots=within)
+        robot = robot_from_xml(parse_xml(text, path), path, text)
+    else:
+        data = read_bytes(path, within)
+        robot = robot_from_xml(parse_xml(data, path), path, data.decode("utf-8", errors="replace"))
+    robot.roots = within
+    return robot

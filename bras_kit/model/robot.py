@@ -226,6 +226,9 @@ class Robot:
     root_tag: str = "robot"
     line: int | None = None
     source_text: str | None = None
+    # the folders its files may be read from (a package's robot, a learner's submission): its
+    # includes and meshes go through the one reader beneath them; None for a file the user named
+    roots: tuple[str, ...] | None = None
 
     def link(self, name: str) -> Link | None:
         return next((link for link in self.links if link.name == name), None)

@@ -50,33 +50,37 @@ def expand_xacro(
     package_paths: Iterable[str] = (),
     *,
     sandbox: bool | None = None,
+    roots: tuple[str, ...] | None = None,
 ) -> str:
     """Expand a xacro file to URDF text with the real xacro package, behind the walls above.
 
     ``mappings`` are xacro args (``name:=value`` on xacro's command line). Errors become a
     :class:`XacroError` naming the file, the best-guess line and what to do. ``sandbox``
     (default: every file but the built-in template) runs the expansion in a limited child.
+    ``roots``: the folders the robot's files may be read from (with those of the packages
+    ``$(find)`` names): every file is then read through the one reader beneath them.
     """
     path = os.fspath(path)
     if not os.path.exists(path):
         raise BrasKitError(M("no such file: {path}", path=path), hint=M("check the path and spelling"))
-    check_readable_file(path)
+    if roots is None:
+        check_readable_file(path)
     if sandbox is None:
         sandbox = not _is_builtin_template(path)
     if sandbox:
         from ..trust.sandbox import run_limited
 
-        text, found = run_limited(_expand_and_report, path, dict(mappings or {}), tuple(package_paths),
+        text, found = run_limited(_expand_and_report, path, dict(mappings or {}), tuple(package_paths), roots,
                                   cpu_seconds=SANDBOX_CPU_SECONDS, memory_bytes=SANDBOX_MEMORY_BYTES,
                                   wall_seconds=SANDBOX_WALL_SECONDS, what=f"expanding {path}")
         _FOUND.update(found)  # the child found the packages: remember them here, for --verbose
         return text
-    return _expand(path, dict(mappings or {}), tuple(package_paths))
+    return _expand(path, dict(mappings or {}), tuple(package_paths), roots)
 
 
-def _expand_and_report(path: str, mappings: Mapping[str, str],
-                       package_paths: tuple[str, ...]) -> tuple[str, dict[str, str]]:
-    return _expand(path, mappings, package_paths), dict(_FOUND)
+def _expand_and_report(path: str, mappings: Mapping[str, str], package_paths: tuple[str, ...],
+                       roots: tuple[str, ...] | None = None) -> tuple[str, dict[str, str]]:
+    return _expand(path, mappings, package_paths, roots), dict(_FOUND)
 
 
 def _is_builtin_template(path: str) -> bool:
@@ -88,11 +92,12 @@ def _is_builtin_template(path: str) -> bool:
         return False
 
 
-def _expand(path: str, mappings: Mapping[str, str], package_paths: tuple[str, ...]) -> str:
+def _expand(path: str, mappings: Mapping[str, str], package_paths: tuple[str, ...],
+            roots: tuple[str, ...] | None = None) -> str:
     import xacro
     import xacro.substitution_args as subst
 
-    hooks = _Hooks(xacro, subst, path, package_roots(package_paths))
+    hooks = _Hooks(xacro, subst, path, package_roots(package_paths), roots)
     stderr = io.StringIO()
     arguments = _Arguments(mappings)
     with _lock:

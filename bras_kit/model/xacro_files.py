@@ -9,6 +9,7 @@ from collections.abc import Iterable
 
 from ..core.errors import BrasKitError, XacroError
 from ..core.message import M
+from ..trust.learner_files import refusal
 
 MAX_FILE_BYTES = 8 << 20  # any one file xacro reads
 _FORBIDDEN_TREES = ("/proc", "/sys", "/dev")
@@ -39,8 +40,12 @@ def check_readable_file(path: str) -> None:
                            "description file may have", path=path, size=info.st_size, limit=MAX_FILE_BYTES >> 20))
 
 
-def _read_limited(path: str) -> bytes:
-    """The bytes of a checked regular file, never blocking on a pipe swapped in meanwhile."""
+def _read_limited(path: str, roots: tuple[str, ...] | None = None) -> bytes:
+    """The bytes of a checked regular file, never blocking on a pipe swapped in meanwhile. With
+    ``roots`` (a package's robot, a learner's submission), through the one reader: resolved under
+    one of them without following a link out, and read through the descriptor that walk opened."""
+    if roots is not None:
+        return read_beneath(path, roots, MAX_FILE_BYTES)
     check_readable_file(path)
     fd = os.open(path, os.O_RDONLY | getattr(os, "O_NONBLOCK", 0))
     try:
@@ -55,6 +60,24 @@ def _read_limited(path: str) -> bytes:
         raise XacroError(M("refused to read {path}: more than {limit} MiB", path=path, limit=MAX_FILE_BYTES >> 20))
     finally:
         os.close(fd)
+
+
+def read_beneath(path: str, roots: tuple[str, ...], limit: int) -> bytes:
+    """:func:`bras_kit.trust.learner_files.read_bytes`, its refusal worded as xacro's own: the path and
+    why, never a byte of the file."""
+    from ..trust.learner_files import Unreadable, read_bytes
+
+    try:
+        return read_bytes(os.path.abspath(path), roots, limit=limit)  # roots are absolute: so is the path
+    except Unreadable as exc:
+        if exc.kind == "missing":
+            raise BrasKitError(M("no such file: {path}", path=path), hint=M("check the path and spelling")) from None
+        if exc.kind == "too_large":
+            raise XacroError(M("refused to read {path}: more than {limit} MiB", path=path,
+                               limit=limit >> 20)) from None
+        raise XacroError(M("refused to read {path}: {reason}", path=path, reason=refusal(exc.kind)),
+                         hint=M("keep the robot's files inside its package, or pass the other package with "
+                                "--package-path")) from None
 
 
 def _inside(path: str, folders: Iterable[str]) -> bool:

@@ -49,10 +49,13 @@ def _refused(expression: str, reason: Message | str) -> Message:
 class _Hooks:
     """The replacements put into xacro for one expansion, and what they share."""
 
-    def __init__(self, xacro: Any, subst: Any, path: str, roots: list[str]) -> None:
+    def __init__(self, xacro: Any, subst: Any, path: str, roots: list[str],
+                 read_roots: tuple[str, ...] | None = None) -> None:
         from .xacro_eval import BUILTINS, MATH, Budget
 
         self.xacro, self.subst, self.roots = xacro, subst, roots
+        # the folders files are read beneath (None: any regular file); each package $(find) names joins them
+        self.read_roots = read_roots
         self.budget = Budget()
         self.elements = 0
         self.files: list[str] = []  # every file read, for finding where an expression is written
@@ -107,9 +110,11 @@ class _Hooks:
                              hint=M("a file probably includes itself"))
         if inp is None and filename is not None:
             full = os.path.normpath(os.path.join(xacro.root_dir, filename))
-            if not os.path.exists(full):
+            if self.read_roots is None and not os.path.exists(full):
                 return self.original[0](inp, filename)  # xacro's own "No such file" error
-            data = _read_limited(full)
+            # beneath roots, a missing file is the reader's to say: xacro's own parse would open the
+            # path again, through a folder swapped for a link out meanwhile
+            data = _read_limited(full, self.read_roots)
             check_xml_safe(data, full)
             try:
                 text = data.decode("utf-8")
@@ -130,21 +135,50 @@ class _Hooks:
                              hint=M("move the file next to your xacro file, or pass its package with --package-path"))
         from ..trust import yaml_gate
 
-        text = _read_limited(full)
+        text = _read_limited(full, self.read_roots)
+        if self.read_roots is None:
+            try:
+                yaml_gate.check(text)  # xacro's own loader then reads it: bounded first (aliases, depth, size)
+            except yaml_gate.YamlRefused as exc:
+                raise self._yaml_refused(filename, exc) from None
+            return self.original_load_yaml(filename)
+        return self._load_yaml_text(filename, full, text)
+
+    def _yaml_refused(self, filename: str, exc: Any) -> XacroError:
+        from ..trust import yaml_gate
+
+        return XacroError(M("{path}: {reason}", path=filename, reason=exc.message),
+                          hint=M("load_yaml reads a plain YAML file: no alias repeated thousands of times, "
+                                 "no nesting past {most} levels", most=yaml_gate.MAX_DEPTH))
+
+    def _load_yaml_text(self, filename: str, full: str, text: bytes) -> Any:
+        """xacro's load_yaml (xacro/__init__.py) on the text the one reader read: the file is never
+        opened again by its path, which a folder swapped for a link out could lead elsewhere."""
+        import yaml
+
+        from ..trust import yaml_gate
+
+        xacro = self.xacro
+        for unit in xacro.ConstructUnits:  # !radians, !degrees... as xacro registers them
+            yaml.SafeLoader.add_constructor(unit.value.tag, unit.constructor)
+        xacro.filestack.append(full)
         try:
-            yaml_gate.check(text)  # xacro's own loader then reads it: bounded first (aliases, depth, size)
+            return xacro.YamlListWrapper.wrap(yaml_gate.load(text, loader=yaml.SafeLoader))
         except yaml_gate.YamlRefused as exc:
-            raise XacroError(M("{path}: {reason}", path=filename, reason=exc.message),
-                             hint=M("load_yaml reads a plain YAML file: no alias repeated thousands of times, "
-                                    "no nesting past {most} levels", most=yaml_gate.MAX_DEPTH)) from None
-        return self.original_load_yaml(filename)
+            raise self._yaml_refused(filename, exc) from None
+        finally:
+            xacro.filestack.pop()
+            xacro.all_includes.append(full)
 
     @property
     def original_load_yaml(self) -> Callable[[str], Any]:
         return self.xacro.load_yaml
 
     def resolve(self, name: str) -> str:
-        return find_package(name, self.roots)
+        folder = find_package(name, self.roots)
+        if self.read_roots is not None and folder not in self.read_roots:
+            self.read_roots += (folder,)  # the package the file names: its files are read beneath it
+        return folder
 
     # expressions
     def _evaluate(self, expression: str, lookup: Callable[[str], Any],

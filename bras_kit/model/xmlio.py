@@ -283,9 +283,16 @@ def _blank_late_declaration(data: bytes) -> tuple[bytes, int | None]:
 MAX_READ_BYTES = 256 << 20
 
 
-def read_bytes(path: str | os.PathLike[str]) -> bytes:
-    """A file's bytes; a missing or unreadable file is a :class:`BrasKitError` naming it."""
+def read_bytes(path: str | os.PathLike[str], roots: tuple[str, ...] | None = None) -> bytes:
+    """A file's bytes; a missing or unreadable file is a :class:`BrasKitError` naming it. With
+    ``roots``, read through the one reader (:func:`bras_kit.model.xacro_files.read_beneath`)."""
     path = os.fspath(path)
+    if roots is not None and path != "-":
+        from .xacro_files import read_beneath
+
+        if os.path.isdir(path):
+            raise BrasKitError(M("{path} is a folder, not a file", path=path))
+        return read_beneath(path, roots, MAX_READ_BYTES)
     if path == "-":
         import sys
 
@@ -311,9 +318,9 @@ def read_bytes(path: str | os.PathLike[str]) -> bytes:
         raise BrasKitError(M("cannot read {path}: {reason}", path=path, reason=os_reason(exc))) from None
 
 
-def read_xml(path: str | os.PathLike[str]) -> Node:
+def read_xml(path: str | os.PathLike[str], roots: tuple[str, ...] | None = None) -> Node:
     """Read and safely parse an XML file; a missing or unreadable file is a :class:`BrasKitError`."""
-    return parse_xml(read_bytes(path), path=os.fspath(path))
+    return parse_xml(read_bytes(path, roots), path=os.fspath(path))
 
 
 def check_xml_safe(data: bytes | str, path: str | None = None) -> None:

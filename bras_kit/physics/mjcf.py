@@ -164,20 +164,24 @@ class _Meshes:
 
     def asset(self, geometry: Geometry) -> tuple[str, str]:
         """(mesh name, scale attribute) for a mesh geometry."""
-        from ..render.scene import resolve_mesh_path
+        from ..meshes import DecodeError, read_mesh_file
+        from ..render.scene import mesh_source
 
-        path = resolve_mesh_path(geometry.filename or "", self.robot, self.package_paths, geometry.line)
+        path, roots = mesh_source(geometry.filename or "", self.robot, self.package_paths, geometry.line)
         scale = tuple(geometry.scale or (1.0, 1.0, 1.0))
         key = (path, scale)
         if key not in self._keys:
             name = self._name(path)
             suffix = os.path.splitext(path)[1].lower()
             if suffix in MUJOCO_MESH_SUFFIXES:
-                with open(path, "rb") as handle:
-                    data = handle.read()
+                try:
+                    data = read_mesh_file(path, roots)  # the one reader: beneath a learner's folders
+                except DecodeError as exc:
+                    raise ModelError(M("cannot read mesh {path}: {reason}", path=path, reason=exc.reason),
+                                     path=self.robot.path, line=geometry.line, element="mesh") from None
                 self.assets[name] = MeshAsset(name + suffix, data, path)
             else:
-                data = self._decoded(path, geometry)
+                data = self._decoded(path, geometry, roots)
                 self.assets[name] = MeshAsset(name + ".stl", binary_stl(data.vertices, data.faces), path, True)
                 self.converted.append(path)
             self._keys[key] = name
@@ -187,10 +191,10 @@ class _Meshes:
     def pieces(self, geometry: Geometry) -> list[tuple[str, tuple[float, float, float, float] | None]] | None:
         """(mesh name, own colour) of each material piece of a mesh whose file gives colours of
         its own; None for a mesh with one piece and no material (the URDF's colour applies)."""
-        from ..render.scene import resolve_mesh_path
+        from ..render.scene import mesh_source
 
-        path = resolve_mesh_path(geometry.filename or "", self.robot, self.package_paths, geometry.line)
-        data = self._decoded(path, geometry)
+        path, roots = mesh_source(geometry.filename or "", self.robot, self.package_paths, geometry.line)
+        data = self._decoded(path, geometry, roots)
         if len(data) == 1 and all(p.color is None for p in data.pieces()):
             return None
         scale = tuple(geometry.scale or (1.0, 1.0, 1.0))
@@ -212,10 +216,10 @@ class _Meshes:
         name = f"m{len(self.assets)}_{stem}"
         return name
 
-    def _decoded(self, path: str, geometry: Geometry):
+    def _decoded(self, path: str, geometry: Geometry, roots: tuple[str, ...] | None = None):
         from ..render.scene import mesh_file_data
 
-        return mesh_file_data(path, self.robot, geometry.line)
+        return mesh_file_data(path, self.robot, geometry.line, roots=roots)
 
     def xml(self) -> list[str]:
         return [f'    <mesh name="{name}" file="{asset.name}"{_scale_attr(self.scales.get(name, (1.0, 1.0, 1.0)))} '

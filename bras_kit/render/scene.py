@@ -59,34 +59,58 @@ class Scene:
 def resolve_mesh_path(filename: str, robot: Robot, package_paths: Sequence[str] = (),
                       line: int | None = None) -> str:
     """The file a mesh ``filename`` names: ``package://pkg/...``, ``file://...``, or relative to the URDF."""
+    return mesh_source(filename, robot, package_paths, line)[0]
+
+
+def mesh_source(filename: str, robot: Robot, package_paths: Sequence[str] = (),
+                line: int | None = None) -> tuple[str, tuple[str, ...] | None]:
+    """The file a mesh ``filename`` names (see :func:`resolve_mesh_path`) and the folders it is
+    read beneath: for a learner's robot (``robot.roots``), its own folders and the package
+    ``package://`` names, through the one reader (a link out of them, a pipe, a device: refused,
+    and the mesh drawn as a stand-in); None for the user's own file (any regular file)."""
     from ..model.package_paths import find_package, package_roots
 
+    roots = robot.roots
     if filename.startswith("package://"):
         package, _, rest = filename[len("package://"):].partition("/")
-        roots = list(package_paths)
+        searched = list(package_paths)
         if robot.path and os.path.exists(robot.path):
             # a URDF inside its package (pkg/urdf/x.urdf) finds its own meshes
-            roots.append(os.path.dirname(os.path.dirname(os.path.dirname(os.path.abspath(robot.path)))))
+            searched.append(os.path.dirname(os.path.dirname(os.path.dirname(os.path.abspath(robot.path)))))
         try:
-            folder = find_package(package, package_roots(roots))
+            folder = find_package(package, package_roots(searched))
         except XacroError:
             raise ModelError(M("mesh '{file}': package '{package}' not found", file=filename, package=package),
                              path=robot.path, line=line, element="mesh",
                              hint=M("pass --package-path DIR, a folder holding {package}/ (with its package.xml)",
                                     package=package)) from None
         path = os.path.join(folder, rest)
+        if roots is not None and folder not in roots:
+            roots = (*roots, folder)
     elif filename.startswith("file://"):
         path = filename[len("file://"):]
     else:
         base = os.path.dirname(os.path.abspath(robot.path)) if robot.path and os.path.exists(robot.path) else os.getcwd()
         path = os.path.join(base, filename)
+    path = os.path.abspath(path)
+    if roots is not None:
+        from ..trust.beneath import Outside, open_any_beneath
+        from ..trust.learner_files import refusal
+
+        try:
+            os.close(open_any_beneath(roots, path)[0])
+        except Outside as exc:
+            if exc.kind != "missing":
+                raise ModelError(M("refused to read mesh {path}: {reason}", path=path, reason=refusal(exc.kind)),
+                                 path=robot.path, line=line, element="mesh",
+                                 hint=M("keep the meshes inside the robot's package")) from None
     if not os.path.isfile(path):
         raise ModelError(M("mesh file not found: {path}", path=path), path=robot.path, line=line, element="mesh",
                          hint=M("check the filename, or pass --package-path for package:// names"))
     if os.path.getsize(path) > MAX_MESH_BYTES:
         raise ModelError(M("mesh file {path} is larger than {most} MiB", path=path, most=MAX_MESH_BYTES >> 20),
                          path=robot.path, line=line, element="mesh", hint=M("simplify the mesh (fewer triangles)"))
-    return path
+    return path, roots
 
 
 class TriangleMesh(NamedTuple):
@@ -171,13 +195,15 @@ def rod_mesh(radius: float, end: np.ndarray, sections: int = 12) -> TriangleMesh
     return rod.transformed(matrix)
 
 
-def mesh_file_data(path: str, robot: Robot, line: int | None = None, scale: Sequence[float] | None = None):
+def mesh_file_data(path: str, robot: Robot, line: int | None = None, scale: Sequence[float] | None = None,
+                   roots: tuple[str, ...] | None = None):
     """The decoded triangles and materials of a mesh file (:func:`bras_kit.meshes.load_mesh`:
-    decoded once, then from the cache), as a :class:`bras_kit.meshes.MeshData`."""
+    decoded once, then from the cache), as a :class:`bras_kit.meshes.MeshData`; ``roots`` as
+    :func:`mesh_source` gives them."""
     from ..meshes import DecodeError, load_mesh
 
     try:
-        return load_mesh(path, scale)
+        return load_mesh(path, scale, roots)
     except DecodeError as exc:
         if exc.reason == "no triangles":
             raise ModelError(M("mesh {path} holds no triangles", path=path), path=robot.path, line=line,
@@ -222,8 +248,8 @@ def _placed_visual(robot: Robot, visual: Visual, package_paths: Sequence[str] = 
     if not (g.kind == "mesh" and g.filename):
         mesh = _primitive_mesh(g)
         return ([] if mesh is None else [_piece(mesh.transformed(placed), None)]), ()
-    path = resolve_mesh_path(g.filename, robot, package_paths, g.line)
-    data = mesh_file_data(path, robot, g.line, g.scale)
+    path, roots = mesh_source(g.filename, robot, package_paths, g.line)
+    data = mesh_file_data(path, robot, g.line, g.scale, roots)
     key = (id(data), tuple(float(v) for v in visual.origin.xyz), tuple(float(v) for v in visual.origin.rpy))
     kept = _placed.get(key)
     if kept is not None and kept[0] is data:  # the entry holds ``data``: its id cannot have been reused
@@ -250,8 +276,8 @@ def visual_mesh(robot: Robot, visual: Visual, package_paths: Sequence[str] = ())
     if g is None:
         return None
     if g.kind == "mesh" and g.filename:
-        path = resolve_mesh_path(g.filename, robot, package_paths, g.line)
-        data = mesh_file_data(path, robot, g.line, g.scale)
+        path, roots = mesh_source(g.filename, robot, package_paths, g.line)
+        data = mesh_file_data(path, robot, g.line, g.scale, roots)
         mesh = TriangleMesh(np.asarray(data.vertices, dtype=float), np.asarray(data.faces, dtype=np.int64))
     else:
         mesh = _primitive_mesh(g)  # type: ignore[assignment]

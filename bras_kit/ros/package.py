@@ -106,7 +106,7 @@ class Package:
     def manifest(self) -> Manifest | None:
         from ..core.errors import BrasKitError
         from ..model.xmlio import parse_xml
-        from ..trust.learner_files import Unreadable, read_bytes
+        from ..trust.learner_files import Unreadable, read_bytes, refusal
 
         full = os.path.join(self.root, PACKAGE_XML)
         if not os.path.lexists(full):
@@ -116,7 +116,7 @@ class Package:
         try:  # the one reader: a package.xml linked out of the package is not read
             root = parse_xml(read_bytes(full, (self.root,)), self.path(PACKAGE_XML))
         except Unreadable as exc:
-            self._problem(PACKAGE_XML, None, f"refused: {exc.strerror or exc}")
+            self._problem(PACKAGE_XML, None, refusal(exc.kind))
             return None
         except BrasKitError as exc:
             self._problem(PACKAGE_XML, exc.line, str(exc.message))
@@ -337,14 +337,16 @@ class Package:
         if source is None:
             return None
         full = os.path.join(self.root, source)
-        size = os.path.getsize(full) if os.path.isfile(full) else 0
+        size = _size_beneath(full, self.root)
         if size > MAX_DESCRIPTION_CHARS:  # as robot_state_publisher's: the rules that need the robot are skipped
             self._problem(source, None, M("it holds {size} MiB, more than the {most} MiB bras-kit reads in a robot "
                                           "description", size=round(size / (1 << 20), 1),
                                           most=MAX_DESCRIPTION_CHARS >> 20))
             return None
         try:
-            return load(full, package_paths=[os.path.dirname(self.root)])
+            # read beneath the package (and the packages $(find) names): never through a link out,
+            # and a folder swapped for a link while it loads reads nothing outside
+            return load(full, package_paths=[os.path.dirname(self.root)], roots=(self.root,))
         except BrasKitError:
             return None
 
@@ -355,7 +357,7 @@ class Package:
         import yaml
 
         from ..trust import yaml_gate
-        from ..trust.learner_files import read_text
+        from ..trust.learner_files import Unreadable, read_text, refusal
 
         cache = self.__dict__.setdefault("_rviz", {})
         if rel not in cache:
@@ -364,6 +366,8 @@ class Package:
             try:
                 text = read_text(os.path.join(self.root, rel), (self.root,))  # the one reader: no device, no link out
                 data = yaml_gate.load(text)  # bounded: no alias bomb, no nesting past 100
+            except Unreadable as exc:  # its words, never the file's bytes nor the reader's English
+                self._problem(rel, None, refusal(exc.kind))
             except (OSError, UnicodeDecodeError) as exc:
                 self._problem(rel, None, str(exc))
             except yaml_gate.YamlRefused as exc:  # a bound of the gate: its words, in the reader's language
@@ -378,6 +382,21 @@ class Package:
                 else:
                     self._problem(rel, None, "not an RViz configuration (no 'Visualization Manager')")
         return cache[rel]
+
+
+def _size_beneath(path: str, root: str) -> int:
+    """The size of the regular file ``path`` reached beneath ``root`` by the one reader (0 when it
+    is none: the loader then says why)."""
+    from ..trust.beneath import Outside, open_beneath
+
+    try:
+        fd = open_beneath(root, path)
+    except Outside:
+        return 0
+    try:
+        return os.fstat(fd).st_size
+    finally:
+        os.close(fd)
 
 
 def share_targets(package: Package) -> list[tuple[LaunchFile, ShareFile, int]]:

@@ -79,14 +79,16 @@ class Workspace:
         return [p.name for p in self.packages]
 
 
-def _manifest(folder: str) -> tuple[str, tuple[str, ...]]:
-    """(name, dependencies) from ``folder/package.xml``; the folder's name when it cannot be read
-    (the build then says what is wrong with it)."""
+def _manifest(folder: str, root: str | None = None) -> tuple[str, tuple[str, ...]]:
+    """(name, dependencies) from ``folder/package.xml``, read through the one reader beneath
+    ``root`` (default: the folder itself): no link out of it, never a pipe or a device. The
+    folder's name when it cannot be read (the build then says what is wrong with it)."""
     from ..core.errors import BrasKitError
     from ..model.xmlio import read_xml
 
     try:
-        xml = read_xml(os.path.join(folder, "package.xml"))
+        xml = read_xml(os.path.join(os.path.abspath(folder), "package.xml"),
+                       (os.path.abspath(root if root is not None else folder),))
     except (BrasKitError, OSError):
         return os.path.basename(folder), ()
     name = xml.find("name")
@@ -100,25 +102,47 @@ def package_name(folder: str) -> str:
     return _manifest(folder)[0]
 
 
+MAX_CRAWLED = 100_000  # folders of src/ looked into
+
+
 def read_packages(src: str) -> list[WorkspacePackage]:
-    """The packages below ``src``, found as colcon finds them (see the module's notes), by name."""
+    """The packages below ``src``, found as colcon finds them (see the module's notes), by name.
+    Folders are listed through the one reader, by descriptor: a link to a folder is followed
+    when it stays inside ``src`` (colcon follows links), never out of it; a folder reached twice
+    (a link back up) is crawled once."""
+    from ..trust.beneath import FOLDER, Outside, open_beneath
+    from ..trust.learner_files import is_folder, list_folder
+
+    top = os.path.abspath(src)
     found: list[WorkspacePackage] = []
-    seen: set[str] = set()
-    for folder, dirs, files in os.walk(src, followlinks=True):
-        real = os.path.realpath(folder)
-        if real in seen:  # a link back up: crawled once
-            dirs[:] = []
+    seen: set[tuple[int, int]] = set()
+    todo = [top]
+    while todo and len(seen) < MAX_CRAWLED:
+        folder = todo.pop()
+        try:
+            fd = open_beneath(top, folder, want=FOLDER)
+        except Outside:
             continue
-        seen.add(real)
-        if any(marker in files for marker in IGNORE_MARKERS):
-            dirs[:] = []
+        try:
+            info = os.fstat(fd)
+        finally:
+            os.close(fd)
+        if (info.st_dev, info.st_ino) in seen:
             continue
-        if "package.xml" in files:
-            name, depends = _manifest(folder)
-            found.append(WorkspacePackage(name, os.path.abspath(folder), depends))
-            dirs[:] = []  # packages do not nest
+        seen.add((info.st_dev, info.st_ino))
+        try:
+            entries = list_folder(folder, (top,))
+        except OSError:
             continue
-        dirs[:] = sorted(d for d in dirs if not d.startswith("."))
+        names = {name for name, _kind in entries}
+        if any(marker in names for marker in IGNORE_MARKERS):
+            continue
+        if "package.xml" in names:
+            name, depends = _manifest(folder, top)
+            found.append(WorkspacePackage(name, folder, depends))
+            continue  # packages do not nest
+        todo.extend(os.path.join(folder, name) for name, kind in reversed(entries) if not name.startswith(".")
+                    and (kind == "folder" or kind == "link" and is_folder(os.path.join(folder, name), (top,))))
     return sorted(found, key=lambda p: p.name)
 
 
@@ -198,17 +222,23 @@ def is_package_folder(folder: str) -> bool:
 
 
 def is_package(path: str) -> bool:
-    """A folder holding ``package.xml`` and ``setup.py`` (an ament_python package)."""
-    return os.path.isfile(os.path.join(path, "package.xml")) and os.path.isfile(os.path.join(path, "setup.py"))
+    """A folder holding ``package.xml`` and ``setup.py`` (an ament_python package). Nothing is
+    read here: a manifest that is a link out is still a package, which the package model then
+    refuses to read (BK600 says so), never a folder passed over in silence."""
+    return all(os.path.lexists(os.path.join(path, name)) and not os.path.isdir(os.path.join(path, name))
+               for name in ("package.xml", "setup.py"))
 
 
 def find_packages(paths: Iterable[str]) -> list[str]:
-    """The ament_python packages among ``paths`` and below them (hidden folders skipped)."""
+    """The ament_python packages among ``paths`` and below them (hidden folders skipped), walked
+    through the one reader: a link to a folder is never walked into."""
+    from ..trust.learner_files import walk
+
     out: list[str] = []
     for path in paths:
         if not os.path.isdir(path):
             continue
-        for folder, dirs, _ in os.walk(path):
+        for folder, dirs, _ in walk(path, (os.path.abspath(path),)):
             dirs[:] = sorted(d for d in dirs if not d.startswith("."))
             if is_package(folder):
                 out.append(folder)

@@ -28,11 +28,31 @@ import secrets
 import stat
 from collections.abc import Iterator
 
+from ..core.message import M, Message
 from .beneath import ANY, FILE, FOLDER, Outside, open_any_beneath, open_beneath, open_root
 
 MAX_BYTES = 8 << 20  # a launch file, an .rviz, a URDF, a parameter file
 MAX_COPY_BYTES = 256 << 20  # a mesh installed by data_files (the mesh reader's own cap)
 MAX_LISTED = 100_000  # names in one folder
+
+
+def refusal(kind: str) -> Message:
+    """Why the one reader refused a path (an :class:`Unreadable`'s or :class:`~bras_kit.trust.beneath.Outside`'s
+    ``kind``), in the message system: the words a refusal shows, never a byte of the file."""
+    return {
+        "outside": M("it lies outside the folders it is read from (the package, the submission, the folders given with "
+                     "--package-path)"),
+        "link_out": M("a symbolic link on the way leads outside the folders it is read from"),
+        "loop": M("a loop of symbolic links"),
+        "device": M("it is a device, not a file"),
+        "fifo": M("it is a named pipe, not a file"),
+        "socket": M("it is a socket, not a file"),
+        "folder": M("it is a folder, not a file"),
+        "too_large": M("it is larger than bras-kit reads"),
+        "missing": M("no such file or folder"),
+        "not_folder": M("a part of the path is not a folder"),
+        "too_deep": M("the path is too deep"),
+    }.get(kind, M("it cannot be read"))
 
 
 class Unreadable(Outside):
@@ -304,4 +324,5 @@ def _chunks(source, path: str, limit: int) -> Iterator[bytes]:
 
 
 __all__ = ["ANY", "FILE", "FOLDER", "MAX_BYTES", "MAX_COPY_BYTES", "Unreadable", "copy_file", "is_file", "make_folder", "make_link",
+           "refusal",
            "is_folder", "list_folder", "read_bytes", "read_text", "walk", "write_file"]

@@ -51,7 +51,7 @@ from .context import Context
 
 __all__ = [
     "ERROR", "INFO", "LANGUAGES", "RULES", "UNREADABLE_CODES", "WARNING", "FileResult", "Finding",
-    "Rule", "check_robot", "collect_files", "compare_generated", "default_language", "generated_pairs",
+    "Rule", "check_robot", "collect_files", "compare_generated", "default_language", "found_in", "generated_pairs",
     "validate", "validate_path",
 ]
 
@@ -117,8 +117,11 @@ def validate_path(
     select: Iterable[str] = (),
     ignore: Iterable[str] = (),
     target: str | None = None,
+    roots: Sequence[str] | None = None,
 ) -> list[Finding]:
     """Load a ``.urdf`` or ``.xacro`` file and check it (``target``: see :func:`validate`).
+    ``roots``: the folders a file found in a folder (a submission, ``validate DIR``) is read
+    beneath, with its includes and meshes (:func:`found_in`); None for a file named itself.
 
     A file that cannot be read at all (missing, not well-formed, unsafe XML, xacro failure)
     gives a single finding BK100-BK103 instead of raising; ``bras-kit validate`` exits 2 on
@@ -128,7 +131,7 @@ def validate_path(
     """
     path = os.fspath(path)
     with _collector_paused():
-        robot_or_failure = load_for_validation(path, mappings=mappings, package_paths=package_paths)
+        robot_or_failure = load_for_validation(path, mappings=mappings, package_paths=package_paths, roots=roots)
         if isinstance(robot_or_failure, Finding):
             return [robot_or_failure]
         robot = robot_or_failure
@@ -185,6 +188,18 @@ def collect_files(paths: Iterable[str]) -> list[str]:
             dirs[:] = sorted(d for d in dirs if not d.startswith("."))
             out.extend(os.path.join(folder, f) for f in sorted(files) if f.endswith(SOURCE_SUFFIXES))
     return out
+
+
+def found_in(path: str, given: Iterable[str]) -> tuple[str, ...] | None:
+    """The folder of ``given`` that ``path`` was found in by :func:`collect_files` (its files,
+    includes and meshes are then read beneath it, never through a link out), or None for a path
+    given itself."""
+    full = os.path.abspath(path)
+    for folder in given:
+        top = os.path.abspath(folder)
+        if full != top and os.path.isdir(top) and full.startswith(top.rstrip(os.sep) + os.sep):
+            return (top,)
+    return None
 
 
 def generated_pairs(paths: Sequence[str], given: Iterable[str]) -> dict[str, str]:
@@ -261,7 +276,8 @@ def _same_value(x: str, y: str) -> bool:
 
 
 def load_for_validation(path: str, *, mappings: Mapping[str, str] | None = None,
-                        package_paths: Sequence[str] = (), lang: str | None = None) -> Robot | Finding:
+                        package_paths: Sequence[str] = (), lang: str | None = None,
+                        roots: Sequence[str] | None = None) -> Robot | Finding:
     """The robot in ``path``, or the finding (BK100-BK103) saying why it cannot be read."""
     from ..model.authoring import load
 
@@ -272,7 +288,7 @@ def load_for_validation(path: str, *, mappings: Mapping[str, str] | None = None,
     elif not os.path.exists(path):
         return _loader_finding("BK103", _missing_file(path))
     try:
-        return load(path, mappings=mappings, package_paths=package_paths)
+        return load(path, mappings=mappings, package_paths=package_paths, roots=roots)
     except BrasKitError as exc:
         return _unreadable(path, exc)
 

@@ -28,9 +28,11 @@ def watched_files(path: str, package_paths: Iterable[str] = ()) -> list[str]:
     start = os.path.abspath(path)
     found = {start}
     with contextlib.suppress(OSError):
-        folder = os.path.dirname(start)
-        found.update(os.path.join(folder, name) for name in sorted(os.listdir(folder))[:MAX_WATCHED]
-                     if name.endswith(ROBOT_SUFFIXES))
+        from ..trust.learner_files import list_folder
+
+        folder = os.path.dirname(start)  # listed by descriptor: a FIFO or a device beside it is no robot file
+        found.update(os.path.join(folder, name) for name, kind in list_folder(folder, (folder,))[:MAX_WATCHED]
+                     if name.endswith(ROBOT_SUFFIXES) and kind in ("file", "link"))
     todo, scanned = [start], set()
     while todo and len(found) < MAX_WATCHED:
         current = todo.pop()
@@ -46,12 +48,14 @@ def watched_files(path: str, package_paths: Iterable[str] = ()) -> list[str]:
 
 
 def _references(path: str) -> list[str]:
+    """The names of the files ``path`` includes, read through the one reader (a regular file of
+    at most 4 MiB, opened without waiting: an include that is a pipe or a device is skipped,
+    never waited on). The user named the robot: its includes may be anywhere, as xacro's."""
+    from ..trust.learner_files import read_text
+
     try:
-        if os.path.getsize(path) > MAX_SCANNED_BYTES:
-            return []
-        with open(path, encoding="utf-8", errors="replace") as stream:
-            text = stream.read()
-    except OSError:
+        text = read_text(os.path.abspath(path), ("/",), limit=MAX_SCANNED_BYTES, errors="replace")
+    except OSError:  # Unreadable too, a file past the bound included
         return []
     return [m.group(2) for pattern in (_INCLUDE, _YAML) for m in pattern.finditer(text)]
 

@@ -136,3 +136,31 @@ def test_a_class_with_a_60_mb_robot_is_graded_small_and_fast(tmp_path):
 def test_small_robots_are_held_as_before(links):
     loaded, problems = robot_state_publisher_start(rsp(chain(links)))
     assert loaded is not None and problems == []
+
+
+def test_a_launch_giving_robot_state_publisher_60_mb_is_bk632_small_and_fast(tmp_path):
+    """A launch file making a 60 MB robot_description in Python: launch_ros would yaml.dump the
+    text (PyYAML's emitter: about 40 s for 60 MB), which stopped the launch file's child at its
+    40 s wall clock with BK631 'wall limit'; past bras-kit's bound the text is now kept as it is,
+    and robot_state_publisher's counterpart says BK632 too_large without parsing it. Peak memory
+    is the kernel's ru_maxrss of bras-kit and the children it waited for."""
+    package = tmp_path / "bras_description"
+    shutil.copytree(TUTORIAL_URDF.parent.parent, package)
+    (package / "launch" / "affichage.launch.py").write_text(
+        "from launch import LaunchDescription\nfrom launch_ros.actions import Node\n\n\n"
+        "def generate_launch_description():\n"
+        "    text = '<robot name=\"r\"><link name=\"base\"/><!--' + 'x' * (60 << 20) + '--></robot>'\n"
+        "    return LaunchDescription([Node(package='robot_state_publisher', executable='robot_state_publisher',\n"
+        "                                   parameters=[{'robot_description': text}])])\n", encoding="utf-8")
+    code = ("import resource, subprocess, sys\n"
+            "p = subprocess.run(sys.argv[1:], capture_output=True, text=True, timeout=200)\n"
+            "sys.stdout.write(p.stdout); sys.stderr.write(p.stderr)\n"
+            "print('MAXRSS', resource.getrusage(resource.RUSAGE_CHILDREN).ru_maxrss)\n")
+    start = time.monotonic()
+    done = subprocess.run([sys.executable, "-c", code, sys.executable, "-m", "bras_kit", "launch", str(package),
+                           "--no-page", "--duration", "1"], capture_output=True, text=True, timeout=250,
+                          env={**os.environ, "BRAS_KIT_LANG": "en"}, cwd=tmp_path)
+    seconds, peak = time.monotonic() - start, int(done.stdout.rsplit("MAXRSS", 1)[1]) / 1024
+    assert "BK632" in done.stdout and "60.0 MiB of text, more than the 8 MiB" in done.stdout, done.stdout
+    assert "wall limit" not in done.stdout
+    assert seconds < 25 and peak < 450, (seconds, peak)

@@ -73,6 +73,11 @@ def package_file_unreadable(pkg: Package) -> Iterator[Hit]:
     for problem in pkg.problems:
         variant = "missing" if problem.detail == "missing" else ""
         yield _at(problem.path, _inside(pkg, problem.path, problem.line), variant, detail=problem.detail)
+    from .setup_cfg import SETUP_CFG, _read
+
+    _text, why = _read(pkg)  # a setup.cfg that is a pipe or a device: colcon and setuptools would wait on it
+    if why is not None and why != "missing":
+        yield _at(SETUP_CFG, None, "", detail=why)
 
 
 def _inside(pkg: Package, relative: str, line: int | None) -> int | None:

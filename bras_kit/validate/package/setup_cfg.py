@@ -24,6 +24,7 @@ import os
 import re
 from collections.abc import Iterator
 
+from ...core.message import Message
 from ...findings.registry import ERROR, WARNING, Hit, hit
 from ...ros.package import Package
 from .rules import package_rule
@@ -68,9 +69,9 @@ def _lines(text: str) -> list[tuple[int, str, str]]:
     return found
 
 
-def _read(pkg: Package) -> tuple[str | None, str | None]:
+def _read(pkg: Package) -> tuple[str | None, str | Message | None]:
     """(text, None), (None, "missing") or (None, why it cannot be read)."""
-    from ...trust.learner_files import Unreadable, read_text
+    from ...trust.learner_files import Unreadable, read_text, refusal
 
     full = os.path.join(pkg.root, SETUP_CFG)
     if not os.path.lexists(full):
@@ -78,7 +79,7 @@ def _read(pkg: Package) -> tuple[str | None, str | None]:
     try:
         return read_text(full, (pkg.root,), errors="replace"), None
     except Unreadable as exc:
-        return None, f"refused: {exc.strerror or exc}"
+        return None, refusal(exc.kind)
 
 
 def _parsed(text: str) -> configparser.ConfigParser | str:

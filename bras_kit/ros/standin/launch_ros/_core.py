@@ -143,6 +143,10 @@ def _normalize_value(value: Any) -> Any:
     if isinstance(value, ParameterValue):
         return value
     if isinstance(value, str):
+        from bras_kit.trust import yaml_gate
+
+        if len(value) > yaml_gate.MAX_CHARS:  # past bras-kit's bound: kept as text, never dumped (PyYAML's
+            return (TextSubstitution(text=value),)  # emitter takes about 40 s for 60 MB); the parent reports it
         return tuple(normalize_to_list_of_substitutions(yaml.dump(value)))
     if isinstance(value, Substitution):
         return (value,)
@@ -181,6 +185,9 @@ def evaluate_parameter_dict(context: LaunchContext, parameters: Mapping) -> dict
                 text = "''"
             from bras_kit.trust import yaml_gate
 
+            if len(text) > yaml_gate.MAX_CHARS:  # a text past the bound is no YAML bras-kit reads: the parent
+                output[name] = text  # says it is too large (BK632 for robot_description), having parsed nothing
+                continue
             try:
                 loaded = yaml_gate.load(text, loader=yaml.SafeLoader)
             except yaml.YAMLError:
