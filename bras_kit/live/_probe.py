@@ -48,7 +48,28 @@ MAX_JOINT_STATES = 4000  # a 1 kHz publisher watched for 3 s, and some
 MAX_TEXT = 4_000_000  # a description bigger than this is cut (its length is still said)
 MAX_TRANSFORMS = 20_000  # /tf of a 2-joint arm at 1 kHz for 4 s, and some
 MAX_EVENTS = 500
+# A publisher is a stranger: what the probe keeps of it is bounded, so its JSON (and bras-kit,
+# which reads it) stays small whatever the graph sends. The cuts keep what the judging reads:
+# the first names and positions, the order of their two lengths (robot_state_publisher's size
+# check, robot_state_publisher.cpp:319), the first description and the latest ones.
+MAX_NAMES = 1000  # names (and positions) kept of one JointState; a real arm has tens
+MAX_NAME = 256  # characters kept of one name
+MAX_JOINT_STATE_BYTES = 16 << 20  # the joint states kept, counted as their names' characters and 8 per number
+MAX_DESCRIPTIONS = 16  # different texts kept: the first and the latest
 WATCH_EVERY = 0.2  # seconds between two readings of who is on the graph (the timeline's grain)
+
+
+def kept_sizes(names: int, positions: int) -> tuple[int, int]:
+    """How many names and positions of one JointState are kept: at most MAX_NAMES each, and the
+    two counts compare as the message's do (equal stays equal, fewer stays fewer), so the size
+    check robot_state_publisher makes gives the same answer on what is kept."""
+    kept_names, kept_positions = min(names, MAX_NAMES), min(positions, MAX_NAMES)
+    if names != positions and kept_names == kept_positions:
+        if names < positions:
+            kept_names -= 1
+        else:
+            kept_positions -= 1
+    return kept_names, kept_positions
 
 
 def _policy(value: object) -> str:
@@ -97,6 +118,8 @@ class Probe:
         self.lock = threading.Lock()
         self.descriptions: list[dict[str, object]] = []
         self.joint_states: list[dict[str, object]] = []
+        self._sizes: list[int] = []  # of each joint state kept (MAX_JOINT_STATE_BYTES)
+        self._joint_state_bytes = 0
         self.started = time.time()
         self._clients: dict[str, Any] = {}
         # the timeline: who joined, left, began or ceased publishing the two topics, when
@@ -188,21 +211,31 @@ class Probe:
             if self.descriptions and self.descriptions[-1]["text"] == record["text"]:
                 return  # the same text through both subscriptions (a new text is a new description)
             self.descriptions.append(record)
+            if len(self.descriptions) > MAX_DESCRIPTIONS:
+                del self.descriptions[1]  # the first is kept (what RViz loaded first), then the latest
         if self.emit:
             self.emit({"kind": "description", **record})  # type: ignore[operator]
 
     def _on_joint_state(self, msg: object, info: object) -> None:
+        names, positions = kept_sizes(len(msg.name), len(msg.position))  # type: ignore[attr-defined]
+        kept = [str(n)[:MAX_NAME] for n in msg.name[:names]]  # type: ignore[attr-defined]
         record = {
             "received": time.time(),
             "stamp": _stamp(msg.header),  # type: ignore[attr-defined]
-            "frame": msg.header.frame_id,  # type: ignore[attr-defined]
-            "name": list(msg.name),  # type: ignore[attr-defined]
-            "position": [float(v) for v in msg.position],  # type: ignore[attr-defined]
+            "frame": str(msg.header.frame_id)[:MAX_NAME],  # type: ignore[attr-defined]
+            "name": kept,
+            "position": [float(v) for v in msg.position[:positions]],  # type: ignore[attr-defined]
             "sent": _info(info, "source_timestamp"),
         }
+        size = sum(len(n) for n in kept) + 8 * (names + positions) + 100
         with self.lock:
             self.joint_states.append(record)
-            del self.joint_states[:-MAX_JOINT_STATES]
+            self._sizes.append(size)
+            self._joint_state_bytes += size
+            while len(self.joint_states) > MAX_JOINT_STATES or (
+                    self._joint_state_bytes > MAX_JOINT_STATE_BYTES and len(self.joint_states) > 1):
+                self.joint_states.pop(0)
+                self._joint_state_bytes -= self._sizes.pop(0)
         if self.emit:
             self.emit({"kind": "joint_state", **record})  # type: ignore[operator]
 

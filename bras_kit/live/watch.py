@@ -34,6 +34,10 @@ NO_ROS_EXIT = 3  # could not look: no rclpy to join the graph with
 PROBE = os.path.join(os.path.dirname(os.path.abspath(__file__)), "_probe.py")
 START_SLACK = 30.0  # seconds allowed for the probe's own start (rclpy's import, the re-exec) and its end
 RANGES = ("LOCALHOST", "SUBNET")
+# what bras-kit reads of the probe: its bounds (_probe.py's MAX_*) keep a snapshot near 100 MiB
+# at the very most (16 descriptions of 4 MB, 16 MiB of joint states, 20,000 transforms, as JSON)
+MAX_PROBE_OUTPUT = 160 << 20
+MAX_PROBE_LINE = 32 << 20  # one stream record: a description of 4 MB, escaped as JSON
 # RTPS's default ports (DDSI-RTPS 2.5, 9.6.1 "Default Port Numbers"): PB 7400 + DG 250 x domain; every participant
 # of a domain binds ports in its block, so the blocks in use name the domains of this computer
 PORT_BASE, DOMAIN_GAIN, MAX_DOMAIN = 7400, 250, 232
@@ -105,19 +109,31 @@ def probe_env(domain: int | None = None, discovery_range: str | None = None) -> 
 
 def _run_probe(python: str, mode: str, seconds: float, env: Mapping[str, str], wait: float | None = None
                ) -> dict[str, Any]:
+    import tempfile
+
     argv = [python, PROBE, mode, f"{seconds:g}"] + ([f"{wait:g}"] if wait is not None else [])
-    try:
-        done = subprocess.run(argv, env=dict(env), capture_output=True, text=True,
-                              timeout=max(seconds, wait or 0.0) + START_SLACK, stdin=subprocess.DEVNULL)
-    except subprocess.TimeoutExpired as exc:
-        raise ProbeFailed(M("the ROS 2 probe did not answer in {seconds:.0f} s", seconds=exc.timeout),
-                          hint=M("run again; if it persists, try 'ros2 node list' in the same terminal")) from None
-    except OSError as exc:
-        raise RosUnavailable(M("{python} cannot run: {reason}", python=python, reason=exc.strerror or str(exc)),
-                             hint=M("point BRAS_KIT_ROS_PYTHON at a Python that imports rclpy")) from None
-    lines = [line for line in done.stdout.splitlines() if line.startswith("{")]
+    # into files, not pipes held in memory: the probe's output is read only once its size is known
+    with tempfile.TemporaryFile() as out, tempfile.TemporaryFile() as err:
+        try:
+            done = subprocess.run(argv, env=dict(env), stdout=out, stderr=err,
+                                  timeout=max(seconds, wait or 0.0) + START_SLACK, stdin=subprocess.DEVNULL)
+        except subprocess.TimeoutExpired as exc:
+            raise ProbeFailed(M("the ROS 2 probe did not answer in {seconds:.0f} s", seconds=exc.timeout),
+                              hint=M("run again; if it persists, try 'ros2 node list' in the same terminal")) from None
+        except OSError as exc:
+            raise RosUnavailable(M("{python} cannot run: {reason}", python=python, reason=exc.strerror or str(exc)),
+                                 hint=M("point BRAS_KIT_ROS_PYTHON at a Python that imports rclpy")) from None
+        if os.fstat(out.fileno()).st_size > MAX_PROBE_OUTPUT:
+            raise ProbeFailed(M("the ROS 2 probe printed more than {most} MiB", most=MAX_PROBE_OUTPUT >> 20),
+                              hint=M("a node of the graph sends more than bras-kit keeps; stop the other nodes "
+                                     "and look again"))
+        out.seek(0)
+        stdout = out.read().decode("utf-8", "replace")
+        err.seek(max(0, os.fstat(err.fileno()).st_size - 4096))  # its last words only
+        stderr = err.read().decode("utf-8", "replace")
+    lines = [line for line in stdout.splitlines() if line.startswith("{")]
     if done.returncode != 0 or not lines:
-        last = (done.stderr.strip().splitlines() or ["(nothing)"])[-1][:500]
+        last = (stderr.strip().splitlines() or ["(nothing)"])[-1][:500]
         raise ProbeFailed(M("{python} could not join the ROS 2 graph: {detail}", python=python, detail=last),
                           hint=M("check that this Python imports rclpy and sensor_msgs (python3 -c 'import rclpy, "
                                  "sensor_msgs'), with ROS 2 Jazzy sourced or the 'ros' extra installed"))
@@ -215,8 +231,16 @@ def open_stream(python: str, every: float = 2.0) -> subprocess.Popen[str]:
 
 
 def read_records(stream: IO[str]) -> Iterator[dict[str, Any]]:
-    """The probe's JSON lines as dicts (a line that does not parse is skipped)."""
-    for line in stream:
+    """The probe's JSON lines as dicts (a line that does not parse, or longer than
+    MAX_PROBE_LINE, is skipped: read in pieces, never held whole)."""
+    while True:
+        line = stream.readline(MAX_PROBE_LINE)
+        if not line:
+            return
+        if not line.endswith("\n") and len(line) >= MAX_PROBE_LINE:
+            while line and not line.endswith("\n"):  # the rest of the over-long line, dropped as it comes
+                line = stream.readline(MAX_PROBE_LINE)
+            continue
         if not line.startswith("{"):
             continue
         try:

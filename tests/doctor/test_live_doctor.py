@@ -314,3 +314,23 @@ def test_a_hostile_saved_look_is_read_field_by_field_without_a_traceback():
     assert done.returncode == 1 and "Traceback" not in done.stderr
     assert document["nodes"] == ["/animation_bras"]
     assert {"BK802", "BK814", "BK112"} <= set(_codes(document))  # the description's own defects too
+
+
+
+def test_a_flooding_publisher_is_judged_on_a_bounded_look(real_rclpy):
+    """A stranger's publisher: 3,000 more names of 1,000 characters and one position fewer, 20
+    times a second (60 MB a second on the bus). What the probe keeps is bounded (live/_probe.py's
+    MAX_*), so the look bras-kit reads stays small, and the size check robot_state_publisher makes
+    (robot_state_publisher.cpp:303, tag 3.3.3) answers on what is kept as on the message."""
+    from live_graphs import run_with_look
+
+    outs, _logs, look = run_with_look([STATE_PUBLISHER, ANIMATION + ["--flood", "3000", "--positions", "3001"]],
+                                      JSON_ONLY)
+    print(outs, _logs)
+    (code, out), = outs
+    assert look is not None and look["joint_states"], "the probe saw no joint state"
+    for state in look["joint_states"]:
+        assert len(state["name"]) == 1000 and len(state["position"]) == 999
+        assert max(len(name) for name in state["name"]) <= 256
+    assert len(json.dumps(look)) < 40 << 20
+    assert code == 1 and "BK819" in _codes(_json(out))  # names and positions differ: rsp ignores each message

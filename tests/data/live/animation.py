@@ -40,6 +40,8 @@ parser.add_argument("--stop-after", type=float, default=None,
 parser.add_argument("--topic", default="joint_states")
 parser.add_argument("--float-array", action="store_true", help="publish Float64MultiArray, not JointState")
 parser.add_argument("--degrees", action="store_true", help="positions in degrees")
+parser.add_argument("--flood", type=int, default=0,
+                    help="a stranger's message: N more names, each 1,000 characters, and N positions")
 options = parser.parse_args()
 
 
@@ -81,6 +83,9 @@ class Animation(Node):
             msg.position = [math.degrees(v) for v in msg.position]
         if options.positions is not None:
             msg.position = msg.position[:options.positions]
+        if options.flood:
+            msg.name = list(msg.name) + [f"j{i:05d}" + "x" * 994 for i in range(options.flood)]
+            msg.position = (list(msg.position) + [0.0] * options.flood)[:options.positions]
         if options.nan in msg.name:
             msg.position[msg.name.index(options.nan)] = float("nan")
         self.pub.publish(msg)
