@@ -8,11 +8,15 @@ What is normalised, and why (the rest is compared as it is):
   mode are compared;
 * a Python shebang in a ``scripts=`` file becomes ``#!python`` (setuptools' build_scripts puts the building
   interpreter there);
-* left out: the egg-info folder (setuptools' metadata, SOURCES.txt and PKG-INFO), ``__pycache__``,
-  colcon's environment hooks and per-package shell scripts (``share/PKG/hook/``,
-  ``share/PKG/package.{bash,dsv,ps1,sh,zsh}``) and the workspace-level scripts (install/setup.*,
-  local_setup.*, _local_setup_util_*.py, COLCON_IGNORE, .colcon_install_layout): bras-kit writes one
-  setup.bash of its own instead, compared by its own tests.
+* colcon's environment files: the ``.dsv`` descriptors are data and compared as they are; a hook script
+  (``share/PKG/hook/NAME.sh``, ``.ps1``) by the call it makes, its comment lines aside (bras-kit's say
+  who wrote them); a package script (``share/PKG/package.{bash,ps1,sh,zsh}``) is bras-kit's own text,
+  so only where it lands and its mode are compared here, and what sourcing it exports by
+  :func:`exported`;
+* left out: the egg-info folder (setuptools' metadata, SOURCES.txt and PKG-INFO), ``__pycache__``, and
+  the workspace-level scripts (install/setup.*, local_setup.*, _local_setup_util_*.py, COLCON_IGNORE,
+  .colcon_install_layout): bras-kit writes one setup.bash of its own instead, compared by what
+  sourcing it exports (:func:`exported`).
 
 The verdict: the exit code, the packages colcon says Finished and Failed, and colcon's error lines
 (setuptools' ``error: ...``, ``CMake Error...``, catkin_pkg's) that bras-kit must print in colcon's words.
@@ -33,8 +37,9 @@ import realcolcon
 
 _SKIPPED_TOP = re.compile(r"^(setup|local_setup)\.\w+$|^_local_setup_util_\w+\.py$|^COLCON_IGNORE$|"
                           r"^\.colcon_install_layout$")
-_SKIPPED_PART = re.compile(r"\.egg-info(/|$)|(^|/)__pycache__(/|$)|^[^/]+/share/[^/]+/hook(/|$)|"
-                           r"^[^/]+/share/[^/]+/package\.(bash|dsv|ps1|sh|zsh)$")
+_SKIPPED_PART = re.compile(r"\.egg-info(/|$)|(^|/)__pycache__(/|$)")
+_HOOK_SCRIPT = re.compile(r"^[^/]+/share/[^/]+/hook/[^/]+\.(sh|ps1)$")
+_PACKAGE_SCRIPT = re.compile(r"^[^/]+/share/[^/]+/package\.(bash|ps1|sh|zsh)$")
 _ENTRY = re.compile(r"EASY-INSTALL-ENTRY-SCRIPT: '[^']*','console_scripts','([^']*)'")
 _SHEBANG = re.compile(r"\A#![^\n]*python[0-9.]*[^\n]*")
 _ERROR = re.compile(r"^(error: .*|CMake Error.*|Error\(s\) in package .*|ERROR:colcon.*)$")
@@ -80,7 +85,14 @@ def install_tree(workspace: Path) -> dict[str, tuple[str, int, str]]:
             else:
                 text = path.read_bytes().decode("utf-8", "replace").replace(str(workspace), "<WS>")
                 entry = _ENTRY.search(text)
-                text = f"<entry script {entry.group(1)}>" if entry else _SHEBANG.sub("#!python", text)
+                if _PACKAGE_SCRIPT.match(relative):
+                    text = "<package script>"  # bras-kit's own text: what sourcing it exports is compared
+                elif _HOOK_SCRIPT.match(relative):  # the call each hook makes, its comments aside
+                    text = "\n".join(line for line in text.splitlines() if line.strip() and not line.startswith("#"))
+                elif entry:
+                    text = f"<entry script {entry.group(1)}>"
+                else:
+                    text = _SHEBANG.sub("#!python", text)
                 tree[relative] = ("file", stat.S_IMODE(info.st_mode), text)
     return tree
 
