@@ -53,6 +53,7 @@ class Outcome:
     finished: frozenset[str]
     failed: frozenset[str]
     output: str  # stdout and stderr, the workspace's path as <WS>
+    workspace: Path
 
     def errors(self) -> list[str]:
         return [line.strip() for line in self.output.splitlines() if _ERROR.match(line.strip())]
@@ -102,7 +103,7 @@ def _outcome(workspace: Path, done: subprocess.CompletedProcess[str]) -> Outcome
     verdicts = [m.groups() for m in map(_VERDICT.match, output.splitlines()) if m]
     return Outcome(install_tree(workspace), done.returncode,
                    frozenset(p for v, p in verdicts if v == "Finished"),
-                   frozenset(p for v, p in verdicts if v == "Failed"), output)
+                   frozenset(p for v, p in verdicts if v == "Failed"), output, workspace)
 
 
 def by_colcon(variant: str, root: Path, *extra: str) -> Outcome:
@@ -112,11 +113,32 @@ def by_colcon(variant: str, root: Path, *extra: str) -> Outcome:
 
 def by_bras_kit(variant: str, root: Path, *extra: str) -> Outcome:
     workspace = make_workspace(root, variant)
-    env = {**os.environ, "LANG": "C.UTF-8", "LC_ALL": "C.UTF-8"}
+    # the oracle's environment (no ROS, no colcon set-up of the caller's: conditions and chained prefixes
+    # read alike), with what bras-kit itself needs from the caller's
+    env = {k: v for k, v in realcolcon.colcon_env(root / ".colcon-home").items() if not k.startswith("COLCON_")}
     env.pop("BRAS_KIT_LANG", None)
     done = subprocess.run([sys.executable, "-m", "bras_kit", "build", str(workspace), *extra], cwd=workspace,
                           env=env, capture_output=True, text=True, timeout=120)
     return _outcome(workspace, done)
+
+
+EXPORTED = ("AMENT_PREFIX_PATH", "COLCON_PREFIX_PATH", "PYTHONPATH", "PATH", "CMAKE_PREFIX_PATH", "LD_LIBRARY_PATH",
+            "PKG_CONFIG_PATH", "CMAKE_MODULE_PATH", "COLCON_CURRENT_PREFIX")
+CLEAN_PATH = "/usr/bin:/bin"
+
+
+def exported(outcome: Outcome, script: str, shell: str = "bash") -> dict[str, str] | str:
+    """What sourcing ``install/SCRIPT`` in a clean ``shell`` leaves set (the workspace's path as <WS>), or
+    what it printed on stderr when it failed; {} when there is no such script."""
+    path = outcome.workspace / "install" / script
+    if not path.is_file():
+        return {}
+    done = subprocess.run([shell, "-c", '. "$1" && env -0', shell, str(path)], capture_output=True, timeout=30,
+                          env={"PATH": CLEAN_PATH, "HOME": str(outcome.workspace), "LC_ALL": "C.UTF-8"})
+    if done.returncode:
+        return "failed: " + done.stderr.decode("utf-8", "replace").replace(str(outcome.workspace), "<WS>")
+    values = dict(item.split("=", 1) for item in done.stdout.decode("utf-8", "replace").split("\0") if "=" in item)
+    return {name: values[name].replace(str(outcome.workspace), "<WS>") for name in EXPORTED if name in values}
 
 
 def differences(colcon: Outcome, ours: Outcome) -> list[str]:

@@ -286,14 +286,34 @@ def script_folder(root: str, package: str) -> str:
 
 
 def develop_script_folder(root: str, package: str) -> str:
-    """Where ``setup.py develop`` (colcon's --symlink-install) puts the scripts, relative to the prefix:
-    setuptools reads setup.cfg's ``[develop]`` ``script_dir`` itself (``script-dir`` too, with its
-    deprecation warning: setuptools/dist.py, _enforce_underscore), colcon passes nothing
-    (colcon_core/task/python/build.py, build, lines 174-183); without it, the prefix's bin/."""
+    """Where ``setup.py develop`` (colcon's --symlink-install) puts the scripts, relative to the prefix.
+    colcon passes no folder (colcon_core/task/python/build.py, build, lines 174-183); setuptools' develop
+    takes setup.cfg's ``[develop]`` ``script_dir``, else the install_scripts command's folder
+    (setuptools/command/easy_install.py, finalize_options, lines 296-309): ``[install_scripts]``
+    ``install_dir``, else ``[install]`` ``install_scripts`` (setuptools/_distutils/command/
+    install_scripts.py, finalize_options, lines 32-39); else the prefix's bin/. setuptools reads a
+    dash key as its underscore twin, with its deprecation warning (setuptools/dist.py,
+    _enforce_underscore), the later of the two in the file winning."""
     def pick(parser: Any) -> str | None:
-        return parser.get("develop", "script_dir", fallback=None) or parser.get("develop", "script-dir", fallback=None)
+        for section, key in (("develop", "script_dir"), ("install_scripts", "install_dir"),
+                             ("install", "install_scripts")):
+            value = _last_of(parser, section, (key, key.replace("_", "-")))
+            if value is not None:
+                return value
+        return None
 
     return _setup_cfg_folder(root, package, pick, keep_case=False)
+
+
+def _last_of(parser: Any, section: str, keys: tuple[str, ...]) -> str | None:
+    """The value of the last of ``keys`` written in ``section`` (setuptools reads options in file order)."""
+    if not parser.has_section(section):
+        return None
+    found = None
+    for key, value in parser.items(section, raw=True):
+        if key in keys:
+            found = value
+    return found
 
 
 def _setup_cfg_folder(root: str, package: str, pick: Callable[[Any], str | None], *, keep_case: bool) -> str:
@@ -490,9 +510,11 @@ def _lay_out(record: BuildRecord, checked: CheckedSetup, setup: dict[str, Any], 
     (:mod:`bras_kit.trust.learner_files`), every target a new file under the fresh prefix.
     ``whole`` False: setuptools stopped at a missing data_files source (``checked`` is what it
     had installed by then): the modules, the data files before it, the folders of the entries up
-    to it, and no script, no environment file but colcon-ros's first hook, no colcon-core marker
-    (written after a build that succeeded: colcon_core/task/python/build.py, lines 157-160 and
-    210-212)."""
+    to it, and no script (setuptools' install_scripts comes after install_data: setuptools/command/
+    install.py, lines 30-33 and 145-147; ``setup.py develop`` of --symlink-install writes them before
+    colcon's symlink_data runs), no environment file but colcon-ros's first hook, no colcon-core
+    marker (written after a build that succeeded: colcon_core/task/python/build.py, lines 157-160
+    and 210-212)."""
     from ..trust.learner_files import Unreadable, copy_file, make_folder, write_file
 
     for path in (os.path.dirname(record.build), record.build) if record.build else ():
@@ -530,7 +552,7 @@ def _lay_out(record: BuildRecord, checked: CheckedSetup, setup: dict[str, Any], 
                 copy_file(os.path.join(record.root, item.source), roots, os.path.join(record.prefix, item.target),
                           target_root=record.prefix, replace=True,
                           mode=0o755 if item in executables else None)
-            for name, module, function in checked.console_scripts if whole else ():
+            for name, module, function in checked.console_scripts if whole else ():  # install_scripts comes last
                 script = SCRIPT.format(dist=checked.name, name=name, module=module,
                                        head=function.partition(".")[0], function=function)
                 write_file(record.prefix, os.path.join(scripts, name), script.encode("utf-8"), mode=0o755)

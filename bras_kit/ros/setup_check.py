@@ -162,23 +162,23 @@ def check_setup(setup: dict[str, Any], root: str, *, manifest_name: str, setup_s
     if not isinstance(name, str) or name_problem(name) is not None:
         return Refusal("name", _shown(name), line, file)
     installed = _data_files(setup.get("data_files"), root, lines)
-    modules = _modules(setup, root, lines, python_lib)
-    if isinstance(installed, Refusal) and (installed.kind != "missing_source" or isinstance(modules, Refusal)):
+    if isinstance(installed, Refusal) and installed.kind != "missing_source":
         return installed
+    modules = _modules(setup, root, lines, python_lib)
     if isinstance(modules, Refusal):
         return modules
-    if isinstance(installed, Refusal):
-        # setuptools installs the modules (install_lib), then data_files in order (install_data), and
-        # stops at the missing source; the scripts come after (setuptools/command/install.py, lines
-        # 30-33 and 145-147: install_egg_info and install_scripts run last)
-        assert installed.partial is not None
-        return replace(installed, partial=replace(installed.partial, name=name, modules=tuple(modules)))
     executables = _scripts(setup.get("scripts"), root, name, lines)
     if isinstance(executables, Refusal):
         return executables
     console = _console_scripts(setup.get("entry_points"), lines)
     if isinstance(console, Refusal):
         return console
+    if isinstance(installed, Refusal):
+        # setuptools stops at the missing source: what it installed before is in ``partial`` (the
+        # build lays out what came before, in setuptools' order)
+        assert installed.partial is not None
+        return replace(installed, partial=replace(installed.partial, name=name, modules=tuple(modules),
+                                                  executables=tuple(executables), console_scripts=tuple(console)))
     return CheckedSetup(name, tuple(installed), tuple(modules), tuple(executables), tuple(console))
 
 

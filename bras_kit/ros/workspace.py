@@ -95,8 +95,27 @@ def _manifest(folder: str) -> tuple[str, tuple[str, ...]]:
     return text or os.path.basename(folder), depends
 
 
+def _setup_py_name(folder: str) -> str:
+    """A plain Python package's name: setup.py's ``name=`` read without running it (colcon-python-setup-py
+    runs it; the build does too, and says the name it got), else the folder's."""
+    from .staticpy import Evaluator, calls, call_name, keyword, known, parse_python
+
+    tree, _why, _line = parse_python(os.path.join(folder, "setup.py"), folder)
+    if tree is not None:
+        evaluator = Evaluator(tree, folder)
+        for call in calls(tree):
+            if call_name(call.func) in ("setup", "setuptools.setup"):
+                node = keyword(call, "name")
+                value = evaluator.value(node, evaluator.names) if node is not None else None
+                if isinstance(value, str) and known(value) and value:
+                    return value
+    return os.path.basename(folder)
+
+
 def package_name(folder: str) -> str:
-    """The name colcon gives the package at ``folder`` (its package.xml's, else the folder's)."""
+    """The name colcon gives the package at ``folder`` (its package.xml's, else setup.py's, else the folder's)."""
+    if not os.path.isfile(os.path.join(folder, "package.xml")) and os.path.isfile(os.path.join(folder, "setup.py")):
+        return _setup_py_name(folder)
     return _manifest(folder)[0]
 
 
@@ -117,6 +136,10 @@ def read_packages(src: str) -> list[WorkspacePackage]:
             name, depends = _manifest(folder)
             found.append(WorkspacePackage(name, os.path.abspath(folder), depends))
             dirs[:] = []  # packages do not nest
+            continue
+        if "setup.py" in files:  # no package.xml: colcon-python-setup-py's plain Python package
+            found.append(WorkspacePackage(_setup_py_name(folder), os.path.abspath(folder)))
+            dirs[:] = []
             continue
         dirs[:] = sorted(d for d in dirs if not d.startswith("."))
     return sorted(found, key=lambda p: p.name)
