@@ -24,16 +24,20 @@ The verdict: the exit code, the packages colcon says Finished and Failed, and co
 
 from __future__ import annotations
 
+import hashlib
+import json
 import os
 import re
 import stat
 import subprocess
 import sys
+import tempfile
 from dataclasses import dataclass
 from pathlib import Path
 
 import colcon_corpus
 import realcolcon
+from realros import _cache
 
 _SKIPPED_TOP = re.compile(r"^(setup|local_setup)\.\w+$|^_local_setup_util_\w+\.py$|^COLCON_IGNORE$|"
                           r"^\.colcon_install_layout$")
@@ -107,8 +111,42 @@ def _outcome(workspace: Path, done: subprocess.CompletedProcess[str]) -> Outcome
 
 
 def by_colcon(variant: str, root: Path, *extra: str) -> Outcome:
-    workspace = make_workspace(root, variant)
-    return _outcome(workspace, realcolcon.colcon_build(workspace, *extra))
+    """The real colcon's build of ``variant``: run once for each content, then read back from the cache
+    folder (see :func:`_key`), where the workspace it built stays, its scripts sourceable. ``root`` is
+    used when nothing is kept (BRAS_KIT_COLCON_FRESH=1)."""
+    if os.environ.get("BRAS_KIT_COLCON_FRESH"):
+        workspace = make_workspace(root, variant)
+        return _outcome(workspace, realcolcon.colcon_build(workspace, *extra))
+    key = _key(variant, extra)
+    base = _cache() / "colcon-outcomes"
+    pointer = base / f"{key}.json"
+    if pointer.is_file():
+        done = json.loads(pointer.read_text())
+        if (Path(done["workspace"]) / "src").is_dir():
+            return _outcome(Path(done["workspace"]), subprocess.CompletedProcess([], done["code"], done["stdout"],
+                                                                                 done["stderr"]))
+    base.mkdir(parents=True, exist_ok=True)
+    # built where it stays (colcon's package.sh holds its build-time prefix); the pointer written last,
+    # whole (os.replace), so a session at the same time reads a finished build or builds its own
+    workspace = make_workspace(Path(tempfile.mkdtemp(dir=base, prefix=f"{key}-")), variant)
+    built = realcolcon.colcon_build(workspace, *extra)
+    staged = pointer.with_suffix(f".{os.getpid()}")
+    staged.write_text(json.dumps({"workspace": str(workspace), "code": built.returncode, "stdout": built.stdout,
+                                  "stderr": built.stderr}))
+    os.replace(staged, pointer)
+    return _outcome(workspace, built)
+
+
+# The real colcon's builds, kept: a workspace built by the pinned colcon depends on nothing but the
+# variant's files, the flags, the pins, the Python and the oracle's environment and executable
+# (tests/realcolcon.py), so each is kept under that content's hash under the cache folder, and a second
+# session reads what colcon made instead of making it again. What is compared is read from the kept
+# workspace each time (the normalisation above applies then). BRAS_KIT_COLCON_FRESH=1 builds anew.
+def _key(variant: str, extra: tuple[str, ...]) -> str:
+    given = json.dumps([sorted(colcon_corpus.VARIANTS[variant].items()), list(extra), sys.version_info[:2],
+                        realcolcon.CONSTRAINTS.read_text(), Path(realcolcon.__file__).read_text(),
+                        os.environ.get("BRAS_KIT_COLCON", "")])
+    return hashlib.sha256(given.encode()).hexdigest()[:24]
 
 
 def by_bras_kit(variant: str, root: Path, *extra: str) -> Outcome:
@@ -164,8 +202,6 @@ def differences(colcon: Outcome, ours: Outcome) -> list[str]:
 
 
 if __name__ == "__main__":  # python tests/colcon_compare.py [VARIANT...]: the table of agreements
-    import tempfile
-
     flags = [a for a in sys.argv[1:] if a.startswith("--")]  # --symlink-install, given to both
     names = [a for a in sys.argv[1:] if not a.startswith("--")] or list(colcon_corpus.VARIANTS)
     agree = 0

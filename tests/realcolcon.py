@@ -67,8 +67,12 @@ def colcon_env(home: Path) -> dict[str, str]:
 
 
 def colcon_build(workspace: Path, *extra: str, timeout: float = 120) -> subprocess.CompletedProcess[str]:
-    """``colcon build --base-paths src`` typed at ``workspace``'s root."""
+    """``colcon build --base-paths src`` typed at ``workspace``'s root. Two options change nothing the
+    tests compare and save a quarter of its time: no log files (``--log-base /dev/null``, colcon-core's
+    way to turn them off: colcon_core/command.py line 383, location.py line 91) and the sequential executor
+    (the packages of a variant are few; the parallel one's event loop costs more than it gains)."""
     home = workspace / ".colcon-home"
     home.mkdir(exist_ok=True)
-    return subprocess.run([colcon_executable(), "build", "--base-paths", "src", *extra], cwd=workspace,
+    return subprocess.run([colcon_executable(), "--log-base", "/dev/null", "build", "--base-paths", "src",
+                           "--executor", "sequential", *extra], cwd=workspace,
                           env=colcon_env(home), capture_output=True, text=True, timeout=timeout)

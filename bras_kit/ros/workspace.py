@@ -98,7 +98,7 @@ def _manifest(folder: str) -> tuple[str, tuple[str, ...]]:
 def _setup_py_name(folder: str) -> str:
     """A plain Python package's name: setup.py's ``name=`` read without running it (colcon-python-setup-py
     runs it; the build does too, and says the name it got), else the folder's."""
-    from .staticpy import Evaluator, calls, call_name, keyword, known, parse_python
+    from .staticpy import Evaluator, call_name, calls, keyword, known, parse_python
 
     tree, _why, _line = parse_python(os.path.join(folder, "setup.py"), folder)
     if tree is not None:
