@@ -46,7 +46,7 @@ _HOOK_SCRIPT = re.compile(r"^[^/]+/share/[^/]+/hook/[^/]+\.(sh|ps1)$")
 _PACKAGE_SCRIPT = re.compile(r"^[^/]+/share/[^/]+/package\.(bash|ps1|sh|zsh)$")
 _ENTRY = re.compile(r"EASY-INSTALL-ENTRY-SCRIPT: '[^']*','console_scripts','([^']*)'")
 _SHEBANG = re.compile(r"\A#![^\n]*python[0-9.]*[^\n]*")
-_ERROR = re.compile(r"^(error: .*|CMake Error.*|Error\(s\) in package .*|ERROR:colcon.*)$")
+_ERROR = re.compile(r"^(error: .*|CMake Error.*|Error\(s\) in package .*|ERROR:colcon.*|[A-Z]\w*(Error|Exception): .*)$")
 _VERDICT = re.compile(r"^(Finished|Failed)\s+<<< (\S+)")
 
 
