@@ -113,8 +113,16 @@ def run(args: argparse.Namespace) -> int:
                         file=os.path.join(folder, record.failure.file or "setup.py")), lang))
         if f"Failed   <<< {record.package}" not in shown:  # colcon's line for a failed package, once
             print(f"Failed   <<< {for_terminal(record.package)}")
-    if finished:
-        _write_setup_files(base)
+    # colcon writes install/setup.bash once the packages' jobs ended, whatever their outcome
+    # (colcon_core/verb/build.py, main, lines 152-156, and _create_prefix_scripts, lines 219-230 of
+    # colcon-core 0.21.3): a later `source` then puts install/ on COLCON_PREFIX_PATH
+    if packages and not os.path.islink(base):
+        try:
+            os.makedirs(base, exist_ok=True)
+        except OSError:
+            pass  # a file where install/ goes: the build above already said what it could not do
+        else:
+            _write_setup_files(base)
     # colcon's closing lines (colcon-output's summary event handler); the install tree only when whole
     print(f"Summary: {finished} package{'s' if finished != 1 else ''} finished")
     if failed:
