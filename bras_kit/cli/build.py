@@ -97,6 +97,13 @@ def run(args: argparse.Namespace) -> int:
                    for hit in setup_blocked_hits(record.blocked)]
         if blocked:  # what setup.py tried that its walls stopped, at its lines (docs/security.md)
             sys.stdout.write(format_text(blocked, lang))
+        if record.refused_manifest:  # colcon passes over it without a word: the learner is told why here
+            print(say(M("note: catkin_pkg refuses {file} ({words}), so colcon builds {package} as a plain Python "
+                        "package: no AMENT_PREFIX_PATH hook, and ros2 pkg list, ros2 run and ros2 launch do not "
+                        "find it; bras-kit validate {folder} says what to change",
+                        file=for_terminal(os.path.join(folder, "package.xml")),
+                        words=for_terminal(record.refused_manifest.replace("\n", " ")),
+                        package=for_terminal(record.package), folder=for_terminal(folder)), lang))
         if record.failure is None:
             print(f"Finished <<< {for_terminal(record.package)}")
             finished += 1

@@ -76,6 +76,7 @@ class BuildRecord:
     data_folders: list[str] = field(default_factory=list)  # data_files' target folders
     build: str = ""  # build/PKG, with --symlink-install only: what the install tree's links point to
     ros: bool = False  # colcon-ros identified it (package.xml read by catkin_pkg); else a plain Python package
+    refused_manifest: str = ""  # catkin_pkg's words when it refused package.xml (colcon says nothing of it)
 
     def source_of(self, path: str) -> str | None:
         """The package file installed at ``path`` (absolute, in the install tree), if any."""
@@ -130,6 +131,8 @@ def build_package(root: str, install_base: str, *, meanwhile: Callable[[], objec
     package = _shown_name(name, root)
     record = BuildRecord(package, root, os.path.join(install_base, package))
     record.ros = ros
+    if manifest is not None and not ros:
+        record.refused_manifest = manifest.problem or "Only one <build_type> element is permitted."
     if ros and manifest is not None and manifest.build_type != "ament_python":
         lines = [f"CMake Error: The source directory \"{root}\" does not appear to contain CMakeLists.txt."] \
             if not os.path.isfile(os.path.join(root, "CMakeLists.txt")) else []
