@@ -97,7 +97,9 @@ def _problem(xml: Node) -> str:
     for tag in ("name", "version", "description"):
         if len(xml.findall(tag)) != 1:
             return f'The manifest must contain exactly one "{tag}" tag'
-    errors = []
+    if any(person.get("email") is None for person in xml.findall("maintainer")):  # _get_node_attr, no default
+        return 'The "maintainer" tag must have the attribute "email"'
+    errors = _redundant(xml, form)
     known = {"name": [], "version": ["compatibility"], "description": [], "maintainer": ["email"], "license": [],
              "url": ["type"], "author": ["email"], "export": []}
     attributes = ["version_lt", "version_lte", "version_eq", "version_gte", "version_gt"]
@@ -130,6 +132,28 @@ def _problem(xml: Node) -> str:
     if errors:
         return "Error(s):" + "".join(f"\n- {e}" for e in errors)
     return _invalid(xml, form)
+
+
+def _redundant(xml: Node, form: int) -> list[str]:
+    """parse_package_string's refusals of a dependency given twice (lines 683-716): a ``<depend>``
+    beside the same build, build_export or exec dependency; in format 1 a test dependency beside
+    the same build or run one. Two dependencies are the same when their name and attributes are."""
+    def same(a: Node, b: Node) -> bool:
+        return _text(a) == _text(b) and a.attrib == b.attrib
+
+    errors = []
+    if form != 1:
+        for depend in xml.findall("depend"):
+            tags = [tag for tag in ("build_depend", "build_export_depend", "exec_depend")
+                    for node in xml.findall(tag) if same(node, depend)]
+            if tags:
+                errors.append(f"The generic dependency on '{_text(depend)}' is redundant with: {', '.join(tags)}")
+    else:
+        for test in xml.findall("test_depend"):
+            tags = [tag for tag in ("build_depend", "run_depend") for node in xml.findall(tag) if same(node, test)]
+            if tags:
+                errors.append(f'The test dependency on "{_text(test)}" is redundant with: {", ".join(tags)}')
+    return errors
 
 
 def _invalid(xml: Node, form: int) -> str:
