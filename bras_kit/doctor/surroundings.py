@@ -15,6 +15,7 @@ from ..ros.surroundings import (
     FAIL,
     Concern,
     graphics_concerns,
+    is_wsl,
     machine_concerns,
     shell_concerns,
     workspace_concerns,
@@ -55,4 +56,6 @@ def look(start: str = ".", environ: Mapping[str, str] | None = None, *, renderer
     concerns += machine_concerns(environ)
     if graphics:
         concerns += graphics_concerns(renderer if renderer is not None else egl_renderer(), environ)
+    elif is_wsl():  # doctor --ros opens no OpenGL context, but RViz's crash under WSL2 is still worth a word
+        concerns += graphics_concerns(renderer, environ)
     return concerns
