@@ -7,7 +7,10 @@ kind, mode, text) and the verdicts (exit code, packages Finished and Failed, col
 bras-kit's output), and what sourcing the scripts exports; tests/colcon_compare.py says what is
 normalised. The variants kept aside while build.py was fixed (colcon_corpus.ASIDE and ASIDE_GENERATED)
 run last. Each variant is built once a session by each tool and mode, both builds at once, and the
-three comparisons read the same pair.
+three comparisons read the same pair. The real colcon's builds are kept per content under the cache
+folder (tests/colcon_compare.py, by_colcon): measured on the 2-core test machine with other suites
+running, the module (50 variants, 2 modes, 303 tests) takes 2 min 42 s when colcon builds everything
+(BRAS_KIT_COLCON_FRESH=1, a fresh CI runner) and 51 s when its builds are kept.
 """
 
 from __future__ import annotations
