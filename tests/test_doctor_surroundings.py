@@ -466,6 +466,40 @@ def test_wsl2_kernel_release_bound_over_proc(tmp_path):
     assert "WSL2" not in done.stdout
 
 
+@pytest.fixture
+def x_display(tmp_path):
+    """A real X server (Xvfb, Mesa's llvmpipe behind its GLX, as a virtual machine without 3D gives)."""
+    for number in range(90 + os.getpid() % 50, 200):
+        if not Path(f"/tmp/.X11-unix/X{number}").exists() and not Path(f"/tmp/.X{number}-lock").exists():
+            break
+    server = subprocess.Popen(["Xvfb", f":{number}", "-screen", "0", "320x240x24", "-nolisten", "tcp"],
+                              stdout=subprocess.DEVNULL, stderr=subprocess.DEVNULL)
+    try:
+        for _ in range(100):
+            if Path(f"/tmp/.X11-unix/X{number}").exists():
+                break
+            time.sleep(0.05)
+        yield f":{number}"
+    finally:
+        server.terminate()
+        server.wait(timeout=10)
+
+
+def test_the_renderer_is_the_one_glx_gives_rviz_on_the_display(x_display, tmp_path):
+    """RViz opens its context through GLX on the display: doctor reads that renderer (glxinfo -B), not
+    the off-screen EGL one, and says which it read; without a display, EGL's."""
+    glxinfo = subprocess.run(["glxinfo", "-B"], env=clean_env(DISPLAY=x_display), capture_output=True, text=True,
+                             timeout=30)
+    said = re.search(r"^OpenGL renderer string: (.+)$", glxinfo.stdout, re.MULTILINE).group(1)
+    done = doctor(tmp_path, clean_env(DISPLAY=x_display))
+    line = next(line for line in done.stdout.splitlines() if "graphics for RViz" in line)
+    assert f"{said}, GLX" in line, done.stdout
+    assert line.startswith("note") and "llvmpipe" in said  # Mesa's software rasteriser: no GPU
+    done = doctor(tmp_path, {k: v for k, v in clean_env().items() if k != "DISPLAY"})
+    line = next(line for line in done.stdout.splitlines() if "graphics for RViz" in line)
+    assert ", EGL" in line and ", GLX" not in line, done.stdout
+
+
 def test_french(tmp_path):
     root = workspace(tmp_path)
     done = doctor(root, clean_env(ROS_LOCALHOST_ONLY="1"), "--lang", "fr")

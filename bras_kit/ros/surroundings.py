@@ -481,7 +481,7 @@ def is_wsl(osrelease: str = OSRELEASE) -> bool:
 
 def graphics_concerns(renderer: str | None, environ: Mapping[str, str] | None = None,
                       osrelease: str = OSRELEASE) -> list[Concern]:
-    """Will RViz draw? ``renderer``: GL_RENDERER as EGL reports it (None: no OpenGL here)."""
+    """Will RViz draw? ``renderer``: GL_RENDERER as GLX or EGL reports it (None: no OpenGL here)."""
     env = _environ(environ)
     software = env.get("LIBGL_ALWAYS_SOFTWARE", "") not in ("", "0", "false")
     name = renderer or "?"
