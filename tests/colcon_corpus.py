@@ -7,6 +7,8 @@ implicitly when data_files does not; colcon_core/task/python/build.py: setup.cfg
 install-scripts or install_scripts; colcon_core/environment/__init__.py: the run dependencies in
 share/colcon-core/packages/PKG) and from what setuptools' install_data does with data_files.
 ``ASIDE`` names the variants kept out of sight while build.py was fixed; the test runs them last.
+``GENERATED`` (round 2, issue 57) adds 26 more, one or more per category of colcon's and catkin_pkg's
+source, ``ASIDE_GENERATED`` the 5 of them written with the others and run only once the rest agreed.
 """
 
 from __future__ import annotations
@@ -119,4 +121,90 @@ VARIANTS: dict[str, dict[str, str]] = {
     "setup_py_raises": package(**{"setup.py": setup_py(head="raise ValueError('version manquante')\n")}),
 }
 
+def manifest_with(old: str, new: str) -> str:
+    """The tutorial's package.xml with ``old`` replaced by ``new`` (it must be there)."""
+    text = package_xml()
+    assert old in text, old
+    return text.replace(old, new)
+
+
+def data_files(*entries: str) -> str:
+    return ",\n        ".join(entries) + ","
+
+
+MARKER = "('share/ament_index/resource_index/packages', ['resource/' + package_name])"
+MANIFEST = "('share/' + package_name, ['package.xml'])"
+URDFS = "('share/' + package_name + '/urdf', glob('urdf/*.urdf'))"
+
+# Round 2, one or more per category of colcon's source, beyond the 24 above (issue 57). Each names
+# what it exercises: catkin_pkg's refusals (package.py, parse_package_string and Package.validate),
+# format 3's conditions (condition.py), build types (get_build_type), data_files' shapes and
+# failures (install_data, get_data_files_mapping), setup.cfg's keys (_get_install_scripts), plain
+# Python packages (colcon-python-setup-py), the hooks colcon's environment extensions write, the
+# order packages are sourced in (_local_setup_util_sh.py, order_packages).
+GENERATED: dict[str, dict[str, str]] = {
+    # catkin_pkg refuses the manifest: colcon builds a plain Python package
+    "package_xml_version_two_parts": package(**{"package.xml": manifest_with("0.0.1", "1.0")}),
+    "package_xml_no_license": package(**{"package.xml": manifest_with("  <license>Apache-2.0</license>\n", "")}),
+    "package_xml_maintainer_without_email": package(**{"package.xml": manifest_with(
+        ' email="eleve@example.com"', "")}),
+    "package_xml_not_xml": package(**{"package.xml": package_xml().replace("</package>", "")}),
+    "package_xml_unknown_tag": package(**{"package.xml": manifest_with("<license>", "<licence>x</licence>\n  <license>")}),
+    "package_xml_condition_in_format_2": package(**{"package.xml": manifest_with('format="3"', 'format="2"').replace(
+        "  <export>", '  <exec_depend condition="$ROS_VERSION == 2">rclpy</exec_depend>\n  <export>')}),
+    "package_xml_depends_on_itself": package(**{"package.xml": manifest_with(
+        "  <export>", f"  <exec_depend>{PKG}</exec_depend>\n  <export>")}),
+    "two_build_types": package(**{"package.xml": manifest_with(
+        "<build_type>ament_python</build_type>", "<build_type>ament_python</build_type>\n    <build_type>ament_cmake</build_type>")}),
+    # format 3's conditions, against the environment colcon runs in (ROS_VERSION unset here)
+    "condition_false_when_unset": package(**{"package.xml": manifest_with("  <export>", (
+        '  <exec_depend condition="$ROS_VERSION == 2">rclpy</exec_depend>\n'
+        '  <exec_depend condition="$ROS_VERSION == 1">rospy</exec_depend>\n  <export>'))}),
+    "condition_true_when_unset": package(**{"package.xml": manifest_with("  <export>", (
+        '  <exec_depend condition="$ROS_VERSION != 1">launch_ros</exec_depend>\n'
+        '  <depend condition="$ROS_DISTRO == \'\' or $ROS_DISTRO == jazzy">tf2_ros</depend>\n  <export>'))}),
+    "format_1_run_depend": package(**{"package.xml": manifest_with('format="3"', 'format="1"').replace(
+        "  <export>", "  <run_depend>rclpy</run_depend>\n  <build_depend>urdf</build_depend>\n  <export>")}),
+    # build types colcon-ros hands to CMake
+    "build_type_cmake": package(**{"package.xml": package_xml(build_type="cmake")}),
+    # data_files' shapes
+    "data_files_plain_string": package(**{"setup.py": setup_py(data_files=data_files(MARKER, MANIFEST, URDFS,
+                                                                                       "'urdf/bras.urdf'"))}),
+    "data_files_same_file_twice": package(**{"setup.py": setup_py(data_files=data_files(
+        MARKER, MANIFEST, URDFS, "('share/' + package_name + '/urdf', ['urdf/bras.urdf'])"))}),
+    "data_files_first_of_two_missing": package(**{"rviz/vue.rviz": "Panels: []\n", "setup.py": setup_py(data_files=data_files(
+        MARKER, MANIFEST, "('share/' + package_name + '/rviz', ['rviz/absente.rviz', 'rviz/vue.rviz'])", URDFS))}),
+    "data_files_shared_library": package(**{"lib/libbras.so": "not really a library\n", "setup.py": setup_py(
+        data_files=data_files(MARKER, MANIFEST, "('lib', ['lib/libbras.so'])"))}),
+    "data_files_cmake_config": package(**{"cmake/brasConfig.cmake": "# cmake\n", "setup.py": setup_py(
+        data_files=data_files(MARKER, MANIFEST, "('share/' + package_name + '/cmake', ['cmake/brasConfig.cmake'])"))}),
+    # setup.cfg's keys
+    "setup_cfg_install_only": package(**{"setup.cfg": f"[install]\ninstall_scripts=$base/lib/{PKG}\n"}),
+    "setup_cfg_both_install_keys": package(**{"setup.cfg": SETUP_CFG + "install-scripts=$base/bin\n"}),
+    # plain Python packages (no package.xml)
+    "plain_python_without_package_xml": package(**{"package.xml": None, "setup.py": setup_py(
+        data_files=data_files(MARKER, URDFS))}),
+    # packages sourced in order: bringup runs on description, which runs on nothing here
+    "three_packages": {**package(), **{
+        path.replace(PKG, name): text.replace(PKG, name).replace(
+            "  <export>", f"  <exec_depend>{dep}</exec_depend>\n  <export>") if path.endswith("package.xml")
+        else text.replace(PKG, name)
+        for name, dep in (("cellule_bringup", "bras_moteur"), ("bras_moteur", PKG))
+        for path, text in package().items() if not path.endswith("urdf/bras.urdf")}},
+    # kept aside: written with the others, run only once the rest agreed
+    "package_xml_name_with_space": package(**{"package.xml": package_xml(name="bras description")}),
+    "condition_parenthesised": package(**{"package.xml": manifest_with("  <export>", (
+        '  <exec_depend condition="($ROS_VERSION == 2 or $ROS_VERSION == \'\') and $X != y">rclpy</exec_depend>\n'
+        "  <export>"))}),
+    "data_files_into_bin": package(**{"scripts/outil": "#!/bin/sh\necho outil\n", "setup.py": setup_py(
+        data_files=data_files(MARKER, MANIFEST, "('bin', ['scripts/outil'])"))}),
+    "plain_python_setup_py_fails_half_way": package(**{"package.xml": None, "setup.py": setup_py(
+        data_files=data_files(MARKER, "('share/' + package_name, ['LISEZMOI.md'])", URDFS))}),
+    "package_xml_author_bad_email": package(**{"package.xml": manifest_with(
+        "  <license>", '  <author email="auteur@ecole">Auteur</author>\n  <license>')}),
+}
+VARIANTS.update(GENERATED)
+
 ASIDE = ("invalid_maintainer_email", "scripts_file", "data_files_nested_target", "setup_py_raises")
+ASIDE_GENERATED = ("package_xml_name_with_space", "condition_parenthesised", "data_files_into_bin",
+                   "plain_python_setup_py_fails_half_way", "package_xml_author_bad_email")

@@ -97,6 +97,13 @@ def run(args: argparse.Namespace) -> int:
                    for hit in setup_blocked_hits(record.blocked)]
         if blocked:  # what setup.py tried that its walls stopped, at its lines (docs/security.md)
             sys.stdout.write(format_text(blocked, lang))
+        if record.refused_manifest:  # colcon passes over it without a word: the learner is told why here
+            print(say(M("note: catkin_pkg refuses {file} ({words}), so colcon builds {package} as a plain Python "
+                        "package: no AMENT_PREFIX_PATH hook, and ros2 pkg list, ros2 run and ros2 launch do not "
+                        "find it; bras-kit validate {folder} says what to change",
+                        file=for_terminal(os.path.join(folder, "package.xml")),
+                        words=for_terminal(record.refused_manifest.replace("\n", " ")),
+                        package=for_terminal(record.package), folder=for_terminal(folder)), lang))
         if record.failure is None:
             print(f"Finished <<< {for_terminal(record.package)}")
             finished += 1
@@ -113,8 +120,16 @@ def run(args: argparse.Namespace) -> int:
                         file=os.path.join(folder, record.failure.file or "setup.py")), lang))
         if f"Failed   <<< {record.package}" not in shown:  # colcon's line for a failed package, once
             print(f"Failed   <<< {for_terminal(record.package)}")
-    if finished:
-        _write_setup_files(base)
+    # colcon writes install/setup.bash once the packages' jobs ended, whatever their outcome
+    # (colcon_core/verb/build.py, main, lines 152-156, and _create_prefix_scripts, lines 219-230 of
+    # colcon-core 0.21.3): a later `source` then puts install/ on COLCON_PREFIX_PATH
+    if packages and not os.path.islink(base):
+        try:
+            os.makedirs(base, exist_ok=True)
+        except OSError:
+            pass  # a file where install/ goes: the build above already said what it could not do
+        else:
+            _write_setup_files(base)
     # colcon's closing lines (colcon-output's summary event handler); the install tree only when whole
     print(f"Summary: {finished} package{'s' if finished != 1 else ''} finished")
     if failed:
@@ -139,22 +154,49 @@ def _print_colcon_words(package: str, colcon: tuple[str, ...], shown: str) -> No
 
 
 SETUP_MARK = "# written by bras-kit build"
-SETUP_BASH = SETUP_MARK + """: what colcon's install/setup.bash sets for the packages built here
-# (each package's prefix on AMENT_PREFIX_PATH, the install folder on COLCON_PREFIX_PATH), so that
-# 'source install/setup.bash' works as in the tutorial and bras-kit finds this workspace from anywhere
+SETUP_BASH = SETUP_MARK + """: what colcon's install/local_setup.bash sets for the packages built here:
+# install/ on COLCON_PREFIX_PATH, then each package's share/PKG/package.bash (its hooks: AMENT_PREFIX_PATH,
+# PYTHONPATH, PATH when it has bin/), packages in the order colcon's _local_setup_util_sh.py sources
+# them (each after those it runs on), so that 'source install/setup.bash' works as in the tutorial
 _bras_kit_install="$(builtin cd "$(dirname "${{BASH_SOURCE[0]:-$0}}")" > /dev/null && pwd)"
 case ":${{COLCON_PREFIX_PATH:-}}:" in
   *":$_bras_kit_install:"*) ;;
   *) export COLCON_PREFIX_PATH="$_bras_kit_install${{COLCON_PREFIX_PATH:+:$COLCON_PREFIX_PATH}}" ;;
 esac
 for _bras_kit_package in {packages}; do
-  case ":${{AMENT_PREFIX_PATH:-}}:" in
-    *":$_bras_kit_install/$_bras_kit_package:"*) ;;
-    *) export AMENT_PREFIX_PATH="$_bras_kit_install/$_bras_kit_package${{AMENT_PREFIX_PATH:+:$AMENT_PREFIX_PATH}}" ;;
-  esac
+  if [ -f "$_bras_kit_install/$_bras_kit_package/share/$_bras_kit_package/package.bash" ]; then
+    COLCON_CURRENT_PREFIX="$_bras_kit_install/$_bras_kit_package" \\
+      . "$_bras_kit_install/$_bras_kit_package/share/$_bras_kit_package/package.bash"
+  fi
 done
 unset _bras_kit_install _bras_kit_package
 """
+
+
+def source_order(base: str) -> list[str]:
+    """The packages of ``base`` colcon's local_setup sources, in its order: those holding colcon-core's
+    marker, each after the ones among them its marker lists, ties by name (install/_local_setup_util_sh.py,
+    order_packages, as colcon-core 0.21.3 writes it); a cycle is left in name order."""
+    from ..trust.learner_files import read_text
+
+    runs: dict[str, set[str]] = {}
+    for name in sorted(os.listdir(base)):
+        marker = os.path.join(base, name, "share", "colcon-core", "packages", name)
+        if os.path.isfile(marker) and not os.path.islink(marker):
+            try:
+                runs[name] = set(read_text(marker, (base,), errors="replace").split(os.pathsep)) - {""}
+            except OSError:
+                runs[name] = set()
+    for depends in runs.values():
+        depends &= set(runs)
+    order: list[str] = []
+    while runs:
+        ready = sorted(name for name, depends in runs.items() if not depends) or sorted(runs)
+        order.append(ready[0])
+        runs.pop(ready[0])
+        for depends in runs.values():
+            depends.discard(ready[0])
+    return order
 
 
 def _write_setup_files(base: str) -> None:
@@ -162,9 +204,7 @@ def _write_setup_files(base: str) -> None:
     after colcon build; a file colcon itself wrote there is left as it is."""
     import shlex
 
-    packages = sorted(name for name in os.listdir(base)
-                      if os.path.isfile(os.path.join(base, name, "share", "colcon-core", "packages", name)))
-    text = SETUP_BASH.format(packages=" ".join(shlex.quote(p) for p in packages))
+    text = SETUP_BASH.format(packages=" ".join(shlex.quote(p) for p in source_order(base)))
     for name in ("setup.bash", "local_setup.bash"):
         path = os.path.join(base, name)
         try:

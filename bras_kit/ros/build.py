@@ -21,12 +21,14 @@ from __future__ import annotations
 
 import errno
 import os
+import re
 import sys
 from collections.abc import Callable
 from dataclasses import dataclass, field
 from typing import Any, cast
 
 from .attempts import Attempt
+from .catkin import Manifest
 from .setup_check import CheckedSetup, Installed, Refusal, check_setup, name_problem
 
 __all__ = ["BuildFailure", "BuildRecord", "Installed", "build_package"]
@@ -73,6 +75,8 @@ class BuildRecord:
     run_depends: tuple[str, ...] = ()  # colcon-core's share/colcon-core/packages/PKG
     data_folders: list[str] = field(default_factory=list)  # data_files' target folders
     build: str = ""  # build/PKG, with --symlink-install only: what the install tree's links point to
+    ros: bool = False  # colcon-ros identified it (package.xml read by catkin_pkg); else a plain Python package
+    refused_manifest: str = ""  # catkin_pkg's words when it refused package.xml (colcon says nothing of it)
 
     def source_of(self, path: str) -> str | None:
         """The package file installed at ``path`` (absolute, in the install tree), if any."""
@@ -87,20 +91,19 @@ def _failed(package: str, lines: list[str]) -> tuple[str, ...]:
     return (f"--- stderr: {package}", *lines, "---", f"Failed   <<< {package} [exited with code 1]")
 
 
-def _manifest(root: str) -> tuple[str, str]:
-    """(name, build_type) from package.xml; ("", "") when it cannot be read."""
+def _manifest(root: str) -> Manifest | None:
+    """catkin_pkg's reading of package.xml (:mod:`.catkin`); None when there is none."""
     from ..core.errors import BrasKitError
     from ..model.xmlio import read_xml
+    from .catkin import read_manifest
 
+    if not os.path.isfile(os.path.join(root, "package.xml")):
+        return None
     try:
         xml = read_xml(os.path.join(root, "package.xml"))
     except (BrasKitError, OSError):
-        return "", ""
-    name = xml.find("name")
-    export = xml.find("export")
-    build_type = export.find("build_type") if export is not None else None
-    return ((name.text or "").strip() if name is not None else "",
-            (build_type.text or "").strip() if build_type is not None else "")
+        return Manifest("", "", (), "The manifest contains invalid XML")
+    return read_manifest(xml)
 
 
 def _shown_name(name: str, root: str) -> str:
@@ -118,21 +121,26 @@ def build_package(root: str, install_base: str, *, meanwhile: Callable[[], objec
     --symlink-install``, with links in ``build_base/PKG`` (default: build/ beside the install base)."""
     root = os.path.abspath(root)
     install_base = os.path.abspath(install_base)
-    name, build_type = _manifest(root)
-    if name and not build_type:
-        # catkin_pkg's default build type (catkin_pkg/package.py, get_build_type): colcon-ros builds it
-        # with CMake, which finds no CMakeLists.txt in an ament_python package
-        build_type = "catkin"
+    builds = build_base or os.path.join(os.path.dirname(install_base), "build")
+    manifest = _manifest(root)
+    # a package.xml catkin_pkg refuses, or one with two build types, is passed over by colcon-ros
+    # (colcon_ros/package_identification/ros.py, identify, lines 54-61): colcon-python-setup-py then
+    # builds the folder as a plain Python package, named by setup.py (python_setup_py.py, identify)
+    ros = manifest is not None and not manifest.problem and bool(manifest.build_type)
+    name = manifest.name if ros and manifest is not None else ""
     package = _shown_name(name, root)
     record = BuildRecord(package, root, os.path.join(install_base, package))
-    if build_type and build_type != "ament_python":
+    record.ros = ros
+    if manifest is not None and not ros:
+        record.refused_manifest = manifest.problem or "Only one <build_type> element is permitted."
+    if ros and manifest is not None and manifest.build_type != "ament_python":
         lines = [f"CMake Error: The source directory \"{root}\" does not appear to contain CMakeLists.txt."] \
             if not os.path.isfile(os.path.join(root, "CMakeLists.txt")) else []
         record.failure = BuildFailure("ament_cmake", _failed(package, lines) if lines else (), "package.xml",
-                                      _line_of(root, "package.xml", "<build_type>"), detail=build_type)
+                                      _line_of(root, "package.xml", "<build_type>"), detail=manifest.build_type)
         if name_problem(package) is None:
-            record.run_depends = run_dependencies(root)
-            _cmake_prefix(record, build_type)
+            record.run_depends = manifest.run_depends
+            _cmake_prefix(record, manifest.build_type)
         return record
     if not os.path.isfile(os.path.join(root, "setup.py")):
         record.failure = BuildFailure("no_setup", (), "setup.py")
@@ -143,67 +151,108 @@ def build_package(root: str, install_base: str, *, meanwhile: Callable[[], objec
         error = called["error"]
         record.failure = BuildFailure("setup_raised", _failed(package, [error["text"]]), "setup.py",
                                       error["line"], detail=error["text"])
+        _hooks_before_setup(record)
         return record
     if "setup" not in called or not isinstance(called["setup"], dict):
         record.failure = BuildFailure("no_setup_call", (), "setup.py")
+        _hooks_before_setup(record)
         return record
     setup = called["setup"]
     record.setup_line = int(setup.get("_line") or 0)
     record.data_files_line = _line_of(root, "setup.py", "data_files") or record.setup_line
     if symlink_install:  # named by the shown name until the checked one is known
-        record.build = os.path.join(build_base or os.path.join(os.path.dirname(install_base), "build"), package)
+        record.build = os.path.join(builds, package)
     checked = check_setup(setup, root, manifest_name=name or os.path.basename(root),
                           setup_source=_setup_source(root), python_lib=PYTHON_LIB)
+    half = checked.partial if isinstance(checked, Refusal) and checked.kind == "missing_source" else None
+    found = checked if isinstance(checked, CheckedSetup) else half
+    if found is not None:
+        # colcon names a ROS package by package.xml (colcon_ros/package_identification/ros.py, identify:
+        # desc.name = pkg.name); setup.py's name= only names the Python distribution, and names a plain one
+        record.package = name if ros else found.name
+        record.prefix = os.path.join(install_base, record.package)  # one checked name: directly under the base
+        record.script_dir = (develop_script_folder if symlink_install else script_folder)(root, record.package)
+        if symlink_install:
+            record.build = os.path.join(builds, record.package)
+        record.installed = list(found.installed)
+        if ros:
+            record.installed += _implicit_installs(record.package, setup.get("data_files"), root)
+        record.scripts = list(found.console_scripts)
+        # colcon-core's python augmentation: install_requires are a plain package's run dependencies
+        # (colcon_core/package_augmentation/python.py, lines 76-84)
+        record.run_depends = manifest.run_depends if ros and manifest is not None else \
+            _requirement_names(setup.get("install_requires"))
+        record.data_folders = _data_folders(setup.get("data_files"))
     if isinstance(checked, Refusal):
         record.failure = _refused(record, checked)
+        if half is not None:
+            record.data_folders = record.data_folders[:checked.entry + 1]
+            stopped = _lay_out(record, half, setup, whole=False)
+            record.failure = stopped or record.failure
         return record
-    # colcon names the package by package.xml (colcon_ros/package_identification/ros.py, identify:
-    # desc.name = pkg.name); setup.py's name= only names the Python distribution
-    ros_package = bool(name) and name_problem(name) is None
-    record.package = name if ros_package else checked.name
-    record.prefix = os.path.join(install_base, record.package)  # one checked name: directly under the base
-    record.script_dir = (develop_script_folder if symlink_install else script_folder)(root, record.package)
-    if symlink_install:
-        record.build = os.path.join(build_base or os.path.join(os.path.dirname(install_base), "build"),
-                                    record.package)
-    record.installed = list(checked.installed)
-    if ros_package:
-        record.installed += _implicit_installs(record.package, checked.installed, root)
-    record.scripts = list(checked.console_scripts)
-    record.run_depends = run_dependencies(root) if ros_package else ()
-    record.data_folders = _data_folders(setup.get("data_files"))
     record.failure = _lay_out(record, checked, setup)
     return record
+
+
+def _requirement_names(requires: Any) -> tuple[str, ...]:
+    """The distribution names of setup()'s requirement strings (PEP 508: the name comes first)."""
+    items = [requires] if isinstance(requires, str) else requires if isinstance(requires, list) else []
+    names = {m.group(0) for m in (re.match(r"[A-Za-z0-9][A-Za-z0-9._-]*", str(item).strip()) for item in items) if m}
+    return tuple(sorted(names))
+
+
+def _hooks_before_setup(record: BuildRecord) -> None:
+    """What colcon-ros writes before setup.py runs: the ament_prefix_path hook (colcon_ros/task/
+    ament_python/build.py, lines 39-41), left in the prefix when setup.py then fails."""
+    from ..trust.learner_files import write_file
+    from .colcon_env import Hook, hook_files
+
+    if not record.ros or name_problem(record.package) is not None or _clear_prefix(record) is not None:
+        return
+    try:
+        os.makedirs(record.prefix)
+        for relative, text in hook_files(record.package, Hook("ament_prefix_path", "AMENT_PREFIX_PATH", "")):
+            write_file(record.prefix, relative, text)
+    except OSError:
+        pass  # a full disk: the failure already says the package was not built
 
 
 def _cmake_prefix(record: BuildRecord, build_type: str) -> None:
     """What colcon-ros leaves after CMake failed: the package's environment scripts and colcon-core's
     list of run dependencies, written whatever CMake's exit code (colcon_ros/task/ament_cmake/build.py,
-    build, lines 59-86 of colcon-ros 0.5.0), and for catkin the install base's ``.catkin`` marker
-    (colcon_ros/task/catkin/build.py, lines 128-131). bras-kit writes no shell script: share/PKG
-    is made empty (the setup.bash it writes for a workspace is its own)."""
-    from ..trust.learner_files import make_folder, write_file
+    build, lines 59-86 of colcon-ros 0.5.0: no hook, CMake having installed nothing), and for
+    catkin the install base's ``.catkin`` marker (colcon_ros/task/catkin/build.py, lines 128-131)."""
+    from ..trust.learner_files import write_file
 
     if _clear_prefix(record) is not None:
         return  # not a prefix bras-kit or colcon made: left alone
     try:
         os.makedirs(record.prefix)
-        write_file(record.prefix, os.path.join(COLCON_MARKER, record.package), ":".join(record.run_depends).encode())
-        make_folder(record.prefix, f"share/{record.package}")
+        _environment_files(record, [])
         if build_type == "catkin":
             write_file(record.prefix, ".catkin", b"")
     except OSError:
         pass  # a full disk: the failure already says the package was not built
 
 
-def _implicit_installs(package: str, installed: tuple[Installed, ...], root: str) -> list[Installed]:
-    """What colcon-ros installs when data_files does not: the index marker (an empty file) and
-    package.xml (colcon_ros/task/ament_python/build.py, AmentPythonBuildTask.build, lines 53-95 of
-    colcon-ros 0.5.0: "doesn't explicitly install a marker in the package index")."""
+def _implicit_installs(package: str, entries: Any, root: str) -> list[Installed]:
+    """What colcon-ros installs when data_files does not declare it: the index marker (an empty file)
+    and package.xml (colcon_ros/task/ament_python/build.py, AmentPythonBuildTask.build, lines 53-95 of
+    colcon-ros 0.5.0: "doesn't explicitly install a marker in the package index"). It reads the
+    declared data_files (colcon_core/task/python/__init__.py, get_data_files_mapping, lines 23-48),
+    before setup.py installs anything: a declared source that turns out missing still counts."""
+    declared: dict[str, str] = {}
+    for entry in entries if isinstance(entries, list) else []:
+        if isinstance(entry, str):
+            declared[entry] = os.path.basename(entry)
+        elif isinstance(entry, list) and len(entry) == 2 and isinstance(entry[0], str) and isinstance(entry[1], list):
+            for source in entry[1]:
+                if isinstance(source, str):
+                    declared[source] = os.path.join(entry[0], os.path.basename(source))
     out = []
-    if not any(item.target == f"{INDEX}/{package}" for item in installed):
+    if f"{INDEX}/{package}" not in declared.values():
         out.append(Installed(f"{INDEX}/{package}", ""))  # no source: an empty file
-    if not any(item.source == "package.xml" and item.target == f"share/{package}/package.xml" for item in installed) \
+    if declared.get("package.xml") != f"share/{package}/package.xml" \
             and os.path.isfile(os.path.join(root, "package.xml")):
         out.append(Installed(f"share/{package}/package.xml", "package.xml"))
     return out
@@ -240,14 +289,34 @@ def script_folder(root: str, package: str) -> str:
 
 
 def develop_script_folder(root: str, package: str) -> str:
-    """Where ``setup.py develop`` (colcon's --symlink-install) puts the scripts, relative to the prefix:
-    setuptools reads setup.cfg's ``[develop]`` ``script_dir`` itself (``script-dir`` too, with its
-    deprecation warning: setuptools/dist.py, _enforce_underscore), colcon passes nothing
-    (colcon_core/task/python/build.py, build, lines 174-183); without it, the prefix's bin/."""
+    """Where ``setup.py develop`` (colcon's --symlink-install) puts the scripts, relative to the prefix.
+    colcon passes no folder (colcon_core/task/python/build.py, build, lines 174-183); setuptools' develop
+    takes setup.cfg's ``[develop]`` ``script_dir``, else the install_scripts command's folder
+    (setuptools/command/easy_install.py, finalize_options, lines 296-309): ``[install_scripts]``
+    ``install_dir``, else ``[install]`` ``install_scripts`` (setuptools/_distutils/command/
+    install_scripts.py, finalize_options, lines 32-39); else the prefix's bin/. setuptools reads a
+    dash key as its underscore twin, with its deprecation warning (setuptools/dist.py,
+    _enforce_underscore), the later of the two in the file winning."""
     def pick(parser: Any) -> str | None:
-        return parser.get("develop", "script_dir", fallback=None) or parser.get("develop", "script-dir", fallback=None)
+        for section, key in (("develop", "script_dir"), ("install_scripts", "install_dir"),
+                             ("install", "install_scripts")):
+            value = _last_of(parser, section, (key, key.replace("_", "-")))
+            if value is not None:
+                return value
+        return None
 
     return _setup_cfg_folder(root, package, pick, keep_case=False)
+
+
+def _last_of(parser: Any, section: str, keys: tuple[str, ...]) -> str | None:
+    """The value of the last of ``keys`` written in ``section`` (setuptools reads options in file order)."""
+    if not parser.has_section(section):
+        return None
+    found = None
+    for key, value in parser.items(section, raw=True):
+        if key in keys:
+            found = value
+    return found
 
 
 def _setup_cfg_folder(root: str, package: str, pick: Callable[[Any], str | None], *, keep_case: bool) -> str:
@@ -351,23 +420,6 @@ def _lay_out_links(record: BuildRecord, checked: CheckedSetup, setup: dict[str, 
         write_file(record.prefix, os.path.join(record.script_dir, name), script.encode("utf-8"), mode=0o755)
 
 
-def run_dependencies(root: str) -> tuple[str, ...]:
-    """The run dependencies colcon writes to share/colcon-core/packages/PKG, sorted: build_export,
-    buildtool_export and exec dependencies (colcon_ros/package_identification/ros.py, augment_package,
-    lines 117-122); ``<depend>`` counts as both (catkin_pkg/package_xml parsing), format 1's
-    ``<run_depend>`` too. A dependency under a ``condition`` is left out (no ROS_VERSION here)."""
-    from ..core.errors import BrasKitError
-    from ..model.xmlio import read_xml
-
-    try:
-        xml = read_xml(os.path.join(root, "package.xml"))
-    except (BrasKitError, OSError):
-        return ()
-    tags = ("build_export_depend", "buildtool_export_depend", "exec_depend", "depend", "run_depend")
-    return tuple(sorted({(e.text or "").strip() for tag in tags for e in xml.findall(tag)
-                         if (e.text or "").strip() and e.get("condition") is None}))
-
-
 def _setup_source(root: str) -> str:
     from ..trust.learner_files import read_text
 
@@ -426,6 +478,14 @@ with open(__file__) as f:
 """
 
 
+def _only_python_lib(prefix: str) -> bool:
+    """A prefix holding lib/pythonX.Y/site-packages and share/ folders only: what a plain Python
+    package's build leaves when setuptools stopped."""
+    top = set(os.listdir(prefix))
+    return top <= {"lib", "share"} and os.path.isdir(os.path.join(prefix, PYTHON_LIB)) and \
+        set(os.listdir(os.path.join(prefix, "lib"))) == {PYTHON_LIB.split("/")[1]}
+
+
 def _clear_prefix(record: BuildRecord) -> BuildFailure | None:
     """Remove the previous build of this package, and nothing else: a folder directly under the
     install base, named by a checked name, holding colcon's marker for that name (or empty)."""
@@ -433,8 +493,12 @@ def _clear_prefix(record: BuildRecord) -> BuildFailure | None:
     if not os.path.lexists(prefix):
         return None
     marker = os.path.join(prefix, COLCON_MARKER, record.package)
+    # a build that stopped leaves no marker: colcon-ros's first hook, or the Python folder colcon-core
+    # made before setup.py, says the prefix is a build's all the same
+    hook = os.path.join(prefix, "share", record.package, "hook", "ament_prefix_path.dsv")
     ours = os.path.isdir(prefix) and not os.path.islink(prefix) and (
-        (os.path.isfile(marker) and not os.path.islink(marker)) or not os.listdir(prefix))
+        any(os.path.isfile(p) and not os.path.islink(p) for p in (marker, hook)) or not os.listdir(prefix)
+        or _only_python_lib(prefix))
     if not ours:
         return BuildFailure("prefix", (), "setup.py", record.setup_line, source=prefix, detail=prefix)
     import shutil
@@ -443,9 +507,17 @@ def _clear_prefix(record: BuildRecord) -> BuildFailure | None:
     return None
 
 
-def _lay_out(record: BuildRecord, checked: CheckedSetup, setup: dict[str, Any]) -> BuildFailure | None:
+def _lay_out(record: BuildRecord, checked: CheckedSetup, setup: dict[str, Any], *,
+             whole: bool = True) -> BuildFailure | None:
     """The install tree from the checked record: every source read through the one reader
-    (:mod:`bras_kit.trust.learner_files`), every target a new file under the fresh prefix."""
+    (:mod:`bras_kit.trust.learner_files`), every target a new file under the fresh prefix.
+    ``whole`` False: setuptools stopped at a missing data_files source (``checked`` is what it
+    had installed by then): the modules, the data files before it, the folders of the entries up
+    to it, and no script (setuptools' install_scripts comes after install_data: setuptools/command/
+    install.py, lines 30-33 and 145-147; ``setup.py develop`` of --symlink-install writes them before
+    colcon's symlink_data runs), no environment file but colcon-ros's first hook, no colcon-core
+    marker (written after a build that succeeded: colcon_core/task/python/build.py, lines 157-160
+    and 210-212)."""
     from ..trust.learner_files import Unreadable, copy_file, make_folder, write_file
 
     for path in (os.path.dirname(record.build), record.build) if record.build else ():
@@ -457,32 +529,38 @@ def _lay_out(record: BuildRecord, checked: CheckedSetup, setup: dict[str, Any]) 
         return refused
     roots = (record.root,)
     try:
+        # every file below the prefix is made through its descriptor, no link followed (learner_files)
         os.makedirs(record.prefix)
-        # colcon's marker first: a build stopped half-way leaves a prefix the next build may replace.
-        # Every file below the prefix is made through its descriptor, no link followed (learner_files)
-        # colcon-core's list of run dependencies (colcon_core/environment/__init__.py,
-        # create_file_with_runtime_dependencies: os.pathsep.join(sorted(...)))
-        write_file(record.prefix, os.path.join(COLCON_MARKER, record.package), ":".join(record.run_depends).encode())
+        make_folder(record.prefix, PYTHON_LIB)  # colcon-core makes it before setup.py (build.py, lines 84-87)
+        additional = []
+        if record.ros:  # colcon-ros's hook, written before setup.py runs (ament_python/build.py, lines 39-41)
+            from .colcon_env import Hook, hook_files
+
+            additional = hook_files(record.package, Hook("ament_prefix_path", "AMENT_PREFIX_PATH", ""))
+            for relative, text in additional:
+                write_file(record.prefix, relative, text)
         if record.build:
             _lay_out_links(record, checked, setup)
-            return None
-        scripts = record.script_dir or f"lib/{record.package}"
-        executables = [Installed(f"{scripts}/{os.path.basename(item.target)}", item.source)
-                       for item in checked.executables]
-        for folder in record.data_folders:
-            make_folder(record.prefix, folder)
-        for item in (*record.installed, *checked.modules, *executables):
-            if not item.source:  # colcon-ros's implicit index marker
-                write_file(record.prefix, item.target, b"")
-                continue
-            # two entries install the same file: the last wins, as in setuptools (replace)
-            copy_file(os.path.join(record.root, item.source), roots, os.path.join(record.prefix, item.target),
-                      target_root=record.prefix, replace=True,
-                      mode=0o755 if item in executables else None)
-        for name, module, function in checked.console_scripts:
-            script = SCRIPT.format(dist=checked.name, name=name, module=module,
-                                   head=function.partition(".")[0], function=function)
-            write_file(record.prefix, os.path.join(scripts, name), script.encode("utf-8"), mode=0o755)
+        else:
+            scripts = record.script_dir or f"lib/{record.package}"
+            executables = [Installed(f"{scripts}/{os.path.basename(item.target)}", item.source)
+                           for item in checked.executables] if whole else []
+            for folder in record.data_folders:
+                make_folder(record.prefix, folder)
+            for item in (*record.installed, *checked.modules, *executables):
+                if not item.source:  # colcon-ros's implicit index marker
+                    write_file(record.prefix, item.target, b"")
+                    continue
+                # two entries install the same file: the last wins, as in setuptools (replace)
+                copy_file(os.path.join(record.root, item.source), roots, os.path.join(record.prefix, item.target),
+                          target_root=record.prefix, replace=True,
+                          mode=0o755 if item in executables else None)
+            for name, module, function in checked.console_scripts if whole else ():  # install_scripts comes last
+                script = SCRIPT.format(dist=checked.name, name=name, module=module,
+                                       head=function.partition(".")[0], function=function)
+                write_file(record.prefix, os.path.join(scripts, name), script.encode("utf-8"), mode=0o755)
+        if whole:
+            _environment_files(record, [path for path, _text in additional])
     except Unreadable as exc:  # changed between the check and the copy, or too large
         return BuildFailure(f"source_{exc.kind}", (), "setup.py", record.data_files_line,
                             source=os.path.relpath(exc.path, record.root), detail=exc.path)
@@ -491,6 +569,32 @@ def _lay_out(record: BuildRecord, checked: CheckedSetup, setup: dict[str, Any]) 
         return BuildFailure("install", _failed(record.package, [message]), "setup.py", record.data_files_line,
                             detail=message)
     return None
+
+
+def _environment_files(record: BuildRecord, additional: list[str]) -> None:
+    """What colcon writes once the package is installed (colcon_core/task/python/build.py, lines
+    196-212): a hook for each variable the prefix now extends, then ``additional`` (colcon-ros's,
+    relative to the prefix), with --symlink-install ``pythonpath_develop`` in build/PKG; the package
+    scripts listing them; and last colcon-core's list of run dependencies
+    (colcon_core/environment/__init__.py, create_file_with_runtime_dependencies, lines 159-176:
+    ``os.pathsep.join(sorted(...))``), the marker a later build looks for."""
+    from ..trust.learner_files import write_file
+    from .colcon_env import Hook, hook_files, package_scripts, prefix_hooks
+
+    listed: list[str] = []
+    for hook in prefix_hooks(record.prefix, record.package, PYTHON_LIB):
+        for relative, text in hook_files(record.package, hook):
+            write_file(record.prefix, relative, text)
+            listed.append(relative)
+    listed += additional
+    if record.build:
+        develop = Hook("pythonpath_develop", "PYTHONPATH", record.build)
+        for relative, text in hook_files(record.package, develop):
+            write_file(record.build, relative, text)
+            listed.append(os.path.relpath(os.path.join(record.build, relative), record.prefix))
+    for relative, text in package_scripts(record.package, record.prefix, listed):
+        write_file(record.prefix, relative, text)
+    write_file(record.prefix, os.path.join(COLCON_MARKER, record.package), ":".join(record.run_depends).encode())
 
 
 # ---------------------------------------------------------------- the child

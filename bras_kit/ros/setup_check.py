@@ -26,7 +26,7 @@ from __future__ import annotations
 import ast
 import os
 import re
-from dataclasses import dataclass
+from dataclasses import dataclass, replace
 from typing import Any
 
 from ..trust.beneath import FOLDER, Outside, beneath, is_name_component
@@ -61,6 +61,8 @@ class Refusal:
     file: str = "setup.py"
     why: str = ""
     target: str = ""
+    entry: int = -1  # missing_source: the data_files entry setuptools stopped at
+    partial: CheckedSetup | None = None  # missing_source: what setuptools installed before it stopped
 
 
 @dataclass(frozen=True)
@@ -160,7 +162,7 @@ def check_setup(setup: dict[str, Any], root: str, *, manifest_name: str, setup_s
     if not isinstance(name, str) or name_problem(name) is not None:
         return Refusal("name", _shown(name), line, file)
     installed = _data_files(setup.get("data_files"), root, lines)
-    if isinstance(installed, Refusal):
+    if isinstance(installed, Refusal) and installed.kind != "missing_source":
         return installed
     modules = _modules(setup, root, lines, python_lib)
     if isinstance(modules, Refusal):
@@ -171,6 +173,12 @@ def check_setup(setup: dict[str, Any], root: str, *, manifest_name: str, setup_s
     console = _console_scripts(setup.get("entry_points"), lines)
     if isinstance(console, Refusal):
         return console
+    if isinstance(installed, Refusal):
+        # setuptools stops at the missing source: what it installed before is in ``partial`` (the
+        # build lays out what came before, in setuptools' order)
+        assert installed.partial is not None
+        return replace(installed, partial=replace(installed.partial, name=name, modules=tuple(modules),
+                                                  executables=tuple(executables), console_scripts=tuple(console)))
     return CheckedSetup(name, tuple(installed), tuple(modules), tuple(executables), tuple(console))
 
 
@@ -204,7 +212,7 @@ def _data_files(entries: Any, root: str, lines: _Lines) -> list[Installed] | Ref
         return []
     if not isinstance(entries, list):
         return Refusal("value", _shown(entries), lines.of("data_files"))
-    out = []
+    out: list[Installed] = []
     for index, entry in enumerate(entries):
         if isinstance(entry, str):
             folder, files = "", [entry]
@@ -221,7 +229,8 @@ def _data_files(entries: Any, root: str, lines: _Lines) -> list[Installed] | Ref
             if isinstance(relative, Refusal):
                 if relative.kind == "missing_source":  # the line naming the file, as a glob's result names none
                     line = lines.naming(os.path.basename(str(source)), line)
-                return Refusal(relative.kind, relative.value, line, why=relative.why, target=target_folder)
+                return Refusal(relative.kind, relative.value, line, why=relative.why, target=target_folder,
+                               entry=index, partial=CheckedSetup("", tuple(out), (), (), ()))
             base = os.path.basename(str(source))
             if not is_name_component(base):
                 return Refusal("source", _shown(source), line, why="outside")

@@ -9,7 +9,8 @@ words them. The rules rest on the tools' own sources:
 - the shell: ``ament_index_python`` 1.8.1 (``resources.py`` lines 58-91, ``search_paths.py`` lines
   21-33): a package is looked for in each prefix of AMENT_PREFIX_PATH in order, the first one
   holding ``share/ament_index/resource_index/packages/PKG`` wins;
-- the machine: rcl 9.2.0 (Jazzy) ``init.c`` lines 156-200 and ``localhost.c`` lines 27-52
+- the machine: rmw_implementation and rcutils (Jazzy: which rmw library loads, see
+  :func:`rmw_library`), rcl 9.2.0 (Jazzy) ``init.c`` lines 156-200 and ``localhost.c`` lines 27-52
   (ROS_LOCALHOST_ONLY), ``discovery_options.c`` lines 43-86 and 110-181 (the discovery range, the
   static peers), ``domain_id.c`` (through :func:`bras_kit.ros.bus.domain_id`), and Fast DDS
   v2.14.6, ``SharedMemTransport.cpp`` line 57 (a 512 KiB segment per participant) and
@@ -351,31 +352,87 @@ def discovery_concerns(environ: Mapping[str, str] | None = None) -> list[Concern
     return concerns
 
 
-def installed_rmws(environ: Mapping[str, str]) -> list[str]:
-    """The rmw implementations of the sourced prefixes: a package rmw_* with its lib/librmw_*.so."""
-    found = set()
+# rmw_implementation (jazzy) src/functions.cpp, load_library, lines 74-128: RMW_IMPLEMENTATION names the
+# one library loaded (lines 95-98), else the default rmw_fastrtps_cpp (line 103), else each package of the
+# ament index's rmw_typesupport resource in turn (lines 111-121); attempt_to_load_one_rmw (lines 48-72)
+# loads rcpputils::get_platform_library_name(NAME), lib<NAME>.so, which rcutils (jazzy) src/shared_library.c
+# hands to dlopen as it is (lines 87-97): the dynamic linker looks in LD_LIBRARY_PATH's folders in order,
+# then in the system's, never in a prefix's lib/ that LD_LIBRARY_PATH does not name
+DEFAULT_RMW = "rmw_fastrtps_cpp"
+RMW_TYPESUPPORT = os.path.join("share", "ament_index", "resource_index", "rmw_typesupport")
+SYSTEM_LIBRARY_FOLDERS = ("/lib/x86_64-linux-gnu", "/usr/lib/x86_64-linux-gnu", "/lib/aarch64-linux-gnu",
+                          "/usr/lib/aarch64-linux-gnu", "/lib64", "/usr/lib64", "/lib", "/usr/lib")
+
+
+def _system_library_folders(conf: str = "/etc/ld.so.conf") -> list[str]:
+    """The folders ld.so.conf names (ldconfig's cache is made from them), then the trusted defaults."""
+    folders: list[str] = []
+
+    def read(path: str, depth: int = 0) -> None:
+        try:
+            with open(path, encoding="utf-8", errors="replace") as file:
+                lines = file.read().splitlines()
+        except OSError:
+            return
+        for line in lines:
+            line = line.split("#", 1)[0].strip()
+            if line.startswith("include ") and depth < 4:
+                pattern = line[len("include "):].strip()
+                pattern = pattern if os.path.isabs(pattern) else os.path.join(os.path.dirname(path), pattern)
+                for included in sorted(glob.glob(pattern)):
+                    read(included, depth + 1)
+            elif line.startswith("/"):
+                folders.append(line)
+
+    read(conf)
+    return list(dict.fromkeys([*folders, *SYSTEM_LIBRARY_FOLDERS]))
+
+
+def rmw_library(name: str, environ: Mapping[str, str], system: list[str] | None = None) -> str | None:
+    """Where the dynamic linker finds ``lib<name>.so`` for rmw_implementation, or None."""
+    folders = [p for p in environ.get("LD_LIBRARY_PATH", "").split(os.pathsep) if p]
+    for folder in [*folders, *(_system_library_folders() if system is None else system)]:
+        path = os.path.join(folder, f"lib{name}.so")
+        if os.path.isfile(path):
+            return path
+    return None
+
+
+def installed_rmws(environ: Mapping[str, str], system: list[str] | None = None) -> list[str]:
+    """The rmw implementations rmw_implementation could load here: the packages the sourced prefixes
+    register under rmw_typesupport (or install as rmw_* packages), and the default, whose library
+    the dynamic linker finds."""
+    names = {DEFAULT_RMW}
     for prefix in _prefixes(environ):
-        for marker in glob.glob(os.path.join(glob.escape(os.path.join(prefix, INDEX)), "rmw_*")):
-            name = os.path.basename(marker)
-            if name != "rmw_implementation" and os.path.exists(os.path.join(prefix, "lib", f"lib{name}.so")):
-                found.add(name)
-    return sorted(found)
+        for folder in (RMW_TYPESUPPORT, INDEX):
+            for marker in glob.glob(os.path.join(glob.escape(os.path.join(prefix, folder)), "rmw_*")):
+                names.add(os.path.basename(marker))
+    names.discard("rmw_implementation")
+    return sorted(n for n in names if rmw_library(n, environ, system) is not None)
 
 
-def rmw_concerns(environ: Mapping[str, str] | None = None) -> list[Concern]:
-    """RMW_IMPLEMENTATION naming an rmw that no sourced prefix holds (rmw_implementation loads
-    lib<NAME>.so from the prefix of the package NAME)."""
+def rmw_concerns(environ: Mapping[str, str] | None = None, system: list[str] | None = None) -> list[Concern]:
+    """RMW_IMPLEMENTATION naming an rmw whose library the dynamic linker does not find (see above)."""
     env = _environ(environ)
     name = env.get("RMW_IMPLEMENTATION", "")
     if not name:
         return []
-    if not _prefixes(env):
+    if not _prefixes(env) and not env.get("LD_LIBRARY_PATH"):
         return [Concern("machine", NOTE, M("RMW_IMPLEMENTATION"), M(
             "RMW_IMPLEMENTATION={name}, but no ROS 2 is sourced here to hold it", name=name),
             M("type: source /opt/ros/jazzy/setup.bash"))]
-    if name in installed_rmws(env):
-        return [Concern("machine", OK, M("RMW_IMPLEMENTATION"), M("{name}", name=name))]
-    others = installed_rmws(env)
+    found = rmw_library(name, env, system)
+    if found is not None:
+        return [Concern("machine", OK, M("RMW_IMPLEMENTATION"), M("{name} ({path})", name=name, path=found))]
+    others = installed_rmws(env, system)
+    held = [prefix for prefix in _prefixes(env) if os.path.isfile(os.path.join(prefix, "lib", f"lib{name}.so"))]
+    if held:  # installed, but where the dynamic linker does not look: LD_LIBRARY_PATH lacks that lib/
+        return [Concern("machine", FAIL, M("RMW_IMPLEMENTATION"), M(
+            "RMW_IMPLEMENTATION={name}: {path} is there, but LD_LIBRARY_PATH does not name its folder, so "
+            "rmw_implementation cannot load it and every node started here stops at rcl's init",
+            name=name, path=os.path.join(held[0], "lib", f"lib{name}.so")),
+            M("source that prefix's setup.bash (it adds {folder} to LD_LIBRARY_PATH): "
+              "source {setup}", folder=os.path.join(held[0], "lib"), setup=os.path.join(held[0], "setup.bash")))]
     return [Concern("machine", FAIL, M("RMW_IMPLEMENTATION"), M(
         "RMW_IMPLEMENTATION={name}, which no sourced prefix installs: every node started here stops at "
         "rcl's init", name=name),
@@ -424,7 +481,7 @@ def is_wsl(osrelease: str = OSRELEASE) -> bool:
 
 def graphics_concerns(renderer: str | None, environ: Mapping[str, str] | None = None,
                       osrelease: str = OSRELEASE) -> list[Concern]:
-    """Will RViz draw? ``renderer``: GL_RENDERER as EGL reports it (None: no OpenGL here)."""
+    """Will RViz draw? ``renderer``: GL_RENDERER as GLX or EGL reports it (None: no OpenGL here)."""
     env = _environ(environ)
     software = env.get("LIBGL_ALWAYS_SOFTWARE", "") not in ("", "0", "false")
     name = renderer or "?"

@@ -97,8 +97,27 @@ def _manifest(folder: str, root: str | None = None) -> tuple[str, tuple[str, ...
     return text or os.path.basename(folder), depends
 
 
+def _setup_py_name(folder: str) -> str:
+    """A plain Python package's name: setup.py's ``name=`` read without running it (colcon-python-setup-py
+    runs it; the build does too, and says the name it got), else the folder's."""
+    from .staticpy import Evaluator, call_name, calls, keyword, known, parse_python
+
+    tree, _why, _line = parse_python(os.path.join(folder, "setup.py"), folder)
+    if tree is not None:
+        evaluator = Evaluator(tree, folder)
+        for call in calls(tree):
+            if call_name(call.func) in ("setup", "setuptools.setup"):
+                node = keyword(call, "name")
+                value = evaluator.value(node, evaluator.names) if node is not None else None
+                if isinstance(value, str) and known(value) and value:
+                    return value
+    return os.path.basename(folder)
+
+
 def package_name(folder: str) -> str:
-    """The name colcon gives the package at ``folder`` (its package.xml's, else the folder's)."""
+    """The name colcon gives the package at ``folder`` (its package.xml's, else setup.py's, else the folder's)."""
+    if not os.path.isfile(os.path.join(folder, "package.xml")) and os.path.isfile(os.path.join(folder, "setup.py")):
+        return _setup_py_name(folder)
     return _manifest(folder)[0]
 
 
@@ -141,6 +160,9 @@ def read_packages(src: str) -> list[WorkspacePackage]:
             name, depends = _manifest(folder, top)
             found.append(WorkspacePackage(name, folder, depends))
             continue  # packages do not nest
+        if "setup.py" in names:  # no package.xml: colcon-python-setup-py's plain Python package
+            found.append(WorkspacePackage(_setup_py_name(folder), folder))
+            continue
         todo.extend(os.path.join(folder, name) for name, kind in reversed(entries) if not name.startswith(".")
                     and (kind == "folder" or kind == "link" and is_folder(os.path.join(folder, name), (top,))))
     return sorted(found, key=lambda p: p.name)

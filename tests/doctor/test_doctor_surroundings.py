@@ -340,15 +340,69 @@ def test_rmw_not_installed_in_the_sourced_prefix(tmp_path):
     (prefix / sr.INDEX / "rmw_fastrtps_cpp").write_text("")
     (prefix / "lib" / "librmw_fastrtps_cpp.so").write_text("")
     (prefix / sr.INDEX / "rmw_implementation").write_text("")
-    env = {"AMENT_PREFIX_PATH": str(prefix)}
-    (fail,) = sr.rmw_concerns(dict(env, RMW_IMPLEMENTATION="rmw_cyclonedds_cpp"))
+    # what /opt/ros/jazzy/setup.bash leaves: the prefix on AMENT_PREFIX_PATH, its lib/ on LD_LIBRARY_PATH
+    env = {"AMENT_PREFIX_PATH": str(prefix), "LD_LIBRARY_PATH": str(prefix / "lib")}
+    (fail,) = sr.rmw_concerns(dict(env, RMW_IMPLEMENTATION="rmw_cyclonedds_cpp"), system=[])
     assert fail.status == "fail" and "ros-jazzy-rmw-cyclonedds-cpp" in texts([fail])[0]
     assert "rmw_fastrtps_cpp" in texts([fail])[0]
-    (ok,) = sr.rmw_concerns(dict(env, RMW_IMPLEMENTATION="rmw_fastrtps_cpp"))
+    (ok,) = sr.rmw_concerns(dict(env, RMW_IMPLEMENTATION="rmw_fastrtps_cpp"), system=[])
     assert ok.status == "ok"
-    (note,) = sr.rmw_concerns({"RMW_IMPLEMENTATION": "rmw_fastrtps_cpp"})
+    (note,) = sr.rmw_concerns({"RMW_IMPLEMENTATION": "rmw_fastrtps_cpp"}, system=[])
     assert note.status == "note"
-    assert sr.rmw_concerns(env) == []
+    assert sr.rmw_concerns(env, system=[]) == []
+
+
+def test_rmw_in_a_prefix_whose_lib_is_not_on_ld_library_path_does_not_load(tmp_path):
+    """rmw_implementation loads lib<NAME>.so through dlopen (rcutils shared_library.c): a prefix that
+    holds it but is not on LD_LIBRARY_PATH (AMENT_PREFIX_PATH set by hand, say) does not count."""
+    prefix = tmp_path / "opt" / "ros" / "jazzy"
+    (prefix / sr.RMW_TYPESUPPORT).mkdir(parents=True)
+    (prefix / "lib").mkdir()
+    (prefix / sr.RMW_TYPESUPPORT / "rmw_cyclonedds_cpp").write_text("")
+    (prefix / "lib" / "librmw_cyclonedds_cpp.so").write_text("")
+    env = {"AMENT_PREFIX_PATH": str(prefix), "RMW_IMPLEMENTATION": "rmw_cyclonedds_cpp"}
+    (fail,) = sr.rmw_concerns(env, system=[])
+    assert fail.status == "fail" and "LD_LIBRARY_PATH does not name its folder" in texts([fail])[0]
+    assert f"source {prefix}/setup.bash" in texts([fail])[0]
+    (ok,) = sr.rmw_concerns(dict(env, LD_LIBRARY_PATH=f"/nowhere:{prefix / 'lib'}"), system=[])
+    assert ok.status == "ok" and str(prefix / "lib" / "librmw_cyclonedds_cpp.so") in texts([ok])[0]
+    # a library in the system's folders loads without any LD_LIBRARY_PATH (/usr/lib/... from a .deb)
+    system = tmp_path / "usr" / "lib"
+    system.mkdir(parents=True)
+    (system / "librmw_zenoh_cpp.so").write_text("")
+    (ok,) = sr.rmw_concerns(dict(env, RMW_IMPLEMENTATION="rmw_zenoh_cpp"), system=[str(system)])
+    assert ok.status == "ok"
+
+
+RCLPY_INIT = ("import rclpy\ntry:\n    rclpy.init()\n    rclpy.create_node('sonde').destroy_node()\n"
+              "except Exception as exc:\n    print('FAILED', exc)\nelse:\n    print('STARTED')\n")
+
+
+@pytest.mark.slow
+@pytest.mark.parametrize("state", ["fastrtps_sourced", "cyclonedds_not_installed", "fastrtps_dynamic_missing"])
+def test_rmw_verdict_agrees_with_the_real_rclpy(state, tmp_path):
+    """The real rclpy of Jazzy (its venv is the sourced prefix: AMENT_PREFIX_PATH, and LD_LIBRARY_PATH as
+    its wheels' bootstrap sets it) starts a node or stops at rcl's init; doctor says fail exactly when
+    it stops (rcl's identifier check exits with 102, or init raises). The system's own library folders
+    are searched as the dynamic linker searches them. The wheels' rmw_implementation reports Fast DDS
+    whatever library it finds, so a library found off LD_LIBRARY_PATH is not a state this oracle can
+    tell apart: the rule for it rests on rcutils' dlopen (the test above)."""
+    python = Path(realros.oracle_python())
+    venv = python.parent.parent
+    env = {"AMENT_PREFIX_PATH": str(venv), "LD_LIBRARY_PATH": str(venv / "lib")}
+    if state == "fastrtps_sourced":
+        env["RMW_IMPLEMENTATION"] = "rmw_fastrtps_cpp"
+    elif state == "cyclonedds_not_installed":
+        env["RMW_IMPLEMENTATION"] = "rmw_cyclonedds_cpp"
+    else:
+        env["RMW_IMPLEMENTATION"] = "rmw_fastrtps_dynamic_cpp"
+    (verdict,) = sr.rmw_concerns(env)
+    done = realros.run_isolated([str(python), "-c", RCLPY_INIT], domain=realros.new_domain(), timeout=60,
+                                **{k: v for k, v in env.items() if k != "LD_LIBRARY_PATH"})
+    started = "STARTED" in done.stdout and done.returncode == 0
+    assert started or "FAILED" in done.stdout or "Expected RMW implementation identifier" in done.stderr, \
+        done.stdout + done.stderr
+    assert (verdict.status != "fail") == started, (texts([verdict]), done.stdout + done.stderr)
 
 
 def in_small_shm(size: str, argv: list[str]) -> list[str]:
@@ -410,6 +464,40 @@ def test_wsl2_kernel_release_bound_over_proc(tmp_path):
     assert "WSL2" in line and "LIBGL_ALWAYS_SOFTWARE=1" in done.stdout
     done = doctor(tmp_path)
     assert "WSL2" not in done.stdout
+
+
+@pytest.fixture
+def x_display(tmp_path):
+    """A real X server (Xvfb, Mesa's llvmpipe behind its GLX, as a virtual machine without 3D gives)."""
+    for number in range(90 + os.getpid() % 50, 200):
+        if not Path(f"/tmp/.X11-unix/X{number}").exists() and not Path(f"/tmp/.X{number}-lock").exists():
+            break
+    server = subprocess.Popen(["Xvfb", f":{number}", "-screen", "0", "320x240x24", "-nolisten", "tcp"],
+                              stdout=subprocess.DEVNULL, stderr=subprocess.DEVNULL)
+    try:
+        for _ in range(100):
+            if Path(f"/tmp/.X11-unix/X{number}").exists():
+                break
+            time.sleep(0.05)
+        yield f":{number}"
+    finally:
+        server.terminate()
+        server.wait(timeout=10)
+
+
+def test_the_renderer_is_the_one_glx_gives_rviz_on_the_display(x_display, tmp_path):
+    """RViz opens its context through GLX on the display: doctor reads that renderer (glxinfo -B), not
+    the off-screen EGL one, and says which it read; without a display, EGL's."""
+    glxinfo = subprocess.run(["glxinfo", "-B"], env=clean_env(DISPLAY=x_display), capture_output=True, text=True,
+                             timeout=30)
+    said = re.search(r"^OpenGL renderer string: (.+)$", glxinfo.stdout, re.MULTILINE).group(1)
+    done = doctor(tmp_path, clean_env(DISPLAY=x_display))
+    line = next(line for line in done.stdout.splitlines() if "graphics for RViz" in line)
+    assert f"{said}, GLX" in line, done.stdout
+    assert line.startswith("note") and "llvmpipe" in said  # Mesa's software rasteriser: no GPU
+    done = doctor(tmp_path, {k: v for k, v in clean_env().items() if k != "DISPLAY"})
+    line = next(line for line in done.stdout.splitlines() if "graphics for RViz" in line)
+    assert ", EGL" in line and ", GLX" not in line, done.stdout
 
 
 def test_french(tmp_path):

@@ -86,6 +86,8 @@ NEEDED_BY_TESTS = {
     "liburdfdom-tools": ("tests/urdfdom_oracle.py", '"check_urdf", "liburdfdom-tools"'),
     "util-linux": ("tests/realros.py", '"unshare", "-rnm"'),
     "iproute2": ("tests/realros.py", "ip link set lo up"),
+    "mesa-utils": ("tests/doctor/test_doctor_surroundings.py", '["glxinfo", "-B"]'),
+    "xvfb": ("tests/doctor/test_doctor_surroundings.py", '["Xvfb", '),
 }
 
 

@@ -118,7 +118,13 @@ def test_missing_marker_stops_bras_kit_build_with_colcons_words(tmp_path, capsys
     assert "error: can't copy 'resource/bras_description': doesn't exist or not a regular file" in out
     assert "Failed   <<< bras_description [exited with code 1]" in out
     assert "hint: create the empty file resource/bras_description" in out
-    assert not (tmp_path / "install" / "bras_description" / "share").exists()
+    # what colcon leaves when setuptools stops at the first data_files entry (tests/ros/test_build_colcon_oracle.py
+    # checks it file for file): the modules, the entry's folder, colcon-ros's first hook; no marker, no script
+    prefix = tmp_path / "install" / "bras_description"
+    assert (prefix / "share/ament_index/resource_index/packages").is_dir()
+    assert not (prefix / "share/ament_index/resource_index/packages/bras_description").exists()
+    assert (prefix / "share/bras_description/hook/ament_prefix_path.dsv").is_file()
+    assert not (prefix / "share/colcon-core").exists() and not (prefix / "lib/bras_description").exists()
 
 
 def test_executable_with_py_no_longer_advises_a_py_entry_point():
