@@ -9,6 +9,7 @@ terminal's findings, code for code against the page's."""
 
 from __future__ import annotations
 
+import os
 import time
 from pathlib import Path
 
@@ -172,3 +173,78 @@ def test_a_wrong_fixed_frame_then_set_right_in_the_page(browser, tmp_path):
     assert "Traceback" not in err
     assert "BK610" in codes
     assert sorted(FINDING.findall(out)) == codes, out
+
+
+def test_step_seven_the_learners_node_beside_the_launch_lifts_bk620(browser, tmp_path):
+    """Step 7: the slider window removed from the launch file, BK620 (nothing publishes
+    /joint_states) in the terminal and the page; 'bras-kit run PKG animation' beside it moves the
+    arm: the page no longer lists BK620 and the terminal says why; the node stopped, BK620 is back
+    in both. Oracle: the terminal's report, finding for finding, and the forearm's pixels moving."""
+    import subprocess
+    import sys
+
+    import numpy as np
+    from launch_pages import page_findings, reports, step_six, terminal_findings, without_lines
+    from pages import orange
+
+    package = _copy_tutorial(tmp_path)
+    without_lines(package / "launch" / "affichage.launch.py", "joint_state_publisher_gui")
+    launched = Launched(browser, tmp_path, package, [], "en")
+    node = None
+    try:
+        page = launched.page
+        step_six(page)
+        assert _wait(lambda: "BK620" in launched.page_codes(), 60)
+        before = page_findings(page)
+        env = {k: v for k, v in os.environ.items() if k not in ("DISPLAY", "WAYLAND_DISPLAY")}
+        env["XDG_RUNTIME_DIR"] = str(tmp_path / "runtime")  # the launch's bus
+        node = subprocess.Popen([sys.executable, "-m", "bras_kit", "run", str(package), "animation", "--quiet"],
+                                stdout=subprocess.DEVNULL, stderr=subprocess.DEVNULL, env=env)
+        assert _wait(lambda: "BK620" not in launched.page_codes(), 60), page.inner_text("body")
+        assert _wait(lambda: _arm_pixels(page) > 500, 30), _seen(page, tmp_path, "the node's arm is not drawn")
+        first = orange(page).mean(axis=0)
+        moving = []
+        assert _wait(lambda: moving.append(np.abs(orange(page).mean(axis=0) - first).max()) or moving[-1] > 5, 30), \
+            moving
+        lifted = page_findings(page)
+        assert lifted == [f for f in before if f[0] != "BK620"]
+        assert "BK620 does not hold while it runs" in launched.errors.read_text()
+        node.terminate()
+        node.wait(30)
+        assert _wait(lambda: "BK620" in launched.page_codes(), 30), page.inner_text("body")
+        back = page_findings(page)
+    finally:
+        if node is not None and node.poll() is None:
+            node.kill()
+        out, err = launched.stop()
+    assert "Traceback" not in err
+    assert "BK620 holds again" in err
+    last = terminal_findings(reports(out)[-1])
+    assert [f[0] for f in back] == [f[0] for f in last] and back == before
+    assert "BK620" in [f[0] for f in last]
+
+
+def test_a_launch_without_rviz2_shows_no_viewer_and_says_how_to_start_rviz(browser, tmp_path):
+    """No rviz2 in the launch file: no RViz window opens in ROS, so the page draws no arm and no
+    grid, says RViz is not started and how to start it; the terminal's BK615 says the same, and
+    the page lists the terminal's findings, finding for finding."""
+    from launch_pages import page_findings, reports, same_findings, terminal_findings, without_lines
+
+    package = _copy_tutorial(tmp_path)
+    without_lines(package / "launch" / "affichage.launch.py", "package='rviz2'")
+    launched = Launched(browser, tmp_path, package, [], "en")
+    try:
+        page = launched.page
+        assert _wait(lambda: "RViz is not started" in _blank(page), 60), page.inner_text("body")
+        assert "ros2 run rviz2 rviz2" in _blank(page)
+        assert page.locator("[data-rviz='global-status']").count() == 0  # no RViz panel either
+        launched.page_codes()
+        rows = page_findings(page)
+        time.sleep(3.0)
+        assert _arm_pixels(page) == 0, _seen(page, tmp_path, "the arm is drawn although no RViz is started")
+    finally:
+        out, err = launched.stop()
+    assert "Traceback" not in err
+    last = terminal_findings(reports(out)[-1])
+    assert "BK615" in [f[0] for f in last]
+    assert same_findings(rows, last), (rows, last)
