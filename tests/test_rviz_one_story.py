@@ -74,7 +74,7 @@ def test_bk611_fires_exactly_when_the_page_draws_no_arm(scaffolded, tutorial_rob
 # as Qt's QCommandLineParser reads them (visualizer_app.cpp:84-103; -dFILE and --opt=FILE are Qt's
 # forms, a value given twice is the last); no -d, or a file it cannot load, opens the default
 # configuration (visualization_frame.cpp:345-349, 674-676); -f is set after the file
-# (visualizer_app.cpp:170-172). (arguments, setup.py keeps rviz/, RViz reads the file, Fixed
+# (visualizer_app.cpp:165-168). (arguments, setup.py keeps rviz/, RViz reads the file, Fixed
 # Frame RViz uses, BK613 variant or None, BK610 variant or None)
 STARTS = {
     "d_file": ("['-d', rviz_config]", True, True, "base", None, None),
@@ -90,6 +90,10 @@ STARTS = {
     "f_alone": ("['-f', 'base']", True, False, "base", "unused", None),
     "f_over_the_file": ("['-d', rviz_config, '-f', 'monde']", True, True, "monde", None, "argument"),
     "f_long_over_the_file": ("['-d', rviz_config, '--fixed-frame=/base']", True, True, "base", None, None),
+    # a file RViz never loads says nothing of its own Fixed Frame: RViz shows map (BK613 says why)
+    "not_installed_with_a_wrong_frame": ("['-d', rviz_config]", False, False, "map", "not_installed", None,
+                                         "monde"),
+    "installed_with_a_wrong_frame": ("['-d', rviz_config]", True, True, "monde", None, "", "monde"),
 }
 
 
@@ -104,9 +108,13 @@ def test_the_terminal_says_rviz_opens_its_default_exactly_when_the_page_opens_it
     from bras_kit.validate.package import Package
     from bras_kit.validate.package.launch_check import check_launch
 
-    arguments, installed, read, frame, bk613, bk610 = STARTS[case]
+    arguments, installed, read, frame, bk613, bk610, *in_file = STARTS[case]
     root = tmp_path / "bras_description"
     shutil.copytree(scaffolded, root)
+    if in_file:  # the .rviz's own Fixed Frame
+        rviz = root / "rviz" / "bras_description.rviz"
+        rviz.write_text(rviz.read_text(encoding="utf-8").replace("Fixed Frame: base", f"Fixed Frame: {in_file[0]}"),
+                        encoding="utf-8")
     launch = root / "launch" / "affichage.launch.py"
     text = launch.read_text(encoding="utf-8")
     assert "arguments=['-d', rviz_config]" in text

@@ -228,7 +228,7 @@ def _launch(args: argparse.Namespace, launch_file: str | None, arguments: dict[s
             for _node, problem in result.problems:
                 for line in problem.ros:
                     print(for_terminal(learners(line)), file=sys.stderr)
-        if result.build.failure is None and viewer is None:  # once, at the first launch
+        if result.build.failure is None:  # at each build: a save the learner's colcon build has not seen
             _say_stale_install(args, result.build, lang)
         sys.stdout.flush()
         # the install tree's share folder: the robot's package:// meshes, as robot_state_publisher's

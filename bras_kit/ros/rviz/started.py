@@ -41,7 +41,7 @@ def config_argument(arguments: Sequence[Any]) -> str | None:
 
 def fixed_frame_argument(arguments: Sequence[Any]) -> str | None:
     """The frame given to rviz2 with ``-f`` / ``--fixed-frame``: set after the configuration is
-    loaded, so it wins over the file's (visualizer_app.cpp:165-172)."""
+    loaded, so it wins over the file's (visualizer_app.cpp:165-168)."""
     return option_value(arguments, "f", "fixed-frame")
 
 
@@ -82,7 +82,7 @@ def started(plan: Any) -> Started | None:
                 start = Started(read_config(read_text(path, (installed,), limit=RVIZ_FILE_LIMIT)), node, path, True)
             except (OSError, UnicodeDecodeError):
                 start = Started(default_config(), node, path)
-        if frame:  # visualizer_app.cpp:170-172: only a frame that is not empty
+        if frame:  # visualizer_app.cpp:165-168: only a frame that is not empty
             start = replace(start, config=with_fixed_frame(start.config, frame), fixed_frame=frame)
         return start
     return None

@@ -285,10 +285,19 @@ def _config_argument(node: NodeCall) -> Any:
 
 
 def _rviz_files(pkg: Package) -> list[tuple[str, str, int]]:
-    """(source .rviz, launch file, line) for each -d of this package that the package holds: read
-    from the Python launch files, and from every evaluated launch (XML and YAML too) when evaluated."""
+    """(source .rviz, launch file, line) for each -d of this package that the package holds: from
+    every evaluated launch (XML and YAML too) when evaluated, the files RViz really loads (BK613
+    says when it loads none); else read from the Python launch files."""
     from .evaluated import evaluations, rviz_uses
 
+    evaluated = evaluations(pkg)
+    if evaluated is not None:  # the files rviz2 really reads (installed, given with -d): as the page
+        out, seen = [], set()
+        for use in rviz_uses(pkg, evaluated):
+            if use.source not in seen:
+                seen.add(use.source)
+                out.append((use.source, use.launch, use.line))
+        return out
     installed = pkg.installed() or {}
     out = []
     for path, node in _rviz_starts(pkg):
@@ -297,11 +306,6 @@ def _rviz_files(pkg: Package) -> list[tuple[str, str, int]]:
             source = installed.get(target.relative, target.relative)
             if os.path.isfile(os.path.join(pkg.root, source)):
                 out.append((source, path, node.line))
-    seen = {source for source, _, _ in out}
-    for use in rviz_uses(pkg, evaluations(pkg) or []):
-        if use.source not in seen:
-            seen.add(use.source)
-            out.append((use.source, use.launch, use.line))
     return out
 
 
