@@ -94,6 +94,10 @@ def run(args: argparse.Namespace) -> int:
     # (a child forked while a thread imports a module could wait forever for its lock); its probe
     # too, a throwaway child, runs now.
     containable()
+    from ..run.live import package_stamps
+
+    # the files as the first build reads them: a save during that build (or its checks) is a save
+    args.stamps = package_stamps(args.target)
     shown: list[tuple[object, object]] = []  # (viewer, bus), once the page's address is printed
     with children_from_a_server():
         try:
@@ -401,7 +405,7 @@ def _live(args: argparse.Namespace, launch_file: str | None, arguments: dict[str
                           beside=getattr(args, "others", ()))
         nodes.start()  # a Ctrl-C while they start still finds them in ``nodes``
 
-    stamps = package_stamps(args.target)
+    stamps = getattr(args, "stamps", None) or package_stamps(args.target)
     saved: list[str] = []
 
     def changed() -> bool:
