@@ -117,3 +117,45 @@ def without_lines(path: Path, word: str) -> str:
     assert len(kept) < len(text.splitlines()), f"no line of {path.name} holds {word}"
     path.write_text("\n".join(kept) + "\n", encoding="utf-8")
     return text
+
+
+TERMINAL_FINDING = re.compile(r"^(?P<place>\S+?):(?:(?P<line>\d+):)? (?P<code>BK\d{3}) (?P<severity>\w+) (?P<message>.*)$")
+
+
+def reports(out: str) -> list[str]:
+    """The terminal's reports, each ending with its summary line ("N files checked: ...")."""
+    parts = re.split(r"(?m)^\d+ files? checked: .*$", out)
+    return parts[:-1]
+
+
+def terminal_findings(report: str) -> list[tuple[str, str, str, str]]:
+    """(code, severity, place, message) of each finding a terminal report prints."""
+    out = []
+    for line in report.splitlines():
+        found = TERMINAL_FINDING.match(line)
+        if found:
+            place = found["place"] + (f":{found['line']}" if found["line"] else "")
+            out.append((found["code"], found["severity"], place, found["message"].strip()))
+    return sorted(out)
+
+
+def page_findings(page) -> list[tuple[str, str, str, str]]:
+    """(code, severity, place, message) of each finding the page's Checks list."""
+    rows = page.locator("[data-finding]").evaluate_all(
+        "(all) => all.map(e => [e.dataset.finding, e.dataset.severity, e.dataset.place,"
+        " e.querySelector('[data-message]').innerText])")
+    return sorted((code, severity, place, message.strip()) for code, severity, place, message in rows)
+
+
+def same_findings(page_rows, terminal_rows) -> bool:
+    """Finding for finding: the same code, severity and message, at the same place (the terminal
+    names the file from where it was run, the page from the package folder)."""
+    if len(page_rows) != len(terminal_rows):
+        return False
+    for (code, severity, place, message), (t_code, t_severity, t_place, t_message) in zip(
+            sorted(page_rows, key=lambda r: (r[0], r[3])), sorted(terminal_rows, key=lambda r: (r[0], r[3]))):
+        if (code, severity, message) != (t_code, t_severity, t_message):
+            return False
+        if not (t_place == place or t_place.endswith("/" + place) or (not place and ":" not in t_place)):
+            return False
+    return True

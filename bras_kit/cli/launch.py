@@ -5,6 +5,7 @@ from __future__ import annotations
 import argparse
 import os
 import sys
+from collections.abc import Callable
 
 from ..core.message import M, Mn
 from ..ros.evaluation import rviz_fixed_frame
@@ -80,6 +81,7 @@ def run(args: argparse.Namespace) -> int:
     from ..ros.workspace import others, resolve_package
 
     args.typed, (args.target, workspace) = args.target, resolve_package(args.target)  # a folder, or a name in the workspace
+    args.workspace = workspace
     args.others = others(workspace, args.target)  # built beside it, as colcon builds the whole workspace
     launch_file, arguments = _split(args.items)
     if args.no_page:
@@ -92,6 +94,10 @@ def run(args: argparse.Namespace) -> int:
     # (a child forked while a thread imports a module could wait forever for its lock); its probe
     # too, a throwaway child, runs now.
     containable()
+    from ..run.live import package_stamps
+
+    # the files as the first build reads them: a save during that build (or its checks) is a save
+    args.stamps = package_stamps(args.target)
     shown: list[tuple[object, object]] = []  # (viewer, bus), once the page's address is printed
     with children_from_a_server():
         try:
@@ -138,13 +144,20 @@ class _Launched:
         self.description = self.result.description
 
 
+class _Superseded(Exception):
+    """A file of the package saved while it was built and launched again: that build is dropped
+    (neither printed nor shown) and the next one reads the files as they are now."""
+
+
 def _launch(args: argparse.Namespace, launch_file: str | None, arguments: dict[str, str], lang: str,
-            page_shown: list[tuple[object, object]] | None = None, viewer=None) -> _Launched:
+            page_shown: list[tuple[object, object]] | None = None, viewer=None,
+            superseded: Callable[[], bool] | None = None) -> _Launched:
     """Build the package, evaluate its launch file once (:mod:`bras_kit.ros.evaluation`), say what
     started, run its own nodes in simulated time for their findings. The page reads that same
     evaluation: given ``page_shown``, it is opened as soon as the robot is known (before the
     checks), and (viewer, bus) is put in ``page_shown`` when its address is printed; given
-    ``viewer`` (a rebuild), the open page shows the new evaluation."""
+    ``viewer`` (a rebuild), the open page shows the new evaluation. ``superseded`` (a rebuild) is
+    asked once the build is evaluated and once the checks are in: true, :class:`_Superseded`."""
     import tempfile
 
     from ..core.errors import ParameterError
@@ -175,6 +188,9 @@ def _launch(args: argparse.Namespace, launch_file: str | None, arguments: dict[s
                    "(bras-kit build says why)", name=name), lang)
         evaluation = evaluate_launch(args.target, os.path.join(base, "install"), launch_file, arguments, package,
                                      prefixes=tuple(prefixes))
+        learners = _learners_install(os.path.join(base, "install"), getattr(args, "workspace", None))
+        if superseded is not None and superseded():
+            raise _Superseded  # built from files that are no longer the learner's: nothing said of it
         result = evaluation.launched
         plan = result.plan
         if result.build.failure is None and launch_file is not None and plan is None:
@@ -189,7 +205,7 @@ def _launch(args: argparse.Namespace, launch_file: str | None, arguments: dict[s
                     hint=M("give each launch file of the package its own name"))
             raise ParameterError(
                 M("file '{file}' was not found in the share directory of package '{package}' which is at '{share}'",
-                  file=launch_file, package=result.build.package, share=share),
+                  file=launch_file, package=result.build.package, share=learners(share)),
                 hint=M("the installed launch files are {names}; a new one needs colcon build (data_files)",
                        names=[os.path.basename(f) for f in launch_sources(result.build)] or "-"))
         nodes = []
@@ -198,7 +214,7 @@ def _launch(args: argparse.Namespace, launch_file: str | None, arguments: dict[s
             print(say(M("ros2 launch {package} {file}", package=result.build.package,
                         file=os.path.basename(shown)), lang))
             for _delay, text, *_where in plan.logs:  # LogInfo actions, as ros2 launch prints them
-                print(f"[INFO] [launch.user]: {for_terminal(str(text))}")  # the learner's text, made inert
+                print(f"[INFO] [launch.user]: {for_terminal(learners(str(text)))}")  # the learner's text, made inert
             for node in plan.nodes:
                 counterpart = COUNTERPARTS.get(node.package or "")
                 if counterpart is not None:
@@ -212,10 +228,12 @@ def _launch(args: argparse.Namespace, launch_file: str | None, arguments: dict[s
                     print(say(M("[INFO] started {node} ({what}): not simulated, nothing is shown for it",
                                 node=node.full_name, what=node.shown), lang))
             if plan.failure is not None:
-                print(for_terminal(plan.ros2_launch_error), file=sys.stderr)
+                print(for_terminal(learners(plan.ros2_launch_error)), file=sys.stderr)
             for _node, problem in result.problems:
                 for line in problem.ros:
-                    print(for_terminal(line), file=sys.stderr)
+                    print(for_terminal(learners(line)), file=sys.stderr)
+        if result.build.failure is None:  # at each build: a save the learner's colcon build has not seen
+            _say_stale_install(args, result.build, lang)
         sys.stdout.flush()
         # the install tree's share folder: the robot's package:// meshes, as robot_state_publisher's
         package_paths = (os.path.join(result.build.prefix, "share"), os.path.dirname(os.path.abspath(args.target)))
@@ -230,8 +248,36 @@ def _launch(args: argparse.Namespace, launch_file: str | None, arguments: dict[s
         check_launch(evaluation, package, package_paths)
         evaluation.results = sorted(merge_results(evaluation.results, _node_results(args, nodes, evaluation.robot, evaluation.package)),
                                     key=lambda r: r.path)
+        if superseded is not None and superseded():
+            raise _Superseded  # the page waits ("checking") for the build of the files as saved now
         evaluation.checked = True  # the page shows them once the terminal has said them (run, _live)
     return _Launched(package, evaluation, nodes, page)
+
+
+def _learners_install(install: str, workspace) -> Callable[[str], str]:
+    """A text naming bras-kit's own install tree (a temporary folder) made to name the one the
+    learner's colcon build makes: the workspace's install/, or install/ where colcon build is
+    typed (ros2 launch's words, on the learner's machine)."""
+    mine = install.rstrip(os.sep)
+    theirs = workspace.install if workspace is not None else "install"
+    return lambda text: text.replace(mine + os.sep, theirs + os.sep).replace(mine, theirs)
+
+
+def _say_stale_install(args: argparse.Namespace, build, lang: str) -> None:
+    """The workspace's install/ built before the last changes: ros2 launch reads that tree, never
+    the sources, so it would still run the old files until colcon build is run again (the
+    tutorial's "recompilez"); bras-kit launch builds them as they are now."""
+    from ..ros.workspace import stale_install
+    from ._common import warn
+
+    workspace = getattr(args, "workspace", None)
+    differ = stale_install(workspace, build.package, build.prefix)
+    if not differ or workspace is None:
+        return
+    shown = [os.path.join("install", build.package, f) for f in differ[:3]] + (["..."] if len(differ) > 3 else [])
+    warn(M("{install} was built before your last changes ({files}): ros2 launch would still use that old install "
+           "until you run colcon build again in {root} (bras-kit launch builds the sources as they are now)",
+           install=os.path.join(workspace.install, build.package), files=", ".join(shown), root=workspace.root), lang)
 
 
 def _node_results(args: argparse.Namespace, nodes: list, robot, package: str):
@@ -259,7 +305,7 @@ def _node_results(args: argparse.Namespace, nodes: list, robot, package: str):
         for message in summary(recording):
             print("  " + say(message, lang))
         by_file: dict[str, list] = {}
-        for found in run_findings(recording, robot, lang=lang):
+        for found in run_findings(recording, robot, lang=lang, root=os.path.abspath(args.target)):
             by_file.setdefault(str(found.data.get("file", "")), []).append(found)
         out += [FileResult(os.path.join(args.target, file), found) for file, found in by_file.items()]
     return out
@@ -280,6 +326,7 @@ def _open_page(args: argparse.Namespace, evaluation, package_paths: tuple[str, .
                     watch=False, launch=evaluation)
     if viewer.rviz_state is not None:  # Save Config in the page: the terminal says what makes the launch use it
         viewer.rviz_state.on_saved = lambda relative, package: _print_rviz_lines(relative, package, args.lang)
+    viewer.on_publishing = lambda publishing: _print_publishing(publishing, args.lang)
     try:
         bus: Bus | None = Bus.listen()
     except BrasKitError as exc:  # no Zenoh: the launch is shown, bras-kit run cannot publish into it
@@ -309,6 +356,17 @@ def _print_rviz_lines(relative: str, package: str, lang: str | None) -> None:
     print(f"    arguments=['-d', os.path.join(get_package_share_directory('{for_terminal(package)}'), 'rviz', "
           f"'{for_terminal(name)}')],", file=sys.stderr)
     print(say(M("then build again (colcon build) and launch again."), lang), file=sys.stderr, flush=True)
+
+
+def _print_publishing(publishing: bool, lang: str | None) -> None:
+    """A node beside the launch (bras-kit run, as ros2 run) started or stopped publishing
+    /joint_states: the page lists BK620 only while none does, and the terminal says so."""
+    from ..core.i18n import say
+
+    print(say(M("BK620 does not hold while it runs: a node beside the launch publishes /joint_states (the page "
+                "no longer lists it)") if publishing else
+              M("BK620 holds again: nothing publishes /joint_states any more (the page lists it again)"), lang),
+          file=sys.stderr, flush=True)
 
 
 def _close(viewer, bus) -> None:
@@ -347,18 +405,24 @@ def _live(args: argparse.Namespace, launch_file: str | None, arguments: dict[str
                           beside=getattr(args, "others", ()))
         nodes.start()  # a Ctrl-C while they start still finds them in ``nodes``
 
-    stamps = package_stamps(args.target)
+    stamps = getattr(args, "stamps", None) or package_stamps(args.target)
     saved: list[str] = []
 
     def changed() -> bool:
+        """Whether a file of the package was saved since ``stamps`` (then ``saved`` names them and
+        ``stamps`` is what the next build reads). Save Config's own file is no save."""
         nonlocal stamps
-        now = package_stamps(args.target)
+        now = package_stamps(args.target, before=stamps)
         written = viewer.rviz_state.written if viewer.rviz_state is not None else set()
         files = changed_files(stamps, now)
-        saved[:] = [p for p in files if os.path.abspath(p) not in written]  # Save Config's own file: no save
+        saved[:] = [p for p in files if os.path.abspath(p) not in written]
         written.difference_update(os.path.abspath(p) for p in files)
         stamps = now
         return bool(saved)
+
+    def say_saved(message) -> None:
+        names = ", ".join(os.path.relpath(p, args.target) for p in saved[:3])
+        print(say(message(names, min(len(saved), 3)), lang), file=sys.stderr, flush=True)
 
     try:
         start(launched)
@@ -368,21 +432,29 @@ def _live(args: argparse.Namespace, launch_file: str | None, arguments: dict[str
             if not saved:  # Ctrl-C
                 break
             nodes.stop()
-            names = ", ".join(os.path.relpath(p, args.target) for p in saved[:3])
-            print(say(Mn("{files} saved: the package is built and launched again",
-                         "{files} saved: the package is built and launched again", min(len(saved), 3), files=names), lang),
-                  file=sys.stderr, flush=True)
-            try:
-                relaunched = _launch(args, launch_file, arguments, lang, viewer=viewer)  # the page shows it too
-            except BrasKitError as exc:
-                print(say(exc.message, lang), file=sys.stderr, flush=True)
+            say_saved(lambda files, n: Mn("{files} saved: the package is built and launched again",
+                                          "{files} saved: the package is built and launched again", n, files=files))
+            relaunched = None
+            while relaunched is None:
+                try:
+                    # a save while it builds: that build is dropped and the package built again,
+                    # so the last save always wins (stamps are never taken after the build: what
+                    # was saved during it is a save)
+                    relaunched = _launch(args, launch_file, arguments, lang, viewer=viewer, superseded=changed)
+                except _Superseded:
+                    say_saved(lambda files, n: Mn(
+                        "{files} saved during the build: the package is built and launched again",
+                        "{files} saved during the build: the package is built and launched again", n, files=files))
+                except BrasKitError as exc:
+                    print(say(exc.message, lang), file=sys.stderr, flush=True)
+                    break
+            if relaunched is None:
                 nodes = LiveNodes(args.target, [], viewer.show_joint_state)
                 continue
             sys.stdout.write(format_text(relaunched.results, lang))
             sys.stdout.flush()
             viewer.show_checks()  # once the terminal has said them, as the first time
             start(relaunched)
-            stamps = package_stamps(args.target)  # what the build and the nodes wrote is not a save
     except KeyboardInterrupt:  # during a rebuild: the same stop as during the wait
         pass
     finally:

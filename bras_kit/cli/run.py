@@ -168,9 +168,21 @@ def _run_live(args: argparse.Namespace, bus, parameters, robot, beside: list[str
     print(say(M("joined the running bras-kit launch (ROS domain {domain}): publishing /joint_states on the wall "
                 "clock until Ctrl-C, as ros2 run", domain=domain_id()), lang), file=sys.stderr, flush=True)
     warned: set[tuple[object, tuple[str, ...]]] = set()
+    from ..run.live_limits import LimitWatch
+
+    watch = LimitWatch(robot)
+    began = time.monotonic()
 
     def deliver(state) -> None:
         names = tuple(state.name)
+        for violation in watch.see(names, [float(p) for p in state.position], time.monotonic() - began):
+            # as RViz shows it: robot_state_publisher places the link at the angle sent, past the limit
+            words = dict(joint=violation.joint, value=round(violation.value, 4), unit=violation.unit,
+                         time=round(violation.time, 2), bound=violation.bound)
+            warn(M("joint '{joint}' was sent {value} {unit} at t = {time} s, above its upper limit {bound} (BK649): "
+                   "the summary at Ctrl-C says how often", **words) if violation.side == "upper" else
+                 M("joint '{joint}' was sent {value} {unit} at t = {time} s, below its lower limit {bound} (BK649): "
+                   "the summary at Ctrl-C says how often", **words), lang)
         for shown in robots:
             missing = unknown_joints(list(names), shown)
             if missing and (shown, names) not in warned:
@@ -201,14 +213,42 @@ def _run_live(args: argparse.Namespace, bus, parameters, robot, beside: list[str
     except KeyboardInterrupt:
         print(say(M("stopped by Ctrl-C after {seconds} s", seconds=round(time.monotonic() - started, 1)), lang),
               file=sys.stderr, flush=True)
-        return max(built, default=0)
+        return max(_say_past_limits(args, robot, watch), *built)
     finally:
         signal.signal(signal.SIGTERM, previous)
         bus.close()
     print(say(M("the node {ending}", ending=ending(recording)), lang), file=sys.stderr)
     for text in failure_lines(recording):
         print(text, file=sys.stderr)
-    return max(1 if recording.failure is not None else 0, *built)
+    return max(1 if recording.failure is not None else 0, _say_past_limits(args, robot, watch), *built)
+
+
+def _say_past_limits(args: argparse.Namespace, robot, watch) -> int:
+    """A live run's summary of the angles past the limits, as BK649 findings at the line that sets
+    msg.position (a batch run's words and place); its exit code (1 when there are any)."""
+    from ..core.errors import BrasKitError
+    from ..core.i18n import current_language
+    from ..findings.data import finding
+    from ..findings.registry import RULES
+    from ..findings.report import exit_code, format_text
+    from ..ros.locate import locate
+    from ..validate.package.run_rules import field_line, past_limits_hits
+
+    violations = watch.violations()
+    if not violations:
+        return 0
+    try:
+        target = locate(args.target, args.executable)
+        path, root = target.path, target.root
+    except BrasKitError:  # it ran, so it is found; never a traceback at Ctrl-C
+        return 1
+    shown = os.path.relpath(path, root)
+    found = [finding(RULES["BK649"], hit) for hit in past_limits_hits(robot, violations, shown,
+                                                                      field_line(path, root, "position"))]
+    results = _file_results({shown: found}, [], args)
+    sys.stdout.write(format_text(results, args.lang or current_language()))
+    sys.stdout.flush()
+    return exit_code(results)
 
 
 def _robot(args: argparse.Namespace):
@@ -232,7 +272,9 @@ def _results(recording, robot, args):
     from ..run.findings import run_findings
 
     by_file: dict[str, list] = {}
-    for found in run_findings(recording, robot, lang=args.lang):
+    target = os.path.abspath(args.target)
+    for found in run_findings(recording, robot, lang=args.lang,
+                              root=target if os.path.isdir(target) else os.path.dirname(target)):
         by_file.setdefault(str(found.data.get("file") or recording.source), []).append(found)
     if not by_file:
         by_file[recording.source] = []

@@ -27,8 +27,9 @@ if TYPE_CHECKING:
     from .launched import Launched
 
 JOINT_STATE_PUBLISHERS = ("joint_state_publisher", "joint_state_publisher_gui")
-RVIZ_FILE_LIMIT = 1 << 20
-# a configuration without Global Options > Fixed Frame: RViz uses "map" (BK610 says so)
+NO_RVIZ = M("The launch file starts no rviz2: no RViz window opens, nothing shows the robot (BK615). Add "
+            "Node(package='rviz2', executable='rviz2') to the launch file, or run 'ros2 run rviz2 rviz2' in another "
+            "terminal.")
 
 
 @dataclass
@@ -65,7 +66,14 @@ class LaunchEvaluation:
             return M("no robot_state_publisher is started: nothing publishes the robot, RViz shows none")
         if self.robot is None:
             return self.robot_error or M("robot_state_publisher got no robot_description: RViz shows no robot")
+        if self.rviz is None:
+            return NO_RVIZ
         return None
+
+    @property
+    def rviz_started(self) -> bool:
+        """Whether the launch starts rviz2 (then the page is that RViz; else it draws nothing, BK615)."""
+        return self.rviz is not None
 
     def frame_missing(self, frame: str | None) -> Message | None:
         """Why RViz draws nothing under Fixed Frame ``frame`` (None: it exists, or none is set)."""
@@ -100,10 +108,12 @@ def evaluate_launch(root: str, install_base: str, launch_file: str | None, argum
     plan = launched.plan
     if launched.build.failure is not None or plan is None:
         return evaluation
-    evaluation.fixed_frame = rviz_fixed_frame(plan)
-    from .rviz.started import started_config
+    from .rviz.started import started
 
-    evaluation.rviz, evaluation.rviz_file = started_config(plan) or (None, None)
+    start = started(plan)  # the one reading of rviz2's start: the page's RViz and the RViz rules
+    if start is not None:
+        evaluation.rviz, evaluation.rviz_file = start.config, start.file
+    evaluation.fixed_frame = rviz_fixed_frame(plan)
     evaluation.sliders = any(node.package in JOINT_STATE_PUBLISHERS for node in plan.nodes)
     evaluation.own_nodes = [node for node in plan.nodes if node.package == launched.build.package]
     if launched.description is not None and plan.failure is None:
@@ -125,24 +135,11 @@ def _robot(description: str) -> tuple[Robot | None, Message | None]:
 
 
 def rviz_fixed_frame(plan: Any) -> str | None:
-    """The Fixed Frame of the configuration rviz2 is started with (``arguments=['-d', FILE]``)."""
-    import yaml
+    """The Fixed Frame rviz2 starts with when the launch sets one (a ``-d`` file RViz reads, or
+    ``-f``), as :func:`bras_kit.ros.rviz.started.started` reads it; None otherwise."""
+    from .rviz.started import started
 
-    from ..trust import yaml_gate
-    from ..trust.learner_files import read_text
-
-    for node in plan.nodes if plan is not None else []:
-        if node.package != "rviz2" or "-d" not in node.arguments[:-1]:
-            continue
-        path = node.arguments[node.arguments.index("-d") + 1]
-        # read through the one reader, inside the install tree the launch file came from: never
-        # /dev/zero, a pipe, or a file elsewhere (docs/security.md)
-        installed = plan.launch_file.rsplit(os.sep + "share" + os.sep, 1)[0]
-        try:
-            data = yaml_gate.load(read_text(path, (installed,), limit=RVIZ_FILE_LIMIT))
-        except (OSError, UnicodeDecodeError, yaml.YAMLError):
-            return None
-        from .rviz.config import fixed_frame_of
-
-        return fixed_frame_of(data)[0]  # as the page and BK610 read it
-    return None
+    start = started(plan)
+    if start is None or (start.file is None and not start.fixed_frame):
+        return None
+    return start.config.fixed_frame

@@ -353,3 +353,54 @@ def build_others(folders: list[str], install_base: str) -> tuple[list[str], list
         else:
             failed.append(record.package)
     return prefixes, failed
+
+
+def stale_install(workspace: Workspace | None, package: str, fresh_prefix: str) -> list[str] | None:
+    """The files of the workspace's ``install/PACKAGE`` that differ from a build of the sources as
+    they are now (``fresh_prefix``: bras-kit's build, colcon's layout), package-relative under the
+    prefix (``share/PKG/launch/x.launch.py``); [] when none differs; None when the workspace has
+    no install of the package (colcon build never ran, or no workspace). ``ros2 launch`` reads
+    that install tree, never the sources: a file saved since ``colcon build`` is not used.
+    An install made with --symlink-install links to the sources, and is current but for new files."""
+    from ..trust.learner_files import read_bytes
+
+    if workspace is None:
+        return None
+    old = os.path.join(workspace.install, package)
+    if not os.path.isdir(os.path.join(old, "share", package)):
+        return None
+    # --symlink-install: share/ holds links into the sources, and the Python package is installed
+    # in develop mode (colcon-ros's ament_python build runs setup.py develop): its modules are the sources
+    linked = any(os.path.islink(os.path.join(root, name)) for root, _dirs, files in os.walk(os.path.join(old, "share"))
+                 for name in files)
+    differ = []
+    files = set(_installed_files(fresh_prefix, package)) | set(_installed_files(old, package))
+    for relative in sorted(f for f in files if not (linked and f.startswith("lib" + os.sep))):
+        try:
+            now = read_bytes(os.path.join(fresh_prefix, relative), (fresh_prefix,))
+        except OSError:
+            now = None
+        try:  # the old tree's links lead into the sources (--symlink-install): followed within the workspace
+            before = read_bytes(os.path.join(old, relative), (old, workspace.root))
+        except OSError:
+            before = None
+        if now != before:
+            differ.append(relative)
+    return differ
+
+
+def _installed_files(prefix: str, package: str) -> list[str]:
+    """The files of an install prefix that ros2 launch and ros2 run read for ``package``: its share
+    folder (launch files, URDF, .rviz) and its Python package (lib/pythonX.Y/site-packages/PKG)."""
+    out = []
+    for top in (os.path.join(prefix, "share", package), os.path.join(prefix, "lib")):
+        for root, dirs, files in os.walk(top):
+            dirs[:] = sorted(d for d in dirs if d != "__pycache__" and not d.endswith(".egg-info"))
+            for name in sorted(files):
+                path = os.path.relpath(os.path.join(root, name), prefix)
+                if path.startswith("lib" + os.sep) and f"{os.sep}site-packages{os.sep}{package}{os.sep}" not in path:
+                    continue  # lib/PKG/ holds the console scripts colcon writes, the same for a same setup.cfg
+                if name.endswith((".pyc", ".dsv", ".ps1", ".sh", ".bash", ".zsh")):
+                    continue
+                out.append(path)
+    return out

@@ -17,11 +17,12 @@ from ..ros.recording import Recording
 
 
 def run_findings(recording: Recording, robot: Any, *, lang: str | None = None, select: Iterable[str] = (),
-                 ignore: Iterable[str] = ()) -> list[Any]:
+                 ignore: Iterable[str] = (), root: str | None = None) -> list[Any]:
     """The findings of the run rules (BK640-BK659) for ``recording``, worded in ``lang``.
 
     ``data["file"]`` of each finding is the learner's file it points at (relative to the
-    package folder), its ``line`` the line there when known.
+    package folder), its ``line`` the line there when known. ``root``, that folder: a rule may
+    then read the learner's file for its line (BK649: where ``msg.position`` is set).
     """
     from ..core.i18n import current_language
     from ..findings.data import finding, sort_key
@@ -30,7 +31,7 @@ def run_findings(recording: Recording, robot: Any, *, lang: str | None = None, s
 
     lang = lang or current_language()
     chosen = {rule.code: rule for rule in select_rules(select, ignore) if rule.code in RUN_CHECKS}
-    findings = [finding(chosen[code], found) for code, found in run_hits(recording, robot, sorted(chosen))]
+    findings = [finding(chosen[code], found) for code, found in run_hits(recording, robot, sorted(chosen), root)]
     return sorted(findings, key=sort_key)
 
 
@@ -46,7 +47,7 @@ def node_file_results(path: str, *, lang: str | None = None, select: Iterable[st
     robot = robot_of(path)
     by_file: dict[str, list[Any]] = {}
     for found in run_findings(recording, robot if robot is not None else arm(), lang=lang, select=select,
-                              ignore=ignore):
+                              ignore=ignore, root=os.path.dirname(os.path.abspath(path))):
         by_file.setdefault(str(found.data.get("file") or recording.source), []).append(found)
     by_file.setdefault(recording.source, [])
     base = os.path.dirname(path)
@@ -88,7 +89,8 @@ def package_run_results(path: str, *, lang: str | None = None, select: Iterable[
             raise
         except BrasKitError:  # an entry that cannot be started: BK622 reports it
             continue
-        for finding in run_findings(recording, robot, lang=lang, select=select, ignore=ignore):
+        for finding in run_findings(recording, robot, lang=lang, select=select, ignore=ignore,
+                                    root=os.path.abspath(path)):
             by_file.setdefault(str(finding.data.get("file") or recording.source), []).append(finding)
     from ..findings.data import sort_key
 

@@ -87,10 +87,28 @@ class LiveNodes:
             thread.join(timeout)
 
 
-def package_stamps(folder: str) -> dict[str, tuple[int, int]]:
-    """(modification time, size) of every file of the package ``folder``, colcon's output folders
-    and hidden ones left out: a save anywhere in it changes the result."""
-    out: dict[str, tuple[int, int]] = {}
+# A file modified this recently may be written again within the same tick of the file system's
+# clock (a kernel before 6.13 stamps files with a jiffy's resolution, 1 to 10 ms): the same size,
+# the same modification time, other bytes. Its content is then part of its stamp (git's "racily
+# clean" entries, Documentation/technical/racy-git.adoc, are the same problem).
+RACY_NS = 2 * 10**9
+RACY_BYTES = 1 << 20  # a larger file (a mesh) is stamped by time and size alone
+
+Stamp = tuple[int, int, "str | None"]
+
+
+def package_stamps(folder: str, before: dict[str, Stamp] | None = None) -> dict[str, Stamp]:
+    """(modification time, size, content digest or None) of every file of the package ``folder``,
+    colcon's output folders and hidden ones left out: a save anywhere in it changes the result.
+    The digest is taken for a file modified less than RACY_NS ago, and for one ``before`` took it
+    for (then :func:`changed_files` compares the two)."""
+    import hashlib
+    import time
+
+    from ..trust.learner_files import read_bytes
+
+    now = time.time_ns()
+    out: dict[str, Stamp] = {}
     for root, dirs, files in os.walk(folder):
         dirs[:] = sorted(d for d in dirs if d not in SKIPPED_FOLDERS and not d.startswith(".")
                          and not d.endswith(".egg-info"))  # what setup.py writes where it may
@@ -102,15 +120,30 @@ def package_stamps(folder: str) -> dict[str, tuple[int, int]]:
                 info = os.stat(path)
             except OSError:
                 continue
-            out[path] = (info.st_mtime_ns, info.st_size)
+            digest = None
+            earlier = before.get(path) if before is not None else None
+            if info.st_size <= RACY_BYTES and (now - info.st_mtime_ns < RACY_NS or
+                                               (earlier is not None and earlier[2] is not None)):
+                try:  # the one reader: a regular file under the package, never a FIFO or a device
+                    digest = hashlib.blake2b(read_bytes(path, (folder,), limit=RACY_BYTES),
+                                             digest_size=16).hexdigest()
+                except (OSError, ValueError):
+                    digest = None
+            out[path] = (info.st_mtime_ns, info.st_size, digest)
             if len(out) >= MAX_STAMPED:
                 return out
     return out
 
 
-def changed_files(before: dict[str, tuple[int, int]], after: dict[str, tuple[int, int]]) -> list[str]:
+def changed_files(before: dict[str, Stamp], after: dict[str, Stamp]) -> list[str]:
     """The files saved, made or removed between two :func:`package_stamps`."""
-    return sorted(path for path in set(before) | set(after) if before.get(path) != after.get(path))
+    return sorted(path for path in set(before) | set(after) if _differ(before.get(path), after.get(path)))
+
+
+def _differ(a: Stamp | None, b: Stamp | None) -> bool:
+    if a is None or b is None:
+        return a is not b
+    return a[:2] != b[:2] or (a[2] is not None and b[2] is not None and a[2] != b[2])
 
 
 def executables_of(nodes: Iterable[Any], package: str) -> tuple[list[str], dict[str, dict[str, Any]]]:

@@ -28,7 +28,8 @@ def axes_legend(lang: str) -> str:
 
 def banner(error: Any, findings: Sequence[Any], lang: str, checking: bool = False) -> str:
     """The top of the panel: a red banner while the saved file does not read (file, line, message),
-    then the number of findings (and of errors among them), or ``checking`` that they are not in yet."""
+    then the number of findings (and of errors and warnings among them), or ``checking`` that they
+    are not in yet."""
     out = []
     if error is not None:
         path = getattr(error, "path", None)
@@ -53,10 +54,13 @@ def banner(error: Any, findings: Sequence[Any], lang: str, checking: bool = Fals
         out.append(f"<small data-banner='count'><i>{html.escape(say(M('checking the package...'), lang))}</i></small>")
         return "".join(out)
     errors = sum(1 for f in findings if getattr(f, "severity", "") == "error")
+    warnings = sum(1 for f in findings if getattr(f, "severity", "") == "warning")
     count: Message = Mn("{n} finding", "{n} findings", len(findings))
     text = say(count, lang)
     if errors:
         text += " · " + say(Mn("{n} error", "{n} errors", errors), lang)
+    if warnings:  # the terminal's summary counts them too
+        text += " · " + say(Mn("{n} warning", "{n} warnings", warnings), lang)
     colour = ERROR_RED if errors else ("#e65100" if findings else "#2e7d32")
     out.append(f"<small data-banner='count' style='color:{colour}'><b>{html.escape(text)}</b>"
                f" ({html.escape(say(M('see Checks'), lang))})</small>" if findings else

@@ -112,13 +112,20 @@ class RvizState:
         relative = os.path.join("rviz", name)
         with self.lock:
             text = rviz.write_config(self.config)
+            # named before it is written: the rebuild loop, looking meanwhile, never takes it for a
+            # save; a write refused leaves a name an earlier save put there (not yet seen by the loop)
+            pending = path in self.written
+            self.written.add(path)
             try:
                 write_text(path, text, force, make_parents=True)
             except OutputExistsError:
+                if not pending:
+                    self.written.discard(path)
                 return Saved("exists", M("{file} already exists: Overwrite replaces it", file=relative), path)
             except BrasKitError as exc:
+                if not pending:
+                    self.written.discard(path)
                 return Saved("refused", exc.message, path)
-            self.written.add(path)
         if self.on_saved is not None:
             self.on_saved(relative, self.launch.package)
         return Saved("saved", M("{file} saved: the terminal shows the two lines that make the launch use it",

@@ -15,6 +15,7 @@ import numpy as np
 
 from ..core.i18n import say
 from ..core.message import M, Message
+from ..findings.report import element_text
 from ..motion.sources import motion_title
 from .model import ViewModel, wxyz
 from .panel import (
@@ -463,23 +464,26 @@ class Session:
         blank = self.blank()
         shown = "" if blank is None else (
             f"<div data-banner='blank' style='background:#fff3e0;border-left:4px solid #e65100;padding:6px 8px;"
-            f"margin:0 0 6px 0'><b>{self.w(M('RViz shows nothing'))}</b><br>{self.w(blank)}</div>")
+            f"margin:0 0 6px 0'><b>{self.w(self._blank_title(blank))}</b><br>{self.w(blank)}</div>")
         checking = viewer.checking
         self.banner.content = shown + banner(viewer.error, viewer.findings, self.lang, checking)
         rows = []
         if viewer.error is not None:
             rows.append(f"<p style='color:{ERROR_RED}'><b>{self.w(M('The file cannot be read'))}</b>: "
                         f"{html.escape(say(viewer.error, self.lang))}</p>")
-        for file, finding in sorted(viewer.checks, key=_what_matters):
+        for file, finding in sorted(viewer.shown_checks(), key=_what_matters):
             colour = {"error": ERROR_RED, "warning": "#e65100"}.get(finding.severity, "#455a64")
             line = f":{finding.line}" if finding.line else ""
             place = f"{html.escape(file)}{line} " if file else ""
+            element = element_text(finding)  # the element it is about, as the terminal names it
+            element = f"<code>{html.escape(element)}</code> " if element else ""
             hint = finding.hint
             fix = "" if hint is None else \
                 f"<br><small data-hint='{finding.code}'>&rarr; {html.escape(say(hint, self.lang))}</small>"
-            rows.append(f"<p style='margin:2px 0' data-finding='{finding.code}'><b style='color:{colour}'>"
+            rows.append(f"<p style='margin:2px 0' data-finding='{finding.code}' data-severity='{finding.severity}' "
+                        f"data-place='{html.escape(file)}{line}'><b style='color:{colour}'>"
                         f"{finding.code}</b>{'' if file else line} {place}"
-                        f"{html.escape(say(finding.message, self.lang))}{fix}</p>")
+                        f"<span data-message>{element}{html.escape(say(finding.message, self.lang))}</span>{fix}</p>")
         if checking:  # a launch's checks still running: neither "No finding" nor a count yet
             rows = [f"<p><i>{self.w(M('checking the package...'))}</i></p>"]
         elif not rows:
@@ -676,7 +680,9 @@ class Session:
                 frame.visible = drawn
             for label in self._labels:
                 label.visible = bool(self.show_names.value) and drawn
-            self.grid.visible = bool(self.show_grid.value)
+            launch = self.viewer.launch
+            # no rviz2 in the launch: no RViz window, not even its grid (BK615)
+            self.grid.visible = bool(self.show_grid.value) and (launch is None or launch.rviz_started)
 
     def _apply_rviz(self) -> None:
         """What RViz draws: each link the RobotModel places, the axes of each frame the TF display
@@ -727,6 +733,12 @@ class Session:
                 self.update()
                 self._apply_visibility()
                 self.show_checks()
+
+    @staticmethod
+    def _blank_title(blank: Message) -> Message:
+        from ..ros.evaluation import NO_RVIZ
+
+        return M("RViz is not started") if blank is NO_RVIZ else M("RViz shows nothing")
 
     def blank(self) -> Message | None:
         """Why this page draws no robot, as RViz would draw none (None: it is drawn)."""

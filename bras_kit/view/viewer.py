@@ -26,6 +26,10 @@ if TYPE_CHECKING:
 LOCAL_HOST = "127.0.0.1"
 TICK_SECONDS = 1 / 30  # playback frame period
 WATCH_SECONDS = 0.25  # how often the files are looked at
+# a node publishing /joint_states beside the launch is gone after this long without a message
+# (the tutorial's node publishes every 0.05 s; joint_state_publisher every 0.1 s by default)
+PUBLISHING_SECONDS = 1.5
+NO_JOINT_STATES = "BK620"  # "nothing publishes /joint_states"
 
 
 @dataclass
@@ -90,6 +94,9 @@ class Viewer:
         self.rviz_state: Any = None  # bras-kit launch: RViz's configuration as the learner edits it (view.rviz_state)
         self.reloads = 0
         self.loaded_at = time.time()
+        self.heard_at = 0.0  # when a node beside the launch last published /joint_states (monotonic)
+        self.publishing = False  # one did within PUBLISHING_SECONDS
+        self.on_publishing: Callable[[bool], None] | None = None  # the terminal's word on it (bras-kit launch)
         self.model: ViewModel = self._build(source.load())  # a first model that cannot load is an error
         self.source_label: Any = source.path or M("built-in tutorial arm")
         if launch is None:
@@ -137,19 +144,42 @@ class Viewer:
         values = {n: float(p) for n, p in zip(names, positions)}
         with self._lock:
             sessions = list(self.sessions.values())
+        self.heard_at = time.monotonic()
         state = self.rviz_state
         if state is not None and not state.heard:  # /joint_states heard: robot_state_publisher moves the links
             state.heard = True
             for session in sessions:
                 with contextlib.suppress(Exception):
                     session.rviz_changed(False)
+        if not self.publishing:
+            self._publishing(True)
         for session in sessions:
             with contextlib.suppress(Exception):  # a browser that left mid-frame
                 session.take_joint_state(values)
 
     @property
     def findings(self) -> list[Any]:
-        return [finding for _, finding in self.checks]
+        return [finding for _, finding in self.shown_checks()]
+
+    def shown_checks(self) -> list[tuple[str, Any]]:
+        """The findings the page lists: the launch's, less BK620 ("nothing publishes /joint_states")
+        while a node beside the launch publishes it (the tutorial's step 7: ros2 run beside ros2
+        launch); the terminal says so when it starts and when it stops (``on_publishing``)."""
+        if not self.publishing:
+            return self.checks
+        return [(file, finding) for file, finding in self.checks if finding.code != NO_JOINT_STATES]
+
+    def _publishing(self, publishing: bool) -> None:
+        """A node beside the launch started (or stopped, PUBLISHING_SECONDS without a message)
+        publishing /joint_states: every page lists the findings anew, the terminal is told."""
+        self.publishing = publishing
+        with self._lock:
+            sessions = list(self.sessions.values())
+        for session in sessions:
+            with contextlib.suppress(Exception):
+                session.show_checks()
+        if self.on_publishing is not None and any(f.code == NO_JOINT_STATES for _, f in self.checks):
+            self.on_publishing(publishing)
 
     @property
     def sliders(self) -> bool:
@@ -305,6 +335,8 @@ class Viewer:
                 with contextlib.suppress(Exception):  # a browser that left mid-frame
                     session.advance(now - last)
             last = now
+            if self.publishing and time.monotonic() - self.heard_at > PUBLISHING_SECONDS:
+                self._publishing(False)  # the node beside the launch stopped: BK620 holds again
 
     def _watch_loop(self) -> None:
         files = self.source.watched()

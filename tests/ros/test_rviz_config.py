@@ -167,3 +167,33 @@ def test_step_six_by_actions_saves_and_reads_back():
 @pytest.mark.parametrize("frame", ["base: x", "#base", "- base", "'base'", "base\"", "bras avant", "é"])
 def test_awkward_frames_survive_save(frame):
     assert read_config(write_config(with_fixed_frame(default_config(), frame))).fixed_frame == frame
+
+
+def test_save_config_names_its_file_before_writing_and_a_refused_save_keeps_the_name(tmp_path):
+    """The rebuild loop ignores Save Config's own file by name (view.rviz_state.written): named
+    before the file appears (the loop may look between the write and the naming), and a second
+    Save that asks before replacing does not drop the name the first one put there (the loop may
+    not have seen the first write yet: it would take it for the learner's save and rebuild)."""
+    from types import SimpleNamespace
+
+    from bras_kit.view.rviz_state import RvizState
+
+    state = RvizState(SimpleNamespace(rviz=None, root=str(tmp_path), package="bras_description"))
+    seen_named = []
+    import bras_kit.trust.outputs as outputs
+
+    real = outputs.write_text
+
+    def spying(path, *args, **kwargs):
+        real(path, *args, **kwargs)
+        seen_named.append(path in state.written)  # what the loop sees once the file is there
+
+    outputs.write_text = spying
+    try:
+        first = state.save("bras_description.rviz", False)
+        second = state.save("bras_description.rviz", False)
+    finally:
+        outputs.write_text = real
+    assert (first.state, second.state) == ("saved", "exists")
+    assert seen_named == [True]
+    assert str(tmp_path / "rviz" / "bras_description.rviz") in state.written

@@ -240,3 +240,34 @@ def test_spin_until_future_complete_returns_when_the_future_is_done():
     assert recording.ended == "returned" and recording.end == pytest.approx(0.6)  # third tick of 0.2 s
     assert [m.fields["data"] for m in recording.on("/elapsed")] == pytest.approx([0.6, 500_000_000.0])
     assert [text for *_, text in recording.logs] == ["three ticks"]
+
+
+# How a node sets the angles it publishes (bras-kit's run rules point BK649 at that line, where the
+# value past the limit is written, not at create_publisher): (the lines of tick's body, the index of
+# the line BK649 must name, counted from the first of them)
+POSITION_WRITES = {
+    "assigned": (["msg.position = [2.5 * math.sin(self.t), 0.0]"], 0),
+    "appended": (["msg.position = []", "msg.position.append(2.5 * math.sin(self.t))", "msg.position.append(0.0)"],
+                 2),
+    "by_index": (["msg.position = [0.0, 0.0]", "msg.position[0] = 2.5 * math.sin(self.t)"], 1),
+    "annotated_then_assigned": (["angles: list = [2.5 * math.sin(self.t), 0.0]", "msg.position = angles"], 1),
+}
+
+
+@pytest.mark.parametrize("case", list(POSITION_WRITES))
+def test_bk649_names_the_line_that_sets_the_position(tmp_path, robot, case):
+    body, index = POSITION_WRITES[case]
+    head = ["import math", "import rclpy", "from rclpy.node import Node", "from sensor_msgs.msg import JointState", "",
+            "", "class Animation(Node):", "    def __init__(self):", "        super().__init__('animation_bras')",
+            "        self.pub = self.create_publisher(JointState, 'joint_states', 10)",
+            "        self.timer = self.create_timer(0.05, self.tick)", "        self.t = 0.0", "",
+            "    def tick(self):", "        self.t += 0.05", "        msg = JointState()",
+            "        msg.header.stamp = self.get_clock().now().to_msg()", "        msg.name = ['epaule', 'coude']"]
+    tail = ["        self.pub.publish(msg)", "", "", "def main():", "    rclpy.init()", "    rclpy.spin(Animation())", "",
+            "", "if __name__ == '__main__':", "    main()"]
+    node = tmp_path / "animation.py"
+    node.write_text("\n".join(head + ["        " + line for line in body] + tail) + "\n", encoding="utf-8")
+    recording = run_node(str(node), duration=2.0)
+    found = [f for f in run_findings(recording, robot, lang="en", root=str(tmp_path)) if f.code == "BK649"]
+    assert found and {f.line for f in found} == {len(head) + index + 1}, [(f.line, f.text("en")) for f in found]
+    assert "create_publisher" not in node.read_text().splitlines()[found[0].line - 1]

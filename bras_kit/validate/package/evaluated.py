@@ -130,9 +130,6 @@ def rviz_config(node: Any) -> str | None:
 
 
 def _config(arguments: list[str]) -> str | None:
-    for k, item in enumerate(arguments):
-        if item in ("-d", "--display-config") and k + 1 < len(arguments):
-            return arguments[k + 1]
-        if item.startswith("-d") and len(item) > 2:
-            return item[2:].strip()
-    return None
+    from ...ros.rviz.started import config_argument
+
+    return config_argument(arguments)  # rviz2's own reading of its command line, the page's

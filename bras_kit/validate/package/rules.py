@@ -290,10 +290,19 @@ def _config_argument(node: NodeCall) -> Any:
 
 
 def _rviz_files(pkg: Package) -> list[tuple[str, str, int]]:
-    """(source .rviz, launch file, line) for each -d of this package that the package holds: read
-    from the Python launch files, and from every evaluated launch (XML and YAML too) when evaluated."""
+    """(source .rviz, launch file, line) for each -d of this package that the package holds: from
+    every evaluated launch (XML and YAML too) when evaluated, the files RViz really loads (BK613
+    says when it loads none); else read from the Python launch files."""
     from .evaluated import evaluations, rviz_uses
 
+    evaluated = evaluations(pkg)
+    if evaluated is not None:  # the files rviz2 really reads (installed, given with -d): as the page
+        out, seen = [], set()
+        for use in rviz_uses(pkg, evaluated):
+            if use.source not in seen:
+                seen.add(use.source)
+                out.append((use.source, use.launch, use.line))
+        return out
     installed = pkg.installed() or {}
     out = []
     for path, node in _rviz_starts(pkg):
@@ -302,11 +311,6 @@ def _rviz_files(pkg: Package) -> list[tuple[str, str, int]]:
             source = installed.get(target.relative, target.relative)
             if os.path.isfile(os.path.join(pkg.root, source)):
                 out.append((source, path, node.line))
-    seen = {source for source, _, _ in out}
-    for use in rviz_uses(pkg, evaluations(pkg) or []):
-        if use.source not in seen:
-            seen.add(use.source)
-            out.append((use.source, use.launch, use.line))
     return out
 
 
@@ -337,12 +341,6 @@ def _rviz_lines(lines: list[str], key: str, start: int = 0) -> int | None:
     return None
 
 
-def _displays(data: dict[str, Any]) -> list[dict[str, Any]]:
-    manager = data.get("Visualization Manager")
-    displays = manager.get("Displays") if isinstance(manager, dict) else None
-    return [d for d in displays or [] if isinstance(d, dict)]
-
-
 @package_rule("BK610", "rviz-fixed-frame-not-a-link", ERROR)
 def rviz_fixed_frame_not_a_link(pkg: Package) -> Iterator[Hit]:
     from ...ros.rviz.config import fixed_frame_of
@@ -353,7 +351,21 @@ def rviz_fixed_frame_not_a_link(pkg: Package) -> Iterator[Hit]:
     links = [link.name for link in robot.links if link.name]
     if any(launch.includes for launch in pkg.launch_files):
         return  # other frames may be published (static transforms, included launch files)
+    root = _root(robot) or (links[0] if links else "base")
+    forced: set[str | None] = set()  # the .rviz files whose Fixed Frame rviz2's -f replaces
+    said = set()
+    for result, start in _rviz_started(pkg):
+        if not start.fixed_frame:
+            continue
+        if start.file is not None:
+            forced.add(result.build.source_of(os.path.normpath(start.file)))
+        file, line = _place(result, start.node.file, start.node.line)
+        if start.config.fixed_frame not in links and (file, line) not in said:
+            said.add((file, line))
+            yield _at(file, line or None, "argument", frame=start.config.fixed_frame, links=links, root=root)
     for source, _, _ in _rviz_files(pkg):
+        if source in forced:
+            continue
         parsed = pkg.rviz(source)
         if parsed is None:
             continue
@@ -363,11 +375,26 @@ def rviz_fixed_frame_not_a_link(pkg: Package) -> Iterator[Hit]:
         if frame in links:
             continue
         if not set_in_file:
-            yield _at(source, _rviz_lines(lines, "Global Options:"), "missing", frame=frame,
-                      root=_root(robot) or (links[0] if links else "base"))
+            yield _at(source, _rviz_lines(lines, "Global Options:"), "missing", frame=frame, root=root)
         else:
-            yield _at(source, _rviz_lines(lines, "Fixed Frame:"), frame=str(frame), links=links,
-                      root=_root(robot) or (links[0] if links else "base"))
+            yield _at(source, _rviz_lines(lines, "Fixed Frame:"), frame=str(frame), links=links, root=root)
+
+
+def _rviz_started(pkg: Package) -> Iterator[tuple[Any, Any]]:
+    """(evaluated launch, how its rviz2 starts: ros.rviz.started) for each evaluated launch with rviz2."""
+    from ...ros.rviz.started import started
+    from .evaluated import evaluations
+
+    for result in evaluations(pkg) or []:
+        start = started(result.plan)
+        if start is not None:
+            yield result, start
+
+
+def _place(result: Any, file: str, line: int) -> tuple[str, int]:
+    from .evaluated import place
+
+    return place(result, file, line)
 
 
 def _root(robot: Any) -> str | None:
@@ -417,19 +444,58 @@ def rviz_no_tf_display(pkg: Package) -> Iterator[Hit]:
         parsed = pkg.rviz(source)
         if parsed is None:
             continue
-        data, lines = parsed
-        if not any(str(d.get("Class", "")).endswith("/TF") for d in _displays(data)):
+        _, lines = parsed
+        from ...ros.rviz.config import TF, read_config
+
+        if not any(d.kind == TF for d in read_config("\n".join(lines)).displays):  # RViz's reading (the page's)
             yield _at(source, _rviz_lines(lines, "Displays:"))
 
 
 @package_rule("BK613", "rviz-without-configuration", INFO)
 def rviz_without_configuration(pkg: Package) -> Iterator[Hit]:
+    """RViz opens its default configuration: the launch's rviz2 as :mod:`bras_kit.ros.rviz.started`
+    starts it (the page's RViz is that same start), or, with no evaluation, as the Python launch
+    files read."""
+    from .evaluated import evaluations
+
+    results = evaluations(pkg)
+    if results is None:
+        yield from _rviz_default_in_sources(pkg)
+        return
+    yield from _rviz_default_started(pkg)
+
+
+def _rviz_default_started(pkg: Package) -> Iterator[Hit]:
+    said = set()
+    for result, start in _rviz_started(pkg):
+        if start.read:
+            continue
+        file, line = _place(result, start.node.file, start.node.line)
+        if (file, line) in said:
+            continue  # an included launch file's rviz2, said once
+        said.add((file, line))
+        if start.given is None:  # no -d (visualization_frame.cpp:345-349): the default, empty
+            configs = pkg.files("rviz", (".rviz",))
+            yield _at(file, line or None, "unused" if configs else "", config=configs[0] if configs else "",
+                      package=pkg.name)
+            continue
+        # a -d RViz cannot load: it logs so and opens its default (visualization_frame.cpp:674-676)
+        share = os.path.join(result.build.prefix, "share", pkg.name) + os.sep
+        config = os.path.normpath(start.given)
+        if not config.startswith(share) or result.build.source_of(config) is not None:
+            continue  # another package's file, a folder of the learner's, or installed yet unreadable
+        inside = config[len(share):]
+        variant = "not_installed" if os.path.isfile(os.path.join(pkg.root, inside)) else "missing"
+        yield _at(file, line or None, variant, config=inside, package=pkg.name)
+
+
+def _rviz_default_in_sources(pkg: Package) -> Iterator[Hit]:
+    """BK613 read from the Python launch files, when no launch was evaluated (``validate`` without
+    ``--launch``): -d to a file of the package's share folder, or no -d."""
     installed = pkg.installed()
     for path, node in _rviz_starts(pkg):
         target = _config_argument(node)
         if isinstance(target, ShareFile) and target.package == pkg.name and target.relative.endswith(".rviz"):
-            # not an error: rviz2 cannot load it and opens its default configuration
-            # (rviz_common visualization_frame.cpp:675, loadDisplayConfig: a missing file loads default.rviz)
             if not os.path.isfile(os.path.join(pkg.root, target.relative)):
                 yield _at(path, node.line, "missing", config=target.relative, package=pkg.name)
             elif installed is not None and target.relative not in installed:
@@ -440,27 +506,22 @@ def rviz_without_configuration(pkg: Package) -> Iterator[Hit]:
         configs = pkg.files("rviz", (".rviz",))
         yield _at(path, node.line, "unused" if configs else "", config=configs[0] if configs else "",
                   package=pkg.name)
-    yield from _rviz_configs_missing_in_front_end_files(pkg)
 
 
-def _rviz_configs_missing_in_front_end_files(pkg: Package) -> Iterator[Hit]:
-    """BK613 "missing" for the XML and YAML launch files, from their evaluation: -d to a file of
-    the package's share folder that nothing installs."""
-    from .evaluated import evaluations, place, rviz_config
+@package_rule("BK615", "rviz-not-started", INFO)
+def rviz_not_started(pkg: Package) -> Iterator[Hit]:
+    """robot_state_publisher started, no rviz2 (ros.rviz.started finds none: the page opens no RViz)."""
+    from ...ros.rviz.started import started
+    from .evaluated import evaluations, standing_alone
 
-    for result in evaluations(pkg) or []:
-        if result.launch_file.endswith(".py"):
-            continue  # read above, from the source
-        share = os.path.join(result.build.prefix, "share", pkg.name) + os.sep
-        for node in result.plan.nodes:
-            config = rviz_config(node) if node.package == "rviz2" else None
-            config = os.path.normpath(config) if config else None
-            # the install tree is gone once evaluated: what the build installed says whether it is there
-            if config and config.startswith(share) and config.endswith(".rviz") and result.build.source_of(config) is None:
-                file, line = place(result, node.file, node.line)
-                inside = config[len(share):]
-                variant = "not_installed" if os.path.isfile(os.path.join(pkg.root, inside)) else "missing"
-                yield _at(file, line or None, variant, config=inside, package=pkg.name)
+    for result in standing_alone(evaluations(pkg) or []):
+        rsp = [n for n in result.plan.nodes if n.package == "robot_state_publisher"]
+        if not rsp or started(result.plan) is not None or _included(pkg, result.launch_file):
+            continue
+        if result.plan.included or result.plan.processes:
+            continue  # an included launch file, or a process bras-kit does not know, may start RViz
+        file, line = _place(result, rsp[0].file, rsp[0].line)
+        yield _at(file, line or None)
 
 
 # ---------------------------------------------------------------- "le robot ne bouge pas"

@@ -9,6 +9,7 @@ robot, the way robot_state_publisher and RViz would receive the messages. Each h
 from __future__ import annotations
 
 import math
+import os
 from collections.abc import Callable, Iterable, Iterator
 from dataclasses import dataclass
 from typing import TYPE_CHECKING, Any
@@ -28,6 +29,7 @@ class RunContext:
 
     recording: Recording
     robot: Any  # bras_kit.model.robot.Robot or None
+    root: str | None = None  # the folder the recording's paths are relative to (None: not read)
 
 
 RunCheck = Callable[[RunContext], Iterable[Hit]]
@@ -59,6 +61,44 @@ def _publisher_line(run: RunContext, topic: str | None = None) -> tuple[str, int
         if endpoint.type == JOINT_STATE_TYPE and (topic is None or endpoint.topic == topic) and endpoint.path:
             return endpoint.path, endpoint.line
     return r.source, None
+
+
+def _field_line(run: RunContext, field: str) -> tuple[str, int | None]:
+    """Where the node's JointState publisher's file sets ``msg.<field>`` (``msg.position = ...``,
+    ``msg.position[k] = ...``, ``msg.position.append(...)``): the line a value past a limit comes
+    from. None found (set elsewhere, or the file does not read): where the publisher is made."""
+    path, line = _publisher_line(run, JOINT_STATES)
+    if run.root is None or not path:
+        return path, line
+    return path, field_line(os.path.join(run.root, path), run.root, field) or line
+
+
+def field_line(path: str, root: str, field: str) -> int | None:
+    """The last line of the file ``path`` (under ``root``) that sets ``X.<field>``, or None."""
+    import ast
+
+    from ...trust.learner_files import read_text
+
+    try:
+        tree = ast.parse(read_text(path, (root,)))
+    except (OSError, UnicodeDecodeError, SyntaxError, ValueError):
+        return None
+
+    def sets(target: ast.expr) -> bool:
+        while isinstance(target, ast.Subscript):
+            target = target.value
+        return isinstance(target, ast.Attribute) and target.attr == field
+
+    lines = []
+    for node in ast.walk(tree):
+        if isinstance(node, ast.Assign) and any(sets(t) for t in node.targets):
+            lines.append(node.lineno)
+        elif isinstance(node, (ast.AugAssign, ast.AnnAssign)) and sets(node.target):
+            lines.append(node.lineno)
+        elif isinstance(node, ast.Call) and isinstance(node.func, ast.Attribute) and \
+                node.func.attr in ("append", "extend", "insert") and sets(node.func.value):
+            lines.append(node.lineno)
+    return max(lines) if lines else None  # the last write: the value published
 
 
 def _movable(run: RunContext) -> list[str]:
@@ -209,7 +249,7 @@ def joint_state_not_finite(run: RunContext) -> Iterator[Hit]:
 
 @run_rule("BK649", "joint-state-past-limits", ERROR)
 def joint_state_past_limits(run: RunContext) -> Iterator[Hit]:
-    from ...motion import check_limits, value_in_degrees
+    from ...motion import check_limits
     from ...ros.recording import joint_states
 
     robot = run.robot
@@ -218,8 +258,16 @@ def joint_state_past_limits(run: RunContext) -> Iterator[Hit]:
     states = joint_states(run.recording)
     if not len(states):
         return
-    path, line = _publisher_line(run, JOINT_STATES)
-    for violation in check_limits(robot, states):
+    path, line = _field_line(run, "position")  # the value past the limit is set there
+    yield from past_limits_hits(robot, check_limits(robot, states), path, line)
+
+
+def past_limits_hits(robot: Any, violations: Iterable[Any], path: str, line: int | None) -> Iterator[Hit]:
+    """BK649 for each position past a limit (motion.LimitViolation): a batch run's, and a live
+    run's summary at Ctrl-C (bras_kit.run.live_limits)."""
+    from ...motion import value_in_degrees
+
+    for violation in violations:
         if violation.kind != "position":
             continue
         degrees = value_in_degrees(robot.joint(violation.joint), violation.value)
@@ -349,8 +397,8 @@ def node_beginner_mistake(run: RunContext) -> Iterator[Hit]:
         yield _at(path, line, variant, **params)
 
 
-def run_hits(recording: Recording, robot: Any, codes: Iterable[str]) -> Iterator[tuple[str, Hit]]:
-    context = RunContext(recording, robot)
+def run_hits(recording: Recording, robot: Any, codes: Iterable[str], root: str | None = None) -> Iterator[tuple[str, Hit]]:
+    context = RunContext(recording, robot, root)
     for code in codes:
         check = RUN_CHECKS.get(code)
         if check is not None:

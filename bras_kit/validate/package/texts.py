@@ -161,9 +161,13 @@ describe(
     title="the RViz Fixed Frame is not a link of the robot",
     message={
         "missing": "the RViz configuration sets no Fixed Frame: RViz keeps its own, '{frame}', which is no link of this robot",
+        "argument": "rviz2 is started with -f {frame}, which is not a link of the robot ({links}): RViz shows nothing",
         "": "Fixed Frame '{frame}' is not a link of the robot ({links}): RViz shows nothing",
     },
-    hint="set Fixed Frame to '{root}' (Global Options > Fixed Frame)",
+    hint={
+        "argument": "give -f the robot's root link, '{root}' (-f wins over the configuration's Fixed Frame)",
+        "": "set Fixed Frame to '{root}' (Global Options > Fixed Frame)",
+    },
     explanation="""\
 RViz draws everything relative to its Fixed Frame. When no TF frame has that name (the
 default `map`, or a link that was renamed), RViz shows "Frame does not exist" and an empty
@@ -229,6 +233,21 @@ configuration in the package, installing it and passing it with `-d` shows the a
 Given with `-d` a file it cannot find (not in the package, or not installed by `setup.py`), RViz
 logs an error and opens its default configuration: the launch starts, which is why this is
 advice (info), not an error.""",
+)
+describe(
+    "BK615",
+    title="the launch file starts no RViz",
+    message="the launch file starts robot_state_publisher but no rviz2: ros2 launch opens no RViz window, so "
+            "nothing shows the robot",
+    hint="add Node(package='rviz2', executable='rviz2') to the launch file, or run 'ros2 run rviz2 rviz2' in "
+         "another terminal",
+    explanation="""\
+robot_state_publisher publishes the robot and its frames; only RViz (the `rviz2` node) draws
+them. A launch file without `Node(package='rviz2', executable='rviz2')` runs and shows nothing:
+start RViz from the launch file, or with `ros2 run rviz2 rviz2` beside it, then set it up
+(Fixed Frame, Add RobotModel, TF: the tutorial's step 6). Judged on the evaluated launch
+(`bras-kit launch`, `validate --launch`), the same reading of rviz2's start the page uses; a
+launch file another one includes is judged with it.""",
 )
 describe(
     "BK620",
