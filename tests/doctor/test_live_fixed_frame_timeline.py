@@ -14,6 +14,7 @@ import sys
 import time
 
 import pytest
+from paths import DATA
 from recorded_looks import NODE, RSP, T0, URDF, at_20_hz, codes, look, message, tutorial
 
 from bras_kit.live.rviz_process import options, running_rviz
@@ -192,7 +193,7 @@ def workspace(tmp_path_factory):
 
     root = tmp_path_factory.mktemp("ws")
     package = root / "src" / "bras_description"
-    shutil.copytree(os.path.join(os.path.dirname(__file__), "data", "launch", "fidelity", "bras_description"),
+    shutil.copytree(os.path.join(DATA, "launch", "fidelity", "bras_description"),
                     package)
     for launch in (package / "launch").iterdir():
         if launch.name != "ns_attribute_rviz_root.launch.py":

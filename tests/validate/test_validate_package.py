@@ -14,12 +14,13 @@ from pathlib import Path
 
 import pytest
 import yaml
+from paths import TESTS
 
 from bras_kit.scaffold.package import scaffold_package
 from bras_kit.validate import RULES
 from bras_kit.validate.package import find_packages, validate_package
 
-DATA = Path(__file__).parent / "data"
+DATA = TESTS / "data"
 DEFECTS = DATA / "package_defects"
 TUTORIAL = DATA / "package_tutorial"
 PKG = "bras_description"
