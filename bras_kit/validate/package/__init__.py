@@ -20,6 +20,13 @@ from ...findings.registry import select_rules
 from ...ros.launched import launch_package  # noqa: F401  (the package built and launched)
 from ...ros.package import Package
 from ...ros.workspace import find_packages, is_package  # noqa: F401  (light: the CLI finds packages before importing the rules)
+
+# isort: split
+# the rule families register on import, in this order (the order they run in): the three pitfalls
+# first, as rules.py held them, then the rules of the other modules
+from . import install_rules, rviz_rules, motion_rules, node_code_rules  # noqa: F401, I001  (in this order)
+
+# isort: split
 from . import (
     build_reach,  # noqa: F401  (BK639: what setup.py and launch files tried)
     node_mistakes,  # noqa: F401  (BK627, registered on import)

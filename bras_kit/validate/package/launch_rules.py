@@ -76,7 +76,7 @@ def colcon_build_fails(pkg: Package) -> Iterator[Hit]:
 
 
 def _marker_said(pkg: Package) -> bool:
-    from .rules import ament_index_marker_missing
+    from .install_rules import ament_index_marker_missing
 
     return any(True for _ in ament_index_marker_missing(pkg))
 
@@ -209,7 +209,7 @@ def _where_generate(pkg: Package, result: Launched) -> int:
 
 def _said_statically(pkg: Package, path: str) -> bool:
     """Whether the static reading already reports ``path`` (share-relative) as not installed."""
-    from .rules import folder_not_installed, launch_opens_uninstalled_file
+    from .install_rules import folder_not_installed, launch_opens_uninstalled_file
 
     for found in folder_not_installed(pkg):
         if path in [str(f) for f in found.params.get("files", [])]:  # type: ignore[attr-defined]
