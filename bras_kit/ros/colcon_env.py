@@ -192,35 +192,23 @@ unset -f _bras_kit_source
 unset COLCON_CURRENT_PREFIX
 """
 
-PACKAGE_BASH = """{mark}: finds this package's prefix from its own path, then sources package.sh
+# package.bash and package.zsh differ only in how the shell names the sourced file's own path
+_PACKAGE_SOURCES_SH = """{{mark}}: finds this package's prefix from its own path, then sources package.sh
 
 if [ -z "$COLCON_CURRENT_PREFIX" ]; then
-  _bras_kit_prefix="$(builtin cd "$(dirname "${{BASH_SOURCE[0]}}")/../.." > /dev/null && pwd)"
+  _bras_kit_prefix="$(builtin cd {cd}"$(dirname "{own_path}")/../.." > /dev/null && pwd)"
 else
   _bras_kit_prefix="$COLCON_CURRENT_PREFIX"
 fi
-if [ -f "$_bras_kit_prefix/{share}/package.sh" ]; then
-  COLCON_CURRENT_PREFIX="$_bras_kit_prefix" . "$_bras_kit_prefix/{share}/package.sh"
+if [ -f "$_bras_kit_prefix/{{share}}/package.sh" ]; then
+  COLCON_CURRENT_PREFIX="$_bras_kit_prefix" . "$_bras_kit_prefix/{{share}}/package.sh"
 else
-  echo "not found: \\"$_bras_kit_prefix/{share}/package.sh\\"" 1>&2
+  echo "not found: \\"$_bras_kit_prefix/{{share}}/package.sh\\"" 1>&2
 fi
 unset _bras_kit_prefix
 """
-
-PACKAGE_ZSH = """{mark}: finds this package's prefix from its own path, then sources package.sh
-
-if [ -z "$COLCON_CURRENT_PREFIX" ]; then
-  _bras_kit_prefix="$(builtin cd -q "$(dirname "${{(%):-%N}}")/../.." > /dev/null && pwd)"
-else
-  _bras_kit_prefix="$COLCON_CURRENT_PREFIX"
-fi
-if [ -f "$_bras_kit_prefix/{share}/package.sh" ]; then
-  COLCON_CURRENT_PREFIX="$_bras_kit_prefix" . "$_bras_kit_prefix/{share}/package.sh"
-else
-  echo "not found: \\"$_bras_kit_prefix/{share}/package.sh\\"" 1>&2
-fi
-unset _bras_kit_prefix
-"""
+PACKAGE_BASH = _PACKAGE_SOURCES_SH.format(cd="", own_path="${{BASH_SOURCE[0]}}")
+PACKAGE_ZSH = _PACKAGE_SOURCES_SH.format(cd="-q ", own_path="${{(%):-%N}}")
 
 PACKAGE_PS1 = """{mark}: the environment of this package, as colcon's package.ps1 sets it
 
