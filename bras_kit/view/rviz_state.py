@@ -42,6 +42,7 @@ class RvizState:
         self.started: Any = None  # the configuration the launch started rviz2 with
         self.config: rviz.RvizConfig = rviz.default_config()
         self.heard = False  # a node beside the launch published /joint_states (bras-kit run)
+        self.heard_names: set[str] = set()  # the joints its messages named: rsp moves those only
         self.on_saved: Callable[[str, str], None] | None = None  # (package-relative path, package) -> terminal
         self.written: set[str] = set()  # files Save Config wrote: the rebuild loop ignores them
         self.take(launch)
@@ -68,8 +69,10 @@ class RvizState:
         robot = launch.robot
         plan = launch.launched.plan
         joint_states = bool(launch.sliders or self.heard)
-        return rviz.shown(self.config, robot, launch_transforms(robot, joint_states), description_topics(plan),
-                          files=self._files())
+        # the slider window names every movable joint; a node alone, the joints it sends
+        names = None if launch.sliders else sorted(self.heard_names)
+        return rviz.shown(self.config, robot, launch_transforms(robot, joint_states, names=names),
+                          description_topics(plan), files=self._files())
 
     def _files(self) -> dict[str, str]:
         """The description file a RobotModel names (Description Source File), read as RViz would."""

@@ -146,8 +146,10 @@ class Viewer:
             sessions = list(self.sessions.values())
         self.heard_at = time.monotonic()
         state = self.rviz_state
-        if state is not None and not state.heard:  # /joint_states heard: robot_state_publisher moves the links
+        new_names = state is not None and not set(values) <= state.heard_names
+        if state is not None and (not state.heard or new_names):  # rsp moves the links of the joints heard
             state.heard = True
+            state.heard_names |= set(values)
             for session in sessions:
                 with contextlib.suppress(Exception):
                     session.rviz_changed(False)

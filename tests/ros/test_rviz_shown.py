@@ -75,6 +75,23 @@ def test_without_joint_states_only_the_root_is_placed(tutorial_robot):
                                                           "No tf data.  Actual error: Frame [base] does not exist")
 
 
+# A learner's node alone (no slider window): robot_state_publisher publishes a transform for each
+# joint a message names and the URDF knows, none for the others (robot_state_publisher.cpp,
+# tag 3.3.3, 343-360 and publishTransforms), and RViz draws a link only where tf has a transform.
+@pytest.mark.parametrize("sent, drawn, missing", [
+    (("epaule", "coude"), ("base", "bras", "avant_bras"), None),
+    (("epaule", "coud"), ("base", "bras"), "avant_bras"),  # the typo: the forearm has no transform
+    (("coude",), ("base",), "bras"),  # the shoulder never sent: bras and what hangs on it are not placed
+    (("shoulder", "elbow"), ("base",), "bras"),  # another robot's names
+])
+def test_a_node_alone_moves_only_the_joints_it_names(tutorial_robot, sent, drawn, missing):
+    seen = shown(_step_six(), tutorial_robot, launch_transforms(tutorial_robot, True, names=sent), TOPICS)
+    assert seen.links == drawn
+    texts = {s.name: s.text for s in seen.displays[1].statuses}
+    if missing is not None:
+        assert texts[missing] == f"No transform from [{missing}] to [base]"
+
+
 @pytest.mark.parametrize("frame", ["bras", "avant_bras"])
 def test_a_fixed_frame_on_another_link_still_draws_every_link(tutorial_robot, frame):
     seen = shown(_step_six(frame), tutorial_robot, launch_transforms(tutorial_robot, True), TOPICS)

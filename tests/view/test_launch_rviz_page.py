@@ -315,3 +315,39 @@ def test_each_display_missing_or_wrong_as_rviz_shows_it(browser, tmp_path, case)
     last = terminal_findings(reports(out)[-1])
     assert code in [f[0] for f in last]
     assert same_findings(rows, last), (rows, last)
+
+
+def test_a_joint_the_node_never_sends_leaves_its_link_undrawn_as_in_rviz(browser, tmp_path):
+    """The learner's node alone (no slider window) sends 'coud' for 'coude': robot_state_publisher
+    publishes no transform for the elbow (it publishes the joints a message names and the URDF
+    knows), so RViz draws the upper arm moving and no forearm, and its RobotModel says "No
+    transform from [avant_bras] to [base]". The page draws what RViz draws. Oracles: the pixels of
+    the forearm (orange) and of the arm, and RViz's words in the RobotModel's status."""
+    import subprocess
+    import sys
+
+    from launch_pages import step_six, without_lines
+
+    package = _copy_tutorial(tmp_path)
+    without_lines(package / "launch" / "affichage.launch.py", "joint_state_publisher_gui")
+    node_file = package / "bras_description" / "animation.py"
+    node_file.write_text(node_file.read_text().replace("'coude'", "'coud'"))
+    launched = Launched(browser, tmp_path, package, [], "en")
+    node = None
+    try:
+        page = launched.page
+        step_six(page)
+        env = {k: v for k, v in os.environ.items() if k not in ("DISPLAY", "WAYLAND_DISPLAY")}
+        env["XDG_RUNTIME_DIR"] = str(tmp_path / "runtime")  # the launch's bus
+        node = subprocess.Popen([sys.executable, "-m", "bras_kit", "run", str(package), "animation", "--quiet"],
+                                stdout=subprocess.DEVNULL, stderr=subprocess.DEVNULL, env=env)
+        assert _wait(lambda: "BK620" not in launched.page_codes(), 60), page.inner_text("body")
+        assert _wait(lambda: _arm_pixels(page) > 300, 30), _seen(page, tmp_path, "the upper arm is not drawn")
+        assert _wait(lambda: "No transform from [avant_bras] to [base]" in " ".join(_display_texts(page)), 30), \
+            _display_texts(page)
+        time.sleep(1.0)
+        assert _forearm_pixels(page) < 50, _seen(page, tmp_path, "the forearm is drawn, RViz would not")
+    finally:
+        if node is not None and node.poll() is None:
+            node.kill()
+        launched.stop()

@@ -101,18 +101,26 @@ def description_topics(plan: Any) -> set[str]:
 
 
 def launch_transforms(robot: Any, joint_states: bool, positions: dict[str, float] | None = None,
-                      stamp_ns: int = 10**9) -> list[Any]:
+                      stamp_ns: int = 10**9, names: Iterable[str] | None = None) -> list[Any]:
     """What tf holds while the launch runs: robot_state_publisher's static transforms, and the moving
-    ones once a JointState naming the movable joints reaches it, stamped past rsp's first interval
-    (robot_state_publisher.cpp:334-340) (``joint_states``: something publishes
-    /joint_states, joint_state_publisher(_gui) or the learner's node)."""
+    ones once a JointState reaches it, stamped past rsp's first interval
+    (robot_state_publisher.cpp:334-340) (``joint_states``: something publishes /joint_states).
+    joint_state_publisher(_gui) names every movable joint; a learner's node names those it sends
+    (``names``): rsp publishes a transform for each joint the message names and the URDF knows, and
+    none for the others (robot_state_publisher.cpp:326-366), so a joint never sent (``coud`` for
+    ``coude``) leaves its child link, and the links below it, with no transform."""
     from .frames import JointStateIn, RobotStatePublisher
 
     if robot is None:
         return []
     rsp = RobotStatePublisher(robot)
     rsp.static()
-    if joint_states:
+    if joint_states and names is not None:
+        sent = tuple(dict.fromkeys(n for n in names if isinstance(n, str)))
+        values = positions or {}
+        if sent:
+            rsp.on_joint_state(JointStateIn(stamp_ns, sent, tuple(float(values.get(n, 0.0)) for n in sent)))
+    elif joint_states:
         # joint_state_publisher publishes the movable joints that mimic none (joint_state_publisher.py)
         names = tuple(j.name for j in robot.joints if j.type not in ("fixed", None) and j.name and j.mimic is None)
         values = positions or {}
