@@ -481,9 +481,11 @@ with open(__file__) as f:
 def _only_python_lib(prefix: str) -> bool:
     """A prefix holding lib/pythonX.Y/site-packages and share/ folders only: what a plain Python
     package's build leaves when setuptools stopped."""
-    top = set(os.listdir(prefix))
+    from ..trust.learner_files import list_folder
+
+    top = {name for name, _kind in list_folder(prefix, (prefix,))}
     return top <= {"lib", "share"} and os.path.isdir(os.path.join(prefix, PYTHON_LIB)) and \
-        set(os.listdir(os.path.join(prefix, "lib"))) == {PYTHON_LIB.split("/")[1]}
+        {name for name, _kind in list_folder(os.path.join(prefix, "lib"), (prefix,))} == {PYTHON_LIB.split("/")[1]}
 
 
 def _clear_prefix(record: BuildRecord) -> BuildFailure | None:

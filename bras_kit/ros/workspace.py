@@ -260,7 +260,7 @@ def find_packages(paths: Iterable[str]) -> list[str]:
     for path in paths:
         if not os.path.isdir(path):
             continue
-        for folder, dirs, _ in walk(path, (os.path.abspath(path),)):
+        for folder, dirs, _ in walk(path, (path,)):  # both named from the current folder, as typed
             dirs[:] = sorted(d for d in dirs if not d.startswith("."))
             if is_package(folder):
                 out.append(folder)
@@ -362,7 +362,7 @@ def stale_install(workspace: Workspace | None, package: str, fresh_prefix: str) 
     no install of the package (colcon build never ran, or no workspace). ``ros2 launch`` reads
     that install tree, never the sources: a file saved since ``colcon build`` is not used.
     An install made with --symlink-install links to the sources, and is current but for new files."""
-    from ..trust.learner_files import read_bytes
+    from ..trust.learner_files import read_bytes, walk
 
     if workspace is None:
         return None
@@ -371,8 +371,8 @@ def stale_install(workspace: Workspace | None, package: str, fresh_prefix: str) 
         return None
     # --symlink-install: share/ holds links into the sources, and the Python package is installed
     # in develop mode (colcon-ros's ament_python build runs setup.py develop): its modules are the sources
-    linked = any(os.path.islink(os.path.join(root, name)) for root, _dirs, files in os.walk(os.path.join(old, "share"))
-                 for name in files)
+    linked = any(os.path.islink(os.path.join(root, name))
+                 for root, _dirs, files in walk(os.path.join(old, "share"), (old,)) for name in files)
     differ = []
     files = set(_installed_files(fresh_prefix, package)) | set(_installed_files(old, package))
     for relative in sorted(f for f in files if not (linked and f.startswith("lib" + os.sep))):
@@ -392,9 +392,13 @@ def stale_install(workspace: Workspace | None, package: str, fresh_prefix: str) 
 def _installed_files(prefix: str, package: str) -> list[str]:
     """The files of an install prefix that ros2 launch and ros2 run read for ``package``: its share
     folder (launch files, URDF, .rviz) and its Python package (lib/pythonX.Y/site-packages/PKG)."""
+    from ..trust.learner_files import walk
+
     out = []
     for top in (os.path.join(prefix, "share", package), os.path.join(prefix, "lib")):
-        for root, dirs, files in os.walk(top):
+        if not os.path.isdir(top):
+            continue
+        for root, dirs, files in walk(top, (prefix,)):
             dirs[:] = sorted(d for d in dirs if d != "__pycache__" and not d.endswith(".egg-info"))
             for name in sorted(files):
                 path = os.path.relpath(os.path.join(root, name), prefix)

@@ -158,7 +158,9 @@ def test_two_description_publishers_with_different_robots_are_named(looks):
 def test_a_second_node_animating_the_wrist_is_no_jumping_arm(looks):
     (code, out), _ = looks["wrist-node"]
     document = _json(out)
-    assert [c for c in _codes(document) if c.startswith("BK8")] == [] and code == 0
+    # no warning nor error; the timeline (BK847, an info) may say a node was discovered late
+    assert _codes(document, "error") + _codes(document, "warning") == [] and code == 0
+    assert {c for c in _codes(document) if c.startswith("BK8")} <= {"BK847"}
 
 
 def test_degrees_are_named_as_degrees(looks):

@@ -51,11 +51,15 @@ RATE_TOLERANCE = 0.25  # a real timer on a loaded machine; a period in Hz or two
 def corpus() -> list[Path]:
     """Every learner node under tests/data (a .py file that imports rclpy), one per content; not the
     attacks on the stand-in's own record (hostile_code/record/: they reach for bras-kit's _bras_sim,
-    which a real ROS 2 has not; tests/trust/test_record_hostile.py runs them)."""
+    which a real ROS 2 has not; tests/trust/test_record_hostile.py runs them), nor the live tests'
+    robot_state_publisher."""
     seen: dict[str, Path] = {}
     for path in sorted(DATA.rglob("*.py")):
         if path.is_relative_to(DATA / "hostile_code" / "record"):
             continue
+        if path == DATA / "live" / "state_publisher.py":
+            continue  # robot_state_publisher's counterpart, not a learner's node: started with its URDF by the
+            # live tests, under the real rclpy only (tests/live/test_live_standins.py reads it on a real graph)
         text = path.read_text(encoding="utf-8", errors="replace")
         if not re.search(r"^\s*(import rclpy|from rclpy)", text, re.M):
             continue
