@@ -146,10 +146,12 @@ class Viewer:
             sessions = list(self.sessions.values())
         self.heard_at = time.monotonic()
         state = self.rviz_state
-        new_names = state is not None and not set(values) <= state.heard_names
+        # the robot's joints among them (rsp ignores the others): a bounded set, whatever a node sends
+        known = set(values) & {j.name for j in self.model.robot.joints}
+        new_names = state is not None and not known <= state.heard_names
         if state is not None and (not state.heard or new_names):  # rsp moves the links of the joints heard
             state.heard = True
-            state.heard_names |= set(values)
+            state.heard_names |= known
             for session in sessions:
                 with contextlib.suppress(Exception):
                     session.rviz_changed(False)
