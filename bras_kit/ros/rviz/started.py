@@ -115,16 +115,14 @@ def launch_transforms(robot: Any, joint_states: bool, positions: dict[str, float
         return []
     rsp = RobotStatePublisher(robot)
     rsp.static()
-    if joint_states and names is not None:
-        sent = tuple(dict.fromkeys(n for n in names if isinstance(n, str)))
+    if joint_states:
+        if names is None:  # joint_state_publisher: the movable joints that mimic none (joint_state_publisher.py)
+            sent = tuple(j.name for j in robot.joints if j.type not in ("fixed", None) and j.name and j.mimic is None)
+        else:
+            sent = tuple(dict.fromkeys(n for n in names if isinstance(n, str)))
         values = positions or {}
-        if sent:
+        if sent or names is None:  # a node that sent no joint of the robot leaves rsp as it was
             rsp.on_joint_state(JointStateIn(stamp_ns, sent, tuple(float(values.get(n, 0.0)) for n in sent)))
-    elif joint_states:
-        # joint_state_publisher publishes the movable joints that mimic none (joint_state_publisher.py)
-        names = tuple(j.name for j in robot.joints if j.type not in ("fixed", None) and j.name and j.mimic is None)
-        values = positions or {}
-        rsp.on_joint_state(JointStateIn(stamp_ns, names, tuple(float(values.get(n, 0.0)) for n in names)))
     return list(rsp.transforms())
 
 
