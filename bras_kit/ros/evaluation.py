@@ -50,6 +50,8 @@ class LaunchEvaluation:
     checked: bool = False  # the results are in (the page may show the robot before)
     rviz: Any = None  # the RvizConfig rviz2 opens with (ros.rviz.started), None when no rviz2 is started
     rviz_file: str | None = None  # the -d file it was read from (None: RViz's default)
+    # the learner's install/ of the package differs from these sources: ros2 launch would run the old files
+    stale_install: Message | None = None
 
     @property
     def package(self) -> str:

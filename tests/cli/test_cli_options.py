@@ -109,7 +109,7 @@ def test_launch_opens_a_browser_unless_no_browser(monkeypatch, capsys, argv, ope
     monkeypatch.setattr(webbrowser, "open", lambda url: calls.append(url))
     calls: list[str] = []
     args.lang = "en"
-    launch._announce(args, _Page())
+    launch._announce(args, _Page(), "bras_description")
     assert "bras-kit launch: http://127.0.0.1:8080/ (Ctrl-C to stop)" in capsys.readouterr().out
     assert calls == ([_Page.url] if opened else [])
 

@@ -100,7 +100,7 @@ def test_files_saved_agree_with_their_number(count, words):
     from bras_kit.core.message import Mn
 
     names = ", ".join(["urdf/bras.urdf", "setup.py", "launch/affichage.launch.py"][:count])
-    # the very message launch's live loop prints (bras_kit/cli/launch.py, _live)
+    # the very message launch's live loop prints (bras_kit/launcher/relaunch.py, live)
     message = Mn("{files} saved: the package is built and launched again",
                  "{files} saved: the package is built and launched again", count, files=names)
     assert say(dataclasses.replace(message, domain="cli"), "fr").startswith(f"{names} {words}")

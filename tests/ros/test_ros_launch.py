@@ -227,7 +227,7 @@ def test_copied_styles_namespace_include_cat_and_file_argument_start_clean(tmp_p
 
 
 def test_rviz_started_with_a_configuration_gives_the_viewer_its_fixed_frame(tmp_path):
-    from bras_kit.cli.launch import _rviz_fixed_frame
+    from bras_kit.ros.evaluation import rviz_fixed_frame as _rviz_fixed_frame
     from bras_kit.scaffold.package import scaffold_package
 
     scaffold_package(tmp_path / "bras_description")

@@ -335,7 +335,7 @@ def test_rviz_d_dev_zero_is_not_read_for_the_pages_fixed_frame(world):
     """bras-kit launch reads RViz's -d configuration for the page's fixed frame: /dev/zero there
     used to be read until memory ran out; it is refused by the one reader, and a real
     configuration of the package is still read."""
-    from bras_kit.cli.launch import _rviz_fixed_frame
+    from bras_kit.ros.evaluation import rviz_fixed_frame as _rviz_fixed_frame
     from bras_kit.validate.package import launch_package
 
     package = world.package("rviz_dev_zero")

@@ -62,7 +62,7 @@ def test_view_stopped_right_after_its_address_exits_0(tmp_path: Path) -> None:
 
 
 @pytest.mark.parametrize(("module", "name"), [
-    ("bras_kit.cli.launch", "_node_results"),  # the checks that run after the address
+    ("bras_kit.launcher.session", "node_results"),  # the checks that run after the address
     ("bras_kit.run.live", "LiveNodes.start"),  # the package's nodes starting live
 ])
 def test_launch_stopped_right_after_its_address_exits_0(tmp_path: Path, module: str, name: str) -> None:
